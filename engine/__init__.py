@@ -1,0 +1,1 @@
+"""A general typed graph-rewriting engine (it knows nothing about vaults)."""

@@ -1,0 +1,1 @@
+"""The vault rulebook: rule files (``*.vgr``) shipped as package data, not Python code."""

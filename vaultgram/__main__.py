@@ -1,0 +1,5 @@
+"""``python -m vaultgram`` runs the command-line interface."""
+
+from vaultgram.cli import main
+
+main()

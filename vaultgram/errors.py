@@ -1,0 +1,63 @@
+"""One exception hierarchy for everything a user can get wrong.
+
+Every message names *where* the problem is (file:line:col for rule files, ring and vertex index for
+geometry, rule and bindings for rewriting) so that the command line can print it as one readable line
+and exit with code 2, without a traceback.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class SourcePos:
+    """A position in a rule file (1-based line and column)."""
+
+    file: str
+    line: int
+    column: int
+
+    def __str__(self) -> str:
+        return f"{self.file}:{self.line}:{self.column}"
+
+
+class VaultgramError(Exception):
+    """Base class of every error caused by input (files, options, rules), not by a bug."""
+
+
+class RuleError(VaultgramError):
+    """A problem in a rule file, reported with its source position and an optional hint."""
+
+    def __init__(self, message: str, pos: SourcePos | None = None, hint: str | None = None):
+        self.message = message
+        self.pos = pos
+        self.hint = hint
+        text = f"{pos}: {message}" if pos else message
+        if hint:
+            text += f"\n  hint: {hint}"
+        super().__init__(text)
+
+
+class RuleSyntaxError(RuleError):
+    """The rule file does not follow the grammar (grammar/rules.lark)."""
+
+
+class RuleTypeError(RuleError):
+    """The rule file parses but names unknown types, attributes, functions or variables, or mixes types."""
+
+
+class SchemaError(VaultgramError):
+    """A host graph change would break the type schema (unknown type, bad edge endpoints)."""
+
+
+class RewriteError(VaultgramError):
+    """A rule application or strategy failed (step limit breached, bad replay, failed function call)."""
+
+
+class DomainError(VaultgramError):
+    """The domain (boundaries and features) is invalid: the message names the ring or feature and vertex."""
+
+
+class ConvergenceError(VaultgramError):
+    """An iterative method did not reach its tolerance within its iteration cap."""
