@@ -7,6 +7,7 @@ and exit with code 2, without a traceback.
 
 from __future__ import annotations
 
+import difflib
 from dataclasses import dataclass
 
 
@@ -61,3 +62,9 @@ class DomainError(VaultgramError):
 
 class ConvergenceError(VaultgramError):
     """An iterative method did not reach its tolerance within its iteration cap."""
+
+
+def did_you_mean(name: str, candidates) -> str | None:
+    """A hint naming the closest known name, or None."""
+    close = difflib.get_close_matches(name, [str(c) for c in candidates], n=1)
+    return f"did you mean '{close[0]}'?" if close else None

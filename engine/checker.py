@@ -1,0 +1,607 @@
+"""Static checking: turn a parsed rule into a :class:`CompiledRule`, or report what is wrong and where.
+
+Everything that can be known before touching a graph is checked here, when the rule file is loaded:
+unknown types, attributes, functions and variables; pattern edges whose endpoint types can never fit
+the edge type; creations of abstract types or with missing attributes; ``next``/``prev`` outside
+``foreach``; values of the wrong type. Each error is a :class:`RuleTypeError` with file:line:col.
+
+The compiled rule also carries what the engine needs to re-match incrementally: the types the rule
+reads, and how far from a change a match can be affected (its *radius*).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from vaultgram.errors import RuleTypeError, did_you_mean
+from vaultgram.grammar import ast
+
+from .expressions import ANY, TYPE, Compiled, ExpressionCompiler, Symbol, VType, walk
+from .schema import VALUE_TYPES, TypeSchema, value_conforms
+
+# ----------------------------------------------------------------------------------------------
+# Compiled forms
+# ----------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Condition:
+    """A compiled boolean test with the variables it reads and where it was written."""
+
+    fn: Compiled
+    reads: frozenset[str]
+    text: str
+    pos: object
+
+
+@dataclass(frozen=True)
+class PatternNode:
+    var: str
+    type: str
+    types: frozenset[str]
+    checks: tuple[Condition, ...]
+    pos: object
+
+
+@dataclass(frozen=True)
+class PatternEdge:
+    """An edge of a pattern; ``mode`` is ``"out"`` (source -> target) or ``"any"`` (either direction)."""
+
+    var: str
+    source: str
+    target: str
+    type: str
+    types: frozenset[str]
+    mode: str
+    checks: tuple[Condition, ...]
+    pos: object
+
+
+@dataclass
+class CompiledPattern:
+    """Nodes, edges and conditions of a ``match`` or ``not`` block; ``outer`` are variables bound before it."""
+
+    nodes: dict[str, PatternNode]
+    edges: list[PatternEdge]
+    conditions: list[Condition]
+    outer: frozenset[str]
+    pos: object
+
+    @property
+    def variables(self) -> list[str]:
+        return [*self.nodes, *(e.var for e in self.edges)]
+
+
+@dataclass(frozen=True)
+class CDelete:
+    vars: tuple[str, ...]
+    detach: bool
+    node_vars: tuple[str, ...]
+    pos: object
+
+
+@dataclass(frozen=True)
+class CCreateNode:
+    var: str
+    type: str
+    attrs: tuple[tuple[str, Compiled], ...]
+    pos: object
+
+
+@dataclass(frozen=True)
+class CCreateEdge:
+    var: str | None
+    source: tuple[str, int]
+    target: tuple[str, int]
+    type: str
+    attrs: tuple[tuple[str, Compiled], ...]
+    pos: object
+
+
+@dataclass(frozen=True)
+class CRetype:
+    var: str
+    type: str
+    pos: object
+
+
+@dataclass(frozen=True)
+class CSet:
+    var: str
+    kind: str  # "node" or "edge"
+    attr: str
+    value: Compiled
+    pos: object
+
+
+@dataclass(frozen=True)
+class CMerge:
+    source: str
+    target: str
+    pos: object
+
+
+@dataclass(frozen=True)
+class CForeach:
+    edge_var: str
+    center: str
+    neighbour: str
+    types: frozenset[str]
+    direction: str
+    condition: Condition | None
+    body: tuple
+    pos: object
+
+
+@dataclass
+class CompiledRule:
+    """A checked rule, ready for matching and rewriting."""
+
+    name: str
+    params: dict[str, ast.Param]
+    node_params: dict[str, str]  # node-typed parameters: name -> type
+    defaults: dict[str, object]
+    priority: int
+    pattern: CompiledPattern
+    nacs: list[CompiledPattern]
+    statements: tuple
+    reads_types: frozenset[str]
+    radius: int | None  # None: any change anywhere may matter (re-match the whole graph)
+    deletes_nodes: bool
+    source: ast.Rule
+    order: int = 0
+    key_vars: tuple[str, ...] = field(default=())
+
+
+# ----------------------------------------------------------------------------------------------
+# Checking
+# ----------------------------------------------------------------------------------------------
+
+
+class RuleChecker:
+    """Checks and compiles the rules of a rulebook against its schema and function registry."""
+
+    def __init__(self, schema: TypeSchema, compiler: ExpressionCompiler):
+        self.schema = schema
+        self.compiler = compiler
+        self.type_symbols = {
+            name: Symbol(TYPE, schema.subtypes(name)) for name in (*schema.node_types, *schema.edge_types)
+        }
+
+    def compile_rule(self, rule: ast.Rule, order: int = 0) -> CompiledRule:
+        self._created = set()
+        scope = dict(self.type_symbols)
+        node_params: dict[str, str] = {}
+        defaults: dict[str, object] = {}
+        params = {}
+        for p in rule.params:
+            self._fresh(p.name, scope, p.pos)
+            params[p.name] = p
+            if self.schema.is_node_type(p.type):
+                node_params[p.name] = p.type
+                scope[p.name] = Symbol(VType("node", p.type))
+                if p.default is not None:
+                    raise RuleTypeError(f"node parameter '{p.name}' cannot have a default", p.pos)
+            elif p.type in VALUE_TYPES:
+                scope[p.name] = Symbol(VType("value", p.type))
+                if p.default is not None:
+                    fn, _, reads = self.compiler.compile(p.default, self.type_symbols)
+                    value = fn(None, {})
+                    if not value_conforms(value, p.type):
+                        raise RuleTypeError(f"default of parameter '{p.name}' must be {p.type}", p.default.pos)
+                    defaults[p.name] = value
+            else:
+                raise RuleTypeError(
+                    f"parameter '{p.name}': unknown type '{p.type}'",
+                    p.pos,
+                    did_you_mean(p.type, [*VALUE_TYPES, *self.schema.node_types]),
+                )
+
+        pattern = self._pattern(rule.match, scope, frozenset(params), node_params)
+        nacs = []
+        for nac in rule.nacs:
+            nac_scope = dict(scope)
+            nacs.append(self._pattern(nac, nac_scope, frozenset(pattern_vars(pattern) | set(params)), {}))
+        statements = self._statements(rule.statements, scope, None)
+        compiled = CompiledRule(
+            name=rule.name,
+            params=params,
+            node_params=node_params,
+            defaults=defaults,
+            priority=rule.priority,
+            pattern=pattern,
+            nacs=nacs,
+            statements=statements,
+            reads_types=frozenset(),
+            radius=0,
+            deletes_nodes=False,
+            source=rule,
+            order=order,
+            key_vars=tuple(pattern.variables),
+        )
+        compiled.deletes_nodes = any(
+            isinstance(s, CDelete) and s.node_vars and not s.detach for s in flatten(statements)
+        )
+        compiled.reads_types = self._reads_types(rule, compiled)
+        compiled.radius = self._radius(rule, compiled)
+        return compiled
+
+    # -- patterns --------------------------------------------------------------------------------
+
+    def _pattern(self, pat: ast.Pattern, scope: dict, outer: frozenset, node_params: dict) -> CompiledPattern:
+        nodes: dict[str, PatternNode] = {}
+        for name, type_name in node_params.items():
+            nodes[name] = PatternNode(name, type_name, self.schema.subtypes(type_name), (), pat.pos)
+        for n in pat.nodes:
+            self._fresh(n.var, scope, n.pos)
+            self._node_type(n.type, n.pos)
+            scope[n.var] = Symbol(VType("node", n.type))
+        for n in pat.nodes:
+            checks = tuple(self._constraint(c, n.var, scope) for c in n.constraints)
+            nodes[n.var] = PatternNode(n.var, n.type, self.schema.subtypes(n.type), checks, n.pos)
+
+        edges: list[PatternEdge] = []
+        for k, e in enumerate(pat.edges):
+            info = self._edge_type(e.type, e.pos)
+            for end in (e.source, e.target):
+                sym = scope.get(end)
+                if sym is None or sym.type.kind != "node":
+                    raise RuleTypeError(
+                        f"'{end}' is not a node of the pattern",
+                        e.pos,
+                        f"declare it first, e.g. `{end}: {info.source}`",
+                    )
+            if e.source == e.target:
+                raise RuleTypeError("an edge pattern cannot join a node to itself", e.pos)
+            if e.directed and not info.directed:
+                raise RuleTypeError(
+                    f"edge type {e.type} is undirected: write {e.source} -{e.type}- {e.target}", e.pos
+                )
+            self._check_endpoint_fit(e, info, scope)
+            var = e.var or f"_edge{len(outer)}_{k}"
+            if e.var:
+                self._fresh(e.var, scope, e.pos)
+                scope[e.var] = Symbol(VType("edge", e.type))
+            types = self.schema.subtypes(e.type)
+            if e.directed:
+                types = frozenset(t for t in types if self.schema.edge_types[t].directed)
+            edges.append(PatternEdge(var, e.source, e.target, e.type, types, "out" if e.directed else "any", (), e.pos))
+        for i, e in enumerate(pat.edges):
+            if e.constraints:
+                scope_var = edges[i].var
+                if not e.var:
+                    scope[scope_var] = Symbol(VType("edge", e.type))
+                checks = tuple(self._constraint(c, scope_var, scope) for c in e.constraints)
+                edges[i] = PatternEdge(**{**edges[i].__dict__, "checks": checks})
+        conditions = [self._condition(c, scope) for c in pat.conditions]
+        return CompiledPattern(nodes, edges, conditions, outer, pat.pos)
+
+    def _check_endpoint_fit(self, e: ast.EdgePattern, info, scope) -> None:
+        s_type = scope[e.source].type.name
+        t_type = scope[e.target].type.name
+        fits = self.schema.compatible(s_type, info.source) and self.schema.compatible(t_type, info.target)
+        if not fits and not e.directed:
+            fits = self.schema.compatible(t_type, info.source) and self.schema.compatible(s_type, info.target)
+        if not fits:
+            arrow = "->" if info.directed else "--"
+            raise RuleTypeError(
+                f"edge {e.type} joins {info.source} {arrow} {info.target}; "
+                f"{e.source}: {s_type} and {e.target}: {t_type} can never fit it",
+                e.pos,
+            )
+
+    def _constraint(self, c: ast.Constraint, var: str, scope) -> Condition:
+        expr = ast.Binary(c.op, ast.Attr(ast.Name(var, c.pos), c.attr, c.pos), c.value, c.pos)
+        return self._condition(expr, scope, text=f"{var}.{c.attr} {c.op} ...")
+
+    def _condition(self, expr, scope, text: str | None = None) -> Condition:
+        fn, _, reads = self.compiler.compile(expr, scope)
+        return Condition(fn, reads, text or describe(expr), expr.pos)
+
+    # -- statements ------------------------------------------------------------------------------
+
+    def _statements(self, statements, scope: dict, foreach_created: set | None) -> tuple:
+        out = []
+        for s in statements:
+            out.append(self._statement(s, scope, foreach_created))
+        return tuple(out)
+
+    def _statement(self, s, scope: dict, foreach_created):
+        if isinstance(s, ast.Delete):
+            for var in s.vars:
+                sym = self._element(var, scope, s.pos)
+                if s.detach and sym.type.kind != "node":
+                    raise RuleTypeError(f"'detach delete' applies to nodes; '{var}' is an edge", s.pos)
+                if var in self._created:
+                    raise RuleTypeError(f"'{var}' is created by this rule; deleting it makes no sense", s.pos)
+            nodes = tuple(v for v in s.vars if scope[v].type.kind == "node")
+            return CDelete(s.vars, s.detach, nodes, s.pos)
+        if isinstance(s, ast.CreateNode):
+            info = self._node_type(s.type, s.pos)
+            if info.abstract:
+                raise RuleTypeError(f"node type {s.type} is abstract and cannot be created", s.pos)
+            attrs = self._attr_inits(s.type, s.attrs, scope, s.pos)
+            self._fresh(s.var, scope, s.pos)
+            scope[s.var] = Symbol(VType("node", s.type))
+            self._created.add(s.var)
+            if foreach_created is not None:
+                foreach_created.add(s.var)
+            return CCreateNode(s.var, s.type, attrs, s.pos)
+        if isinstance(s, ast.CreateEdge):
+            return self._create_edge(s, scope, foreach_created)
+        if isinstance(s, ast.Retype):
+            sym = self._element(s.var, scope, s.pos)
+            info = self._node_type(s.type, s.pos)
+            if sym.type.kind != "node":
+                raise RuleTypeError(f"only nodes can be retyped; '{s.var}' is an edge", s.pos)
+            if info.abstract:
+                raise RuleTypeError(f"cannot retype to abstract type {s.type}", s.pos)
+            return CRetype(s.var, s.type, s.pos)
+        if isinstance(s, ast.SetAttr):
+            sym = self._element(s.var, scope, s.pos)
+            spec = self.schema.attrs(sym.type.name).get(s.attr)
+            if spec is None:
+                raise RuleTypeError(
+                    f"{sym.type.kind} type {sym.type.name} has no attribute '{s.attr}'",
+                    s.pos,
+                    did_you_mean(s.attr, self.schema.attrs(sym.type.name)),
+                )
+            fn, vtype, _ = self.compiler.compile(s.value, scope)
+            self._check_value_type(vtype, spec.type, s.attr, s.value.pos)
+            return CSet(s.var, sym.type.kind, s.attr, fn, s.pos)
+        if isinstance(s, ast.Merge):
+            for var in (s.source, s.target):
+                if self._element(var, scope, s.pos).type.kind != "node":
+                    raise RuleTypeError(f"only nodes can be merged; '{var}' is an edge", s.pos)
+            if s.source == s.target:
+                raise RuleTypeError("cannot merge a node into itself", s.pos)
+            return CMerge(s.source, s.target, s.pos)
+        if isinstance(s, ast.Foreach):
+            return self._foreach(s, scope)
+        raise AssertionError(f"unknown statement {s!r}")
+
+    def _create_edge(self, s: ast.CreateEdge, scope, foreach_created):
+        info = self._edge_type(s.type, s.pos)
+        if info.abstract:
+            raise RuleTypeError(f"edge type {s.type} is abstract and cannot be created", s.pos)
+        if s.directed != info.directed:
+            arrow = "->" if info.directed else "--"
+            raise RuleTypeError(
+                f"edge type {s.type} is {'directed' if info.directed else 'undirected'}: "
+                f"write {s.source.var} -{s.type}{arrow[-1] if info.directed else '-'} {s.target.var}",
+                s.pos,
+            )
+        ends = []
+        for ref in (s.source, s.target):
+            sym = scope.get(ref.var)
+            if sym is None or sym.type.kind != "node":
+                raise RuleTypeError(f"'{ref.var}' is not a node in this rule", ref.pos, did_you_mean(ref.var, scope))
+            if ref.step != 0 and (foreach_created is None or ref.var not in foreach_created):
+                raise RuleTypeError(
+                    f"next()/prev() refers to a node created in the enclosing foreach; '{ref.var}' is not", ref.pos
+                )
+            ends.append(sym.type.name)
+        if (s.source.var, s.source.step) == (s.target.var, s.target.step):
+            raise RuleTypeError("an edge cannot join a node to itself", s.pos)
+        ok = self.schema.is_subtype(ends[0], info.source) and self.schema.is_subtype(ends[1], info.target)
+        if not ok and not info.directed:
+            ok = self.schema.is_subtype(ends[1], info.source) and self.schema.is_subtype(ends[0], info.target)
+        if not ok:
+            raise RuleTypeError(
+                f"edge {s.type} joins {info.source} and {info.target}; "
+                f"{s.source.var} is {ends[0]} and {s.target.var} is {ends[1]}",
+                s.pos,
+                "narrow the pattern types so the endpoints are always of the declared types",
+            )
+        attrs = self._attr_inits(s.type, s.attrs, scope, s.pos)
+        if s.var:
+            self._fresh(s.var, scope, s.pos)
+            scope[s.var] = Symbol(VType("edge", s.type))
+            self._created.add(s.var)
+        return CCreateEdge(s.var, (s.source.var, s.source.step), (s.target.var, s.target.step), s.type, attrs, s.pos)
+
+    def _foreach(self, s: ast.Foreach, scope):
+        center = scope.get(s.center)
+        if center is None or center.type.kind != "node":
+            raise RuleTypeError(f"foreach: '{s.center}' is not a node of the pattern", s.pos)
+        info = self._edge_type(s.type, s.pos)
+        if s.direction != "--" and not info.directed:
+            raise RuleTypeError(f"edge type {s.type} is undirected: write -{s.type}-", s.pos)
+        inner = dict(scope)
+        edge_var = s.edge_var or f"_foreach{s.pos.line}_{s.pos.column}"
+        self._fresh(edge_var, inner, s.pos)
+        self._fresh(s.neighbour, inner, s.pos)
+        inner[edge_var] = Symbol(VType("edge", s.type))
+        other = self._neighbour_type(info, s.direction, center.type.name)
+        inner[s.neighbour] = Symbol(VType("node", other))
+        condition = self._condition(s.condition, inner) if s.condition is not None else None
+        created: set = set()
+        body = self._statements(s.body, inner, created)
+        return CForeach(edge_var, s.center, s.neighbour, self.schema.subtypes(s.type), s.direction, condition, body, s.pos)
+
+    def _neighbour_type(self, info, direction: str, center_type: str) -> str:
+        """The static type of a foreach neighbour: the edge type's other endpoint type."""
+        if direction == "->":
+            return info.target
+        if direction == "<-":
+            return info.source
+        as_source = self.schema.compatible(center_type, info.source)
+        as_target = self.schema.compatible(center_type, info.target)
+        if as_source and not as_target:
+            return info.target
+        if as_target and not as_source:
+            return info.source
+        return self.schema.common_ancestor(info.source, info.target)
+
+    def _attr_inits(self, type_name: str, inits, scope, pos):
+        specs = self.schema.attrs(type_name)
+        out = []
+        seen = set()
+        for init in inits:
+            spec = specs.get(init.attr)
+            if spec is None:
+                raise RuleTypeError(
+                    f"type {type_name} has no attribute '{init.attr}'", init.pos, did_you_mean(init.attr, specs)
+                )
+            if init.attr in seen:
+                raise RuleTypeError(f"attribute '{init.attr}' is set twice", init.pos)
+            seen.add(init.attr)
+            fn, vtype, _ = self.compiler.compile(init.value, scope)
+            self._check_value_type(vtype, spec.type, init.attr, init.value.pos)
+            out.append((init.attr, fn))
+        missing = [name for name, spec in specs.items() if spec.required and name not in seen]
+        if missing:
+            raise RuleTypeError(
+                f"creating a {type_name} needs attribute(s) {', '.join(missing)}",
+                pos,
+                f"write {{ {missing[0]} = ... }}",
+            )
+        return tuple(out)
+
+    def _check_value_type(self, vtype: VType, declared: str, attr: str, pos) -> None:
+        if vtype == ANY or declared == "any":
+            return
+        ok = vtype.kind == "value" and (
+            vtype.name == declared
+            or (declared == "float" and vtype.name == "int")
+            or (declared == "list" and vtype.name in ("list", "vec2", "vec3"))
+            or (declared in ("vec2", "vec3") and vtype.name == "list")
+        )
+        if not ok:
+            raise RuleTypeError(f"attribute '{attr}' is {declared} but the value is {vtype}", pos)
+
+    # -- helpers ---------------------------------------------------------------------------------
+
+    _created: set
+
+    def _fresh(self, name: str, scope, pos) -> None:
+        if name in scope:
+            what = "a type name" if scope[name].type == TYPE else "already used in this rule"
+            raise RuleTypeError(f"'{name}' is {what}", pos, "choose another variable name")
+
+    def _element(self, var: str, scope, pos) -> Symbol:
+        sym = scope.get(var)
+        if sym is None or sym.type.kind not in ("node", "edge"):
+            known = [n for n, s in scope.items() if s.type.kind in ("node", "edge") and not n.startswith("_")]
+            raise RuleTypeError(f"'{var}' is not a node or edge of this rule", pos, did_you_mean(var, known))
+        return sym
+
+    def _node_type(self, name: str, pos):
+        info = self.schema.node_types.get(name)
+        if info is None:
+            raise RuleTypeError(f"unknown node type '{name}'", pos, did_you_mean(name, self.schema.node_types))
+        return info
+
+    def _edge_type(self, name: str, pos):
+        info = self.schema.edge_types.get(name)
+        if info is None:
+            raise RuleTypeError(f"unknown edge type '{name}'", pos, did_you_mean(name, self.schema.edge_types))
+        return info
+
+    def _reads_types(self, rule: ast.Rule, compiled: CompiledRule) -> frozenset[str]:
+        """Types whose changes can change this rule's matches."""
+        all_edges = frozenset(self.schema.edge_types)
+        types: set[str] = set()
+        for pat in (compiled.pattern, *compiled.nacs):
+            for n in pat.nodes.values():
+                types |= n.types
+            for e in pat.edges:
+                types |= e.types
+        for s in flatten(compiled.statements):
+            if isinstance(s, CForeach):
+                types |= s.types
+        if compiled.deletes_nodes:
+            types |= all_edges
+        for expr in rule_expressions(rule):
+            for sub in walk(expr):
+                if isinstance(sub, ast.Call) and self.compiler.functions.table.get(sub.func, None) is not None:
+                    f = self.compiler.functions[sub.func]
+                    if f.uses_graph:
+                        named = [a for a in sub.args if isinstance(a, ast.Name) and a.name in self.type_symbols]
+                        if named:
+                            for a in named:
+                                types |= self.type_symbols[a.name].types
+                        else:
+                            types |= all_edges
+        return frozenset(types)
+
+    def _radius(self, rule: ast.Rule, compiled: CompiledRule) -> int | None:
+        """How far (in edges) from a changed node a match of this rule can be affected; None = anywhere."""
+        if any(self.compiler.reads_nonlocal(e) for e in rule_expressions(rule)):
+            return None
+        if not compiled.pattern.nodes:
+            return None
+        radius = 0
+        positive = set(compiled.pattern.nodes)
+        for nac in compiled.nacs:
+            depth = {v: 0 for v in positive}
+            frontier = list(positive)
+            while frontier:
+                nxt = []
+                for v in frontier:
+                    for e in nac.edges:
+                        for a, b in ((e.source, e.target), (e.target, e.source)):
+                            if a == v and b not in depth:
+                                depth[b] = depth[v] + 1
+                                nxt.append(b)
+                frontier = nxt
+            if any(v not in depth for v in nac.nodes):
+                return None  # a NAC part not connected to the match: anything may matter
+            radius = max(radius, *(depth[v] for v in nac.nodes), 0)
+        return radius
+
+
+def pattern_vars(pattern: CompiledPattern) -> set[str]:
+    return set(pattern.variables)
+
+
+def flatten(statements):
+    """Statements with foreach bodies expanded (for static summaries)."""
+    for s in statements:
+        yield s
+        if isinstance(s, CForeach):
+            yield from flatten(s.body)
+
+
+def rule_expressions(rule: ast.Rule):
+    """Every expression written in a rule."""
+    for pat in (rule.match, *rule.nacs):
+        yield from pat.conditions
+        for n in pat.nodes:
+            yield from (c.value for c in n.constraints)
+        for e in pat.edges:
+            yield from (c.value for c in e.constraints)
+    yield from _statement_expressions(rule.statements)
+
+
+def _statement_expressions(statements):
+    for s in statements:
+        if isinstance(s, (ast.CreateNode, ast.CreateEdge)):
+            yield from (a.value for a in s.attrs)
+        elif isinstance(s, ast.SetAttr):
+            yield s.value
+        elif isinstance(s, ast.Foreach):
+            if s.condition is not None:
+                yield s.condition
+            yield from _statement_expressions(s.body)
+
+
+def describe(expr) -> str:
+    """A short source-like rendering of an expression, for messages."""
+    if isinstance(expr, ast.Literal):
+        return repr(expr.value) if not isinstance(expr.value, bool) else str(expr.value).lower()
+    if isinstance(expr, ast.Name):
+        return expr.name
+    if isinstance(expr, ast.Attr):
+        return f"{describe(expr.target)}.{expr.attr}"
+    if isinstance(expr, ast.Index):
+        return f"{describe(expr.target)}[{describe(expr.index)}]"
+    if isinstance(expr, ast.Call):
+        return f"{expr.func}({', '.join(describe(a) for a in expr.args)})"
+    if isinstance(expr, ast.ListExpr):
+        return f"[{', '.join(describe(a) for a in expr.items)}]"
+    if isinstance(expr, ast.Unary):
+        return f"{expr.op} {describe(expr.operand)}" if expr.op == "not" else f"-{describe(expr.operand)}"
+    if isinstance(expr, ast.Binary):
+        return f"{describe(expr.left)} {expr.op} {describe(expr.right)}"
+    return "?"

@@ -1,0 +1,384 @@
+"""Expressions in rules: static typing, compilation to Python closures, and the function registry.
+
+An expression is checked once, when its rule file is loaded, against a *scope* (which names are
+pattern nodes, pattern edges or parameters, and their types): unknown names, attributes and
+functions, wrong argument counts and mixed-up types are reported there with the source position.
+It is then compiled to a closure ``f(graph, binding)`` so that matching never re-walks the syntax tree.
+
+Functions are either builtins (graph queries such as ``degree`` and a little arithmetic) or registered
+by the host application with a signature; the engine itself knows nothing about geometry.
+"""
+
+from __future__ import annotations
+
+import math
+import operator
+from dataclasses import dataclass, field
+from typing import Callable, Mapping
+
+from vaultgram.errors import RuleTypeError, did_you_mean
+from vaultgram.grammar import ast
+
+from .schema import TypeSchema
+
+# ----------------------------------------------------------------------------------------------
+# Static types
+# ----------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class VType:
+    """The static type of an expression: a value type, a node or edge of a declared type, or a type name."""
+
+    kind: str  # "value", "node", "edge" or "type"
+    name: str  # value type name ("int", "vec2", "any", ...), element type name, or "" for kind "type"
+
+    def __str__(self) -> str:
+        return self.name if self.kind == "value" else f"{self.kind} {self.name}".strip()
+
+
+ANY = VType("value", "any")
+BOOL = VType("value", "bool")
+INT = VType("value", "int")
+FLOAT = VType("value", "float")
+STR = VType("value", "str")
+NONE = VType("value", "none")
+LIST = VType("value", "list")
+TYPE = VType("type", "")
+NUMERIC = ("int", "float")
+VECTORS = ("vec2", "vec3")
+
+
+@dataclass(frozen=True)
+class Symbol:
+    """What a name in a rule stands for: its static type, and (for types) the set of matching types."""
+
+    type: VType
+    types: frozenset[str] = frozenset()
+
+
+# ----------------------------------------------------------------------------------------------
+# Functions
+# ----------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Function:
+    """A callable usable in rules.
+
+    ``params`` are parameter kinds: a value type name, ``"node"``, ``"edge"``, ``"type"``, ``"vec"``
+    (vec2 or vec3), ``"number"`` or ``"any"``; a trailing ``"?"`` marks an optional parameter and
+    ``"*"`` a variadic one. ``uses_graph`` functions receive the host graph first. ``local`` declares
+    that the function only reads its arguments and the elements incident to them, which lets the engine
+    re-match incrementally; a non-local function makes rules that call it re-match the whole graph.
+    """
+
+    name: str
+    fn: Callable
+    params: tuple[str, ...]
+    returns: str
+    uses_graph: bool = False
+    local: bool = True
+
+
+@dataclass
+class Functions:
+    """The registry of functions that rules may call: builtins plus what the host application registers."""
+
+    table: dict[str, Function] = field(default_factory=dict)
+
+    def __post_init__(self):
+        for f in _builtins():
+            self.table.setdefault(f.name, f)
+
+    def register(self, name: str, fn: Callable, params, returns: str, *, uses_graph=False, local=True) -> None:
+        """Register ``fn`` under ``name`` with a signature (see :class:`Function`)."""
+        self.table[name] = Function(name, fn, tuple(params), returns, uses_graph, local)
+
+    def __contains__(self, name: str) -> bool:
+        return name in self.table
+
+    def __getitem__(self, name: str) -> Function:
+        return self.table[name]
+
+
+def _vector(*components):
+    return tuple(float(c) for c in components)
+
+
+def _builtins() -> list[Function]:
+    def degree(g, n, types=None):
+        return g.degree(n, types)
+
+    def indegree(g, n, types=None):
+        return sum(1 for e in g.incident(n, types) if g.is_directed(e) and g.ends(e)[1] == n)
+
+    def outdegree(g, n, types=None):
+        return sum(1 for e in g.incident(n, types) if g.is_directed(e) and g.ends(e)[0] == n)
+
+    return [
+        Function("degree", degree, ("node", "type?"), "int", True),
+        Function("indegree", indegree, ("node", "type?"), "int", True),
+        Function("outdegree", outdegree, ("node", "type?"), "int", True),
+        Function("other", lambda g, e, n: g.other(e, n), ("edge", "node"), "node", True),
+        Function("source", lambda g, e: g.ends(e)[0], ("edge",), "node", True),
+        Function("target", lambda g, e: g.ends(e)[1], ("edge",), "node", True),
+        Function("next_around", lambda g, n, e: g.next_around(n, e, 1), ("node", "edge"), "edge", True),
+        Function("prev_around", lambda g, n, e: g.next_around(n, e, -1), ("node", "edge"), "edge", True),
+        Function("type_of", lambda g, x: g.node_type(x), ("node",), "str", True),
+        Function("is_a", lambda g, x, types: g.node_type(x) in types, ("node", "type"), "bool", True),
+        Function("abs", abs, ("number",), "float"),
+        Function("min", min, ("number", "number*"), "float"),
+        Function("max", max, ("number", "number*"), "float"),
+        Function("sqrt", math.sqrt, ("number",), "float"),
+        Function("floor", math.floor, ("number",), "int"),
+        Function("ceil", math.ceil, ("number",), "int"),
+        Function("round", round, ("number",), "int"),
+        Function("len", len, ("any",), "int"),
+        Function("vec2", _vector, ("number", "number"), "vec2"),
+        Function("vec3", _vector, ("number", "number", "number"), "vec3"),
+        Function("dot", lambda a, b: sum(x * y for x, y in zip(a, b)), ("vec", "vec"), "float"),
+        Function("norm", lambda a: math.sqrt(sum(x * x for x in a)), ("vec",), "float"),
+    ]
+
+
+# ----------------------------------------------------------------------------------------------
+# Compilation
+# ----------------------------------------------------------------------------------------------
+
+Compiled = Callable[[object, Mapping[str, object]], object]
+
+
+class ExpressionCompiler:
+    """Type-checks expressions against a scope and compiles them to closures ``f(graph, binding)``."""
+
+    def __init__(self, schema: TypeSchema, functions: Functions):
+        self.schema = schema
+        self.functions = functions
+
+    def compile(self, expr, scope: Mapping[str, Symbol]) -> tuple[Compiled, VType, frozenset[str]]:
+        """Return the closure, the static type and the names (variables/parameters) the expression reads."""
+        method = getattr(self, "_" + type(expr).__name__.lower())
+        return method(expr, scope)
+
+    def reads_nonlocal(self, expr) -> bool:
+        """Whether the expression calls a function declared non-local."""
+        calls = [e for e in walk(expr) if isinstance(e, ast.Call)]
+        return any(c.func in self.functions and not self.functions[c.func].local for c in calls)
+
+    # -- atoms -----------------------------------------------------------------------------------
+
+    def _literal(self, expr, scope):
+        value = expr.value
+        if isinstance(value, bool):
+            t = BOOL
+        elif isinstance(value, int):
+            t = INT
+        elif isinstance(value, float):
+            t = FLOAT
+        elif isinstance(value, str):
+            t = STR
+        else:
+            t = NONE
+        return (lambda g, b: value), t, frozenset()
+
+    def _name(self, expr, scope):
+        sym = scope.get(expr.name)
+        if sym is None:
+            known = [n for n in scope if not n.startswith("_")]
+            raise RuleTypeError(
+                f"unknown name '{expr.name}' (not a pattern variable, parameter or type)",
+                expr.pos,
+                did_you_mean(expr.name, known),
+            )
+        if sym.type.kind == "type":
+            types = sym.types
+            return (lambda g, b: types), sym.type, frozenset()
+        name = expr.name
+        return (lambda g, b: b[name]), sym.type, frozenset([name])
+
+    def _listexpr(self, expr, scope):
+        parts = [self.compile(item, scope) for item in expr.items]
+        fns = [p[0] for p in parts]
+        reads = frozenset().union(*(p[2] for p in parts)) if parts else frozenset()
+        return (lambda g, b: tuple(f(g, b) for f in fns)), LIST, reads
+
+    def _attr(self, expr, scope):
+        target, ttype, reads = self.compile(expr.target, scope)
+        attr = expr.attr
+        if ttype.kind in ("node", "edge"):
+            spec = self.schema.attrs(ttype.name).get(attr)
+            if spec is None:
+                raise RuleTypeError(
+                    f"{ttype.kind} type {ttype.name} has no attribute '{attr}'",
+                    expr.pos,
+                    did_you_mean(attr, self.schema.attrs(ttype.name)),
+                )
+            getter = (lambda g, b: g.nx.nodes[target(g, b)][attr]) if ttype.kind == "node" else (
+                lambda g, b: g.get_edge(target(g, b), attr)
+            )
+            return getter, VType("value", spec.type), reads
+        if ttype.name in VECTORS + ("any",) and attr in ("x", "y", "z"):
+            if ttype.name == "vec2" and attr == "z":
+                raise RuleTypeError("a vec2 has no component 'z'", expr.pos)
+            k = "xyz".index(attr)
+            return (lambda g, b: target(g, b)[k]), FLOAT if ttype.name != "any" else ANY, reads
+        raise RuleTypeError(f"cannot take attribute '{attr}' of a value of type {ttype}", expr.pos)
+
+    def _index(self, expr, scope):
+        target, ttype, r1 = self.compile(expr.target, scope)
+        index, itype, r2 = self.compile(expr.index, scope)
+        if ttype.name not in VECTORS + ("list", "any") or ttype.kind != "value":
+            raise RuleTypeError(f"cannot index a value of type {ttype}", expr.pos)
+        if itype.name not in ("int", "any"):
+            raise RuleTypeError(f"an index must be an int, not {itype}", expr.index.pos)
+        result = FLOAT if ttype.name in VECTORS else ANY
+        return (lambda g, b: target(g, b)[index(g, b)]), result, r1 | r2
+
+    def _call(self, expr, scope):
+        func = self.functions.table.get(expr.func)
+        if func is None:
+            raise RuleTypeError(
+                f"unknown function '{expr.func}'",
+                expr.pos,
+                did_you_mean(expr.func, self.functions.table) or "the host application registers functions rules may call",
+            )
+        parts = [self.compile(a, scope) for a in expr.args]
+        _check_arguments(func, expr, [p[1] for p in parts])
+        fns = tuple(p[0] for p in parts)
+        reads = frozenset().union(*(p[2] for p in parts)) if parts else frozenset()
+        fn = func.fn
+        if func.uses_graph:
+            call = lambda g, b: fn(g, *[f(g, b) for f in fns])  # noqa: E731
+        else:
+            call = lambda g, b: fn(*[f(g, b) for f in fns])  # noqa: E731
+        return call, _return_type(func.returns), reads
+
+    # -- operators -------------------------------------------------------------------------------
+
+    def _unary(self, expr, scope):
+        operand, t, reads = self.compile(expr.operand, scope)
+        if expr.op == "not":
+            return (lambda g, b: not operand(g, b)), BOOL, reads
+        if t.kind != "value" or t.name not in NUMERIC + VECTORS + ("any",):
+            raise RuleTypeError(f"cannot negate a value of type {t}", expr.pos)
+        if t.name in VECTORS:
+            return (lambda g, b: tuple(-c for c in operand(g, b))), t, reads
+        return (lambda g, b: -operand(g, b)), t, reads
+
+    def _binary(self, expr, scope):
+        left, lt, r1 = self.compile(expr.left, scope)
+        right, rt, r2 = self.compile(expr.right, scope)
+        reads = r1 | r2
+        op = expr.op
+        if op == "and":
+            return (lambda g, b: bool(left(g, b)) and bool(right(g, b))), BOOL, reads
+        if op == "or":
+            return (lambda g, b: bool(left(g, b)) or bool(right(g, b))), BOOL, reads
+        if op in ("==", "!="):
+            _check_comparable(lt, rt, expr)
+            f = operator.eq if op == "==" else operator.ne
+            return (lambda g, b: f(left(g, b), right(g, b))), BOOL, reads
+        if op == "in":
+            if rt.kind != "value" or rt.name not in ("list", "any", "vec2", "vec3"):
+                raise RuleTypeError(f"'in' needs a list on its right, not {rt}", expr.right.pos)
+            return (lambda g, b: left(g, b) in right(g, b)), BOOL, reads
+        if op in ("<", "<=", ">", ">="):
+            if not (_both(lt, rt, NUMERIC) or _both(lt, rt, ("str",))):
+                raise RuleTypeError(f"cannot compare {lt} {op} {rt}", expr.pos)
+            f = {"<": operator.lt, "<=": operator.le, ">": operator.gt, ">=": operator.ge}[op]
+            return (lambda g, b: f(left(g, b), right(g, b))), BOOL, reads
+        return self._arithmetic(op, left, lt, right, rt, expr, reads)
+
+    def _arithmetic(self, op, left, lt, right, rt, expr, reads):
+        scalar_ops = {"+": operator.add, "-": operator.sub, "*": operator.mul, "/": operator.truediv,
+                      "%": operator.mod}
+        f = scalar_ops[op]
+        if _both(lt, rt, NUMERIC):
+            result = INT if lt.name == rt.name == "int" and op != "/" else FLOAT
+            if ANY in (lt, rt):
+                result = ANY
+            return (lambda g, b: f(left(g, b), right(g, b))), result, reads
+        if op == "+" and lt == rt == STR:
+            return (lambda g, b: left(g, b) + right(g, b)), STR, reads
+        if op in "+-" and lt.name in VECTORS and lt == rt:
+            return (lambda g, b: tuple(f(x, y) for x, y in zip(left(g, b), right(g, b)))), lt, reads
+        if op in "*/" and lt.name in VECTORS and rt.name in NUMERIC:
+            return (lambda g, b: tuple(f(x, right(g, b)) for x in left(g, b))), lt, reads
+        if op == "*" and lt.name in NUMERIC and rt.name in VECTORS:
+            return (lambda g, b: tuple(left(g, b) * y for y in right(g, b))), rt, reads
+        raise RuleTypeError(f"operator '{op}' does not apply to {lt} and {rt}", expr.pos)
+
+
+def walk(expr):
+    """Every sub-expression of ``expr`` (itself included)."""
+    yield expr
+    for child in _children(expr):
+        yield from walk(child)
+
+
+def _children(expr):
+    if isinstance(expr, (ast.Attr,)):
+        return (expr.target,)
+    if isinstance(expr, ast.Index):
+        return (expr.target, expr.index)
+    if isinstance(expr, ast.Call):
+        return expr.args
+    if isinstance(expr, ast.ListExpr):
+        return expr.items
+    if isinstance(expr, ast.Unary):
+        return (expr.operand,)
+    if isinstance(expr, ast.Binary):
+        return (expr.left, expr.right)
+    return ()
+
+
+def _both(a: VType, b: VType, names) -> bool:
+    ok = lambda t: t.kind == "value" and (t.name in names or t.name == "any")  # noqa: E731
+    return ok(a) and ok(b)
+
+
+def _check_comparable(a: VType, b: VType, expr) -> None:
+    if ANY in (a, b) or NONE in (a, b):
+        return
+    if a.kind != b.kind:
+        raise RuleTypeError(f"comparing {a} with {b} is always false", expr.pos)
+    if a.kind == "value" and not (a.name == b.name or _both(a, b, NUMERIC)):
+        raise RuleTypeError(f"comparing {a} with {b} is always false", expr.pos)
+
+
+def _return_type(name: str) -> VType:
+    if name in ("node", "edge"):
+        return VType(name, "Node" if name == "node" else "Edge")
+    return VType("value", name)
+
+
+def _accepts(kind: str, t: VType) -> bool:
+    kind = kind.rstrip("?*")
+    if kind == "any" or t == ANY:
+        return True
+    if kind in ("node", "edge", "type"):
+        return t.kind == kind
+    if t.kind != "value":
+        return False
+    if kind == "number":
+        return t.name in NUMERIC
+    if kind == "vec":
+        return t.name in VECTORS
+    if kind == "float":
+        return t.name in NUMERIC
+    return t.name == kind
+
+
+def _check_arguments(func: Function, expr, types: list[VType]) -> None:
+    required = [p for p in func.params if not p.endswith(("?", "*"))]
+    variadic = func.params and func.params[-1].endswith("*")
+    if len(types) < len(required) or (not variadic and len(types) > len(func.params)):
+        sig = ", ".join(func.params)
+        raise RuleTypeError(f"{func.name}({sig}) takes {len(required)} argument(s), got {len(types)}", expr.pos)
+    for i, t in enumerate(types):
+        kind = func.params[min(i, len(func.params) - 1)]
+        if not _accepts(kind, t):
+            raise RuleTypeError(
+                f"argument {i + 1} of {func.name} must be {kind.rstrip('?*')}, got {t}", expr.args[i].pos
+            )

@@ -1,0 +1,471 @@
+"""The typed host graph that rules rewrite.
+
+A :class:`HostGraph` stores its nodes and edges in a networkx ``MultiDiGraph`` (so any networkx
+algorithm can run on :meth:`HostGraph.to_networkx`) and keeps, current on every change:
+
+* a **type index** (type name -> element ids) so that a search can start from the rarest type;
+* **typed adjacency** (node -> edge type -> incident edge ids) so that a search extends along
+  exactly the edges a pattern asks for;
+* a **rotation system**: the cyclic order of the edges around each node, as in networkx's
+  ``PlanarEmbedding``. With an ``angle`` function (given by the host application, e.g. the direction
+  of an edge's polyline as it leaves a node) edges are kept sorted counter-clockwise by that angle;
+  without one, by edge id (creation order). Faces of a planar graph are walked with it
+  (:mod:`vaultgram.engine.embedding`), and ``foreach`` visits neighbours in this order;
+* an **undo log** (journal): every primitive change records its inverse, so an application either
+  completes or is rolled back exactly (:meth:`transaction`), and exploration can step back
+  (:meth:`mark` / :meth:`rollback`) without copying the graph.
+
+Node and edge ids are integers. Ids are chosen by the caller or allocated from counters that undo
+also restores, so replaying the same applications gives the same ids. Every ordering the engine
+exposes is by id, never by hash or insertion order.
+"""
+
+from __future__ import annotations
+
+import bisect
+from contextlib import contextmanager
+from dataclasses import dataclass
+from typing import Callable, Iterable, Iterator, Mapping
+
+import networkx as nx
+
+from vaultgram.errors import SchemaError
+
+from .schema import TypeSchema, normalise_value, value_conforms
+
+AngleFunction = Callable[["HostGraph", int, int], float]
+
+
+@dataclass(frozen=True)
+class ChangeSet:
+    """What a slice of the journal touched: node ids (endpoints of changed edges included) and types."""
+
+    nodes: frozenset[int]
+    types: frozenset[str]
+
+
+class HostGraph:
+    """A typed multigraph with directed and undirected edges, type indexes, rotations and undo."""
+
+    def __init__(self, schema: TypeSchema, angle: AngleFunction | None = None):
+        self.schema = schema
+        self.angle = angle
+        self.nx = nx.MultiDiGraph()
+        self._node_type: dict[int, str] = {}
+        self._edge_type: dict[int, str] = {}
+        self._ends: dict[int, tuple[int, int]] = {}
+        self._by_type: dict[str, set[int]] = {t: set() for t in (*schema.node_types, *schema.edge_types)}
+        self._inc: dict[int, dict[str, set[int]]] = {}
+        self._rot: dict[int, list[int]] = {}
+        self._rot_keys: dict[int, list[tuple[float, int]]] = {}
+        self._next_node = 0
+        self._next_edge = 0
+        self._journal: list[tuple] = []
+
+    # ------------------------------------------------------------------------------------------
+    # Queries
+    # ------------------------------------------------------------------------------------------
+
+    def __len__(self) -> int:
+        return len(self._node_type)
+
+    @property
+    def num_edges(self) -> int:
+        return len(self._edge_type)
+
+    def nodes(self) -> list[int]:
+        """All node ids, sorted."""
+        return sorted(self._node_type)
+
+    def edges(self) -> list[int]:
+        """All edge ids, sorted."""
+        return sorted(self._edge_type)
+
+    def has_node(self, n: int) -> bool:
+        return n in self._node_type
+
+    def has_edge(self, e: int) -> bool:
+        return e in self._edge_type
+
+    def node_type(self, n: int) -> str:
+        return self._node_type[n]
+
+    def edge_type(self, e: int) -> str:
+        return self._edge_type[e]
+
+    def ends(self, e: int) -> tuple[int, int]:
+        """(source, target) of an edge; for an undirected edge, the order it was created with."""
+        return self._ends[e]
+
+    def is_directed(self, e: int) -> bool:
+        return self.schema.edge_types[self._edge_type[e]].directed
+
+    def other(self, e: int, n: int) -> int:
+        u, v = self._ends[e]
+        return v if u == n else u
+
+    def node_attrs(self, n: int) -> Mapping[str, object]:
+        return self.nx.nodes[n]
+
+    def edge_attrs(self, e: int) -> Mapping[str, object]:
+        u, v = self._ends[e]
+        return self.nx.edges[u, v, e]
+
+    def get(self, n: int, name: str) -> object:
+        return self.nx.nodes[n][name]
+
+    def get_edge(self, e: int, name: str) -> object:
+        u, v = self._ends[e]
+        return self.nx.edges[u, v, e][name]
+
+    def count(self, types: Iterable[str]) -> int:
+        """Number of elements whose type is one of ``types`` (pass a type's subtypes)."""
+        return sum(len(self._by_type[t]) for t in types)
+
+    def of_types(self, types: Iterable[str]) -> Iterator[int]:
+        """Element ids of the given exact types (pass ``schema.subtypes(T)`` for T and its subtypes)."""
+        for t in types:
+            yield from self._by_type[t]
+
+    def incident(self, n: int, types: Iterable[str] | None = None) -> Iterator[int]:
+        """Edge ids incident to ``n`` whose exact type is in ``types`` (all edges when None)."""
+        inc = self._inc[n]
+        if types is None:
+            for edges in inc.values():
+                yield from edges
+            return
+        for t in types:
+            edges = inc.get(t)
+            if edges:
+                yield from edges
+
+    def degree(self, n: int, types: Iterable[str] | None = None) -> int:
+        inc = self._inc[n]
+        if types is None:
+            return sum(len(s) for s in inc.values())
+        return sum(len(inc[t]) for t in types if t in inc)
+
+    def rotation(self, n: int) -> list[int]:
+        """Incident edge ids in cyclic (counter-clockwise when the graph has an angle function) order."""
+        return list(self._rot[n])
+
+    def next_around(self, n: int, e: int, step: int = 1) -> int:
+        """The edge ``step`` places after ``e`` in the rotation around ``n`` (negative: before)."""
+        rot = self._rot[n]
+        return rot[(rot.index(e) + step) % len(rot)]
+
+    # ------------------------------------------------------------------------------------------
+    # Changes (each one journaled)
+    # ------------------------------------------------------------------------------------------
+
+    def add_node(self, type_name: str, attrs: Mapping[str, object] | None = None, id: int | None = None) -> int:
+        """Add a node of a concrete declared type; attributes are checked and defaults filled in."""
+        info = self.schema.node_types.get(type_name)
+        if info is None:
+            raise SchemaError(f"unknown node type '{type_name}'")
+        if info.abstract:
+            raise SchemaError(f"node type '{type_name}' is abstract and cannot be instantiated")
+        n = self._allocate(id, self._node_type, "node")
+        values = self.schema.fill_attrs(type_name, attrs or {}, f"node {n}")
+        self._journal.append(("add_node", n, self._next_node))
+        self._next_node = max(self._next_node, n + 1)
+        self._insert_node(n, type_name, values)
+        return n
+
+    def add_edge(
+        self, type_name: str, u: int, v: int, attrs: Mapping[str, object] | None = None, id: int | None = None
+    ) -> int:
+        """Add an edge of a concrete declared type between existing nodes of allowed endpoint types."""
+        info = self.schema.edge_types.get(type_name)
+        if info is None:
+            raise SchemaError(f"unknown edge type '{type_name}'")
+        if info.abstract:
+            raise SchemaError(f"edge type '{type_name}' is abstract and cannot be instantiated")
+        for end in (u, v):
+            if end not in self._node_type:
+                raise SchemaError(f"edge {type_name}: node {end} does not exist")
+        if u == v:
+            raise SchemaError(f"edge {type_name}: a self-loop at node {u} is not allowed")
+        self._check_endpoints(type_name, u, v)
+        e = self._allocate(id, self._edge_type, "edge")
+        values = self.schema.fill_attrs(type_name, attrs or {}, f"edge {e}")
+        self._journal.append(("add_edge", e, self._next_edge))
+        self._next_edge = max(self._next_edge, e + 1)
+        self._insert_edge(e, type_name, u, v, values, None)
+        return e
+
+    def remove_edge(self, e: int) -> None:
+        u, v = self._ends[e]
+        positions = (self._rot[u].index(e), self._rot[v].index(e))
+        attrs = dict(self.nx.edges[u, v, e])
+        self._journal.append(("remove_edge", e, self._edge_type[e], u, v, attrs, positions))
+        self._delete_edge(e)
+
+    def remove_node(self, n: int) -> None:
+        """Remove a node that has no edges left (the dangling condition of double-pushout rewriting)."""
+        if self._rot[n]:
+            raise SchemaError(f"node {n} still has {len(self._rot[n])} edge(s): {sorted(self._rot[n])}")
+        self._journal.append(("remove_node", n, self._node_type[n], dict(self.nx.nodes[n])))
+        self._delete_node(n)
+
+    def set_node_attr(self, n: int, name: str, value: object) -> None:
+        self._set_attr("node", n, self._node_type[n], self.nx.nodes[n], name, value)
+        self._refresh_rotations([n, *(self.other(e, n) for e in self._rot[n])])
+
+    def set_edge_attr(self, e: int, name: str, value: object) -> None:
+        u, v = self._ends[e]
+        self._set_attr("edge", e, self._edge_type[e], self.nx.edges[u, v, e], name, value)
+        self._refresh_rotations([u, v])
+
+    def retype(self, n: int, type_name: str) -> None:
+        """Change a node's type; attributes the new type lacks are dropped, missing ones defaulted."""
+        info = self.schema.node_types.get(type_name)
+        if info is None or info.abstract:
+            raise SchemaError(f"node {n}: cannot retype to '{type_name}' (unknown or abstract type)")
+        old_type = self._node_type[n]
+        old_attrs = dict(self.nx.nodes[n])
+        kept = {k: v for k, v in old_attrs.items() if k in info.attrs}
+        values = self.schema.fill_attrs(type_name, kept, f"node {n}")
+        self._by_type[old_type].discard(n)
+        self._node_type[n] = type_name
+        self._by_type[type_name].add(n)
+        for e in self._rot[n]:
+            u, v = self._ends[e]
+            try:
+                self._check_endpoints(self._edge_type[e], u, v)
+            except SchemaError:
+                self._by_type[type_name].discard(n)
+                self._node_type[n] = old_type
+                self._by_type[old_type].add(n)
+                raise
+        self._journal.append(("retype", n, old_type, old_attrs))
+        data = self.nx.nodes[n]
+        data.clear()
+        data.update(values)
+
+    # ------------------------------------------------------------------------------------------
+    # Transactions and undo
+    # ------------------------------------------------------------------------------------------
+
+    def mark(self) -> int:
+        """A point in the journal to roll back to."""
+        return len(self._journal)
+
+    def rollback(self, mark: int) -> None:
+        """Undo every change made since ``mark``, restoring the graph (ids, rotations, counters) exactly."""
+        while len(self._journal) > mark:
+            self._undo(self._journal.pop())
+
+    @contextmanager
+    def transaction(self):
+        """Changes inside the block all happen, or (on any exception) none of them do."""
+        mark = self.mark()
+        try:
+            yield
+        except BaseException:
+            self.rollback(mark)
+            raise
+
+    def forget(self) -> None:
+        """Drop the undo log (after a run whose changes will never be undone)."""
+        self._journal.clear()
+
+    def changes_since(self, mark: int) -> ChangeSet:
+        """The nodes and types touched by the changes after ``mark``."""
+        nodes: set[int] = set()
+        types: set[str] = set()
+        for record in self._journal[mark:]:
+            op = record[0]
+            if op == "add_node":
+                nodes.add(record[1])
+                types.add(self._node_type.get(record[1], ""))
+            elif op == "remove_node":
+                nodes.add(record[1])
+                types.add(record[2])
+            elif op == "add_edge":
+                e = record[1]
+                if e in self._ends:
+                    nodes.update(self._ends[e])
+                    types.add(self._edge_type[e])
+            elif op == "remove_edge":
+                nodes.update((record[3], record[4]))
+                types.add(record[2])
+            elif op == "set_attr":
+                kind, i = record[1], record[2]
+                if kind == "node":
+                    nodes.add(i)
+                    types.add(self._node_type.get(i, ""))
+                elif i in self._ends:
+                    nodes.update(self._ends[i])
+                    types.add(self._edge_type[i])
+            elif op == "retype":
+                nodes.add(record[1])
+                types.update((record[2], self._node_type.get(record[1], "")))
+            elif op == "rotation":
+                nodes.add(record[1])
+        types.discard("")
+        return ChangeSet(frozenset(nodes), frozenset(types))
+
+    # ------------------------------------------------------------------------------------------
+    # Export and comparison
+    # ------------------------------------------------------------------------------------------
+
+    def snapshot(self) -> dict:
+        """A canonical plain description: two graphs are identical exactly when their snapshots are equal."""
+        return {
+            "nodes": {n: (self._node_type[n], sorted(self.nx.nodes[n].items())) for n in self.nodes()},
+            "edges": {
+                e: (self._edge_type[e], self._ends[e], sorted(self.edge_attrs(e).items())) for e in self.edges()
+            },
+            "rotations": {n: list(self._rot[n]) for n in self.nodes()},
+            "counters": (self._next_node, self._next_edge),
+        }
+
+    def to_networkx(self) -> nx.MultiDiGraph:
+        """A copy as a networkx MultiDiGraph; the element type is stored in attribute ``type``."""
+        g = nx.MultiDiGraph()
+        for n in self.nodes():
+            g.add_node(n, type=self._node_type[n], **self.nx.nodes[n])
+        for e in self.edges():
+            u, v = self._ends[e]
+            g.add_edge(u, v, key=e, type=self._edge_type[e], directed=self.is_directed(e), **self.edge_attrs(e))
+        return g
+
+    def to_json(self) -> dict:
+        """Nodes and edges with their types and attributes, in id order (JSON-serialisable)."""
+        return {
+            "nodes": [{"id": n, "type": self._node_type[n], **self.nx.nodes[n]} for n in self.nodes()],
+            "edges": [
+                {"id": e, "type": self._edge_type[e], "source": self._ends[e][0], "target": self._ends[e][1],
+                 **self.edge_attrs(e)}
+                for e in self.edges()
+            ],
+        }
+
+    # ------------------------------------------------------------------------------------------
+    # Internals
+    # ------------------------------------------------------------------------------------------
+
+    def _allocate(self, requested: int | None, table: dict, kind: str) -> int:
+        if requested is None:
+            return self._next_node if kind == "node" else self._next_edge
+        if not isinstance(requested, int) or isinstance(requested, bool) or requested < 0:
+            raise SchemaError(f"{kind} id must be a non-negative integer, got {requested!r}")
+        if requested in table:
+            raise SchemaError(f"{kind} id {requested} already exists")
+        return requested
+
+    def _check_endpoints(self, type_name: str, u: int, v: int) -> None:
+        info = self.schema.edge_types[type_name]
+        tu, tv = self._node_type[u], self._node_type[v]
+        ok = self.schema.is_subtype(tu, info.source) and self.schema.is_subtype(tv, info.target)
+        if not ok and not info.directed:
+            ok = self.schema.is_subtype(tv, info.source) and self.schema.is_subtype(tu, info.target)
+        if not ok:
+            arrow = "->" if info.directed else "--"
+            raise SchemaError(
+                f"edge {type_name} ({info.source} {arrow} {info.target}) cannot join node {u} ({tu}) and node {v} ({tv})"
+            )
+
+    def _insert_node(self, n: int, type_name: str, attrs: dict) -> None:
+        self.nx.add_node(n, **attrs)
+        self._node_type[n] = type_name
+        self._by_type[type_name].add(n)
+        self._inc[n] = {}
+        self._rot[n] = []
+        self._rot_keys[n] = []
+
+    def _delete_node(self, n: int) -> None:
+        self.nx.remove_node(n)
+        self._by_type[self._node_type.pop(n)].discard(n)
+        del self._inc[n], self._rot[n], self._rot_keys[n]
+
+    def _insert_edge(self, e: int, type_name: str, u: int, v: int, attrs: dict, positions) -> None:
+        self.nx.add_edge(u, v, key=e, **attrs)
+        self._edge_type[e] = type_name
+        self._ends[e] = (u, v)
+        self._by_type[type_name].add(e)
+        for k, n in enumerate((u, v)):
+            self._inc[n].setdefault(type_name, set()).add(e)
+            if positions is not None:
+                self._rot[n].insert(positions[k], e)
+                self._rot_keys[n].insert(positions[k], self._rotation_key(e, n))
+            else:
+                key = self._rotation_key(e, n)
+                i = bisect.bisect(self._rot_keys[n], key)
+                self._rot_keys[n].insert(i, key)
+                self._rot[n].insert(i, e)
+
+    def _delete_edge(self, e: int) -> None:
+        u, v = self._ends.pop(e)
+        type_name = self._edge_type.pop(e)
+        self.nx.remove_edge(u, v, key=e)
+        self._by_type[type_name].discard(e)
+        for n in (u, v):
+            bucket = self._inc[n][type_name]
+            bucket.discard(e)
+            if not bucket:
+                del self._inc[n][type_name]
+            i = self._rot[n].index(e)
+            del self._rot[n][i], self._rot_keys[n][i]
+
+    def _rotation_key(self, e: int, n: int) -> tuple[float, int]:
+        if self.angle is None:
+            return (0.0, e)
+        return (float(self.angle(self, e, n)), e)
+
+    def _refresh_rotations(self, nodes: Iterable[int]) -> None:
+        """Re-sort rotations after an attribute change (only when an angle function defines them)."""
+        if self.angle is None:
+            return
+        for n in dict.fromkeys(nodes):
+            keys = sorted(self._rotation_key(e, n) for e in self._rot[n])
+            order = [e for _, e in keys]
+            if order != self._rot[n]:
+                self._journal.append(("rotation", n, self._rot[n], self._rot_keys[n]))
+                self._rot[n] = order
+                self._rot_keys[n] = keys
+
+    def _set_attr(self, kind: str, i: int, type_name: str, data: dict, name: str, value: object) -> None:
+        spec = self.schema.attrs(type_name).get(name)
+        if spec is None:
+            raise SchemaError(f"{kind} {i}: type {type_name} has no attribute '{name}'")
+        value = normalise_value(value)
+        if not value_conforms(value, spec.type):
+            raise SchemaError(f"{kind} {i}: attribute '{name}' of {type_name} must be {spec.type}, got {value!r}")
+        self._journal.append(("set_attr", kind, i, name, data[name]))
+        data[name] = value
+
+    def _undo(self, record: tuple) -> None:
+        op = record[0]
+        if op == "add_node":
+            self._delete_node(record[1])
+            self._next_node = record[2]
+        elif op == "add_edge":
+            self._delete_edge(record[1])
+            self._next_edge = record[2]
+        elif op == "remove_node":
+            _, n, type_name, attrs = record
+            self._insert_node(n, type_name, attrs)
+        elif op == "remove_edge":
+            _, e, type_name, u, v, attrs, positions = record
+            self._insert_edge(e, type_name, u, v, attrs, positions)
+        elif op == "set_attr":
+            _, kind, i, name, old = record
+            if kind == "node":
+                self.nx.nodes[i][name] = old
+            else:
+                u, v = self._ends[i]
+                self.nx.edges[u, v, i][name] = old
+        elif op == "retype":
+            _, n, old_type, old_attrs = record
+            self._by_type[self._node_type[n]].discard(n)
+            self._node_type[n] = old_type
+            self._by_type[old_type].add(n)
+            data = self.nx.nodes[n]
+            data.clear()
+            data.update(old_attrs)
+        elif op == "rotation":
+            _, n, order, keys = record
+            self._rot[n] = order
+            self._rot_keys[n] = keys

@@ -1,0 +1,121 @@
+"""Search plans: the order in which a pattern's elements are bound, decided once per rule.
+
+A plan is a list of steps (GP 2 and GrGen.NET compile rules the same way):
+
+* ``Bound(var)`` -- a node given from outside (a parameter, the anchor of an incremental re-match,
+  or a variable of the enclosing match for a NAC): check its type and inline constraints;
+* ``Scan(var)`` -- try every node of the variable's type (and subtypes) from the type index; the
+  plan scans the variable with the fewest candidates, and only when nothing bound is adjacent;
+* ``Extend(edge, from, to)`` -- follow the typed adjacency of a bound node along the pattern edge,
+  binding the edge and, unless it is already bound, the node at its other end;
+* ``Check(condition)`` -- a ``where`` condition, placed right after its last variable is bound.
+
+The greedy order prefers closing cycles (both ends bound: a check, no branching), then extending
+along the rarest edge type, and scans only to start a new connected component.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+from .checker import CompiledPattern, Condition, PatternEdge, PatternNode
+
+
+@dataclass(frozen=True)
+class Bound:
+    node: PatternNode
+
+
+@dataclass(frozen=True)
+class Scan:
+    node: PatternNode
+
+
+@dataclass(frozen=True)
+class Extend:
+    edge: PatternEdge
+    start: str  # bound variable the search leaves from
+    end: str  # variable at the other end
+    end_node: PatternNode | None  # None when ``end`` is already bound
+    forward: bool  # for a directed ("out") edge: start is its source
+
+
+@dataclass(frozen=True)
+class Check:
+    condition: Condition
+
+
+Step = Bound | Scan | Extend | Check
+
+
+def build_plan(
+    pattern: CompiledPattern, given: frozenset[str], count: Callable[[frozenset[str]], int]
+) -> list[Step]:
+    """Order the pattern's elements for search, given the variables bound before the search starts.
+
+    ``count(types)`` estimates how many elements have one of ``types`` (the graph's type index).
+    """
+    bound = set(given)
+    steps: list[Step] = []
+    conditions = list(pattern.conditions)
+
+    def place_conditions():
+        for c in list(conditions):
+            if c.reads <= bound:
+                steps.append(Check(c))
+                conditions.remove(c)
+
+    for var, node in pattern.nodes.items():
+        if var in given:
+            steps.append(Bound(node))
+    place_conditions()
+
+    edges = list(pattern.edges)
+    while edges or any(v not in bound for v in pattern.nodes):
+        closing = [e for e in edges if e.source in bound and e.target in bound]
+        if closing:
+            e = closing[0]
+            steps.append(Extend(e, e.source, e.target, None, True))
+            edges.remove(e)
+        else:
+            leaving = [e for e in edges if e.source in bound or e.target in bound]
+            if leaving:
+                e = min(leaving, key=lambda e: count(e.types))
+                forward = e.source in bound
+                start, end = (e.source, e.target) if forward else (e.target, e.source)
+                steps.append(Extend(e, start, end, pattern.nodes[end], forward))
+                edges.remove(e)
+                bound.add(end)
+            else:
+                free = [v for v in pattern.nodes if v not in bound]
+                var = min(free, key=lambda v: count(pattern.nodes[v].types))
+                steps.append(Scan(pattern.nodes[var]))
+                bound.add(var)
+        bound.update(e.var for e in pattern.edges if e not in edges)
+        place_conditions()
+    place_conditions()
+    assert not conditions, f"conditions read unbound variables: {[c.text for c in conditions]}"
+    return steps
+
+
+def describe_step(step: Step) -> str:
+    """What a step looks for, in the rule's own words (for why-not reports)."""
+    if isinstance(step, Bound):
+        return f"node {step.node.var}: {step.node.type}"
+    if isinstance(step, Scan):
+        return f"a node {step.node.var}: {step.node.type}"
+    if isinstance(step, Extend):
+        e = step.edge
+        arrow = f"-{e.type}->" if e.mode == "out" else f"-{e.type}-"
+        name = "" if e.var.startswith("_") else f"{e.var}: "
+        return f"edge {name}{e.source} {arrow} {e.target}"
+    return f"condition `{step.condition.text}`"
+
+
+def step_pos(step: Step):
+    if isinstance(step, (Bound, Scan)):
+        return step.node.pos
+    if isinstance(step, Extend):
+        return step.edge.pos
+    return step.condition.pos

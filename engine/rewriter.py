@@ -1,0 +1,243 @@
+"""Applying a rule to a match: the rewrite, done as one transaction.
+
+Semantics (documented in docs/language.md):
+
+* statements run in their written order, and every expression sees the graph as matched plus the
+  elements the rule has created so far;
+* deletions happen last (edges, then merges, then nodes), so expressions may still read what is
+  deleted; a plain ``delete`` of a node is double-pushout: the match is refused beforehand when the
+  node has edges the rule does not delete (the *dangling condition*, see :func:`footprint`);
+  ``detach delete`` removes the remaining edges too;
+* ``merge a into b`` moves a's edges to b (keeping their ids and attributes; edges between a and b
+  disappear) and deletes a;
+* ``foreach`` iterates over the center's edges of the given type in rotation order; first the body's
+  node creations run for every iteration, then the other statements, so that ``next(r)`` and
+  ``prev(r)`` can name the node created in the cyclically next or previous iteration.
+
+If anything fails (a schema violation, a host function raising), the graph is rolled back exactly
+and a :class:`RewriteError` names the rule and the statement.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from vaultgram.errors import RewriteError, SchemaError
+
+from .checker import CCreateEdge, CCreateNode, CDelete, CForeach, CMerge, CompiledRule, CRetype, CSet
+from .graph import HostGraph
+
+
+@dataclass
+class Footprint:
+    """The elements an application will delete or change (computed before applying it)."""
+
+    deleted_nodes: set[int] = field(default_factory=set)
+    detached_nodes: set[int] = field(default_factory=set)
+    deleted_edges: set[int] = field(default_factory=set)
+    changed_nodes: set[int] = field(default_factory=set)
+    changed_edges: set[int] = field(default_factory=set)
+
+    def writes(self) -> set[tuple[str, int]]:
+        nodes = self.deleted_nodes | self.detached_nodes | self.changed_nodes
+        edges = self.deleted_edges | self.changed_edges
+        return {("n", n) for n in nodes} | {("e", e) for e in edges}
+
+    def dangling(self, graph: HostGraph) -> dict[int, list[int]]:
+        """Nodes deleted by a plain ``delete`` that keep edges the rule does not delete."""
+        out = {}
+        for n in sorted(self.deleted_nodes):
+            left = sorted(e for e in graph.incident(n) if e not in self.deleted_edges)
+            if left:
+                out[n] = left
+        return out
+
+
+@dataclass
+class Application:
+    """The record of one rule application (the unit of traces and undo)."""
+
+    rule: str
+    params: dict
+    binding: dict
+    created_nodes: list[int]
+    created_edges: list[int]
+    deleted_nodes: list[int]
+    deleted_edges: list[int]
+    mark: int  # journal position before the application: graph.rollback(mark) undoes it
+
+
+def foreach_iterations(graph: HostGraph, stmt: CForeach, scope: dict) -> list[tuple[int, int]]:
+    """(edge, neighbour) pairs of a foreach, in the rotation order around its center."""
+    center = scope[stmt.center]
+    out = []
+    for e in graph.rotation(center):
+        if graph.edge_type(e) not in stmt.types:
+            continue
+        u, v = graph.ends(e)
+        if stmt.direction == "->" and u != center or stmt.direction == "<-" and v != center:
+            continue
+        n = v if u == center else u
+        if stmt.condition is not None:
+            inner = {**scope, stmt.edge_var: e, stmt.neighbour: n}
+            if not stmt.condition.fn(graph, inner):
+                continue
+        out.append((e, n))
+    return out
+
+
+def footprint(rule: CompiledRule, graph: HostGraph, scope: dict) -> Footprint:
+    """What applying ``rule`` with this binding (and parameter values) would delete or change."""
+    fp = Footprint()
+    _collect(rule.statements, graph, scope, fp)
+    return fp
+
+
+def _collect(statements, graph, scope, fp: Footprint) -> None:
+    for s in statements:
+        if isinstance(s, CDelete):
+            for var in s.vars:
+                if var not in scope:
+                    continue
+                if var in s.node_vars:
+                    (fp.detached_nodes if s.detach else fp.deleted_nodes).add(scope[var])
+                else:
+                    fp.deleted_edges.add(scope[var])
+        elif isinstance(s, CRetype) and s.var in scope:
+            fp.changed_nodes.add(scope[s.var])
+        elif isinstance(s, CSet) and s.var in scope:
+            (fp.changed_nodes if s.kind == "node" else fp.changed_edges).add(scope[s.var])
+        elif isinstance(s, CMerge):
+            fp.changed_nodes.update(scope[v] for v in (s.source, s.target) if v in scope)
+        elif isinstance(s, CForeach):
+            for e, n in foreach_iterations(graph, s, scope):
+                _collect(s.body, graph, {**scope, s.edge_var: e, s.neighbour: n}, fp)
+
+
+class _Run:
+    """The state of one application while its statements execute."""
+
+    def __init__(self, rule: CompiledRule, graph: HostGraph):
+        self.rule = rule
+        self.graph = graph
+        self.created_nodes: list[int] = []
+        self.created_edges: list[int] = []
+        self.delete_edges: list[int] = []
+        self.delete_nodes: list[tuple[int, bool]] = []
+        self.merges: list[tuple[int, int]] = []
+
+    def execute(self, statements, scope: dict, neighbours: tuple[dict, dict] | None = None) -> None:
+        for s in statements:
+            self.statement(s, scope, neighbours)
+
+    def statement(self, s, scope: dict, neighbours) -> None:
+        g = self.graph
+        if isinstance(s, CCreateNode):
+            if s.var not in scope:  # already created in a foreach's first pass
+                attrs = {name: fn(g, scope) for name, fn in s.attrs}
+                scope[s.var] = g.add_node(s.type, attrs)
+                self.created_nodes.append(scope[s.var])
+        elif isinstance(s, CCreateEdge):
+            u = self.endpoint(s.source, scope, neighbours)
+            v = self.endpoint(s.target, scope, neighbours)
+            attrs = {name: fn(g, scope) for name, fn in s.attrs}
+            e = g.add_edge(s.type, u, v, attrs)
+            self.created_edges.append(e)
+            if s.var:
+                scope[s.var] = e
+        elif isinstance(s, CRetype):
+            g.retype(scope[s.var], s.type)
+        elif isinstance(s, CSet):
+            value = s.value(g, scope)
+            if s.kind == "node":
+                g.set_node_attr(scope[s.var], s.attr, value)
+            else:
+                g.set_edge_attr(scope[s.var], s.attr, value)
+        elif isinstance(s, CMerge):
+            self.merges.append((scope[s.source], scope[s.target]))
+        elif isinstance(s, CDelete):
+            for var in s.vars:
+                if var in s.node_vars:
+                    self.delete_nodes.append((scope[var], s.detach))
+                else:
+                    self.delete_edges.append(scope[var])
+        elif isinstance(s, CForeach):
+            self.foreach(s, scope)
+
+    def foreach(self, s: CForeach, scope: dict) -> None:
+        iterations = foreach_iterations(self.graph, s, scope)
+        scopes = [{**scope, s.edge_var: e, s.neighbour: n} for e, n in iterations]
+        creations = [c for c in s.body if isinstance(c, CCreateNode)]
+        for inner in scopes:
+            for c in creations:
+                self.statement(c, inner, None)
+        k = len(scopes)
+        for i, inner in enumerate(scopes):
+            self.execute(s.body, inner, (scopes[(i + 1) % k], scopes[(i - 1) % k]))
+
+    @staticmethod
+    def endpoint(ref: tuple[str, int], scope: dict, neighbours) -> int:
+        var, step = ref
+        if step == 0:
+            return scope[var]
+        return (neighbours[0] if step > 0 else neighbours[1])[var]
+
+    def finish(self) -> tuple[list[int], list[int]]:
+        """Run the deferred deletions and merges; return the deleted node and edge ids."""
+        g = self.graph
+        deleted_edges: list[int] = []
+        for e in dict.fromkeys(self.delete_edges):
+            if g.has_edge(e):
+                g.remove_edge(e)
+                deleted_edges.append(e)
+        deleted_nodes: list[int] = []
+        for a, b in self.merges:
+            for e in g.rotation(a):
+                u, v = g.ends(e)
+                type_name, attrs = g.edge_type(e), dict(g.edge_attrs(e))
+                g.remove_edge(e)
+                if b in (u, v):
+                    deleted_edges.append(e)
+                    continue
+                g.add_edge(type_name, b if u == a else u, b if v == a else v, attrs, id=e)
+            g.remove_node(a)
+            deleted_nodes.append(a)
+        for n, detach in dict.fromkeys(self.delete_nodes):
+            if not g.has_node(n):
+                continue
+            if detach:
+                for e in g.rotation(n):
+                    g.remove_edge(e)
+                    deleted_edges.append(e)
+            g.remove_node(n)
+            deleted_nodes.append(n)
+        return deleted_nodes, deleted_edges
+
+
+def apply_rule(rule: CompiledRule, graph: HostGraph, binding: dict, values: dict) -> Application:
+    """Apply ``rule`` at a match (``binding``: pattern variable -> element id) with parameter ``values``.
+
+    The caller is responsible for the match being valid (see :class:`~.matcher.Matcher`). On any
+    failure the graph is left exactly as it was and a :class:`RewriteError` is raised.
+    """
+    mark = graph.mark()
+    run = _Run(rule, graph)
+    scope = {**values, **binding}
+    try:
+        with graph.transaction():
+            run.execute(rule.statements, scope)
+            deleted_nodes, deleted_edges = run.finish()
+    except SchemaError as exc:
+        raise RewriteError(f"rule {rule.name} ({rule.source.pos}): {exc}") from None
+    except (ArithmeticError, TypeError, ValueError, KeyError, IndexError) as exc:
+        raise RewriteError(f"rule {rule.name} ({rule.source.pos}): evaluating the rewrite failed: {exc!r}") from None
+    return Application(
+        rule=rule.name,
+        params={k: v for k, v in values.items()},
+        binding=dict(binding),
+        created_nodes=run.created_nodes,
+        created_edges=run.created_edges,
+        deleted_nodes=deleted_nodes,
+        deleted_edges=deleted_edges,
+        mark=mark,
+    )

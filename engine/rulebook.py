@@ -1,0 +1,153 @@
+"""Loading a rulebook: parse rule files, build the schema, check every rule and strategy.
+
+All errors are found here, before any graph is touched: syntax errors (from the parser, with
+file:line:col and a hint), and type errors (unknown types, attributes, functions, variables; type
+mismatches; duplicate names; strategies naming unknown rules or parameters).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Iterable
+
+from vaultgram.errors import RuleTypeError, did_you_mean
+from vaultgram.grammar import ast
+from vaultgram.grammar.parser import load_files, parse_text
+
+from .checker import CompiledRule, RuleChecker
+from .expressions import ExpressionCompiler, Functions
+from .schema import TypeSchema, build_schema, value_conforms
+
+
+@dataclass
+class Rulebook:
+    """A checked set of rule files: the schema, the rules and the strategies, by name in file order."""
+
+    schema: TypeSchema
+    rules: dict[str, CompiledRule]
+    strategies: dict[str, ast.Strategy]
+    functions: Functions
+    files: list[str]
+    checker: RuleChecker
+
+    def arguments(self, ref: ast.RuleRef) -> dict[str, object]:
+        """The parameter values a strategy step gives a rule (constants, checked at load time)."""
+        return {name: constant_value(expr, self.checker) for name, expr in ref.args}
+
+    def summary(self) -> dict:
+        """Types, rules and strategies, for ``vaultgram rules check``."""
+        return {
+            "files": self.files,
+            "types": self.schema.summary(),
+            "rules": {
+                name: {
+                    "params": [f"{p.name}: {p.type}" for p in r.source.params],
+                    "priority": r.priority,
+                    "nacs": len(r.nacs),
+                }
+                for name, r in self.rules.items()
+            },
+            "strategies": {
+                name: [describe_step(step) for step in s.steps] for name, s in self.strategies.items()
+            },
+        }
+
+
+def load_rulebook(paths: Iterable[str | Path], functions: Functions | None = None) -> Rulebook:
+    """Parse and check rule files (and their includes)."""
+    files = load_files([Path(p) for p in paths])
+    return _build(files, functions or Functions())
+
+
+def rulebook_from_text(text: str, functions: Functions | None = None, filename: str = "<string>") -> Rulebook:
+    """Check a rulebook given as one string (includes are not allowed there)."""
+    rule_file = parse_text(text, filename)
+    if rule_file.includes:
+        raise RuleTypeError("includes need a file on disk; use load_rulebook", rule_file.includes[0].pos)
+    return _build([rule_file], functions or Functions())
+
+
+def _build(files: list[ast.RuleFile], functions: Functions) -> Rulebook:
+    schemas = [s for f in files for s in f.schemas]
+    constant = ExpressionCompiler(build_schema([], None), functions)
+    schema = build_schema(schemas, lambda expr: constant.compile(expr, {})[0](None, {}))
+    checker = RuleChecker(schema, ExpressionCompiler(schema, functions))
+
+    rules: dict[str, CompiledRule] = {}
+    for f in files:
+        for rule in f.rules:
+            if rule.name in rules:
+                raise RuleTypeError(
+                    f"rule '{rule.name}' is defined twice (first at {rules[rule.name].source.pos})", rule.pos
+                )
+            rules[rule.name] = checker.compile_rule(rule, order=len(rules))
+
+    strategies: dict[str, ast.Strategy] = {}
+    for f in files:
+        for strategy in f.strategies:
+            if strategy.name in strategies or strategy.name in rules:
+                raise RuleTypeError(f"strategy '{strategy.name}' reuses a rule or strategy name", strategy.pos)
+            strategies[strategy.name] = strategy
+    for strategy in strategies.values():
+        _check_strategy(strategy, rules, strategies, checker)
+    _check_no_recursion(strategies)
+    return Rulebook(schema, rules, strategies, functions, [f.path for f in files], checker)
+
+
+def _check_strategy(strategy: ast.Strategy, rules, strategies, checker: RuleChecker) -> None:
+    for step in strategy.steps:
+        if isinstance(step, ast.Run):
+            if step.strategy not in strategies:
+                raise RuleTypeError(
+                    f"unknown strategy '{step.strategy}'", step.pos, did_you_mean(step.strategy, strategies)
+                )
+            continue
+        if step.mode not in ("once", "all", "fixpoint"):
+            raise RuleTypeError(f"unknown mode '{step.mode}' (once, all or fixpoint)", step.pos)
+        if step.max_steps is not None and step.max_steps <= 0:
+            raise RuleTypeError("max must be a positive number of steps", step.pos)
+        for ref in step.rules:
+            rule = rules.get(ref.name)
+            if rule is None:
+                raise RuleTypeError(f"unknown rule '{ref.name}'", ref.pos, did_you_mean(ref.name, rules))
+            for name, expr in ref.args:
+                param = rule.params.get(name)
+                if param is None:
+                    raise RuleTypeError(
+                        f"rule {ref.name} has no parameter '{name}'", expr.pos, did_you_mean(name, rule.params)
+                    )
+                if name in rule.node_params:
+                    raise RuleTypeError(f"node parameter '{name}' cannot be given in a strategy", expr.pos)
+                value = constant_value(expr, checker)
+                if not value_conforms(value, param.type):
+                    raise RuleTypeError(f"parameter '{name}' of {ref.name} must be {param.type}, got {value!r}", expr.pos)
+
+
+def constant_value(expr, checker: RuleChecker):
+    """The value of an expression with no variables (strategy arguments, defaults)."""
+    fn, _, _ = checker.compiler.compile(expr, checker.type_symbols)
+    return fn(None, {})
+
+
+def _check_no_recursion(strategies: dict[str, ast.Strategy]) -> None:
+    def visit(name, stack):
+        if name in stack:
+            cycle = " -> ".join([*stack[stack.index(name):], name])
+            raise RuleTypeError(f"strategies run each other in a cycle: {cycle}", strategies[name].pos)
+        for step in strategies[name].steps:
+            if isinstance(step, ast.Run):
+                visit(step.strategy, [*stack, name])
+
+    for name in strategies:
+        visit(name, [])
+
+
+def describe_step(step) -> str:
+    """A strategy step written back in the language's syntax."""
+    if isinstance(step, ast.Run):
+        return f"run {step.strategy}"
+    names = ", ".join(r.name for r in step.rules)
+    group = names if len(step.rules) == 1 else "{ " + names + " }"
+    limit = f" max {step.max_steps}" if step.max_steps else ""
+    return f"{'choose ' if step.choose else ''}{group} {step.mode}{limit}"

@@ -1,0 +1,270 @@
+"""The type schema of a host graph: node and edge types with single inheritance and typed attributes.
+
+A schema is declared in rule files (``schema name { node ... edge ... }``) and is the contract between
+the rules and the host application: every node and edge of the host graph has exactly one declared
+type, rules match types *with their subtypes* (a ``Corner`` is a ``BoundaryVertex`` is a ``Point``),
+and edges may only join nodes of the endpoint types their type declares.
+
+Two root types always exist: ``Node`` (every node type inherits from it) and ``Edge`` (every edge type
+inherits from it; undirected, joining any two nodes). Both are abstract.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Mapping
+
+from vaultgram.errors import RuleTypeError, SchemaError, did_you_mean
+
+VALUE_TYPES = ("int", "float", "bool", "str", "vec2", "vec3", "list", "any")
+ROOT_NODE = "Node"
+ROOT_EDGE = "Edge"
+
+
+@dataclass(frozen=True)
+class AttrSpec:
+    """An attribute of a node or edge type; ``required`` when it has no default."""
+
+    name: str
+    type: str
+    default: object
+    required: bool
+
+
+@dataclass(frozen=True)
+class NodeType:
+    name: str
+    parent: str | None
+    attrs: Mapping[str, AttrSpec]  # own and inherited
+    abstract: bool
+
+
+@dataclass(frozen=True)
+class EdgeType:
+    name: str
+    parent: str | None
+    source: str
+    target: str
+    directed: bool
+    attrs: Mapping[str, AttrSpec]
+    abstract: bool
+
+
+def value_conforms(value: object, type_name: str) -> bool:
+    """Whether a runtime value fits a declared attribute type (``int`` fits ``float``)."""
+    if type_name == "any":
+        return True
+    if type_name == "int":
+        return isinstance(value, int) and not isinstance(value, bool)
+    if type_name == "float":
+        return isinstance(value, (int, float)) and not isinstance(value, bool)
+    if type_name == "bool":
+        return isinstance(value, bool)
+    if type_name == "str":
+        return isinstance(value, str)
+    if type_name in ("vec2", "vec3"):
+        n = 2 if type_name == "vec2" else 3
+        return (
+            isinstance(value, tuple)
+            and len(value) == n
+            and all(isinstance(c, (int, float)) and not isinstance(c, bool) and math.isfinite(c) for c in value)
+        )
+    if type_name == "list":
+        return isinstance(value, (list, tuple))
+    return False
+
+
+def normalise_value(value: object) -> object:
+    """Turn numpy scalars and arrays into plain Python values (vectors and lists become tuples)."""
+    if hasattr(value, "tolist") and not isinstance(value, (str, bytes)):
+        value = value.tolist()
+    if isinstance(value, list):
+        return tuple(normalise_value(v) for v in value)
+    if isinstance(value, tuple):
+        return tuple(normalise_value(v) for v in value)
+    return value
+
+
+class TypeSchema:
+    """Node and edge types with their inheritance, attributes and (for edges) endpoint types."""
+
+    def __init__(self, node_types: Mapping[str, NodeType], edge_types: Mapping[str, EdgeType], names=()):
+        self.node_types = dict(node_types)
+        self.edge_types = dict(edge_types)
+        self.names = tuple(names)
+        self._subtypes: dict[str, frozenset[str]] = {}
+        for table in (self.node_types, self.edge_types):
+            for name in table:
+                self._subtypes[name] = frozenset(t for t in table if self._is_subtype_walk(t, name, table))
+
+    @staticmethod
+    def _is_subtype_walk(t: str, ancestor: str, table) -> bool:
+        while t is not None:
+            if t == ancestor:
+                return True
+            t = table[t].parent
+        return False
+
+    def is_node_type(self, name: str) -> bool:
+        return name in self.node_types
+
+    def is_edge_type(self, name: str) -> bool:
+        return name in self.edge_types
+
+    def subtypes(self, name: str) -> frozenset[str]:
+        """The type and all its descendants (the types a pattern element of this type matches)."""
+        return self._subtypes[name]
+
+    def is_subtype(self, t: str, ancestor: str) -> bool:
+        return t in self._subtypes[ancestor]
+
+    def compatible(self, a: str, b: str) -> bool:
+        """Whether some element could have both types (one is a subtype of the other)."""
+        return self.is_subtype(a, b) or self.is_subtype(b, a)
+
+    def common_ancestor(self, a: str, b: str) -> str:
+        """The most specific type that both ``a`` and ``b`` are subtypes of."""
+        table = self.node_types if a in self.node_types else self.edge_types
+        while not self.is_subtype(b, a):
+            a = table[a].parent
+        return a
+
+    def attrs(self, type_name: str) -> Mapping[str, AttrSpec]:
+        table = self.node_types if type_name in self.node_types else self.edge_types
+        return table[type_name].attrs
+
+    def fill_attrs(self, type_name: str, given: Mapping[str, object], where: str) -> dict[str, object]:
+        """Check given attribute values against the type and add defaults; raise SchemaError if wrong."""
+        specs = self.attrs(type_name)
+        out: dict[str, object] = {}
+        for name, value in given.items():
+            if name not in specs:
+                raise SchemaError(f"{where}: type {type_name} has no attribute '{name}'")
+            value = normalise_value(value)
+            if not value_conforms(value, specs[name].type):
+                raise SchemaError(
+                    f"{where}: attribute '{name}' of {type_name} must be {specs[name].type}, got {value!r}"
+                )
+            out[name] = value
+        for name, spec in specs.items():
+            if name not in out:
+                if spec.required:
+                    raise SchemaError(f"{where}: {type_name} needs attribute '{name}' ({spec.type})")
+                out[name] = spec.default
+        return out
+
+    def summary(self) -> dict:
+        """A plain description (used by ``vaultgram rules check``)."""
+        return {
+            "nodes": {n: t.parent for n, t in self.node_types.items() if n != ROOT_NODE},
+            "edges": {
+                n: f"{t.source} {'->' if t.directed else '--'} {t.target}"
+                for n, t in self.edge_types.items()
+                if n != ROOT_EDGE
+            },
+        }
+
+
+def build_schema(schemas, evaluate_constant) -> TypeSchema:
+    """Build a :class:`TypeSchema` from parsed ``schema`` blocks, reporting every mistake with its position.
+
+    ``evaluate_constant(expr)`` turns a default-value expression into a value (or raises RuleTypeError).
+    """
+    node_decls: dict = {}
+    edge_decls: dict = {}
+    for schema in schemas:
+        for decl in schema.nodes:
+            _declare(decl, node_decls, edge_decls)
+        for decl in schema.edges:
+            _declare(decl, edge_decls, node_decls)
+
+    node_types = {ROOT_NODE: NodeType(ROOT_NODE, None, {}, True)}
+    edge_types = {ROOT_EDGE: EdgeType(ROOT_EDGE, None, ROOT_NODE, ROOT_NODE, False, {}, True)}
+
+    def resolve_node(name):
+        if name in node_types:
+            return node_types[name]
+        decl = node_decls[name]
+        parent = decl.parent or ROOT_NODE
+        _check_parent(decl, parent, node_decls, node_types, "node")
+        _check_no_cycle(decl, node_decls)
+        base = resolve_node(parent)
+        attrs = _merge_attrs(base.attrs, decl, evaluate_constant)
+        node_types[name] = NodeType(name, parent, attrs, decl.abstract)
+        return node_types[name]
+
+    def resolve_edge(name):
+        if name in edge_types:
+            return edge_types[name]
+        decl = edge_decls[name]
+        parent = decl.parent or ROOT_EDGE
+        _check_parent(decl, parent, edge_decls, edge_types, "edge")
+        _check_no_cycle(decl, edge_decls)
+        base = resolve_edge(parent)
+        if decl.source is None:
+            source, target, directed = base.source, base.target, base.directed
+        else:
+            for end in (decl.source, decl.target):
+                if end not in node_decls and end != ROOT_NODE:
+                    raise RuleTypeError(
+                        f"edge {decl.name}: unknown node type '{end}'", decl.pos, did_you_mean(end, node_decls)
+                    )
+            source, target, directed = decl.source, decl.target, decl.directed
+        attrs = _merge_attrs(base.attrs, decl, evaluate_constant)
+        edge_types[name] = EdgeType(name, parent, source, target, directed, attrs, decl.abstract)
+        return edge_types[name]
+
+    for name in node_decls:
+        resolve_node(name)
+    for name in edge_decls:
+        resolve_edge(name)
+    return TypeSchema(node_types, edge_types, [s.name for s in schemas])
+
+
+def _declare(decl, same_kind: dict, other_kind: dict) -> None:
+    if decl.name in (ROOT_NODE, ROOT_EDGE):
+        raise RuleTypeError(f"'{decl.name}' is a built-in root type and cannot be redeclared", decl.pos)
+    for table in (same_kind, other_kind):
+        if decl.name in table:
+            first = table[decl.name].pos
+            raise RuleTypeError(f"type '{decl.name}' is declared twice (first at {first})", decl.pos)
+    same_kind[decl.name] = decl
+
+
+def _check_parent(decl, parent: str, decls: dict, built: dict, kind: str) -> None:
+    if parent not in decls and parent not in built:
+        raise RuleTypeError(f"{kind} {decl.name}: unknown parent {kind} type '{parent}'", decl.pos, did_you_mean(parent, decls))
+
+
+def _check_no_cycle(decl, decls: dict) -> None:
+    seen = {decl.name}
+    parent = decl.parent
+    while parent in decls:
+        if parent in seen:
+            raise RuleTypeError(f"type '{decl.name}' inherits from itself through '{parent}'", decl.pos)
+        seen.add(parent)
+        parent = decls[parent].parent
+
+
+def _merge_attrs(inherited: Mapping[str, AttrSpec], decl, evaluate_constant) -> dict[str, AttrSpec]:
+    attrs = dict(inherited)
+    for a in decl.attrs:
+        if a.type not in VALUE_TYPES:
+            raise RuleTypeError(
+                f"attribute '{a.name}' of {decl.name}: unknown type '{a.type}'",
+                a.pos,
+                "attribute types are " + ", ".join(VALUE_TYPES),
+            )
+        if a.name in attrs and attrs[a.name].type != a.type:
+            raise RuleTypeError(
+                f"attribute '{a.name}' of {decl.name} is {a.type} but the parent type declares it {attrs[a.name].type}",
+                a.pos,
+            )
+        default = None
+        if a.default is not None:
+            default = normalise_value(evaluate_constant(a.default))
+            if not value_conforms(default, a.type):
+                raise RuleTypeError(f"default of '{a.name}' must be {a.type}, got {default!r}", a.pos)
+        attrs[a.name] = AttrSpec(a.name, a.type, default, a.default is None)
+    return attrs

@@ -1,0 +1,199 @@
+"""Running rules and strategies: ``once``, ``all``, ``fixpoint``, rule groups, choice points, traces.
+
+* ``once`` applies the first match (smallest key) of the first rule of the group, by priority, that
+  has one.
+* ``all`` applies, for each rule of the group by priority, a maximal set of *parallel-independent*
+  matches in key order: a match is taken unless it reads an element (node or edge it binds) that an
+  already taken match deletes or changes, or deletes or changes an element an already taken match
+  reads. Each taken match is checked again just before it is applied (an earlier application may
+  have made a NAC or condition fail) and skipped if it no longer holds.
+* ``fixpoint`` repeats: apply the first match of the highest-priority rule that has one, until no
+  rule of the group matches. Match sets are kept current incrementally (:mod:`.incremental`).
+  Exceeding the step limit raises a :class:`RewriteError` naming the rules still firing.
+* ``choose`` marks a choice point: where a plain step takes the first option, a chooser (a function
+  given to the :class:`Runner`) picks among the options (rule, match) -- exploration uses it.
+
+Every application is appended to the runner's :class:`~.trace.Trace`.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Callable, Mapping, Sequence
+
+from vaultgram.errors import RewriteError
+from vaultgram.grammar import ast
+
+from .graph import HostGraph
+from .incremental import MatchSet
+from .matcher import Match, Matcher
+from .rewriter import Application, apply_rule, footprint
+from .rulebook import Rulebook, describe_step
+from .trace import Trace
+
+DEFAULT_MAX_STEPS = 10_000
+
+Chooser = Callable[[Sequence[tuple[str, Match]]], int]
+
+
+def first_option(options: Sequence[tuple[str, Match]]) -> int:
+    """The default chooser: the first option (highest priority, smallest key)."""
+    return 0
+
+
+@dataclass
+class StepReport:
+    """What one strategy step did."""
+
+    step: str
+    applications: int
+    seconds: float
+    by_rule: dict[str, int] = field(default_factory=dict)
+
+
+class Runner:
+    """Applies the rules of a rulebook to a graph, recording a trace."""
+
+    def __init__(self, rulebook: Rulebook, graph: HostGraph, chooser: Chooser = first_option):
+        self.rulebook = rulebook
+        self.graph = graph
+        self.chooser = chooser
+        self.trace = Trace()
+        self.reports: list[StepReport] = []
+
+    # -- single rules ----------------------------------------------------------------------------
+
+    def matcher(self, rule_name: str, params: Mapping[str, object] | None = None) -> Matcher:
+        rule = self.rulebook.rules.get(rule_name)
+        if rule is None:
+            raise RewriteError(f"unknown rule '{rule_name}'")
+        return Matcher(rule, self.graph, params)
+
+    def apply(self, matcher: Matcher, match: Match) -> Application:
+        """Apply one match and record it in the trace."""
+        app = apply_rule(matcher.rule, self.graph, dict(match.binding), matcher.values)
+        app.params = {**matcher.values, **matcher.fixed}
+        self.trace.record(app)
+        return app
+
+    def apply_once(self, rule_name: str, params=None) -> Application | None:
+        matcher = self.matcher(rule_name, params)
+        match = matcher.first()
+        return self.apply(matcher, match) if match else None
+
+    def apply_all(self, rule_name: str, params=None) -> list[Application]:
+        return self._all([self.matcher(rule_name, params)], False)
+
+    def fixpoint(self, rule_names: Sequence[str], max_steps: int = DEFAULT_MAX_STEPS, params=None) -> int:
+        return self._fixpoint([self.matcher(n, (params or {}).get(n)) for n in rule_names], max_steps, False)
+
+    # -- strategies ------------------------------------------------------------------------------
+
+    def run(self, strategy_name: str) -> list[StepReport]:
+        """Run a strategy of the rulebook; return a report per step."""
+        strategy = self.rulebook.strategies.get(strategy_name)
+        if strategy is None:
+            raise RewriteError(f"unknown strategy '{strategy_name}'")
+        for step in strategy.steps:
+            if isinstance(step, ast.Run):
+                self.run(step.strategy)
+                continue
+            start, before = time.perf_counter(), len(self.trace)
+            self.run_step(step)
+            new = self.trace.applications[before:]
+            by_rule: dict[str, int] = {}
+            for app in new:
+                by_rule[app.rule] = by_rule.get(app.rule, 0) + 1
+            self.reports.append(StepReport(describe_step(step), len(new), time.perf_counter() - start, by_rule))
+        return self.reports
+
+    def run_step(self, step: ast.Step) -> None:
+        matchers = self._group(step)
+        if step.mode == "once":
+            options = self._options(matchers, first_only=not step.choose)
+            if options:
+                k = self.chooser(options) if step.choose else 0
+                rule_name, match = options[k]
+                self.apply(next(m for m in matchers if m.rule.name == rule_name), match)
+        elif step.mode == "all":
+            self._all(matchers, step.choose)
+        else:
+            self._fixpoint(matchers, step.max_steps or DEFAULT_MAX_STEPS, step.choose)
+
+    # -- modes -----------------------------------------------------------------------------------
+
+    def _group(self, step: ast.Step) -> list[Matcher]:
+        """The step's matchers, by priority (highest first), then in the order the step names them."""
+        matchers = [
+            Matcher(self.rulebook.rules[ref.name], self.graph, self.rulebook.arguments(ref)) for ref in step.rules
+        ]
+        order = {id(m): i for i, m in enumerate(matchers)}
+        return sorted(matchers, key=lambda m: (-m.rule.priority, order[id(m)]))
+
+    def _options(self, matchers: list[Matcher], first_only: bool) -> list[tuple[str, Match]]:
+        options = []
+        for m in matchers:
+            found = m.all()
+            if found and first_only:
+                return [(m.rule.name, found[0])]
+            options.extend((m.rule.name, match) for match in found)
+        return options
+
+    def _all(self, matchers: list[Matcher], choose: bool) -> list[Application]:
+        if choose:
+            candidates = [m for m in matchers if m.first() is not None]
+            if not candidates:
+                return []
+            options = [(m.rule.name, m.first()) for m in candidates]
+            matchers = [candidates[self.chooser(options)]]
+        applied: list[Application] = []
+        reads: set = set()
+        writes: set = set()
+        for matcher in matchers:
+            selected = []
+            for match in matcher.all():
+                r = read_set(matcher, match)
+                w = footprint(matcher.rule, self.graph, matcher.scope(match)).writes()
+                if r & writes or w & reads:
+                    continue
+                selected.append(match)
+                reads |= r
+                writes |= w
+            for match in selected:
+                if matcher.check(match.binding):
+                    applied.append(self.apply(matcher, match))
+        return applied
+
+    def _fixpoint(self, matchers: list[Matcher], max_steps: int, choose: bool) -> int:
+        sets = [MatchSet(m) for m in matchers]
+        steps = 0
+        while True:
+            if choose:
+                options = [(s.rule.name, s.first()) for s in sets if s.first() is not None]
+                if not options:
+                    return steps
+                k = self.chooser(options)
+                chosen = next(s for s in sets if s.rule.name == options[k][0])
+                match = options[k][1]
+            else:
+                chosen = next((s for s in sets if s.first() is not None), None)
+                if chosen is None:
+                    return steps
+                match = chosen.first()
+            if steps >= max_steps:
+                firing = [s.rule.name for s in sets if len(s)]
+                raise RewriteError(
+                    f"fixpoint did not terminate within {max_steps} steps; rules still firing: {', '.join(firing)}"
+                )
+            app = self.apply(chosen.matcher, match)
+            steps += 1
+            changes = self.graph.changes_since(app.mark)
+            for s in sets:
+                s.update(changes)
+
+
+def read_set(matcher: Matcher, match: Match) -> set[tuple[str, int]]:
+    """The elements a match binds, tagged by kind (for parallel independence)."""
+    nodes = matcher.rule.pattern.nodes
+    return {("n" if v in nodes else "e", i) for v, i in match.binding.items()}
