@@ -342,6 +342,25 @@ class HostGraph:
             ],
         }
 
+    @classmethod
+    def from_json(cls, data: Mapping, schema: TypeSchema, angle: AngleFunction | None = None) -> "HostGraph":
+        """The inverse of :meth:`to_json`; raises SchemaError naming the offending node or edge."""
+        if not isinstance(data, Mapping) or not isinstance(data.get("nodes", []), list):
+            raise SchemaError("a graph is an object with lists 'nodes' and 'edges'")
+        g = cls(schema, angle)
+        for k, item in enumerate(data.get("nodes", [])):
+            attrs = {a: v for a, v in item.items() if a not in ("id", "type")}
+            if "type" not in item:
+                raise SchemaError(f"nodes[{k}] has no 'type'")
+            g.add_node(item["type"], attrs, item.get("id"))
+        for k, item in enumerate(data.get("edges", [])):
+            attrs = {a: v for a, v in item.items() if a not in ("id", "type", "source", "target")}
+            if not {"type", "source", "target"} <= set(item):
+                raise SchemaError(f"edges[{k}] needs 'type', 'source' and 'target'")
+            g.add_edge(item["type"], item["source"], item["target"], attrs, item.get("id"))
+        g.forget()
+        return g
+
     # ------------------------------------------------------------------------------------------
     # Internals
     # ------------------------------------------------------------------------------------------

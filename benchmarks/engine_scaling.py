@@ -1,0 +1,146 @@
+"""Engine scaling: search-plan matching vs networkx subgraph monomorphisms, `all`, fixpoint, incremental.
+
+Typed grid-like host graphs (a square grid whose nodes alternate types A and B like a checkerboard,
+edges of type E) of about 10^3, 10^4 and 10^5 nodes. For each size:
+
+* find all matches of a 3-node typed path pattern (A -E- B -E- A) with the engine, and enumerate the
+  same pattern with networkx ``GraphMatcher.subgraph_monomorphisms_iter`` (typed node/edge match);
+* run a rule with a NAC (mark each A-B pair once with an F edge unless already marked) with ``all``
+  and then to ``fixpoint`` (nothing left to do: it measures the full re-check), and a fixpoint that
+  applies every match one at a time with incremental re-matching;
+* measure one incremental re-match after a single local change (delete one E edge).
+
+Usage: python benchmarks/engine_scaling.py [--sizes 1000 10000 100000] [--no-baseline]
+Prints a table; never used by tests.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import time
+
+import networkx as nx
+from networkx.algorithms import isomorphism
+
+from vaultgram.engine.graph import HostGraph
+from vaultgram.engine.incremental import MatchSet
+from vaultgram.engine.matcher import Matcher
+from vaultgram.engine.rulebook import rulebook_from_text
+from vaultgram.engine.strategy import Runner
+
+RULES = """
+schema bench {
+  node A
+  node B
+  edge E (Node -- Node)
+  edge F (A -- B)
+}
+rule path3 {
+  match { a: A  b: B  c: A  a -E- b  b -E- c }
+}
+rule mark {
+  match { a: A  b: B  a -E- b }
+  not { a -F- b }
+  create a -F- b
+}
+strategy mark_all { mark all }
+strategy mark_fixpoint { mark fixpoint max 1000000 }
+"""
+
+
+def grid(rulebook, n_nodes: int) -> HostGraph:
+    side = int(math.isqrt(n_nodes))
+    g = HostGraph(rulebook.schema)
+    for i in range(side):
+        for j in range(side):
+            g.add_node("A" if (i + j) % 2 == 0 else "B", id=i * side + j)
+    for i in range(side):
+        for j in range(side):
+            n = i * side + j
+            if j + 1 < side:
+                g.add_edge("E", n, n + 1)
+            if i + 1 < side:
+                g.add_edge("E", n, n + side)
+    g.forget()
+    return g
+
+
+def networkx_baseline(g: HostGraph) -> tuple[int, float]:
+    host = nx.Graph()
+    for n in g.nodes():
+        host.add_node(n, type=g.node_type(n))
+    for e in g.edges():
+        host.add_edge(*g.ends(e), type=g.edge_type(e))
+    pattern = nx.Graph()
+    pattern.add_nodes_from([("a", {"type": "A"}), ("b", {"type": "B"}), ("c", {"type": "A"})])
+    pattern.add_edges_from([("a", "b", {"type": "E"}), ("b", "c", {"type": "E"})])
+    matcher = isomorphism.GraphMatcher(
+        host, pattern, node_match=lambda x, y: x["type"] == y["type"], edge_match=lambda x, y: x["type"] == y["type"]
+    )
+    start = time.perf_counter()
+    count = sum(1 for _ in matcher.subgraph_monomorphisms_iter())
+    return count, time.perf_counter() - start
+
+
+def timed(fn):
+    start = time.perf_counter()
+    result = fn()
+    return result, time.perf_counter() - start
+
+
+def run(size: int, baseline: bool) -> dict:
+    rulebook = rulebook_from_text(RULES)
+    g = grid(rulebook, size)
+    matcher = Matcher(rulebook.rules["path3"], g)
+    matches, t_match = timed(matcher.all)
+    row = {"nodes": len(g), "edges": g.num_edges, "matches": len(matches), "engine_s": t_match}
+    if baseline:
+        count, t_nx = networkx_baseline(g)
+        assert count == len(matches), (count, len(matches))
+        row.update(networkx_s=t_nx, speedup=t_nx / t_match)
+
+    runner = Runner(rulebook, g)
+    _, row["all_s"] = timed(lambda: runner.run("mark_all"))
+    row["all_applied"] = runner.reports[-1].applications
+    _, row["fixpoint_recheck_s"] = timed(lambda: runner.run("mark_fixpoint"))
+
+    g2 = grid(rulebook, size)
+    runner2 = Runner(rulebook, g2)
+    _, row["fixpoint_s"] = timed(lambda: runner2.run("mark_fixpoint"))
+    row["fixpoint_applied"] = runner2.reports[-1].applications
+
+    # one local change, then an incremental re-match of the path pattern
+    g3 = grid(rulebook, size)
+    mset = MatchSet(Matcher(rulebook.rules["path3"], g3))
+    centre = len(g3) // 2 + int(math.isqrt(len(g3))) // 2
+    e = next(iter(g3.incident(centre)))
+    mark = g3.mark()
+    g3.remove_edge(e)
+    changes = g3.changes_since(mark)
+    repeats = 200
+    start = time.perf_counter()
+    for _ in range(repeats):
+        mset.update(changes)
+    row["incremental_ms"] = (time.perf_counter() - start) / repeats * 1000
+    fresh = {m.key for m in Matcher(rulebook.rules["path3"], g3).all()}
+    assert fresh == set(mset.matches), "incremental match set differs from a full search"
+    return row
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--sizes", type=int, nargs="+", default=[1_000, 10_000, 100_000])
+    parser.add_argument("--no-baseline", action="store_true", help="skip the networkx baseline")
+    args = parser.parse_args()
+    cols = ["nodes", "edges", "matches", "engine_s", "networkx_s", "speedup", "all_s", "all_applied",
+            "fixpoint_recheck_s", "fixpoint_s", "fixpoint_applied", "incremental_ms"]
+    print(" ".join(f"{c:>18}" for c in cols))
+    for size in args.sizes:
+        row = run(size, not args.no_baseline)
+        print(" ".join(f"{row.get(c, float('nan')):>18.4g}" if isinstance(row.get(c, 0.0), float)
+                       else f"{row[c]:>18}" for c in cols), flush=True)
+
+
+if __name__ == "__main__":
+    main()

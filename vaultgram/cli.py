@@ -1,0 +1,133 @@
+"""The ``vaultgram`` command line.
+
+Every user mistake (a bad rule file, an invalid graph or domain, a strategy that does not terminate)
+is printed as one line naming the problem and where it is, with exit code 2 and no traceback; output
+files are written to a temporary name and renamed, so a failed run leaves nothing half-written.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+from pathlib import Path
+
+import click
+
+from vaultgram.errors import VaultgramError
+
+
+class _Group(click.Group):
+    """A click group that turns VaultgramError into one line on stderr and exit code 2."""
+
+    def invoke(self, ctx):
+        try:
+            return super().invoke(ctx)
+        except VaultgramError as exc:
+            click.echo(f"error: {exc}", err=True)
+            sys.exit(2)
+
+
+@click.group(cls=_Group)
+@click.version_option(package_name="vaultgram")
+def main() -> None:
+    """vaultgram: structural patterns for masonry vaults and funicular shells."""
+
+
+@main.group(cls=_Group)
+def rules() -> None:
+    """Check and run rule files (the graph-grammar DSL)."""
+
+
+@rules.command("check")
+@click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=False))
+@click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
+def rules_check(files, as_json: bool) -> None:
+    """Parse and type-check rule FILES; print their types, rules and strategies."""
+    from vaultgram.engine.rulebook import load_rulebook
+    from vaultgram.vault_functions import vault_functions
+
+    book = load_rulebook(files, vault_functions())
+    summary = book.summary()
+    if as_json:
+        click.echo(json.dumps(summary, indent=2))
+        return
+    types = summary["types"]
+    click.echo(f"ok: {len(summary['files'])} file(s)")
+    click.echo(f"node types ({len(types['nodes'])}): " + ", ".join(
+        f"{n} : {p}" if p and p != "Node" else n for n, p in types["nodes"].items()))
+    click.echo(f"edge types ({len(types['edges'])}): " + ", ".join(f"{n} ({d})" for n, d in types["edges"].items()))
+    click.echo(f"rules ({len(summary['rules'])}):")
+    for name, info in summary["rules"].items():
+        params = ", ".join(info["params"])
+        click.echo(f"  {name}({params}) priority {info['priority']}, {info['nacs']} NAC(s)")
+    click.echo(f"strategies ({len(summary['strategies'])}):")
+    for name, steps in summary["strategies"].items():
+        click.echo(f"  {name}: " + "; ".join(steps))
+
+
+@rules.command("run")
+@click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=False))
+@click.option("--graph", "graph_path", required=True, type=click.Path(dir_okay=False),
+              help="Host graph JSON: {nodes: [{id, type, ...}], edges: [{id, type, source, target, ...}]}.")
+@click.option("--strategy", required=True, help="Name of the strategy to run.")
+@click.option("--out", "out_dir", required=True, type=click.Path(file_okay=False), help="Output directory.")
+def rules_run(files, graph_path: str, strategy: str, out_dir: str) -> None:
+    """Run a STRATEGY of rule FILES on a host graph; write graph.json and trace.json to --out."""
+    from vaultgram.engine.graph import HostGraph
+    from vaultgram.engine.rulebook import load_rulebook
+    from vaultgram.engine.strategy import Runner
+    from vaultgram.vault_functions import vault_functions
+
+    book = load_rulebook(files, vault_functions())
+    graph = HostGraph.from_json(read_json(graph_path), book.schema)
+    runner = Runner(book, graph)
+    runner.run(strategy)
+    out = Path(out_dir)
+    write_json(out / "graph.json", graph.to_json())
+    runner.trace.save(out / "trace.json")
+    for report in runner.reports:
+        click.echo(f"{report.step}: {report.applications} application(s) in {report.seconds * 1000:.1f} ms")
+    click.echo(f"wrote {out / 'graph.json'} ({len(graph)} nodes, {graph.num_edges} edges) and {out / 'trace.json'}")
+
+
+@rules.command("why-not")
+@click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=False))
+@click.option("--graph", "graph_path", required=True, type=click.Path(dir_okay=False))
+@click.option("--rule", "rule_name", required=True, help="The rule to explain.")
+def rules_why_not(files, graph_path: str, rule_name: str) -> None:
+    """Explain why a rule does not match a graph: its largest partial match and what failed."""
+    from vaultgram.engine.graph import HostGraph
+    from vaultgram.engine.matcher import Matcher
+    from vaultgram.engine.rulebook import load_rulebook
+    from vaultgram.engine.whynot import why_not
+    from vaultgram.errors import RewriteError
+    from vaultgram.vault_functions import vault_functions
+
+    book = load_rulebook(files, vault_functions())
+    if rule_name not in book.rules:
+        raise RewriteError(f"unknown rule '{rule_name}'")
+    graph = HostGraph.from_json(read_json(graph_path), book.schema)
+    click.echo(str(why_not(Matcher(book.rules[rule_name], graph))))
+
+
+def read_json(path: str):
+    """Read a JSON file, turning every failure into a VaultgramError that names the file and place."""
+    from vaultgram.errors import VaultgramError as Error
+
+    try:
+        text = Path(path).read_text()
+    except OSError as exc:
+        raise Error(f"{path}: cannot read: {exc.strerror}") from None
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise Error(f"{path}:{exc.lineno}:{exc.colno}: invalid JSON: {exc.msg}") from None
+
+
+def write_json(path: Path, data) -> None:
+    """Write JSON atomically: to a temporary file in the same folder, then rename."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    tmp.write_text(json.dumps(data, indent=1, sort_keys=True))
+    tmp.replace(path)
