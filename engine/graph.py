@@ -61,6 +61,7 @@ class HostGraph:
         self._next_node = 0
         self._next_edge = 0
         self._journal: list[tuple] = []
+        self.version = 0  # bumped by every change of structure or types (caches key on it)
 
     # ------------------------------------------------------------------------------------------
     # Queries
@@ -239,6 +240,7 @@ class HostGraph:
                 self._by_type[old_type].add(n)
                 raise
         self._journal.append(("retype", n, old_type, old_attrs))
+        self.version += 1
         data = self.nx.nodes[n]
         data.clear()
         data.update(values)
@@ -387,6 +389,7 @@ class HostGraph:
             )
 
     def _insert_node(self, n: int, type_name: str, attrs: dict) -> None:
+        self.version += 1
         self.nx.add_node(n, **attrs)
         self._node_type[n] = type_name
         self._by_type[type_name].add(n)
@@ -395,11 +398,13 @@ class HostGraph:
         self._rot_keys[n] = []
 
     def _delete_node(self, n: int) -> None:
+        self.version += 1
         self.nx.remove_node(n)
         self._by_type[self._node_type.pop(n)].discard(n)
         del self._inc[n], self._rot[n], self._rot_keys[n]
 
     def _insert_edge(self, e: int, type_name: str, u: int, v: int, attrs: dict, positions) -> None:
+        self.version += 1
         self.nx.add_edge(u, v, key=e, **attrs)
         self._edge_type[e] = type_name
         self._ends[e] = (u, v)
@@ -416,6 +421,7 @@ class HostGraph:
                 self._rot[n].insert(i, e)
 
     def _delete_edge(self, e: int) -> None:
+        self.version += 1
         u, v = self._ends.pop(e)
         type_name = self._edge_type.pop(e)
         self.nx.remove_edge(u, v, key=e)
@@ -478,6 +484,7 @@ class HostGraph:
                 self.nx.edges[u, v, i][name] = old
         elif op == "retype":
             _, n, old_type, old_attrs = record
+            self.version += 1
             self._by_type[self._node_type[n]].discard(n)
             self._node_type[n] = old_type
             self._by_type[old_type].add(n)

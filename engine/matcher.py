@@ -9,24 +9,42 @@ variables in declaration order, so "the first match" never depends on hash seeds
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Iterator, Mapping
 
 from vaultgram.errors import RewriteError
 
+import numpy as np
+
 from .checker import CompiledPattern, CompiledRule, Condition
+from .columnar import Table, nac_rows, run_columnar
 from .graph import HostGraph
 from .plan import Bound, Check, Extend, Scan, Step, build_plan
 from .rewriter import footprint
 
 
-@dataclass(frozen=True)
 class Match:
-    """A match of a rule: pattern variable -> element id, and its ordering key."""
+    """A match of a rule: its ordering key (the ids bound to the pattern variables, in declaration
+    order) and, derived from it, the binding pattern variable -> element id."""
 
-    rule: str
-    binding: Mapping[str, int]
-    key: tuple
+    __slots__ = ("rule", "vars", "key")
+
+    def __init__(self, rule: str, vars: tuple[str, ...], key: tuple):
+        self.rule = rule
+        self.vars = vars
+        self.key = key
+
+    @property
+    def binding(self) -> dict[str, int]:
+        return dict(zip(self.vars, self.key))
+
+    def __eq__(self, other) -> bool:
+        return isinstance(other, Match) and (self.rule, self.vars, self.key) == (other.rule, other.vars, other.key)
+
+    def __hash__(self) -> int:
+        return hash((self.rule, self.key))
+
+    def __repr__(self) -> str:
+        return f"Match({self.rule}, {self.binding})"
 
 
 class Matcher:
@@ -54,8 +72,29 @@ class Matcher:
 
     def all(self) -> list[Match]:
         """Every match, sorted by key."""
-        found = {m.key: m for m in self._search(dict(self.fixed))}
-        return [found[k] for k in sorted(found)]
+        table = self.table()
+        key_vars = self.rule.key_vars
+        columns = [table.column(v).tolist() for v in key_vars]
+        keys = zip(*columns) if columns else [()] * table.rows
+        return [Match(self.rule.name, key_vars, key) for key in keys]
+
+    def table(self) -> Table:
+        """Every match as columns (one per pattern variable), sorted by key: the whole-graph search."""
+        rule = self.rule
+        plan = self.plan(frozenset(self.fixed))
+        table = run_columnar(self.graph, plan, Table.start(self.fixed), self.values, rule.name)
+        for i in range(len(rule.nacs)):
+            if table.rows:
+                table = table.filter(~nac_rows(self.graph, self._nac_plan(i), table, self.values, rule.name))
+        if rule.deletes_nodes and table.rows:
+            keep = [
+                not footprint(rule, self.graph, {**self.values, **binding}).dangling(self.graph)
+                for binding in _row_bindings(table)
+            ]
+            table = table.filter(np.array(keep, dtype=bool))
+        if rule.key_vars and table.rows > 1:
+            table = table.take(np.lexsort([table.column(v) for v in reversed(rule.key_vars)]))
+        return table
 
     def first(self) -> Match | None:
         matches = self.all()
@@ -104,7 +143,7 @@ class Matcher:
         key_vars = self.rule.key_vars
         for b in run_plan(self.graph, plan, binding, used_nodes, set(), self.rule.name, edge_vars):
             if self._accept(b):
-                yield Match(self.rule.name, {v: b[v] for v in key_vars}, tuple(b[v] for v in key_vars))
+                yield Match(self.rule.name, key_vars, tuple(b[v] for v in key_vars))
 
     def _accept(self, binding: dict) -> bool:
         if not self.rule.nacs and not self.rule.deletes_nodes:
@@ -122,15 +161,26 @@ class Matcher:
                 return ("dangling", dangling)
         return None
 
-    def nac_matches(self, i: int, nac: CompiledPattern, binding: dict) -> dict | None:
+    def _nac_plan(self, i: int) -> list[Step]:
         while len(self._nac_plans) <= i:
             k = len(self._nac_plans)
             self._nac_plans.append(build_plan(self.rule.nacs[k], self.rule.nacs[k].outer, self.graph.count))
+        return self._nac_plans[i]
+
+    def nac_matches(self, i: int, nac: CompiledPattern, binding: dict) -> dict | None:
+        self._nac_plan(i)
         used_nodes = {binding[v] for v in self.rule.pattern.nodes}
         used_edges = {binding[e.var] for e in self.rule.pattern.edges}
         for b in run_plan(self.graph, self._nac_plans[i], dict(binding), used_nodes, used_edges, self.rule.name, {}):
             return b
         return None
+
+
+def _row_bindings(table: Table):
+    names = [*table.nodes, *table.edges]
+    columns = [table.column(v).tolist() for v in names]
+    for row in zip(*columns):
+        yield dict(zip(names, row))
 
 
 def run_plan(

@@ -1,0 +1,267 @@
+"""Loading and validation of domains (vaultgram.domain): formats, normalisation, one test per error."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from vaultgram.domain import Domain, domain_from_dict, load_domain, validate_domain
+from vaultgram.errors import DomainError
+
+SQUARE = [[0, 0], [10, 0], [10, 10], [0, 10]]
+HOLE = [[4, 4], [6, 4], [6, 6], [4, 6]]
+
+
+def signed_area(r):
+    x, y = r[:, 0], r[:, 1]
+    return 0.5 * (np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+
+
+def err(d) -> str:
+    with pytest.raises(DomainError) as e:
+        domain_from_dict(d)
+    return str(e.value)
+
+
+# --- formats and normalisation ---------------------------------------------------------------
+
+
+def test_examples_load(examples_dir):
+    q = load_domain(examples_dir / "quad_with_hole.json")
+    assert q.name == "quad_with_hole"
+    assert len(q.outer) == 4 and len(q.holes) == 1 and len(q.holes[0]) == 64
+    assert q.area == pytest.approx(100 - 64 * 0.5 * 4 * math.sin(2 * math.pi / 64), rel=1e-12)
+    lsh = load_domain(examples_dir / "l_shape.json")
+    assert lsh.area == pytest.approx(75.0)
+
+
+def test_normalisation_orientation_and_closing_vertex():
+    d = domain_from_dict({"outer": SQUARE[::-1] + [SQUARE[::-1][0]], "holes": [HOLE]})
+    assert len(d.outer) == 4
+    assert signed_area(d.outer) > 0  # outer ccw
+    assert signed_area(d.holes[0]) < 0  # holes cw
+    assert d.outer.dtype == np.float64
+    assert d.area == pytest.approx(96.0)
+    with pytest.raises(ValueError):
+        d.outer[0, 0] = 1.0  # immutable
+
+
+def test_extra_keys_and_defaults():
+    d = domain_from_dict({"outer": SQUARE, "source": "somewhere", "supports": {"rings": ["outer"]}})
+    assert d.holes == () and d.points.shape == (0, 2) and d.curves == ()
+    assert d.supports == {"rings": ["outer"]}
+
+
+def test_geojson(tmp_path):
+    gj = {
+        "type": "FeatureCollection",
+        "features": [
+            {"type": "Feature", "properties": {"name": "g"},
+             "geometry": {"type": "Polygon", "coordinates": [SQUARE + [SQUARE[0]], HOLE + [HOLE[0]]]}},
+            {"type": "Feature", "geometry": {"type": "Point", "coordinates": [2, 2]}},
+            {"type": "Feature", "geometry": {"type": "LineString", "coordinates": [[1, 5], [3, 5]]}},
+        ],
+    }
+    p = tmp_path / "d.geojson"
+    p.write_text(json.dumps(gj))
+    d = load_domain(p)
+    assert d.name == "g" and len(d.outer) == 4 and len(d.holes) == 1
+    np.testing.assert_allclose(d.points, [[2, 2]])
+    assert len(d.curves) == 1
+
+
+def test_geojson_two_polygons_rejected(tmp_path):
+    f = {"type": "Feature", "geometry": {"type": "Polygon", "coordinates": [SQUARE]}}
+    p = tmp_path / "d.geojson"
+    p.write_text(json.dumps({"type": "FeatureCollection", "features": [f, f]}))
+    with pytest.raises(DomainError, match="exactly one Polygon"):
+        load_domain(p)
+
+
+def test_dxf(tmp_path):
+    ezdxf = pytest.importorskip("ezdxf")
+    doc = ezdxf.new()
+    msp = doc.modelspace()
+    msp.add_lwpolyline(HOLE, close=True)
+    msp.add_lwpolyline(SQUARE, close=True)
+    msp.add_point((2, 2))
+    msp.add_lwpolyline([(1, 8), (3, 8), (3, 9)])
+    p = tmp_path / "plan.dxf"
+    doc.saveas(p)
+    d = load_domain(p)
+    assert d.name == "plan"
+    assert d.area == pytest.approx(96.0)
+    assert len(d.holes) == 1 and len(d.points) == 1 and len(d.curves) == 1
+
+
+def test_dxf_outer_must_enclose(tmp_path):
+    ezdxf = pytest.importorskip("ezdxf")
+    doc = ezdxf.new()
+    msp = doc.modelspace()
+    msp.add_lwpolyline(SQUARE, close=True)
+    msp.add_lwpolyline([(20, 0), (22, 0), (22, 2)], close=True)
+    p = tmp_path / "bad.dxf"
+    doc.saveas(p)
+    with pytest.raises(DomainError, match="not enclosed"):
+        load_domain(p)
+
+
+def test_point_just_outside_is_snapped_onto_boundary():
+    d = domain_from_dict({"outer": SQUARE, "points": [[10.05, 5.0]]})
+    np.testing.assert_allclose(d.points, [[10.0, 5.0]], atol=1e-12)
+
+
+# --- file errors ---------------------------------------------------------------------------------
+
+
+def test_missing_and_empty_file(tmp_path):
+    with pytest.raises(DomainError, match="file not found"):
+        load_domain(tmp_path / "nope.json")
+    p = tmp_path / "empty.json"
+    p.write_text("  \n")
+    with pytest.raises(DomainError, match="empty"):
+        load_domain(p)
+
+
+def test_json_syntax_error_has_line_and_column(tmp_path):
+    p = tmp_path / "bad.json"
+    p.write_text('{\n  "outer": [[0, 0], [1, 0]\n  "holes": []\n}')
+    with pytest.raises(DomainError, match=r"bad\.json:3:3: invalid JSON"):
+        load_domain(p)
+
+
+def test_missing_outer_key():
+    assert "missing required key 'outer'" in err({"holes": []})
+
+
+def test_malformed_vertex():
+    msg = err({"outer": [[0, 0], [1, 0], [1, "a"]]})
+    assert "outer ring, vertex 2" in msg and "expected [x, y]" in msg
+    msg = err({"outer": SQUARE, "holes": "nope"})
+    assert "holes: expected a list" in msg
+
+
+def test_supports_shape():
+    assert "supports.rings[1]" in err({"outer": SQUARE, "supports": {"rings": ["outer", "x"]}})
+    assert "supports: expected exactly one" in err({"outer": SQUARE, "supports": {"foo": 1}})
+    assert "supports.polylines[0]" in err({"outer": SQUARE, "supports": {"polylines": [[[0, 0]]]}})
+
+
+# --- geometric errors ----------------------------------------------------------------------------
+
+
+def test_too_few_vertices():
+    assert "outer ring: needs at least 3 distinct vertices" in err({"outer": [[0, 0], [1, 0], [0, 0]]})
+
+
+def test_non_finite():
+    msg = err({"outer": [[0, 0], [1, 0], [float("nan"), 1]]})
+    assert "outer ring, vertex 2" in msg and "not finite" in msg
+    msg = err({"outer": SQUARE, "holes": [[[4, 4], [6, 4], [6, float("inf")]]]})
+    assert "hole 0, vertex 2" in msg
+
+
+def test_duplicate_consecutive_vertices():
+    msg = err({"outer": [[0, 0], [10, 0], [10, 0], [10, 10], [0, 10]]})
+    assert msg.endswith("outer ring: vertices 1 and 2 coincide at (10, 0)")
+
+
+def test_near_duplicate_non_consecutive_vertices():
+    ring = [[0, 0], [10, 0], [5, 5 + 1e-12], [10, 10], [0, 10], [5, 5]]
+    msg = err({"outer": ring})
+    assert "outer ring: vertices 2 and 5 coincide at (5, 5)" in msg
+
+
+def test_self_intersection_names_segments():
+    bowtie = [[0, 0], [10, 10], [10, 0], [0, 10]]
+    msg = err({"outer": bowtie})
+    assert "outer ring, vertex 0: ring self-intersects at (5, 5)" in msg
+    assert "segments 0-1 and 2-3" in msg
+    hole = [[4, 4], [6, 6], [6, 4], [4, 6]]
+    assert "hole 0, vertex 0: ring self-intersects at (5, 5)" in err({"outer": SQUARE, "holes": [hole]})
+
+
+def test_hole_outside():
+    msg = err({"outer": SQUARE, "holes": [[[20, 20], [22, 20], [22, 22]]]})
+    assert "hole 0, vertex 0: lies outside the outer ring" in msg
+
+
+def test_hole_touching_outer():
+    msg = err({"outer": SQUARE, "holes": [[[0, 4], [2, 4], [2, 6]]]})
+    assert "hole 0, vertex" in msg and "touches the outer ring at (0, 4)" in msg
+
+
+def test_hole_crossing_outer():
+    msg = err({"outer": SQUARE, "holes": [[[8, 4], [12, 4], [12, 6], [8, 6]]]})
+    assert "hole 0, vertex" in msg and "crosses the outer ring" in msg
+
+
+def test_holes_overlapping_and_nested():
+    h2 = [[5, 5], [7, 5], [7, 7], [5, 7]]
+    msg = err({"outer": SQUARE, "holes": [HOLE, h2]})
+    assert "hole 1, vertex" in msg and "hole 0" in msg and "overlaps" in msg
+    inner = [[4.5, 4.5], [5.5, 4.5], [5.5, 5.5]]
+    assert "hole 1, vertex 0: lies inside hole 0" in err({"outer": SQUARE, "holes": [HOLE, inner]})
+    touching = [[6, 4], [8, 4], [8, 6]]
+    msg = err({"outer": SQUARE, "holes": [HOLE, touching]})
+    assert "hole 1, vertex" in msg and "touches hole 0" in msg
+
+
+def test_point_feature_outside():
+    msg = err({"outer": SQUARE, "points": [[5, 5], [15, 5]]})
+    assert msg.endswith("point feature 1 at (15, 5) lies outside the domain")
+
+
+def test_point_feature_in_hole():
+    msg = err({"outer": SQUARE, "holes": [HOLE], "points": [[5, 5]]})
+    assert msg.endswith("point feature 0 at (5, 5) lies inside hole 0")
+
+
+def test_point_feature_duplicate():
+    assert "point features 0 and 1 coincide" in err({"outer": SQUARE, "points": [[2, 2], [2, 2]]})
+
+
+def test_curve_leaving_domain():
+    msg = err({"outer": SQUARE, "curves": [[[5, 5], [12, 5]]]})
+    assert "curve feature 0, vertex 1: leaves the domain" in msg
+
+
+def test_curve_crossing_hole():
+    msg = err({"outer": SQUARE, "holes": [HOLE], "curves": [[[2, 5], [8, 5]]]})
+    assert "curve feature 0, vertex 0: crosses hole 0" in msg and "segment 0-1" in msg
+
+
+def test_curve_touching_boundary_between_its_ends():
+    msg = err({"outer": SQUARE, "curves": [[[2, 2], [0, 5], [2, 8]]]})
+    assert "curve feature 0, vertex 1: touches the domain boundary at (0, 5)" in msg
+
+
+def test_curve_may_start_on_boundary():
+    d = domain_from_dict({"outer": SQUARE, "holes": [HOLE], "curves": [[[0, 5], [2, 5]], [[4, 5], [3, 5]]]})
+    assert len(d.curves) == 2
+
+
+def test_curve_self_intersection():
+    msg = err({"outer": SQUARE, "curves": [[[1, 1], [3, 3], [3, 1], [1, 3]]]})
+    assert "curve feature 0, vertex 0: curve self-intersects" in msg
+
+
+def test_validate_domain_direct():
+    d = Domain("x", np.array(SQUARE, float), (), np.array([[20.0, 20.0]]), (), None)
+    with pytest.raises(DomainError, match="point feature 0 at \\(20, 20\\) lies outside"):
+        validate_domain(d)
+
+
+def test_schema_documents_format():
+    from importlib import resources
+
+    schema = json.loads(resources.files("vaultgram").joinpath("domain.schema.json").read_text())
+    assert schema["$schema"].endswith("2020-12/schema")
+    assert schema["required"] == ["outer"]
+    assert {"name", "outer", "holes", "points", "curves", "supports"} <= set(schema["properties"])
+    jsonschema = pytest.importorskip("jsonschema")
+    for ex in schema["examples"]:
+        jsonschema.validate(ex, schema)

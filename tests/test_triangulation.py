@@ -1,0 +1,121 @@
+"""Delaunay triangulation of the domain (paper §3.1): tiling, boundary edges, kinds, Euler."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from vaultgram.discretise import discretise
+from vaultgram.domain import domain_from_dict, load_domain
+from vaultgram.errors import DomainError
+from vaultgram.triangulation import triangulate
+
+ARCHITECTURE = Path(__file__).resolve().parents[2] / "shared" / "data" / "architecture"
+PLANS = sorted(ARCHITECTURE.glob("*.json")) if ARCHITECTURE.is_dir() else []
+SPACINGS = [0.01, 0.0125, 0.015, 0.0175, 0.02, 0.025, 0.03, 0.035, 0.04, 0.045, 0.05]
+
+
+def check_triangulation(tri):
+    disc, d = tri.disc, tri.disc.domain
+    T, P = tri.triangles, tri.points
+    # counter-clockwise faces
+    a, b, c = P[T[:, 0]], P[T[:, 1]], P[T[:, 2]]
+    area = 0.5 * ((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]))
+    assert (area > 0).all()
+    # faces tile the domain
+    assert area.sum() == pytest.approx(d.area, rel=1e-9)
+    # every boundary segment is a triangle edge, with the triangle on the domain side
+    directed = {(int(x), int(y)) for t in T for x, y in ((t[0], t[1]), (t[1], t[2]), (t[2], t[0]))}
+    for i, j in disc.segments():
+        assert (int(i), int(j)) in directed
+    # neighbours are symmetric and kinds are neighbour counts
+    nb = tri.neighbours
+    for t in range(len(T)):
+        for k in range(3):
+            u = nb[t, k]
+            if u >= 0:
+                assert t in nb[u]
+                assert set(T[t]) - {T[t, k]} <= set(T[u])
+    assert (tri.kind == (nb >= 0).sum(axis=1)).all()
+    # Euler characteristic of a disc with holes
+    V = len(np.unique(T))
+    E = len(tri.edges())
+    assert V - E + len(T) == 1 - len(d.holes)
+    assert V == len(P)  # every sample point is used
+    # circumcentres are equidistant from the three vertices
+    r = np.stack([np.hypot(*(P[T[:, k]] - tri.circumcentres).T) for k in range(3)], axis=1)
+    np.testing.assert_allclose(r, np.repeat(tri.circumradii[:, None], 3, axis=1), rtol=1e-6)
+
+
+@pytest.mark.parametrize("name", ["quad_with_hole", "l_shape"])
+@pytest.mark.parametrize("spacing", SPACINGS)
+def test_examples(examples_dir, name, spacing):
+    d = load_domain(examples_dir / f"{name}.json")
+    check_triangulation(triangulate(discretise(d, spacing)))
+
+
+@pytest.mark.parametrize("path", PLANS or [None], ids=lambda p: p.stem if p else "absent")
+def test_architecture(path):
+    if path is None:
+        pytest.skip(f"shared architecture data not found at {ARCHITECTURE}")
+    d = load_domain(path)
+    check_triangulation(triangulate(discretise(d, 0.02)))
+
+
+def test_cocircular_faces_share_a_cell():
+    # an evenly sampled rectangle: many cocircular quadruples, one cell per circle
+    d = domain_from_dict({"outer": [[0, 0], [10, 0], [10, 2], [0, 2]]})
+    tri = triangulate(discretise(d, 0.02))
+    same = tri.cell[:, None] == tri.cell[tri.neighbours]
+    dist = np.hypot(*(tri.circumcentres[:, None, :] - tri.circumcentres[tri.neighbours]).transpose(2, 0, 1))
+    coincide = (tri.neighbours >= 0) & (dist < 1e-9)
+    assert coincide.any()
+    assert (same[coincide]).all()
+    assert tri.n_cells < tri.n_faces
+
+
+def test_missing_boundary_segment_is_reported():
+    # a narrow slot whose two sides are closer than the spacing: Delaunay misses boundary edges
+    outer = [[0, 0], [10, 0], [10, 10], [5.001, 10], [5.001, 1.3], [4.999, 1], [4.999, 10], [0, 10]]
+    d = domain_from_dict({"outer": outer})
+    with pytest.raises(DomainError, match=r"outer ring, vertex \d+: boundary segment .* smaller spacing"):
+        triangulate(discretise(d, 0.05))
+
+
+def test_curve_features_are_cut():
+    d = domain_from_dict({"outer": [[0, 0], [10, 0], [10, 10], [0, 10]], "curves": [[[3, 5], [7, 5]]]})
+    tri = triangulate(discretise(d, 0.02))
+    c = tri.disc.curves[0]
+    cut = {tuple(sorted(e)) for e in zip(c[:-1], c[1:])}
+    T = tri.triangles
+    for t in range(len(T)):
+        for k in range(3):
+            e = tuple(sorted((T[t, (k + 1) % 3], T[t, (k + 2) % 3])))
+            if e in cut:
+                assert tri.neighbours[t, k] == -1
+    uncut = triangulate(tri.disc, cut_curves=False)
+    assert (uncut.neighbours >= 0).sum() == (tri.neighbours >= 0).sum() + 2 * len(cut)
+
+
+@given(
+    w=st.floats(2, 20), h=st.floats(2, 20), spacing=st.floats(0.01, 0.05),
+    hx=st.floats(0.3, 0.7), hy=st.floats(0.3, 0.7), hr=st.floats(0.05, 0.2),
+)
+@settings(max_examples=25, deadline=None)
+def test_rectangle_with_hole_property(w, h, spacing, hx, hy, hr):
+    r = hr * min(w, h)
+    cx, cy = hx * w, hy * h
+    r = min(r, 0.8 * min(cx, w - cx, cy, h - cy))
+    ang = np.linspace(0, 2 * np.pi, 24, endpoint=False)
+    hole = np.stack([cx + r * np.cos(ang), cy + r * np.sin(ang)], axis=1).tolist()
+    d = domain_from_dict({"outer": [[0, 0], [w, 0], [w, h], [0, h]], "holes": [hole]})
+    try:
+        tri = triangulate(discretise(d, spacing))
+    except DomainError as e:  # only allowed failure: the spacing is too coarse for the geometry
+        assert "smaller spacing" in str(e)
+        return
+    check_triangulation(tri)

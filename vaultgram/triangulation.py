@@ -1,0 +1,353 @@
+"""Constrained-by-density Delaunay triangulation of the domain (paper §3.1, Figure 2b).
+
+"Based on this set of points, a Delaunay triangulation is generated from which the mesh faces lying
+outside the outer boundaries or inside the inner boundaries are removed. In this mesh, we call
+regular faces those that have two adjacent faces, singular faces those with three adjacent faces and
+corner faces those with only one adjacent face." (§3.1)
+
+Method
+------
+1. Delaunay triangulation of all sample points (:class:`scipy.spatial.Delaunay`), triangles
+   re-oriented counter-clockwise.
+2. Faces whose centroid is outside the outer ring or inside a hole are removed
+   (``shapely.contains_xy``, vectorised).
+3. Every boundary segment must be an edge of a kept triangle, with the triangle on the domain side.
+   The discretisation is dense enough for Delaunay to recover the boundary in normal cases; if a
+   segment is missing we raise :class:`DomainError` naming the ring and vertex and suggesting a
+   smaller spacing, rather than returning a triangulation that does not tile the domain.
+4. Adjacency across edges (``neighbours``) from sorted directed-edge keys. Curve-feature segments are
+   *cut* (§4.2: "two adjacent faces ... that have their shared edge lying on the curve feature are
+   not considered as adjacent") when ``cut_curves`` is true.
+5. ``kind`` is the paper's classification by neighbour count (1 corner, 2 regular, 3 singular; 0
+   for an isolated face).
+
+Degenerate cases: skeleton cells
+--------------------------------
+Evenly sampled straight edges make *cocircular* point sets (e.g. four points on one circle): their
+Delaunay triangulation is not unique, qhull picks an arbitrary diagonal, and two faces with the
+same circumcircle appear. Counted face by face they can yield two singular faces joined by a
+zero-length skeleton branch, or a singular face next to a regular one at the same centre. We
+therefore group faces into **cells**, the faces of the true Delaunay *subdivision*:
+
+* adjacent faces whose circumcentres coincide within ``cocircular_tol * h`` (``h`` the absolute
+  boundary spacing) are merged: together they form one convex polygon inscribed in one circle,
+  which is one skeleton vertex whatever the diagonal;
+* faces of near-zero area (``area < sliver_tol * h**2``, whose circumcentres are meaningless) are
+  merged into the neighbour across their longest edge.
+
+The skeleton (:mod:`vaultgram.skeleton`) is built on cells, not faces; ``kind`` stays the paper's
+per-face classification. Ear faces at points that are not corners by angle are handled there (they
+are pruned as spurious branches).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import Delaunay, QhullError
+
+from vaultgram.discretise import Discretisation
+from vaultgram.domain import ring_name
+from vaultgram.errors import DomainError
+
+__all__ = ["Triangulation", "triangulate", "circumcentres", "KIND_CORNER", "KIND_REGULAR", "KIND_SINGULAR"]
+
+KIND_ISOLATED = 0
+KIND_CORNER = 1
+KIND_REGULAR = 2
+KIND_SINGULAR = 3
+
+
+@dataclass(frozen=True, eq=False)
+class Triangulation:
+    """The Delaunay mesh of the domain with the paper's face classification (§3.1).
+
+    Attributes
+    ----------
+    disc : Discretisation
+        The sample points it was built from.
+    points : ndarray (N, 2)
+        Same as ``disc.points``.
+    triangles : ndarray (M, 3) int
+        Point indices, counter-clockwise.
+    neighbours : ndarray (M, 3) int
+        ``neighbours[t, k]`` is the face across the edge opposite vertex ``k`` of face ``t``, -1
+        across a boundary edge, outside, or across a cut curve-feature edge.
+    kind : ndarray (M,) int8
+        Number of neighbours: 1 corner face, 2 regular, 3 singular (0 isolated face).
+    circumcentres : ndarray (M, 2)
+    circumradii : ndarray (M,)
+    areas : ndarray (M,)
+        Unsigned face areas.
+    cell : ndarray (M,) int
+        Skeleton cell of each face (see module docstring): faces with coincident circumcircles and
+        slivers share a cell. Cells are numbered by their smallest face index.
+    cell_centres : ndarray (C, 2)
+        Centre of each cell (mean circumcentre of its non-sliver faces).
+    cell_radii : ndarray (C,)
+    cut_curves : bool
+        Whether curve-feature edges were cut (§4.2).
+    """
+
+    disc: Discretisation
+    points: np.ndarray
+    triangles: np.ndarray
+    neighbours: np.ndarray
+    kind: np.ndarray
+    circumcentres: np.ndarray
+    circumradii: np.ndarray
+    areas: np.ndarray
+    cell: np.ndarray
+    cell_centres: np.ndarray
+    cell_radii: np.ndarray
+    cut_curves: bool
+
+    @property
+    def n_faces(self) -> int:
+        return len(self.triangles)
+
+    @property
+    def n_cells(self) -> int:
+        return len(self.cell_centres)
+
+    def edges(self) -> np.ndarray:
+        """Unique undirected edges (E, 2), each as (min, max) point index."""
+        e = np.concatenate([self.triangles[:, [1, 2]], self.triangles[:, [2, 0]], self.triangles[:, [0, 1]]])
+        return np.unique(np.sort(e, axis=1), axis=0)
+
+    def __repr__(self) -> str:
+        counts = np.bincount(self.kind, minlength=4)
+        return (
+            f"Triangulation({len(self.points)} points, {len(self.triangles)} faces: "
+            f"{counts[1]} corner, {counts[2]} regular, {counts[3]} singular; {self.n_cells} cells)"
+        )
+
+
+def circumcentres(p: np.ndarray, tri: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Circumcentres and circumradii of triangles ``tri`` over points ``p`` (vectorised).
+
+    Computed relative to the first vertex for accuracy; degenerate faces give inf.
+    """
+    a = p[tri[:, 0]]
+    b = p[tri[:, 1]] - a
+    c = p[tri[:, 2]] - a
+    d = 2.0 * (b[:, 0] * c[:, 1] - b[:, 1] * c[:, 0])
+    b2 = (b * b).sum(1)
+    c2 = (c * c).sum(1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ux = (c[:, 1] * b2 - b[:, 1] * c2) / d
+        uy = (b[:, 0] * c2 - c[:, 0] * b2) / d
+    centre = a + np.stack([ux, uy], axis=1)
+    radius = np.hypot(ux, uy)
+    bad = ~np.isfinite(radius)
+    centre[bad] = np.inf
+    radius[bad] = np.inf
+    return centre, radius
+
+
+def _edge_keys(tri: np.ndarray, n: int) -> np.ndarray:
+    """Directed edge keys (M, 3): key of the edge opposite vertex k, oriented as in the ccw face."""
+    a = tri[:, [1, 2, 0]]
+    b = tri[:, [2, 0, 1]]
+    return a.astype(np.int64) * n + b
+
+
+def triangulate(
+    disc: Discretisation,
+    cut_curves: bool = True,
+    cocircular_tol: float = 1e-6,
+    sliver_tol: float = 1e-6,
+) -> Triangulation:
+    """Delaunay-triangulate the discretised domain and classify its faces (paper §3.1).
+
+    Parameters
+    ----------
+    disc : Discretisation
+        From :func:`vaultgram.discretise.discretise`.
+    cut_curves : bool
+        Make curve-feature edges non-adjacent (the §4.2 topological cut).
+    cocircular_tol : float
+        Adjacent faces whose circumcentres are closer than ``cocircular_tol * disc.h`` form one cell.
+    sliver_tol : float
+        Faces with area below ``sliver_tol * disc.h**2`` are merged into a neighbour's cell.
+
+    Returns
+    -------
+    Triangulation
+
+    Raises
+    ------
+    DomainError
+        If a boundary (or curve-feature) segment is not an edge of the triangulation: the sampling
+        is too coarse for the geometry there.
+    """
+    pts = disc.points
+    n = len(pts)
+    # A far frame around the points: no sample lies on the convex hull, so collinear boundary
+    # samples never produce qhull's flat (zero-area) hull triangles.
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    mid, big = 0.5 * (lo + hi), 10.0 * max(float(np.hypot(*(hi - lo))), 1e-300)
+    ang = np.radians([15.0, 105.0, 195.0, 285.0, 60.0])
+    frame = mid + big * np.stack([np.cos(ang), np.sin(ang)], axis=1) * np.array([[1.0], [1.1], [1.0], [1.2], [1.3]])
+    try:
+        dl = Delaunay(np.concatenate([pts, frame]))
+    except QhullError as e:  # pragma: no cover - validated domains are never flat
+        raise DomainError(f"Delaunay triangulation failed: {str(e).splitlines()[0]}") from None
+    tri = dl.simplices.astype(np.int64)
+    tri = tri[(tri < n).all(axis=1)]
+    a, b, c = pts[tri[:, 0]], pts[tri[:, 1]], pts[tri[:, 2]]
+    signed = 0.5 * ((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]))
+    flip = signed < 0
+    tri[flip] = tri[flip][:, [0, 2, 1]]
+    centroid = (a + b + c) / 3.0
+    poly = disc.domain.polygon()
+    shapely.prepare(poly)
+    inside = shapely.contains_xy(poly, centroid[:, 0], centroid[:, 1])
+    tri = tri[inside]
+    areas = np.abs(signed[inside])
+
+    keys = _edge_keys(tri, n)
+    flat = keys.ravel()
+    order = np.argsort(flat, kind="stable")
+    sorted_keys = flat[order]
+
+    def find(q: np.ndarray) -> np.ndarray:
+        """Flat position (face*3 + k) of directed edge keys q, or -1."""
+        pos = np.searchsorted(sorted_keys, q)
+        pos = np.minimum(pos, len(sorted_keys) - 1)
+        hit = sorted_keys[pos] == q if len(sorted_keys) else np.zeros(len(q), bool)
+        return np.where(hit, order[pos], -1)
+
+    # --- boundary recovery check ------------------------------------------------------------
+    seg = disc.segments()
+    found = find(seg[:, 0] * n + seg[:, 1])
+    if (found < 0).any():
+        s = int(np.flatnonzero(found < 0)[0])
+        i, j = seg[s]
+        r = int(disc.ring[i])
+        raise DomainError(
+            f"{ring_name(r)}, vertex {int(disc.index[i])}: boundary segment from {_pt(pts[i])} to "
+            f"{_pt(pts[j])} is not an edge of the Delaunay triangulation (spacing {disc.spacing:g} is "
+            "too coarse for the geometry there); use a smaller spacing or add vertices to the ring"
+        )
+    cseg = disc.curve_segments()
+    if len(cseg):
+        f1 = find(cseg[:, 0] * n + cseg[:, 1])
+        f2 = find(cseg[:, 1] * n + cseg[:, 0])
+        if ((f1 < 0) & (f2 < 0)).any():
+            s = int(np.flatnonzero((f1 < 0) & (f2 < 0))[0])
+            i, j = cseg[s]
+            c_id = next(k for k, cv in enumerate(disc.curves) if np.any((cv[:-1] == i) & (cv[1:] == j)))
+            pos = int(np.flatnonzero(disc.curves[c_id] == i)[0])
+            raise DomainError(
+                f"curve feature {c_id}, vertex {pos}: segment from {_pt(pts[i])} to {_pt(pts[j])} "
+                f"is not an edge of the Delaunay triangulation (spacing {disc.spacing:g} is too "
+                "coarse there); use a smaller spacing"
+            )
+
+    # --- adjacency ----------------------------------------------------------------------------
+    twin = (flat % n) * n + flat // n
+    pos = find(twin)
+    neighbours = np.where(pos >= 0, pos // 3, -1).reshape(-1, 3)
+    if cut_curves and len(cseg):
+        und = np.sort(cseg, axis=1)
+        ckeys = und[:, 0] * n + und[:, 1]
+        ea, eb = flat // n, flat % n
+        ekeys = np.minimum(ea, eb) * n + np.maximum(ea, eb)
+        neighbours = np.where(np.isin(ekeys, ckeys).reshape(-1, 3), -1, neighbours)
+    kind = (neighbours >= 0).sum(axis=1).astype(np.int8)
+
+    # --- area guard (the triangles must tile the domain) ------------------------------------
+    total, expect = float(areas.sum()), disc.domain.area
+    if abs(total - expect) > 1e-9 * abs(expect) + 1e-12:
+        raise DomainError(
+            f"triangulation covers area {total:.12g} but the domain has area {expect:.12g}; "
+            "use a smaller spacing"
+        )
+
+    edges = np.unique(np.sort(np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]]), axis=1), axis=0)
+    euler = len(np.unique(tri)) - len(edges) + len(tri)
+    if euler != 1 - len(disc.domain.holes):
+        raise DomainError(
+            f"triangulation is not a valid tiling of the domain (Euler characteristic {euler}, "
+            f"expected {1 - len(disc.domain.holes)}); use a smaller spacing"
+        )
+    centres, radii = circumcentres(pts, tri)
+    cell, cell_centres, cell_radii = _cells(pts, tri, neighbours, centres, radii, areas,
+                                            cocircular_tol * disc.h, sliver_tol * disc.h**2)
+    for arr in (tri, neighbours, kind, centres, radii, areas, cell, cell_centres, cell_radii):
+        arr.setflags(write=False)
+    return Triangulation(
+        disc=disc,
+        points=pts,
+        triangles=tri,
+        neighbours=neighbours,
+        kind=kind,
+        circumcentres=centres,
+        circumradii=radii,
+        areas=areas,
+        cell=cell,
+        cell_centres=cell_centres,
+        cell_radii=cell_radii,
+        cut_curves=cut_curves,
+    )
+
+
+def _pt(p) -> str:
+    return f"({float(p[0]):.10g}, {float(p[1]):.10g})"
+
+
+def _cells(pts, tri, neighbours, centres, radii, areas, ctol, atol):
+    """Group faces into skeleton cells: cocircular neighbours and slivers (see module docstring)."""
+    m = len(tri)
+    t = np.repeat(np.arange(m), 3)
+    u = neighbours.ravel()
+    ok = u > t  # each interior edge once
+    t, u = t[ok], u[ok]
+    sliver = areas < atol
+    good = ~sliver[t] & ~sliver[u]
+    with np.errstate(invalid="ignore"):
+        same = good & (np.hypot(*(centres[t] - centres[u]).T) <= ctol)
+    ea, eb = [t[same]], [u[same]]
+    if sliver.any():
+        s = np.flatnonzero(sliver)
+        p = pts[tri[s]]
+        # edge k is opposite vertex k
+        lens = np.stack([np.hypot(*(p[:, (k + 2) % 3] - p[:, (k + 1) % 3]).T) for k in range(3)], axis=1)
+        nb = neighbours[s]
+        lens = np.where(nb >= 0, lens, -1.0)
+        k = np.argmax(lens, axis=1)
+        target = nb[np.arange(len(s)), k]
+        has = target >= 0
+        ea.append(s[has])
+        eb.append(target[has])
+    ea, eb = np.concatenate(ea), np.concatenate(eb)
+    graph = coo_matrix((np.ones(len(ea)), (ea, eb)), shape=(m, m))
+    _, labels = connected_components(graph, directed=False)
+    # number cells by their smallest face index
+    first = np.full(labels.max() + 1 if m else 0, m, dtype=np.int64)
+    np.minimum.at(first, labels, np.arange(m))
+    rank = np.empty_like(first)
+    rank[np.argsort(first, kind="stable")] = np.arange(len(first))
+    cell = rank[labels]
+    nc = len(first)
+    w = (~sliver).astype(float)
+    wsum = np.bincount(cell, weights=w, minlength=nc)
+    cx = np.bincount(cell, weights=np.where(sliver, 0.0, centres[:, 0]), minlength=nc)
+    cy = np.bincount(cell, weights=np.where(sliver, 0.0, centres[:, 1]), minlength=nc)
+    cr = np.bincount(cell, weights=np.where(sliver, 0.0, radii), minlength=nc)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cc = np.stack([cx / wsum, cy / wsum], axis=1)
+        rr = cr / wsum
+    # a cell made only of slivers: use the centroid of its first face
+    lonely = wsum == 0
+    if lonely.any():
+        for ci in np.flatnonzero(lonely):
+            f = int(np.flatnonzero(cell == ci)[0])
+            cc[ci] = pts[tri[f]].mean(axis=0)
+            rr[ci] = 0.0
+    return cell.astype(np.int64), cc, rr
