@@ -73,6 +73,8 @@ class Matcher:
     def all(self) -> list[Match]:
         """Every match, sorted by key."""
         table = self.table()
+        if table.rows == 0:
+            return []
         key_vars = self.rule.key_vars
         columns = [table.column(v).tolist() for v in key_vars]
         keys = zip(*columns) if columns else [()] * table.rows

@@ -60,6 +60,24 @@ class DomainError(VaultgramError):
     """The domain (boundaries and features) is invalid: the message names the ring or feature and vertex."""
 
 
+class FormFindingError(VaultgramError):
+    """The input cannot be form-found: bad mesh, bad supports, or no compression-only equilibrium."""
+
+
+class HorizontalEquilibriumError(FormFindingError):
+    """The form diagram admits no compression-only horizontal equilibrium (edges flip or vanish).
+
+    ``edges`` lists form-edge indices, ``angles`` their angle deviations in degrees, ``result`` the
+    last state of the iteration.
+    """
+
+    def __init__(self, message: str, edges=(), angles=(), result=None):
+        super().__init__(message)
+        self.edges = list(edges)
+        self.angles = list(angles)
+        self.result = result
+
+
 class ConvergenceError(VaultgramError):
     """An iterative method did not reach its tolerance within its iteration cap."""
 

@@ -1,0 +1,57 @@
+"""Faces of a planar host graph, walked with its rotation system.
+
+With the edges around every node in counter-clockwise order (the host graph's rotation system, set
+by an angle function), the face to the left of a half-edge u -> v continues with the edge that comes
+just *before* (v, u) in the counter-clockwise order around v. Walking every half-edge once gives
+every face exactly once: bounded faces counter-clockwise, the unbounded face clockwise.
+
+Only edges of the given types take part (the others are skipped in the rotations), so a host graph
+can carry auxiliary edges (e.g. dual links) that are not part of the planar map.
+"""
+
+from __future__ import annotations
+
+from typing import Iterable
+
+from .graph import HostGraph
+
+HalfEdge = tuple[int, int]  # (edge id, node it leaves from)
+
+
+def faces(graph: HostGraph, edge_types: Iterable[str]) -> list[list[HalfEdge]]:
+    """All faces of the planar map formed by edges of ``edge_types``, as cycles of half-edges.
+
+    Faces are listed in a deterministic order: by their smallest (edge id, start node) half-edge.
+    """
+    types = set(edge_types)
+    rotation: dict[int, list[int]] = {}
+    position: dict[tuple[int, int], int] = {}
+    for n in graph.nodes():
+        rot = [e for e in graph.rotation(n) if graph.edge_type(e) in types]
+        if rot:
+            rotation[n] = rot
+            for i, e in enumerate(rot):
+                position[(n, e)] = i
+    seen: set[HalfEdge] = set()
+    out: list[list[HalfEdge]] = []
+    for e in sorted(e for e in graph.edges() if graph.edge_type(e) in types):
+        for start in graph.ends(e):
+            if (e, start) in seen:
+                continue
+            face = []
+            he = (e, start)
+            while he not in seen:
+                seen.add(he)
+                face.append(he)
+                edge, u = he
+                v = graph.other(edge, u)
+                rot = rotation[v]
+                nxt = rot[(position[(v, edge)] - 1) % len(rot)]
+                he = (nxt, v)
+            out.append(face)
+    return out
+
+
+def face_nodes(graph: HostGraph, face: list[HalfEdge]) -> list[int]:
+    """The nodes a face visits, in order (the start node of each half-edge)."""
+    return [u for _, u in face]

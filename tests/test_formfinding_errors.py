@@ -1,0 +1,117 @@
+"""Bad input fails loudly, with the place named -- never a silently wrong shape."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from vaultgram.equilibrium import form_find
+from vaultgram.errors import ConvergenceError, VaultgramError
+from vaultgram.errors import FormFindingError, HorizontalEquilibriumError
+from vaultgram.formdiagram import form_diagram
+from vaultgram.horizontal import horizontal, relax_openings
+from vaultgram.meshes import boundary_loops, grid_index, grid_mesh, remove_faces
+from vaultgram.vertical import vertical
+
+
+def holed(n=12, lo=4, hi=8):
+    v, f = grid_mesh(n)
+    v2, f2, _ = remove_faces(v, f, [j * n + i for i in range(lo, hi) for j in range(lo, hi)])
+    return v2, f2, max(boundary_loops(f2), key=len)
+
+
+def test_errors_are_vaultgram_errors():
+    assert issubclass(FormFindingError, VaultgramError)
+    assert issubclass(HorizontalEquilibriumError, FormFindingError)
+
+
+def test_no_supports():
+    v, f = grid_mesh(4)
+    with pytest.raises(FormFindingError, match="no supports"):
+        form_diagram(v, f, supports=[])
+
+
+def test_bad_support_index():
+    v, f = grid_mesh(2)
+    with pytest.raises(FormFindingError, match="support vertex 99"):
+        form_diagram(v, f, supports=[0, 99])
+
+
+def test_unsupported_island():
+    v1, f1 = grid_mesh(3)
+    v2, f2 = grid_mesh(3, origin=(10.0, 0.0))
+    v = np.vstack([v1, v2])
+    f = f1 + [tuple(i + len(v1) for i in face) for face in f2]
+    sup = [i for i in range(len(v1)) if v1[i, 0] in (0, 3) or v1[i, 1] in (0, 3)]
+    with pytest.raises(FormFindingError, match="unsupported island: 16 vertices"):
+        form_diagram(v, f, supports=sup)
+
+
+def test_clockwise_face_is_named():
+    v, f = grid_mesh(3)
+    f[4] = tuple(reversed(f[4]))
+    with pytest.raises(FormFindingError, match=r"face 4 .* is clockwise"):
+        form_diagram(v, f)
+
+
+def test_inconsistent_orientation_named():
+    v, f = grid_mesh(2)
+    f.append(f[0])
+    with pytest.raises(FormFindingError, match="halfedge"):
+        form_diagram(v, f)
+
+
+def test_straight_open_edges_have_no_compression_solution():
+    """A square hole with straight unsupported edges: the edges meeting it must flip (tension)."""
+    v, f, outer = holed()
+    form = form_diagram(v, f, supports=outer)
+    with pytest.raises(HorizontalEquilibriumError, match="no compression-only") as info:
+        horizontal(form)
+    err = info.value
+    assert err.edges and len(err.edges) == len(err.angles)
+    assert max(err.angles) > 90.0                    # flipped edges are reported with their angles
+    assert "mesh vertices" in str(err) and "deg" in str(err)
+    # ... and relaxing the openings fixes it
+    h = horizontal(relax_openings(form, 0.1))
+    assert h.max_angle < 0.5 and np.all(h.q[form.active] > 0)
+
+
+def test_horizontal_iteration_cap():
+    v, f, outer = holed()
+    form = relax_openings(form_diagram(v, f, supports=outer), 0.1)
+    with pytest.raises(ConvergenceError, match="did not converge") as info:
+        horizontal(form, kmax=3, rescue=False)
+    assert info.value.result.iterations == 3
+    assert info.value.result.max_angle > 0.5
+
+
+def test_vertical_iteration_cap_and_bad_q():
+    v, f = grid_mesh(6)
+    form = form_diagram(v, f)
+    q = np.ones(form.n_edges)
+    with pytest.raises(ConvergenceError, match="did not converge"):
+        vertical(form, q, zmax=3.0, kmax=2)
+    q[3] = -1.0
+    with pytest.raises(FormFindingError, match="non-positive force density"):
+        vertical(form, q)
+
+
+def test_point_load_on_removed_corner():
+    v, f = grid_mesh(4)
+    with pytest.raises(FormFindingError, match="mesh vertex 0"):
+        form_find(v, f, point_loads={0: 1.0})
+
+
+def test_unreachable_zmax():
+    v, f = grid_mesh(4)
+    with pytest.raises(FormFindingError, match="zmax"):
+        vertical(form_diagram(v, f), np.ones(24), zmax=3.0, selfweight=False)
+
+
+def test_single_support_cannot_hold_a_strip():
+    """One support, all edges open: no horizontal reaction is possible (its force polygon closes)."""
+    v, f = grid_mesh(3, 1)
+    with pytest.raises(HorizontalEquilibriumError, match="no compression-only"):
+        horizontal(form_diagram(v, f, supports=[grid_index(0, 0, 3)]))
+    with pytest.raises(FormFindingError, match="collapsed"):
+        form_find(v, f, supports=[grid_index(0, 0, 3)])

@@ -1,0 +1,189 @@
+"""The block decomposition (paper §3.1, Figure 2d-2f): the skeleton as a typed graph, rewritten by rules.
+
+:func:`decomposition_graph` turns the skeleton into a host graph of the rulebook's schema
+(``rules/schema.vgr``):
+
+* every ring point becomes a ``BoundaryVertex`` (a ``Corner`` where a corner face ends the skeleton),
+  consecutive ring points are joined by ``Boundary`` edges; feature and curve points become
+  ``FeaturePoint`` and ``CurvePoint`` nodes;
+* every singularity of the skeleton becomes a ``Singularity``, with a ``Dual`` edge to each vertex of
+  its dual (singular) face; skeleton branches become ``Branch`` edges carrying their polylines;
+* skeleton cycles that meet no singularity (the loop of an annulus, or a branch that returns to its
+  own node) are cut by ``LoopVertex`` nodes, whose duals are the two boundary points their maximal
+  circle touches, one on each side; a domain without corners or holes keeps its single centre cell
+  as a singularity whose dual is that cell's face.
+
+:func:`decompose` then runs the rulebook's ``topology`` strategy on it (prune corner branches,
+rebranch) -- the topology is decided by the rule files, not by this module -- and extracts the
+patches (:mod:`vaultgram.patches`).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+
+from vaultgram.discretise import Discretisation, discretise
+from vaultgram.domain import Domain
+from vaultgram.engine.graph import HostGraph
+from vaultgram.engine.rulebook import Rulebook, load_rulebook
+from vaultgram.engine.strategy import Runner, StepReport
+from vaultgram.errors import DomainError
+from vaultgram.patches import Patch, find_patches
+from vaultgram.skeleton import Skeleton, skeleton
+from vaultgram.triangulation import triangulate
+from vaultgram.vault_functions import vault_functions
+
+LOOP_CUTS = 4  # cut points on a skeleton loop without singularity (an annulus becomes 2 x 4 quads)
+PATCH_EDGES = ("Branch", "Rebranch", "Boundary")
+
+
+@dataclass(frozen=True, eq=False)
+class Decomposition:
+    """The result of topology finding: the rewritten typed graph and its 3- and 4-sided patches."""
+
+    disc: Discretisation
+    skeleton: Skeleton
+    graph: HostGraph
+    patches: tuple[Patch, ...]
+    reports: tuple[StepReport, ...]
+    trace: list[dict]
+    ignored_curves: int = 0
+
+    def singularities(self) -> list[int]:
+        return [n for n in self.graph.nodes() if self.graph.node_type(n) == "Singularity"]
+
+    def valence(self, n: int) -> int:
+        """Number of patch-layout edges (branches, rebranches, boundary pieces) at node ``n``."""
+        return self.graph.degree(n, PATCH_EDGES)
+
+
+def default_rules_dir() -> Path:
+    return Path(str(resources.files("vaultgram.rules")))
+
+
+def load_vault_rulebook(rules_dir: str | Path | None = None) -> Rulebook:
+    """The rulebook in ``rules_dir`` (default: the one shipped with vaultgram), with vault functions."""
+    directory = Path(rules_dir) if rules_dir is not None else default_rules_dir()
+    path = directory / "topology.vgr"
+    if not path.is_file():
+        raise DomainError(f"{directory}: no topology.vgr rule file there")
+    return load_rulebook([path], vault_functions())
+
+
+def edge_angle(graph: HostGraph, e: int, n: int) -> float:
+    """Direction in which edge ``e`` leaves node ``n`` (along its polyline if it has one)."""
+    u, v = graph.ends(e)
+    poly = graph.get_edge(e, "polyline") if "polyline" in graph.edge_attrs(e) else ()
+    if len(poly) >= 2:
+        a, b = (poly[0], poly[1]) if n == u else (poly[-1], poly[-2])
+    else:
+        a, b = graph.get(n, "pos"), graph.get(graph.other(e, n), "pos")
+    return math.atan2(b[1] - a[1], b[0] - a[0])
+
+
+def decomposition_graph(sk: Skeleton, rulebook: Rulebook) -> HostGraph:
+    """The typed graph of §3.1 before rewriting (see the module docstring)."""
+    disc = sk.triangulation.disc
+    g = HostGraph(rulebook.schema, angle=edge_angle)
+    pts = disc.points
+    corner_points = {int(n.point) for n in sk.nodes if n.kind == "corner"}
+    for ring in disc.rings:
+        for k, p in enumerate(ring):
+            kind = "Corner" if int(p) in corner_points else "BoundaryVertex"
+            g.add_node(kind, {"pos": tuple(pts[p]), "ring": int(disc.ring[p]), "index": k}, id=int(p))
+    for p in np.flatnonzero(disc.ring < 0):  # feature points and curve points (section 4)
+        kind = "FeaturePoint" if disc.ring[p] == -2 else "CurvePoint"
+        g.add_node(kind, {"pos": tuple(pts[p])}, id=int(p))
+    for ring in disc.rings:
+        for a, b in zip(ring, np.roll(ring, -1)):
+            g.add_edge("Boundary", int(a), int(b))
+
+    node_of: dict[int, int] = {}
+    for node in sk.nodes:
+        if node.kind == "corner":
+            node_of[node.id] = int(node.point)
+        else:  # a singularity, or the centre cell of a domain without corners and holes
+            dual = node.dual if node.kind == "singularity" else tuple(sk.triangulation.triangles[node.face])
+            s = g.add_node("Singularity", {"pos": tuple(node.pos)})
+            node_of[node.id] = s
+            for p in dual:
+                g.add_edge("Dual", s, int(p))
+    for branch in sk.branches:
+        a, b = node_of[branch.start], node_of[branch.end]
+        poly = branch.polyline
+        if a == b:  # a branch returning to its own node: cut it once in the middle
+            cut = _add_loop_vertex(g, sk, poly, branch.faces, len(poly) // 2)
+            g.add_edge("Branch", a, cut, {"polyline": _plain(poly[: len(poly) // 2 + 1])})
+            g.add_edge("Branch", cut, b, {"polyline": _plain(poly[len(poly) // 2 :])})
+        else:
+            g.add_edge("Branch", a, b, {"polyline": _plain(poly)})
+    for loop in sk.loops:
+        _cut_loop(g, sk, loop)
+    g.forget()
+    return g
+
+
+def _cut_loop(g: HostGraph, sk: Skeleton, loop) -> None:
+    poly = loop.polyline[:-1]
+    if len(poly) < 2 * LOOP_CUTS:
+        raise DomainError("a skeleton loop is too short to cut into patches; use a smaller spacing")
+    length = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(loop.polyline, axis=0).T))])
+    at = [int(np.searchsorted(length, length[-1] * k / LOOP_CUTS)) % len(poly) for k in range(LOOP_CUTS)]
+    cuts = [_add_loop_vertex(g, sk, loop.polyline, loop.faces, i) for i in at]
+    for k in range(LOOP_CUTS):
+        i, j = at[k], at[(k + 1) % LOOP_CUTS]
+        piece = loop.polyline[i : j + 1] if j > i else np.vstack([loop.polyline[i:-1], loop.polyline[: j + 1]])
+        g.add_edge("Branch", cuts[k], cuts[(k + 1) % LOOP_CUTS], {"polyline": _plain(piece)})
+
+
+def _add_loop_vertex(g: HostGraph, sk: Skeleton, poly: np.ndarray, faces, i: int) -> int:
+    """A LoopVertex at ``poly[i]`` whose dual is the nearest boundary point of its face on each side."""
+    p = poly[i]
+    d = poly[min(i + 1, len(poly) - 1)] - poly[max(i - 1, 0)]
+    tri = sk.triangulation
+    verts = tri.triangles[faces[i]]
+    rel = tri.points[verts] - p
+    side = np.sign(d[0] * rel[:, 1] - d[1] * rel[:, 0])
+    along = np.abs(rel @ d)
+    n = g.add_node("LoopVertex", {"pos": tuple(p)})
+    for s in (1, -1):
+        candidates = np.flatnonzero(side == s)
+        if len(candidates) == 0:
+            raise DomainError(f"cannot cut the skeleton loop at ({p[0]:.6g}, {p[1]:.6g}); use a smaller spacing")
+        g.add_edge("Dual", n, int(verts[candidates[np.argmin(along[candidates])]]))
+    return n
+
+
+def _plain(poly: np.ndarray) -> tuple:
+    return tuple((float(x), float(y)) for x, y in poly)
+
+
+def decompose(
+    domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None = None, smooth: bool = False
+) -> Decomposition:
+    """Topology finding (§3.1): discretise, triangulate, skeletonise, rewrite with the rules, patch.
+
+    Curve features are not part of the decomposition yet (their topological cut needs the T-junction
+    repair of §4.2): they are left out here, and :attr:`Decomposition.ignored_curves` says how many.
+    """
+    rulebook = load_vault_rulebook(rules_dir)
+    if "topology" not in rulebook.strategies:
+        raise DomainError(f"the rulebook ({', '.join(rulebook.files)}) has no strategy 'topology'")
+    ignored_curves = len(domain.curves)
+    if ignored_curves:
+        domain = dataclasses.replace(domain, curves=())
+    disc = discretise(domain, spacing)
+    sk = skeleton(triangulate(disc), smooth=smooth)
+    graph = decomposition_graph(sk, rulebook)
+    runner = Runner(rulebook, graph)
+    runner.run("topology")
+    patches = find_patches(graph, disc, PATCH_EDGES)
+    return Decomposition(
+        disc, sk, graph, tuple(patches), tuple(runner.reports), runner.trace.to_json(), ignored_curves
+    )

@@ -1,0 +1,75 @@
+"""Vertical loads on a thrust network: self-weight from 3D tributary areas, plus point loads.
+
+Self-weight is lumped at the vertices. The tributary area of vertex ``p0`` is the sum, over its
+incident halfedges ``e`` and the loaded faces on either side of them, of ``1/4 |e x (c - p0)|``, with
+``c`` the face centroid (mean of its vertices), all in 3D. Equivalently each loaded face gives each of
+its corners the area of the quadrilateral (corner, mid-edge, centroid, mid-edge), so the areas add up
+to the area of the faces triangulated at their centroids. This is the convention of compas_tna's
+``LoadUpdater`` and of the reference figures in ``shared/reference/tna_square10.json``.
+
+Because the areas are measured on the 3D network, the loads change with the heights and vertical
+equilibrium iterates loads and heights together (:mod:`vaultgram.vertical`). Everything here is
+vectorised over face corners (no loop over vertices).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from vaultgram.meshes import corner_arrays
+
+__all__ = ["TributaryAreas", "tributary_areas"]
+
+
+@dataclass(frozen=True, eq=False)
+class TributaryAreas:
+    """Precomputed corner arrays of the loaded faces, callable on vertex coordinates.
+
+    ``TributaryAreas(faces, n)(xyz)`` returns the (n,) tributary areas. Build it once and call it at
+    every iteration of vertical equilibrium.
+    """
+
+    n: int
+    vert: np.ndarray
+    nxt: np.ndarray
+    prv: np.ndarray
+    centroid: sp.csr_matrix   # (corners x n): row k averages the vertices of the face of corner k
+
+    @classmethod
+    def from_faces(cls, faces, n: int) -> "TributaryAreas":
+        face, vert, nxt, prv = corner_arrays(faces)
+        if len(face) == 0:
+            z = np.zeros(0, dtype=np.int64)
+            return cls(n, z, z, z, sp.csr_matrix((0, n)))
+        lens = np.bincount(face)
+        F = sp.csr_matrix((1.0 / lens[face], (face, vert)), shape=(len(lens), n))
+        # corner k -> its face row of F
+        S = sp.csr_matrix((np.ones(len(face)), (np.arange(len(face)), face)), shape=(len(face), len(lens)))
+        return cls(n, vert, nxt, prv, (S @ F).tocsr())
+
+    def __call__(self, xyz: np.ndarray) -> np.ndarray:
+        if len(self.vert) == 0:
+            return np.zeros(self.n)
+        c = self.centroid @ xyz
+        p0 = xyz[self.vert]
+        cp = c - p0
+        a = np.linalg.norm(np.cross(xyz[self.nxt] - p0, cp), axis=1)
+        a += np.linalg.norm(np.cross(xyz[self.prv] - p0, cp), axis=1)
+        return 0.25 * np.bincount(self.vert, weights=a, minlength=self.n)
+
+
+def tributary_areas(xyz: np.ndarray, faces, n: int | None = None) -> np.ndarray:
+    """Tributary area of every vertex of the loaded ``faces`` at coordinates ``xyz`` (n, 3).
+
+    Example
+    -------
+    >>> import numpy as np
+    >>> xyz = np.array([[0, 0, 0], [2, 0, 0], [2, 2, 0], [0, 2, 0]], float)
+    >>> tributary_areas(xyz, [(0, 1, 2, 3)]).tolist()
+    [1.0, 1.0, 1.0, 1.0]
+    """
+    xyz = np.asarray(xyz, dtype=float)
+    return TributaryAreas.from_faces(faces, len(xyz) if n is None else n)(xyz)

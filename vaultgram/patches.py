@@ -1,0 +1,139 @@
+"""Patches (paper §3.1, Figure 2f): the faces of the planar map of branches, rebranches and boundary.
+
+Each bounded face of the rewritten decomposition graph that is not the inside of a hole is a patch.
+Its *corners* are the face's nodes where a side ends: skeleton vertices (singularities, loop cuts),
+boundary points where a rebranch or a branch arrives, and polygon corners. Between consecutive
+corners runs a *side*, a polyline made of the edges' own polylines. Every patch must have 3 or 4
+sides; any other face is an error naming where it is.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from vaultgram.discretise import Discretisation
+from vaultgram.engine.embedding import faces
+from vaultgram.engine.graph import HostGraph
+from vaultgram.errors import DomainError
+
+
+@dataclass(frozen=True, eq=False)
+class Patch:
+    """A 3- or 4-sided patch, counter-clockwise.
+
+    Attributes
+    ----------
+    id : int
+    corners : tuple of int
+        Node ids of the decomposition graph, counter-clockwise.
+    sides : tuple of ndarray (k, 2)
+        ``sides[i]`` runs from ``corners[i]`` to ``corners[i + 1]`` (cyclically).
+    side_edges : tuple of tuple of (edge id, start node)
+        The graph's half-edges along each side, in order.
+    """
+
+    id: int
+    corners: tuple
+    sides: tuple
+    side_edges: tuple
+
+    @property
+    def n_sides(self) -> int:
+        return len(self.corners)
+
+    def polygon(self) -> np.ndarray:
+        """The patch outline: the concatenated sides without repeated points."""
+        return np.vstack([s[:-1] for s in self.sides])
+
+    def area(self) -> float:
+        return float(signed_area(self.polygon()))
+
+    def to_json(self) -> dict:
+        return {
+            "id": self.id,
+            "corners": list(self.corners),
+            "n_sides": self.n_sides,
+            "sides": [s.tolist() for s in self.sides],
+        }
+
+
+def signed_area(poly: np.ndarray) -> float:
+    """Shoelace area: positive for a counter-clockwise polygon."""
+    x, y = poly[:, 0], poly[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+
+
+def half_edge_polyline(graph: HostGraph, edge: int, start: int) -> np.ndarray:
+    """The points of an edge from ``start`` to its other end (its polyline, or the straight segment)."""
+    attrs = graph.edge_attrs(edge)
+    poly = attrs.get("polyline") or ()
+    if len(poly) < 2:
+        poly = (graph.get(start, "pos"), graph.get(graph.other(edge, start), "pos"))
+        return np.asarray(poly, dtype=float)
+    pts = np.asarray(poly, dtype=float)
+    return pts if graph.ends(edge)[0] == start else pts[::-1]
+
+
+def find_patches(graph: HostGraph, disc: Discretisation, edge_types) -> list[Patch]:
+    """The 3- and 4-sided patches of a rewritten decomposition graph (see the module docstring)."""
+    types = set(edge_types)
+    patches = []
+    for face in faces(graph, types):
+        polys = [half_edge_polyline(graph, e, u) for e, u in face]
+        outline = np.vstack([p[:-1] for p in polys])
+        if signed_area(outline) <= 0 or _is_hole(graph, face):
+            continue  # the unbounded face, or the inside of a hole
+        start = next((i for i, (_, u) in enumerate(face) if _is_corner(graph, u, types)), None)
+        if start is None:
+            raise DomainError(f"a region around {_where(outline)} has no corner at all; it cannot be a patch")
+        face = face[start:] + face[:start]
+        polys = polys[start:] + polys[:start]
+        corners, sides, side_edges = [], [], []
+        for (e, u), poly in zip(face, polys):
+            if _is_corner(graph, u, types):
+                corners.append(u)
+                sides.append([poly])
+                side_edges.append([(e, u)])
+            else:
+                sides[-1].append(poly[1:])
+                side_edges[-1].append((e, u))
+        if len(corners) not in (3, 4):
+            raise DomainError(
+                f"patch around {_where(outline)} has {len(corners)} sides (corners at "
+                f"{', '.join(_fmt(graph.get(c, 'pos')) for c in corners)}); only 3- and 4-sided patches "
+                "can be meshed: try another spacing or check the rules"
+            )
+        patches.append(
+            Patch(
+                len(patches),
+                tuple(corners),
+                tuple(np.vstack(s) for s in sides),
+                tuple(tuple(s) for s in side_edges),
+            )
+        )
+    return patches
+
+
+def _is_corner(graph: HostGraph, n: int, types) -> bool:
+    t = graph.node_type(n)
+    if t == "Corner" or not graph.schema.is_subtype(t, "BoundaryVertex"):
+        return True
+    return graph.degree(n, types) > 2
+
+
+def _is_hole(graph: HostGraph, face) -> bool:
+    """A face made only of boundary edges of one hole ring, walked around the hole."""
+    rings = {graph.get(u, "ring") if graph.schema.is_subtype(graph.node_type(u), "BoundaryVertex") else -1
+             for _, u in face}
+    edge_types = {graph.edge_type(e) for e, _ in face}
+    return edge_types == {"Boundary"} and len(rings) == 1 and next(iter(rings)) > 0
+
+
+def _fmt(p) -> str:
+    return f"({p[0]:.6g}, {p[1]:.6g})"
+
+
+def _where(outline: np.ndarray) -> str:
+    return _fmt(outline.mean(axis=0))
