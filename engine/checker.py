@@ -378,7 +378,9 @@ class RuleChecker:
                 raise RuleTypeError(f"'{ref.var}' is not a node in this rule", ref.pos, did_you_mean(ref.var, scope))
             if ref.step != 0 and (foreach_created is None or ref.var not in foreach_created):
                 raise RuleTypeError(
-                    f"next()/prev() refers to a node created in the enclosing foreach; '{ref.var}' is not", ref.pos
+                    f"next()/prev() names the neighbour of the enclosing foreach or a node created in it; "
+                    f"'{ref.var}' is neither",
+                    ref.pos,
                 )
             ends.append(sym.type.name)
         if (s.source.var, s.source.step) == (s.target.var, s.target.step):
@@ -415,8 +417,8 @@ class RuleChecker:
         other = self._neighbour_type(info, s.direction, center.type.name)
         inner[s.neighbour] = Symbol(VType("node", other))
         condition = self._condition(s.condition, inner) if s.condition is not None else None
-        created: set = set()
-        body = self._statements(s.body, inner, created)
+        local = {s.neighbour}  # next()/prev() may name the neighbour or a node created in the body
+        body = self._statements(s.body, inner, local)
         return CForeach(edge_var, s.center, s.neighbour, self.schema.subtypes(s.type), s.direction, condition, body, s.pos)
 
     def _neighbour_type(self, info, direction: str, center_type: str) -> str:
@@ -489,13 +491,15 @@ class RuleChecker:
     def _node_type(self, name: str, pos):
         info = self.schema.node_types.get(name)
         if info is None:
-            raise RuleTypeError(f"unknown node type '{name}'", pos, did_you_mean(name, self.schema.node_types))
+            known = [t for t in self.schema.node_types if t != "Node"]
+            raise RuleTypeError(f"unknown node type '{name}'", pos, did_you_mean(name, known))
         return info
 
     def _edge_type(self, name: str, pos):
         info = self.schema.edge_types.get(name)
         if info is None:
-            raise RuleTypeError(f"unknown edge type '{name}'", pos, did_you_mean(name, self.schema.edge_types))
+            known = [t for t in self.schema.edge_types if t != "Edge"]
+            raise RuleTypeError(f"unknown edge type '{name}'", pos, did_you_mean(name, known))
         return info
 
     def _reads_types(self, rule: ast.Rule, compiled: CompiledRule) -> frozenset[str]:

@@ -5,11 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-
-REPO = Path(__file__).resolve().parents[1]
-EXAMPLES = REPO / "examples"
-SHARED = Path(__file__).resolve().parents[2] / "shared"
-ARCHITECTURE = SHARED / "data" / "architecture"
+from paths import ARCHITECTURE, EXAMPLES
 
 
 @pytest.fixture(scope="session")

@@ -111,6 +111,35 @@ def rules_why_not(files, graph_path: str, rule_name: str) -> None:
     click.echo(str(why_not(Matcher(book.rules[rule_name], graph))))
 
 
+@main.command("decompose")
+@click.argument("domain_path", metavar="DOMAIN", type=click.Path(dir_okay=False))
+@click.option("--out", "out_dir", required=True, type=click.Path(file_okay=False), help="Output directory.")
+@click.option("--spacing", default=0.02, show_default=True, type=float,
+              help="Boundary spacing as a fraction of the bounding-box diagonal (0.01 to 0.05 usual).")
+@click.option("--rules", "rules_dir", default=None, type=click.Path(file_okay=False, exists=True),
+              help="Directory with topology.vgr (default: the rulebook shipped with vaultgram).")
+@click.option("--plot/--no-plot", default=True, show_default=True, help="Also write decomposition.png.")
+def decompose_command(domain_path: str, out_dir: str, spacing: float, rules_dir: str | None, plot: bool) -> None:
+    """Block decomposition of a DOMAIN (JSON, GeoJSON or DXF) into 3- and 4-sided patches (paper 3.1)."""
+    from vaultgram.decomposition import decompose
+    from vaultgram.domain import load_domain
+    from vaultgram.plot import plot_decomposition
+
+    dec = decompose(load_domain(domain_path), spacing, rules_dir)
+    out = Path(out_dir)
+    write_json(out / "decomposition.json", dec.to_json())
+    write_json(out / "patches.json", dec.patches_json())
+    if plot:
+        plot_decomposition(dec, out / "decomposition.png")
+    for report in dec.reports:
+        click.echo(f"rules: {report.step}: {report.applications} application(s)")
+    if dec.ignored_curves:
+        click.echo(f"note: {dec.ignored_curves} curve feature(s) ignored (curve features are not decomposed yet)")
+    counts = dec.patches_json()["counts"]
+    click.echo(f"{len(dec.patches)} patches ({counts['4']} four-sided, {counts['3']} three-sided), "
+               f"{len(dec.singularities())} singularities; wrote {out}")
+
+
 def read_json(path: str):
     """Read a JSON file, turning every failure into a VaultgramError that names the file and place."""
     from vaultgram.errors import VaultgramError as Error

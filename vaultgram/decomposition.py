@@ -34,7 +34,7 @@ from vaultgram.engine.graph import HostGraph
 from vaultgram.engine.rulebook import Rulebook, load_rulebook
 from vaultgram.engine.strategy import Runner, StepReport
 from vaultgram.errors import DomainError
-from vaultgram.patches import Patch, find_patches
+from vaultgram.patches import Patch, find_patches, half_edge_polyline
 from vaultgram.skeleton import Skeleton, skeleton
 from vaultgram.triangulation import triangulate
 from vaultgram.vault_functions import vault_functions
@@ -61,6 +61,29 @@ class Decomposition:
     def valence(self, n: int) -> int:
         """Number of patch-layout edges (branches, rebranches, boundary pieces) at node ``n``."""
         return self.graph.degree(n, PATCH_EDGES)
+
+    def to_json(self) -> dict:
+        """The typed graph: nodes with types and positions, edges with types and polylines."""
+        g = self.graph
+        return {
+            "name": self.disc.domain.name,
+            "spacing": self.disc.spacing,
+            "nodes": [{"id": n, "type": g.node_type(n), "pos": list(g.get(n, "pos"))} for n in g.nodes()],
+            "edges": [
+                {"id": e, "type": g.edge_type(e), "source": g.ends(e)[0], "target": g.ends(e)[1],
+                 "polyline": half_edge_polyline(g, e, g.ends(e)[0]).tolist()}
+                for e in g.edges()
+            ],
+            "rules": [{"step": r.step, "applications": r.applications} for r in self.reports],
+            "ignored_curves": self.ignored_curves,
+        }
+
+    def patches_json(self) -> dict:
+        return {
+            "name": self.disc.domain.name,
+            "patches": [p.to_json() for p in self.patches],
+            "counts": {str(k): sum(p.n_sides == k for p in self.patches) for k in (3, 4)},
+        }
 
 
 def default_rules_dir() -> Path:

@@ -1,0 +1,10 @@
+"""Where the tests find their inputs: the bundled examples and the shared data beside the checkout."""
+
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+EXAMPLES = REPO / "examples"
+SHARED = REPO.parent / "shared"
+ARCHITECTURE = SHARED / "data" / "architecture"
+REFERENCE = SHARED / "reference"
+ARCHITECTURE_PLANS = sorted(ARCHITECTURE.glob("*.json")) if ARCHITECTURE.is_dir() else []

@@ -1,0 +1,101 @@
+"""The command line: summaries, outputs, and one-line errors with exit code 2 and nothing written."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+from click.testing import CliRunner
+from paths import EXAMPLES, REPO
+
+from vaultgram.cli import main
+
+RULES = REPO / "rules" / "topology.vgr"
+
+
+def run(*args):
+    return CliRunner().invoke(main, [str(a) for a in args])
+
+
+def test_rules_check_prints_summary():
+    result = run("rules", "check", RULES)
+    assert result.exit_code == 0, result.output
+    assert "rules (2)" in result.output and "topology: prune_corner_branch all; rebranch all" in result.output
+
+
+def test_rules_check_json():
+    result = run("rules", "check", "--json", RULES)
+    summary = json.loads(result.output)
+    assert set(summary["rules"]) == {"prune_corner_branch", "rebranch"}
+    assert summary["types"]["nodes"]["Corner"] == "BoundaryVertex"
+
+
+def test_rules_check_reports_syntax_error_with_position(tmp_path):
+    bad = tmp_path / "bad.vgr"
+    bad.write_text("rule r {\n  match { a: A \n")
+    result = run("rules", "check", bad)
+    assert result.exit_code == 2
+    assert f"{bad}:3:1" in result.output and "Traceback" not in result.output
+
+
+def test_rules_check_reports_type_error_with_hint(tmp_path):
+    bad = tmp_path / "bad.vgr"
+    bad.write_text(f'include "{REPO / "rules" / "schema.vgr"}"\nrule r {{\n  match {{ s: Singulrity }}\n}}\n')
+    result = run("rules", "check", bad)
+    assert result.exit_code == 2
+    assert f"{bad}:3:11: unknown node type 'Singulrity'" in result.output
+    assert "did you mean 'Singularity'" in result.output
+
+
+def test_rules_run_writes_graph_and_trace(tmp_path):
+    result = run("rules", "run", RULES, "--graph", EXAMPLES / "skeleton_quad_with_hole.json",
+                 "--strategy", "topology", "--out", tmp_path)
+    assert result.exit_code == 0, result.output
+    graph = json.loads((tmp_path / "graph.json").read_text())
+    types = [e["type"] for e in graph["edges"]]
+    assert types.count("Rebranch") == 12 and types.count("Branch") == 4
+    assert len(json.loads((tmp_path / "trace.json").read_text())) == 16
+
+
+def test_rules_run_unknown_strategy_is_a_clear_error(tmp_path):
+    result = run("rules", "run", RULES, "--graph", EXAMPLES / "skeleton_quad_with_hole.json",
+                 "--strategy", "nope", "--out", tmp_path / "out")
+    assert result.exit_code == 2 and "unknown strategy 'nope'" in result.output
+    assert not (tmp_path / "out").exists()
+
+
+def test_why_not_explains(tmp_path):
+    run("rules", "run", RULES, "--graph", EXAMPLES / "skeleton_quad_with_hole.json", "--strategy", "topology",
+        "--out", tmp_path)
+    result = run("rules", "why-not", RULES, "--graph", tmp_path / "graph.json", "--rule", "rebranch")
+    assert result.exit_code == 0
+    assert "refused by NAC #1" in result.output
+
+
+def test_decompose_writes_outputs_deterministically(tmp_path):
+    a, b = tmp_path / "a", tmp_path / "b"
+    for out in (a, b):
+        result = run("decompose", EXAMPLES / "quad_with_hole.json", "--out", out)
+        assert result.exit_code == 0, result.output
+    assert "12 patches (12 four-sided, 0 three-sided), 4 singularities" in result.output
+    for name in ("decomposition.json", "patches.json", "decomposition.png"):
+        assert (a / name).read_bytes() == (b / name).read_bytes()
+    patches = json.loads((a / "patches.json").read_text())
+    assert patches["counts"] == {"3": 0, "4": 12}
+    assert all(len(p["sides"]) == p["n_sides"] == 4 for p in patches["patches"])
+
+
+def test_decompose_bad_domain_exits_2_and_writes_nothing(tmp_path):
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps({"outer": [[0, 0], [10, 0], [0, 10], [10, 10]]}))  # a bow tie
+    result = run("decompose", bad, "--out", tmp_path / "out")
+    assert result.exit_code == 2
+    assert "self-intersect" in result.output and "Traceback" not in result.output
+    assert not (tmp_path / "out").exists()
+
+
+def test_python_dash_m_runs_the_cli():
+    done = subprocess.run([sys.executable, "-m", "vaultgram", "rules", "check", str(RULES)],
+                          capture_output=True, text=True)
+    assert done.returncode == 0 and "ok:" in done.stdout
