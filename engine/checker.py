@@ -279,9 +279,9 @@ class RuleChecker:
     def _check_endpoint_fit(self, e: ast.EdgePattern, info, scope) -> None:
         s_type = scope[e.source].type.name
         t_type = scope[e.target].type.name
-        fits = self.schema.compatible(s_type, info.source) and self.schema.compatible(t_type, info.target)
-        if not fits and not e.directed:
-            fits = self.schema.compatible(t_type, info.source) and self.schema.compatible(s_type, info.target)
+        fits = self.schema.endpoints_fit(e.type, s_type, t_type, could=True)
+        if not fits and not e.directed and info.directed:  # -T- on a directed type: either direction
+            fits = self.schema.endpoints_fit(e.type, t_type, s_type, could=True)
         if not fits:
             arrow = "->" if info.directed else "--"
             raise RuleTypeError(
@@ -385,10 +385,7 @@ class RuleChecker:
             ends.append(sym.type.name)
         if (s.source.var, s.source.step) == (s.target.var, s.target.step):
             raise RuleTypeError("an edge cannot join a node to itself", s.pos)
-        ok = self.schema.is_subtype(ends[0], info.source) and self.schema.is_subtype(ends[1], info.target)
-        if not ok and not info.directed:
-            ok = self.schema.is_subtype(ends[1], info.source) and self.schema.is_subtype(ends[0], info.target)
-        if not ok:
+        if not self.schema.endpoints_fit(s.type, ends[0], ends[1]):
             raise RuleTypeError(
                 f"edge {s.type} joins {info.source} and {info.target}; "
                 f"{s.source.var} is {ends[0]} and {s.target.var} is {ends[1]}",

@@ -377,12 +377,9 @@ class HostGraph:
         return requested
 
     def _check_endpoints(self, type_name: str, u: int, v: int) -> None:
-        info = self.schema.edge_types[type_name]
         tu, tv = self._node_type[u], self._node_type[v]
-        ok = self.schema.is_subtype(tu, info.source) and self.schema.is_subtype(tv, info.target)
-        if not ok and not info.directed:
-            ok = self.schema.is_subtype(tv, info.source) and self.schema.is_subtype(tu, info.target)
-        if not ok:
+        if not self.schema.endpoints_fit(type_name, tu, tv):
+            info = self.schema.edge_types[type_name]
             arrow = "->" if info.directed else "--"
             raise SchemaError(
                 f"edge {type_name} ({info.source} {arrow} {info.target}) cannot join node {u} ({tu}) and node {v} ({tv})"

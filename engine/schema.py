@@ -123,6 +123,17 @@ class TypeSchema:
         """Whether some element could have both types (one is a subtype of the other)."""
         return self.is_subtype(a, b) or self.is_subtype(b, a)
 
+    def endpoints_fit(self, edge_type: str, a: str, b: str, could: bool = False) -> bool:
+        """Whether an edge of ``edge_type`` may join nodes of types ``a`` and ``b`` (in that order if directed).
+
+        With ``could`` the question is whether *some* nodes of those types (or of their subtypes)
+        could be joined -- the static question for patterns -- rather than every node of them.
+        """
+        info = self.edge_types[edge_type]
+        fits = self.compatible if could else self.is_subtype
+        ok = fits(a, info.source) and fits(b, info.target)
+        return ok or (not info.directed and fits(b, info.source) and fits(a, info.target))
+
     def common_ancestor(self, a: str, b: str) -> str:
         """The most specific type that both ``a`` and ``b`` are subtypes of."""
         table = self.node_types if a in self.node_types else self.edge_types
