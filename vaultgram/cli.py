@@ -118,14 +118,17 @@ def rules_why_not(files, graph_path: str, rule_name: str) -> None:
               help="Boundary spacing as a fraction of the bounding-box diagonal (0.01 to 0.05 usual).")
 @click.option("--rules", "rules_dir", default=None, type=click.Path(file_okay=False, exists=True),
               help="Directory with topology.vgr (default: the rulebook shipped with vaultgram).")
+@click.option("--smooth-branches", is_flag=True, help="Smooth the skeleton branches with splines (scipy).")
 @click.option("--plot/--no-plot", default=True, show_default=True, help="Also write decomposition.png.")
-def decompose_command(domain_path: str, out_dir: str, spacing: float, rules_dir: str | None, plot: bool) -> None:
+def decompose_command(
+    domain_path: str, out_dir: str, spacing: float, rules_dir: str | None, smooth_branches: bool, plot: bool
+) -> None:
     """Block decomposition of a DOMAIN (JSON, GeoJSON or DXF) into 3- and 4-sided patches (paper 3.1)."""
     from vaultgram.decomposition import decompose
     from vaultgram.domain import load_domain
     from vaultgram.plot import plot_decomposition
 
-    dec = decompose(load_domain(domain_path), spacing, rules_dir)
+    dec = decompose(load_domain(domain_path), spacing, rules_dir, smooth=smooth_branches)
     out = Path(out_dir)
     write_json(out / "decomposition.json", dec.to_json())
     write_json(out / "patches.json", dec.patches_json())
