@@ -32,8 +32,9 @@ from scipy.sparse.csgraph import connected_components
 
 from vaultgram.errors import FormFindingError
 from vaultgram.meshes import corner_arrays
+from vaultgram.supports import outer_loop
 
-__all__ = ["FormDiagram", "form_diagram", "connectivity_matrix", "boundary_vertices"]
+__all__ = ["FormDiagram", "form_diagram", "connectivity_matrix"]
 
 
 def connectivity_matrix(edges: np.ndarray, n: int) -> sp.csr_matrix:
@@ -47,16 +48,6 @@ def connectivity_matrix(edges: np.ndarray, n: int) -> sp.csr_matrix:
     rows = np.repeat(np.arange(m), 2)
     data = np.tile([-1.0, 1.0], m)
     return sp.csr_matrix((data, (rows, edges.ravel())), shape=(m, n))
-
-
-def boundary_vertices(faces: Sequence[Sequence[int]]) -> np.ndarray:
-    """Sorted indices of the vertices on a halfedge without twin (every boundary loop, holes included)."""
-    _, u, v, _ = corner_arrays(faces)
-    if len(u) == 0:
-        return np.zeros(0, dtype=np.int64)
-    n = int(max(u.max(), v.max())) + 1
-    twin = np.isin(v * n + u, u * n + v)
-    return np.unique(np.concatenate([u[~twin], v[~twin]]))
 
 
 @dataclass(frozen=True, eq=False)
@@ -164,10 +155,10 @@ class FormDiagram:
         }
 
 
-def _supports_array(supports, n: int, faces) -> np.ndarray:
+def _supports_array(supports, n: int, vertices, faces) -> np.ndarray:
     anchors = np.zeros(n, dtype=bool)
-    if supports is None:
-        anchors[boundary_vertices(faces)] = True
+    if supports is None:  # the outer boundary bears thrust, holes are open
+        anchors[outer_loop(vertices, faces)] = True
     else:
         idx = np.asarray(list(supports) if not isinstance(supports, np.ndarray) else supports)
         if idx.dtype == bool:
@@ -194,7 +185,7 @@ def form_diagram(vertices, faces: Sequence[Sequence[int]], supports: Iterable[in
     faces : sequence of vertex-index sequences
         Counter-clockwise faces (mostly quads).
     supports : iterable of vertex indices, boolean mask, or None
-        Supported vertices; default: every vertex on a boundary loop (holes included).
+        Supported vertices; default: the vertices of the outer boundary loop (holes are open).
     update_boundaries : bool
         True (default, as in the paper): remove edges with both ends supported, delete vertices left
         without edges and drop them from their faces (faces left with fewer than 3 vertices go). False keeps them (anchor-anchor edges then carry a
@@ -256,7 +247,7 @@ def form_diagram(vertices, faces: Sequence[Sequence[int]], supports: Iterable[in
             f"halfedge {u[a]}->{v[a]} is used by faces {fid[a]} and {fid[b]}: inconsistent face orientation "
             f"or non-manifold edge")
 
-    anchors0 = _supports_array(supports, n0, faces)
+    anchors0 = _supports_array(supports, n0, vertices, faces)
     if not anchors0.any():
         raise FormFindingError("no supports: a thrust network needs at least one supported vertex")
 
