@@ -8,13 +8,13 @@ files are written to a temporary name and renamed, so a failed run leaves nothin
 from __future__ import annotations
 
 import json
-import os
 import sys
 from pathlib import Path
 
 import click
 
 from vaultgram.errors import VaultgramError
+from vaultgram.files import read_json, write_json
 
 
 class _Group(click.Group):
@@ -143,23 +143,43 @@ def decompose_command(
                f"{len(dec.singularities())} singularities; wrote {out}")
 
 
-def read_json(path: str):
-    """Read a JSON file, turning every failure into a VaultgramError that names the file and place."""
-    from vaultgram.errors import VaultgramError as Error
+@main.command("formfind")
+@click.argument("input_path", metavar="DOMAIN|MESH", type=click.Path(dir_okay=False))
+@click.option("--out", "out_dir", required=True, type=click.Path(file_okay=False), help="Output directory.")
+@click.option("--zmax", type=float, default=None, help="Scale the thrust so the highest point reaches this height.")
+@click.option("--thickness", type=float, default=1.0, show_default=True, help="Shell thickness for self-weight.")
+@click.option("--density", type=float, default=1.0, show_default=True, help="Material density (weight per volume).")
+@click.option("--supports", "supports_path", type=click.Path(dir_okay=False), default=None,
+              help='JSON: {"rings": [...]}, {"polylines": [...]} or {"vertices": [...]} (overrides the input).')
+@click.option("--tol-deg", type=float, default=0.5, show_default=True,
+              help="Horizontal equilibrium: largest angle between form and force edges.")
+def formfind_command(input_path, out_dir, zmax, thickness, density, supports_path, tol_deg) -> None:
+    """Thrust Network Analysis (paper 5) on a mesh JSON ({"vertices", "faces"}) or a DOMAIN.
 
+    Writes form.json, force.json, thrust.json, thrust.obj and summary.json to --out.
+    """
+    from vaultgram.equilibrium import form_find
+    from vaultgram.errors import FormFindingError
+    from vaultgram.meshes import mesh_from_json, write_obj
+    from vaultgram.supports import support_vertices
+
+    data = read_json(input_path)
+    if not (isinstance(data, dict) and "vertices" in data and "faces" in data):
+        raise FormFindingError(f"{input_path}: expected a mesh JSON with 'vertices' and 'faces'")
     try:
-        text = Path(path).read_text()
-    except OSError as exc:
-        raise Error(f"{path}: cannot read: {exc.strerror}") from None
-    try:
-        return json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise Error(f"{path}:{exc.lineno}:{exc.colno}: invalid JSON: {exc.msg}") from None
-
-
-def write_json(path: Path, data) -> None:
-    """Write JSON atomically: to a temporary file in the same folder, then rename."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    tmp.write_text(json.dumps(data, indent=1, sort_keys=True))
-    tmp.replace(path)
+        vertices, faces = mesh_from_json(data)
+    except (ValueError, TypeError, KeyError) as exc:
+        raise FormFindingError(f"{input_path}: not a valid mesh: {exc}") from None
+    spec = read_json(supports_path) if supports_path else data.get("supports")
+    if isinstance(spec, list):
+        spec = {"vertices": spec}
+    supports = support_vertices(vertices, faces, spec)
+    network = form_find(vertices, faces, supports, zmax=zmax, thickness=thickness, density=density, tol_deg=tol_deg)
+    summary = {k: v for k, v in network.summary.items() if k != "timings"}  # timings vary run to run
+    out = Path(out_dir)
+    write_json(out / "form.json", network.form.to_json())
+    write_json(out / "force.json", network.force.to_json())
+    write_json(out / "thrust.json", {**network.to_json(), "summary": summary})
+    write_obj(out / "thrust.obj", network.vertices, network.faces)
+    write_json(out / "summary.json", summary)
+    click.echo(network.summary_text())

@@ -14,6 +14,8 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
+from vaultgram.files import write_json, write_text
+
 __all__ = [
     "grid_mesh",
     "grid_index",
@@ -160,8 +162,8 @@ def read_mesh_json(path: str | Path) -> tuple[np.ndarray, list[tuple[int, ...]]]
 
 
 def write_mesh_json(path: str | Path, vertices: np.ndarray, faces: Sequence[Sequence[int]], **extra) -> None:
-    """Write a mesh as JSON (see :func:`mesh_to_json`)."""
-    Path(path).write_text(json.dumps(mesh_to_json(vertices, faces, **extra)))
+    """Write a mesh as JSON (see :func:`mesh_to_json`), atomically."""
+    write_json(path, mesh_to_json(vertices, faces, **extra))
 
 
 def write_obj(path: str | Path, vertices: np.ndarray, faces: Sequence[Sequence[int]],
@@ -175,4 +177,4 @@ def write_obj(path: str | Path, vertices: np.ndarray, faces: Sequence[Sequence[i
     lines += ["f " + " ".join(str(int(i) + 1) for i in f) for f in faces]
     if edges is not None:
         lines += [f"l {int(a) + 1} {int(b) + 1}" for a, b in edges]
-    Path(path).write_text("\n".join(lines) + "\n")
+    write_text(path, "\n".join(lines) + "\n")
