@@ -18,6 +18,7 @@ anchor. Both are checked against each other and against networkx in the tests.
 
 from __future__ import annotations
 
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -43,21 +44,19 @@ class GraphArrays:
     he_source: np.ndarray  # True where the half-edge's node is the edge's source
 
 
+_CACHE: "weakref.WeakKeyDictionary[HostGraph, GraphArrays]" = weakref.WeakKeyDictionary()
+
+
 def graph_arrays(g: HostGraph) -> GraphArrays:
     """The incidence arrays of ``g``, rebuilt only when its structure changed since the last call."""
-    cached = getattr(g, "_arrays", None)
+    cached = _CACHE.get(g)
     if cached is not None and cached.version == g.version:
         return cached
-    code = {t: i for i, t in enumerate((*g.schema.node_types, *g.schema.edge_types))}
-    n_ids = (max(g._node_type) + 1) if g._node_type else 0
-    node_code = np.full(n_ids, -1, dtype=np.int64)
-    if n_ids:
-        ids = np.fromiter(g._node_type.keys(), dtype=np.int64, count=len(g._node_type))
-        node_code[ids] = np.fromiter((code[t] for t in g._node_type.values()), dtype=np.int64, count=len(ids))
-    m = len(g._ends)
-    eids = np.fromiter(g._ends.keys(), dtype=np.int64, count=m)
-    ends = np.fromiter((x for uv in g._ends.values() for x in uv), dtype=np.int64, count=2 * m).reshape(m, 2)
-    ecode = np.fromiter((code[t] for t in g._edge_type.values()), dtype=np.int64, count=m)
+    node_code, edge_code, edge_ends = g.arrays()
+    n_ids = len(node_code)
+    alive = np.flatnonzero(edge_code >= 0)
+    m = len(alive)
+    eids, ends, ecode = alive, edge_ends[alive], edge_code[alive]
     node = np.concatenate([ends[:, 0], ends[:, 1]])
     order = np.argsort(node, kind="stable")
     counts = np.bincount(node, minlength=n_ids)
@@ -65,15 +64,15 @@ def graph_arrays(g: HostGraph) -> GraphArrays:
     np.cumsum(counts, out=he_ptr[1:])
     arrays = GraphArrays(
         version=g.version,
-        code=code,
-        node_code=node_code,
+        code=g.type_code,
+        node_code=node_code.copy(),
         he_ptr=he_ptr,
         he_edge=np.concatenate([eids, eids])[order],
         he_other=np.concatenate([ends[:, 1], ends[:, 0]])[order],
         he_code=np.concatenate([ecode, ecode])[order],
         he_source=np.concatenate([np.ones(m, bool), np.zeros(m, bool)])[order],
     )
-    g._arrays = arrays
+    _CACHE[g] = arrays
     return arrays
 
 

@@ -28,6 +28,7 @@ from dataclasses import dataclass
 from typing import Callable, Iterable, Iterator, Mapping
 
 import networkx as nx
+import numpy as np
 
 from vaultgram.errors import SchemaError
 
@@ -62,6 +63,11 @@ class HostGraph:
         self._next_edge = 0
         self._journal: list[tuple] = []
         self.version = 0  # bumped by every change of structure or types (caches key on it)
+        # the same typed structure as flat arrays indexed by id (-1: unused id), for whole-graph search
+        self.type_code = {t: i for i, t in enumerate((*schema.node_types, *schema.edge_types))}
+        self._node_codes = np.full(64, -1, dtype=np.int64)
+        self._edge_codes = np.full(64, -1, dtype=np.int64)
+        self._edge_ends = np.full((64, 2), -1, dtype=np.int64)
 
     # ------------------------------------------------------------------------------------------
     # Queries
@@ -227,20 +233,15 @@ class HostGraph:
         old_attrs = dict(self.nx.nodes[n])
         kept = {k: v for k, v in old_attrs.items() if k in info.attrs}
         values = self.schema.fill_attrs(type_name, kept, f"node {n}")
-        self._by_type[old_type].discard(n)
-        self._node_type[n] = type_name
-        self._by_type[type_name].add(n)
+        self._set_node_type(n, type_name)
         for e in self._rot[n]:
             u, v = self._ends[e]
             try:
                 self._check_endpoints(self._edge_type[e], u, v)
             except SchemaError:
-                self._by_type[type_name].discard(n)
-                self._node_type[n] = old_type
-                self._by_type[old_type].add(n)
+                self._set_node_type(n, old_type)
                 raise
         self._journal.append(("retype", n, old_type, old_attrs))
-        self.version += 1
         data = self.nx.nodes[n]
         data.clear()
         data.update(values)
@@ -385,11 +386,20 @@ class HostGraph:
                 f"edge {type_name} ({info.source} {arrow} {info.target}) cannot join node {u} ({tu}) and node {v} ({tv})"
             )
 
-    def _insert_node(self, n: int, type_name: str, attrs: dict) -> None:
+    def _set_node_type(self, n: int, type_name: str) -> None:
+        """Record a node's type in the type index and the type-code array (creation, retype, undo)."""
         self.version += 1
-        self.nx.add_node(n, **attrs)
+        old = self._node_type.get(n)
+        if old is not None:
+            self._by_type[old].discard(n)
         self._node_type[n] = type_name
         self._by_type[type_name].add(n)
+        self._node_codes = _fit(self._node_codes, n)
+        self._node_codes[n] = self.type_code[type_name]
+
+    def _insert_node(self, n: int, type_name: str, attrs: dict) -> None:
+        self.nx.add_node(n, **attrs)
+        self._set_node_type(n, type_name)
         self._inc[n] = {}
         self._rot[n] = []
         self._rot_keys[n] = []
@@ -398,6 +408,7 @@ class HostGraph:
         self.version += 1
         self.nx.remove_node(n)
         self._by_type[self._node_type.pop(n)].discard(n)
+        self._node_codes[n] = -1
         del self._inc[n], self._rot[n], self._rot_keys[n]
 
     def _insert_edge(self, e: int, type_name: str, u: int, v: int, attrs: dict, positions) -> None:
@@ -406,6 +417,10 @@ class HostGraph:
         self._edge_type[e] = type_name
         self._ends[e] = (u, v)
         self._by_type[type_name].add(e)
+        self._edge_codes = _fit(self._edge_codes, e)
+        self._edge_ends = _fit(self._edge_ends, e)
+        self._edge_codes[e] = self.type_code[type_name]
+        self._edge_ends[e] = (u, v)
         for k, n in enumerate((u, v)):
             self._inc[n].setdefault(type_name, set()).add(e)
             if positions is not None:
@@ -423,6 +438,7 @@ class HostGraph:
         type_name = self._edge_type.pop(e)
         self.nx.remove_edge(u, v, key=e)
         self._by_type[type_name].discard(e)
+        self._edge_codes[e] = -1
         for n in (u, v):
             bucket = self._inc[n][type_name]
             bucket.discard(e)
@@ -430,6 +446,11 @@ class HostGraph:
                 del self._inc[n][type_name]
             i = self._rot[n].index(e)
             del self._rot[n][i], self._rot_keys[n][i]
+
+    def arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Type code per node id, and per edge id its type code and (source, target); -1 where unused."""
+        return (self._node_codes[: self._next_node], self._edge_codes[: self._next_edge],
+                self._edge_ends[: self._next_edge])
 
     def _rotation_key(self, e: int, n: int) -> tuple[float, int]:
         if self.angle is None:
@@ -481,10 +502,7 @@ class HostGraph:
                 self.nx.edges[u, v, i][name] = old
         elif op == "retype":
             _, n, old_type, old_attrs = record
-            self.version += 1
-            self._by_type[self._node_type[n]].discard(n)
-            self._node_type[n] = old_type
-            self._by_type[old_type].add(n)
+            self._set_node_type(n, old_type)
             data = self.nx.nodes[n]
             data.clear()
             data.update(old_attrs)
@@ -492,3 +510,12 @@ class HostGraph:
             _, n, order, keys = record
             self._rot[n] = order
             self._rot_keys[n] = keys
+
+
+def _fit(array: np.ndarray, i: int) -> np.ndarray:
+    """``array`` grown (doubling, filled with -1) so that index ``i`` exists."""
+    if i < len(array):
+        return array
+    grown = np.full((max(2 * len(array), i + 1), *array.shape[1:]), -1, dtype=array.dtype)
+    grown[: len(array)] = array
+    return grown
