@@ -144,3 +144,9 @@ def test_random_domains_decompose_or_fail_clearly(data, spacing):
     assert {p.n_sides for p in dec.patches} <= {3, 4}
     assert all(p.area() > 0 for p in dec.patches)
     assert tiling_error(dec) < 1e-9
+
+
+def test_rulebook_without_pipeline_types_is_a_clear_error(tmp_path):
+    (tmp_path / "topology.vgr").write_text("schema s { node Point { pos: vec2 } }\n")
+    with pytest.raises(DomainError, match="lacks the type"):
+        decompose(load_domain(EXAMPLES / "l_shape.json"), 0.02, rules_dir=tmp_path)

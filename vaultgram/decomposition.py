@@ -41,6 +41,9 @@ from vaultgram.vault_functions import vault_functions
 
 LOOP_CUTS = 4  # cut points on a skeleton loop without singularity (an annulus becomes 2 x 4 quads)
 PATCH_EDGES = ("Branch", "Rebranch", "Boundary")
+# the node and edge types the pipeline creates; a rulebook's schema must declare them
+PIPELINE_TYPES = ("Singularity", "LoopVertex", "BoundaryVertex", "Corner", "FeaturePoint", "CurvePoint",
+                  "Branch", "Boundary", "Dual", "Rebranch")
 
 
 @dataclass(frozen=True, eq=False)
@@ -96,7 +99,14 @@ def load_vault_rulebook(rules_dir: str | Path | None = None) -> Rulebook:
     path = directory / "topology.vgr"
     if not path.is_file():
         raise DomainError(f"{directory}: no topology.vgr rule file there")
-    return load_rulebook([path], vault_functions())
+    book = load_rulebook([path], vault_functions())
+    missing = [t for t in PIPELINE_TYPES if t not in book.schema.node_types and t not in book.schema.edge_types]
+    if missing:
+        raise DomainError(
+            f"{path}: the rulebook's schema lacks the type(s) {', '.join(missing)} that the pipeline builds "
+            "its graph with (see rules/schema.vgr)"
+        )
+    return book
 
 
 def edge_angle(graph: HostGraph, e: int, n: int) -> float:
