@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import shutil
 from collections import Counter
 
@@ -50,7 +51,7 @@ def test_l_shape_has_nine_quads_and_one_valence_five_vertex(spacing):
     assert irregular == [5]
     # the reflex corner (5, 5) gets no branch of its own: two boundary pieces and one rebranch, the
     # layout of the published implementation (reference/peer_decomposition/Lshape_h0.25.json)
-    (reflex,) = [n for n in g.nodes() if np.allclose(g.get(n, "pos"), (5, 5))]
+    (reflex,) = [n for n in g.nodes() if g.node_type(n) != "Patch" and np.allclose(g.get(n, "pos"), (5, 5))]
     assert g.node_type(reflex) == "BoundaryVertex" and dec.valence(reflex) == 3
     corners = sorted(tuple(g.get(n, "pos")) for n in g.nodes() if g.node_type(n) == "Corner")
     assert corners == [(0, 0), (0, 10), (5, 10), (10, 0), (10, 5)]
@@ -150,3 +151,32 @@ def test_rulebook_without_pipeline_types_is_a_clear_error(tmp_path):
     (tmp_path / "topology.vgr").write_text("schema s { node Point { pos: vec2 } }\n")
     with pytest.raises(DomainError, match="lacks the type"):
         decompose(load_domain(EXAMPLES / "l_shape.json"), 0.02, rules_dir=tmp_path)
+
+
+def test_boundary_point_features_split_their_quads_into_triangles():
+    """Paper Figure 4/5: a quad with a corner labelled as a feature point is split by the diagonal."""
+    data = json.loads((EXAMPLES / "quad_with_hole.json").read_text())
+    data["points"] = [[0, 0], [10, 0], [10, 10], [0, 10]]
+    dec = decompose(domain_from_dict(data), 0.02)
+    g = dec.graph
+    assert Counter(p.n_sides for p in dec.patches) == {4: 8, 3: 8}
+    features = [n for n in g.nodes() if g.node_type(n) == "Corner"]
+    assert len(features) == 4 and all(g.get(n, "feature") for n in features)
+    for f in features:
+        (diagonal,) = g.incident(f, ["Diagonal"])
+        assert g.node_type(g.other(diagonal, f)) == "Singularity"
+        triangles = [p for p in dec.patches if f in p.corners]
+        assert [p.n_sides for p in triangles] == [3, 3]
+    assert len(dec.patch_nodes()) == len(dec.patches)
+    assert tiling_error(dec) < 1e-9
+
+
+def test_inner_point_feature_gets_a_fan_of_triangles():
+    """Paper Figure 6 (and the published decomposition square10_point_2.5_7.5): 8 quads, 4 triangles."""
+    dec = decompose(domain_from_dict({"outer": [[0, 0], [10, 0], [10, 10], [0, 10]], "points": [[2.5, 7.5]]}), 0.02)
+    g = dec.graph
+    (feature,) = [n for n in g.nodes() if g.node_type(n) == "FeaturePoint"]
+    assert Counter(p.n_sides for p in dec.patches) == {4: 8, 3: 4}
+    fan = [p for p in dec.patches if feature in p.corners]
+    assert len(fan) == 4 and all(p.n_sides == 3 for p in fan)
+    assert [dec.valence(s) for s in dec.singularities()] == [5, 5, 5, 5]

@@ -40,7 +40,7 @@ from vaultgram.triangulation import triangulate
 from vaultgram.vault_functions import vault_functions
 
 LOOP_CUTS = 4  # cut points on a skeleton loop without singularity (an annulus becomes 2 x 4 quads)
-PATCH_EDGES = ("Branch", "Rebranch", "Boundary")
+PATCH_EDGES = ("Branch", "Rebranch", "Boundary", "Diagonal")
 # the node and edge types the pipeline creates; a rulebook's schema must declare them
 PIPELINE_TYPES = ("Singularity", "LoopVertex", "BoundaryVertex", "Corner", "FeaturePoint", "CurvePoint",
                   "Branch", "Boundary", "Dual", "Rebranch")
@@ -58,6 +58,9 @@ class Decomposition:
     trace: list[dict]
     ignored_curves: int = 0
 
+    def patch_nodes(self) -> list[int]:
+        return [n for n in self.graph.nodes() if self.graph.node_type(n) == "Patch"]
+
     def singularities(self) -> list[int]:
         return [n for n in self.graph.nodes() if self.graph.node_type(n) == "Singularity"]
 
@@ -66,20 +69,24 @@ class Decomposition:
         return self.graph.degree(n, PATCH_EDGES)
 
     def to_json(self) -> dict:
-        """The typed graph: nodes with types and positions, edges with types and polylines."""
+        """The typed graph: nodes with types and attributes, edges with types and polylines."""
         g = self.graph
         return {
             "name": self.disc.domain.name,
             "spacing": self.disc.spacing,
-            "nodes": [{"id": n, "type": g.node_type(n), "pos": list(g.get(n, "pos"))} for n in g.nodes()],
-            "edges": [
-                {"id": e, "type": g.edge_type(e), "source": g.ends(e)[0], "target": g.ends(e)[1],
-                 "polyline": half_edge_polyline(g, e, g.ends(e)[0]).tolist()}
-                for e in g.edges()
-            ],
+            "nodes": [{"id": n, "type": g.node_type(n), **_plain_attrs(g.node_attrs(n))} for n in g.nodes()],
+            "edges": [self._edge_json(e) for e in g.edges()],
             "rules": [{"step": r.step, "applications": r.applications} for r in self.reports],
             "ignored_curves": self.ignored_curves,
         }
+
+    def _edge_json(self, e: int) -> dict:
+        g = self.graph
+        u, v = g.ends(e)
+        out = {"id": e, "type": g.edge_type(e), "source": u, "target": v}
+        if g.edge_type(e) == "PatchCorner":
+            return {**out, "index": g.get_edge(e, "index")}
+        return {**out, "polyline": half_edge_polyline(g, e, u).tolist()}
 
     def patches_json(self) -> dict:
         return {
@@ -110,8 +117,13 @@ def load_vault_rulebook(rules_dir: str | Path | None = None) -> Rulebook:
 
 
 def edge_angle(graph: HostGraph, e: int, n: int) -> float:
-    """Direction in which edge ``e`` leaves node ``n`` (along its polyline if it has one)."""
+    """Direction in which edge ``e`` leaves node ``n`` (along its polyline if it has one).
+
+    Edges to nodes without a position (patch nodes) are not part of the plan: they sort first.
+    """
     u, v = graph.ends(e)
+    if "pos" not in graph.node_attrs(u) or "pos" not in graph.node_attrs(v):
+        return -math.pi
     poly = graph.get_edge(e, "polyline") if "polyline" in graph.edge_attrs(e) else ()
     if len(poly) >= 2:
         a, b = (poly[0], poly[1]) if n == u else (poly[-1], poly[-2])
@@ -133,6 +145,8 @@ def decomposition_graph(sk: Skeleton, rulebook: Rulebook) -> HostGraph:
     for p in np.flatnonzero(disc.ring < 0):  # feature points and curve points (section 4)
         kind = "FeaturePoint" if disc.ring[p] == -2 else "CurvePoint"
         g.add_node(kind, {"pos": tuple(pts[p])}, id=int(p))
+    for p in disc.feature_points:  # point features, on the boundary or inside (section 4.1)
+        g.set_node_attr(int(p), "feature", True)
     for ring in disc.rings:
         for a, b in zip(ring, np.roll(ring, -1)):
             g.add_edge("Boundary", int(a), int(b))
@@ -193,14 +207,44 @@ def _add_loop_vertex(g: HostGraph, sk: Skeleton, poly: np.ndarray, faces, i: int
     return n
 
 
+def _plain_attrs(attrs) -> dict:
+    return {k: list(v) if isinstance(v, tuple) else v for k, v in attrs.items()}
+
+
 def _plain(poly: np.ndarray) -> tuple:
     return tuple((float(x), float(y)) for x, y in poly)
+
+
+def add_patch_nodes(graph: HostGraph, patches) -> None:
+    """Make the patches visible to rules: a ``Patch`` node each, ``PatchCorner`` edges to its corners."""
+    for patch in patches:
+        p = graph.add_node("Patch", {"sides": patch.n_sides})
+        for k, c in enumerate(patch.corners):
+            graph.add_edge("PatchCorner", p, c, {"index": k})
+
+
+def check_patch_nodes(graph: HostGraph, patches) -> None:
+    """The patching rules must keep the patch nodes in step with the faces of the plan."""
+    nodes = sorted(
+        sorted(graph.ends(e)[1] for e in graph.incident(p, ["PatchCorner"]))
+        for p in graph.nodes() if graph.node_type(p) == "Patch"
+    )
+    faces = sorted(sorted(patch.corners) for patch in patches)
+    if nodes != faces:
+        raise DomainError(
+            f"after the patching rules the graph has {len(nodes)} patch nodes but the plan has {len(faces)} "
+            "patches with other corners: a patching rule must replace the Patch nodes it splits"
+        )
 
 
 def decompose(
     domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None = None, smooth: bool = False
 ) -> Decomposition:
-    """Topology finding (§3.1): discretise, triangulate, skeletonise, rewrite with the rules, patch.
+    """Topology finding (§3.1, §4.1): discretise, triangulate, skeletonise, rewrite with the rules, patch.
+
+    The rulebook's ``topology`` strategy rewrites the skeleton graph; the faces it leaves become
+    ``Patch`` nodes and the ``patching`` strategy (if any) may split them (Figure 4); the patches are
+    then read off the faces again.
 
     Curve features are not part of the decomposition yet (their topological cut needs the T-junction
     repair of §4.2): they are left out here, and :attr:`Decomposition.ignored_curves` says how many.
@@ -217,6 +261,11 @@ def decompose(
     runner = Runner(rulebook, graph)
     runner.run("topology")
     patches = find_patches(graph, disc, PATCH_EDGES)
+    if "patching" in rulebook.strategies:
+        add_patch_nodes(graph, patches)
+        runner.run("patching")
+        patches = find_patches(graph, disc, PATCH_EDGES)
+        check_patch_nodes(graph, patches)
     return Decomposition(
         disc, sk, graph, tuple(patches), tuple(runner.reports), runner.trace.to_json(), ignored_curves
     )

@@ -16,6 +16,7 @@ EDGE_STYLE = {
     "Boundary": dict(color="black", lw=1.2),
     "Branch": dict(color="tab:blue", lw=1.0),
     "Rebranch": dict(color="tab:orange", lw=1.0),
+    "Diagonal": dict(color="tab:green", lw=1.0),
 }
 
 
