@@ -1,20 +1,53 @@
 """Scaling of TNA form finding on regular n x n grids (every boundary vertex supported).
 
-Run:  python benchmarks/formfinding_scaling.py [n ...]
+Run:  python benchmarks/formfinding_scaling.py [n ...] [--quick] [--peer-max-n N] [--no-peer]
+                                               [--peer-horizontal nodal|sparse] [--peer-tight]
 
 Prints, per grid: vertices, time to build the form diagram, force diagram, horizontal and vertical
 equilibrium (self-weight, zmax = n/4, loads and scale iterated to 1e-12), iterations and the final max
 angle deviation. Floor: the full n = 100 form finding (10,201 mesh vertices) under 1 s.
-If compas_tna is importable it is timed on the same grids and the ratio printed (optional peer).
+
+Optional peer: if ``compas_tna`` (tested with 0.9.0 on compas 2.15.1) is importable, the same grids are
+form-found with it in the same run -- FormDiagram.from_vertices_and_faces on the same vertices and faces,
+every boundary vertex ``is_support``, ``update_boundaries()``, ForceDiagram.from_formdiagram,
+``horizontal_nodal_numpy`` (or ``horizontal_numpy`` with ``--peer-horizontal sparse``) with kmax=100 and
+``vertical_from_zmax(form, n/4)`` -- and a second table compares times, angle deviations and heights.
+Grids larger than ``--peer-max-n`` (default 100) skip the peer: its horizontal step is a Python loop over
+the vertices and n = 200 takes minutes.
+
+Differences between the two set-ups that the comparison cannot remove (see benchmarks/README.md):
+
+* iterations: compas_tna always runs kmax = 100 parallelisation iterations (it has no angle tolerance);
+  vaultgram stops as soon as the max angle is below 0.5 deg, which on these grids is before the first
+  iteration, because its least-squares force diagram is already reciprocal. Column ``vg h@100`` times
+  vaultgram's horizontal step forced through 100 iterations, for a per-iteration comparison;
+* initial force diagram: compas_tna uses the dual of face centroids (not reciprocal at the cut corner
+  triangles, so its angle starts above zero), vaultgram a least-squares reciprocal;
+* vertical tolerances: compas_tna's ``vertical_from_zmax`` defaults stop at |zmax error| < 1e-2 and
+  residual norm < 1e-3 (absolute); vaultgram iterates loads and scale to 1e-12 (relative).
+  ``--peer-tight`` passes xtol = 1e-9 and rtol = 1e-9 x total load to the peer instead;
+* loads, supports and boundary handling are the same: self-weight from 3D tributary areas (thickness 1,
+  density 1, the LoadUpdater convention), every boundary vertex supported at z = 0, fully supported
+  boundary edges removed and the four corner vertices deleted (10,197 vertices at n = 100).
 """
 
 from __future__ import annotations
 
+import argparse
 import sys
 import time
 
+import numpy as np
+
 from vaultgram.equilibrium import form_find
+from vaultgram.forcediagram import force_diagram
+from vaultgram.formdiagram import form_diagram
+from vaultgram.horizontal import angle_deviations, horizontal
 from vaultgram.meshes import grid_mesh
+
+DEFAULT_SIZES = [10, 20, 50, 100, 200]
+QUICK_SIZES = [10, 20]
+PEER_KMAX = 100
 
 
 def run_vaultgram(n: int) -> dict:
@@ -25,46 +58,179 @@ def run_vaultgram(n: int) -> dict:
     s = tn.summary
     return {"n": n, "vertices": len(v), "total": total, **s["timings"],
             "h_iter": s["horizontal_iterations"], "v_iter": s["vertical_iterations"],
-            "angle": s["max_angle_deg"], "residual": s["vertical_residual"] / s["total_load"]}
+            "angle": s["max_angle_deg"], "residual": s["vertical_residual"] / s["total_load"],
+            "n_form": s["n_vertices"], "scale": s["scale"], "zmax": s["zmax"],
+            "z": dict(zip(tn.vertex_ids.tolist(), tn.vertices[:, 2].tolist()))}
 
 
-def run_compas_tna(n: int) -> float | None:
+def vaultgram_horizontal_fixed_iterations(n: int, kmax: int = PEER_KMAX) -> float:
+    """Seconds for vaultgram's horizontal step forced through exactly ``kmax`` iterations (as the peer)."""
+    v, f = grid_mesh(n)
+    form = form_diagram(v, f)
+    force = force_diagram(form)
+    h = horizontal(form, force, kmax=kmax, tol_deg=-1.0, stall_window=10 ** 9, rescue=False,
+                   raise_on_failure=False)
+    assert h.iterations == kmax, h.iterations
+    return h.seconds
+
+
+# ---------------------------------------------------------------------------------------------------
+# optional peer: compas_tna
+# ---------------------------------------------------------------------------------------------------
+
+def import_peer():
+    """The compas_tna entry points, or a message saying why they are not available."""
     try:
-        from compas.datastructures import Mesh  # noqa: F401
+        import compas
+        import compas_tna
         from compas_tna.diagrams import ForceDiagram, FormDiagram
-        from compas_tna.equilibrium import horizontal_nodal, vertical_from_zmax
-    except ImportError:
-        return None
+        from compas_tna.equilibrium import horizontal_nodal_numpy, horizontal_numpy, vertical_from_zmax
+    except ImportError as exc:
+        return None, f"compas_tna not importable ({exc}); peer comparison skipped"
+    version = f"compas_tna {getattr(compas_tna, '__version__', '?')} on compas {getattr(compas, '__version__', '?')}"
+    return {"FormDiagram": FormDiagram, "ForceDiagram": ForceDiagram, "nodal": horizontal_nodal_numpy,
+            "sparse": horizontal_numpy, "vertical_from_zmax": vertical_from_zmax, "version": version}, None
+
+
+def peer_max_angle(form, force) -> float:
+    """Max angle (degrees, 0..180) between each form edge and its force edge turned by 90 degrees.
+
+    Recomputed from the final diagram coordinates with vaultgram's ``angle_deviations``, so both columns
+    use one formula; it agrees with the max of compas_tna's own ``_a`` edge attribute.
+    """
+    k_i = form.vertex_index()
+    f_i = force.vertex_index()
+    xy = np.array(form.vertices_attributes("xy"), dtype=float)
+    fxy = np.array(force.vertices_attributes("xy"), dtype=float)
+    u_rows, d_rows = [], []
+    for a, b in form.edges_where(_is_edge=True):
+        f1, f2 = form.halfedge[a][b], form.halfedge[b][a]
+        u_rows.append((k_i[a], k_i[b]))
+        d_rows.append((f_i[f1], f_i[f2]))
+    u_rows, d_rows = np.array(u_rows), np.array(d_rows)
+    u = xy[u_rows[:, 1]] - xy[u_rows[:, 0]]
+    d = fxy[d_rows[:, 1]] - fxy[d_rows[:, 0]]
+    d = np.column_stack([-d[:, 1], d[:, 0]])  # rot90 CCW, as compas_tna does before parallelising
+    return float(angle_deviations(u, d).max())
+
+
+def clear_compas_lu_cache() -> None:
+    """Empty compas' ``lufactorized`` memo before each peer run.
+
+    ``compas.linalg.lufactorized`` memoises factorisations by the caller's key only (``horizontal_numpy``
+    passes the constant strings "CtC" and "_Ct_C"), so a second ``horizontal_numpy`` call in the same
+    process reuses the first diagram's factorisation: "ValueError: b is of incompatible size" on a
+    larger grid, silently wrong results on one of the same size.
+    """
+    from compas import linalg
+    for cell in getattr(linalg.lufactorized, "__closure__", None) or ():
+        if isinstance(cell.cell_contents, dict):
+            cell.cell_contents.clear()
+
+
+def run_compas_tna(peer: dict, n: int, solver: str = "nodal", tight: bool = False) -> dict | None:
+    v, f = grid_mesh(n)
+    zmax = n / 4.0
     try:
-        t = time.perf_counter()
-        form = FormDiagram.from_meshgrid(dx=n, nx=n)
+        t0 = time.perf_counter()
+        form = peer["FormDiagram"].from_vertices_and_faces(v.tolist(), [list(face) for face in f])
         form.vertices_attribute("is_support", True, keys=list(form.vertices_on_boundary()))
-        form.edges_attribute("q", 1.0)
-        force = ForceDiagram.from_formdiagram(form)
-        horizontal_nodal(form, force, kmax=100)
-        vertical_from_zmax(form, n / 4.0)
-        return time.perf_counter() - t
+        form.update_boundaries()  # drop fully supported boundary edges and the corner vertices
+        force = peer["ForceDiagram"].from_formdiagram(form)
+        if solver == "sparse":
+            clear_compas_lu_cache()
+        t1 = time.perf_counter()
+        peer[solver](form, force, kmax=PEER_KMAX)
+        t2 = time.perf_counter()
+        kw = {"xtol": 1e-9, "rtol": 1e-9 * float(n * n)} if tight else {}
+        form, scale = peer["vertical_from_zmax"](form, zmax, **kw)
+        t3 = time.perf_counter()
     except Exception as exc:  # the peer's API changes between versions; report, do not fail
         print(f"  (compas_tna failed on n={n}: {type(exc).__name__}: {exc})")
         return None
+    z = {int(k): float(form.vertex_attribute(k, "z")) for k in form.vertices()}
+    return {"setup": t1 - t0, "horizontal": t2 - t1, "vertical": t3 - t2, "total": t3 - t0,
+            "angle": peer_max_angle(form, force), "scale": float(scale), "zmax": max(z.values()),
+            "n_form": form.number_of_vertices(), "z": z}
 
 
-def main(sizes) -> None:
+# ---------------------------------------------------------------------------------------------------
+
+def parse_args(argv):
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("sizes", nargs="*", type=int, help=f"grid sizes n (default {DEFAULT_SIZES})")
+    p.add_argument("--quick", action="store_true", help=f"only n = {QUICK_SIZES}")
+    p.add_argument("--peer-max-n", type=int, default=100,
+                   help="largest n on which compas_tna is run (default 100; n = 200 takes minutes)")
+    p.add_argument("--no-peer", action="store_true", help="do not run compas_tna even if importable")
+    p.add_argument("--peer-horizontal", choices=("nodal", "sparse"), default="nodal",
+                   help="compas_tna horizontal solver: horizontal_nodal_numpy (default) or horizontal_numpy")
+    p.add_argument("--peer-tight", action="store_true",
+                   help="tight vertical tolerances for compas_tna (xtol 1e-9, rtol 1e-9 x load)")
+    a = p.parse_args(argv)
+    if a.quick and a.sizes:
+        p.error("give either sizes or --quick")
+    a.sizes = QUICK_SIZES if a.quick else (a.sizes or DEFAULT_SIZES)
+    return a
+
+
+def main(argv=None) -> None:
+    args = parse_args(sys.argv[1:] if argv is None else argv)
     run_vaultgram(4)  # warm up imports
     head = (f"{'n':>4} {'verts':>7} {'form':>8} {'force':>8} {'horiz':>8} {'vert':>8} {'total':>8} "
-            f"{'h_it':>5} {'v_it':>5} {'angle(deg)':>11} {'res/load':>9} {'compas_tna':>11}")
+            f"{'h_it':>5} {'v_it':>5} {'angle(deg)':>11} {'res/load':>9}")
+    print("vaultgram")
     print(head)
     print("-" * len(head))
-    for n in sizes:
+    results = {}
+    for n in args.sizes:
         r = run_vaultgram(n)
-        peer = run_compas_tna(n)
-        ratio = f"{peer / r['total']:.1f}x slower" if peer else "n/a"
+        results[n] = r
         print(f"{n:>4} {r['vertices']:>7} {r['form'] * 1e3:>6.1f}ms {r['force'] * 1e3:>6.1f}ms "
               f"{r['horizontal'] * 1e3:>6.1f}ms {r['vertical'] * 1e3:>6.1f}ms {r['total'] * 1e3:>6.1f}ms "
-              f"{r['h_iter']:>5} {r['v_iter']:>5} {r['angle']:>11.2e} {r['residual']:>9.1e} {ratio:>11}")
+              f"{r['h_iter']:>5} {r['v_iter']:>5} {r['angle']:>11.2e} {r['residual']:>9.1e}", flush=True)
         if n == 100:
             print(f"     n = 100 floor (< 1 s): {'met' if r['total'] < 1.0 else 'MISSED'}")
 
+    if args.no_peer:
+        print("\npeer comparison skipped (--no-peer)")
+        return
+    peer, why = import_peer()
+    if peer is None:
+        print(f"\n{why}")
+        return
+    solver = {"nodal": "horizontal_nodal_numpy", "sparse": "horizontal_numpy"}[args.peer_horizontal]
+    tol = "xtol 1e-9, rtol 1e-9 x n^2" if args.peer_tight else "default tolerances"
+    print(f"\npeer: {peer['version']}; {solver} kmax={PEER_KMAX}, vertical_from_zmax ({tol}); "
+          f"zmax = n/4; times in seconds")
+    head = (f"{'n':>4} {'verts':>6} | {'vg h':>7} {'vg v':>7} {'vg tot':>7} {'vg h@100':>8} | "
+            f"{'tna set':>7} {'tna h':>7} {'tna v':>7} {'tna tot':>7} | {'tot x':>6} {'h x':>6} {'h@100 x':>7} | "
+            f"{'vg angle':>8} {'tna angle':>9} | {'tna zmax':>9} {'max|dz|':>8} {'scale d':>8}")
+    print(head)
+    print("-" * len(head))
+    for n in args.sizes:
+        r = results[n]
+        if n > args.peer_max_n:
+            print(f"{n:>4} {r['n_form']:>6} | compas_tna skipped (n > --peer-max-n {args.peer_max_n})")
+            continue
+        h100 = vaultgram_horizontal_fixed_iterations(n)
+        c = run_compas_tna(peer, n, args.peer_horizontal, args.peer_tight)
+        if c is None:
+            continue
+        if c["n_form"] != r["n_form"]:
+            print(f"     note: compas_tna has {c['n_form']} vertices, vaultgram {r['n_form']}")
+        common = [k for k in r["z"] if k in c["z"]]
+        dz = max(abs(r["z"][k] - c["z"][k]) for k in common)
+        print(f"{n:>4} {r['n_form']:>6} | {r['horizontal']:>7.4f} {r['vertical']:>7.4f} {r['total']:>7.4f} "
+              f"{h100:>8.4f} | {c['setup']:>7.3f} {c['horizontal']:>7.3f} {c['vertical']:>7.3f} {c['total']:>7.3f} | "
+              f"{c['total'] / r['total']:>5.0f}x {c['horizontal'] / r['horizontal']:>5.0f}x "
+              f"{c['horizontal'] / h100:>6.0f}x | {r['angle']:>8.1e} {c['angle']:>9.1e} | "
+              f"{c['zmax']:>9.5f} {dz:>8.1e} {c['scale'] / r['scale'] - 1:>8.1e}", flush=True)
+    print("vg = vaultgram (form_find, stops at angle < 0.5 deg); tna = compas_tna; verts = form-diagram "
+          "vertices (corners removed);\nvg h@100 = vaultgram horizontal forced through 100 iterations; "
+          "'x' columns = compas_tna time / vaultgram time;\nmax|dz| = largest height difference between the "
+          "two networks (vaultgram zmax = n/4 exactly); scale d = tna scale / vg scale - 1")
+
 
 if __name__ == "__main__":
-    main([int(a) for a in sys.argv[1:]] or [10, 20, 50, 100, 200])
+    main()
