@@ -183,3 +183,54 @@ def formfind_command(input_path, out_dir, zmax, thickness, density, supports_pat
     write_obj(out / "thrust.obj", network.vertices, network.faces)
     write_json(out / "summary.json", summary)
     click.echo(network.summary_text())
+
+
+@main.command("mesh")
+@click.argument("domain_path", metavar="DOMAIN", type=click.Path(dir_okay=False))
+@click.option("--out", "out_dir", required=True, type=click.Path(file_okay=False), help="Output directory.")
+@click.option("--spacing", default=0.02, show_default=True, type=float,
+              help="Discretisation spacing of the decomposition, as a fraction of the bounding-box diagonal.")
+@click.option("--target-length", type=float, default=None,
+              help="Target edge length (domain units); default 2.5% of the bounding-box diagonal.")
+@click.option("--smooth", default=None, type=int, help="Laplacian smoothing iterations (default 20).")
+@click.option("--densities", "densities_path", type=click.Path(dir_okay=False), default=None,
+              help="Density file: JSON {target_length, length_mode, min_count, groups, regions}.")
+def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities_path) -> None:
+    """Quad-mesh a DOMAIN (paper 3): decompose, mesh the patches, weld, smooth.
+
+    Writes mesh.json (vertices, faces, vertex labels, edge groups) and mesh.obj to --out.
+    """
+    from vaultgram.domain import load_domain
+    from vaultgram.edge_groups import load_densities
+    from vaultgram.mesh import mesh_domain, mesh_stats, write_mesh
+    from vaultgram.smoothing import DEFAULT_ITERATIONS
+
+    domain = load_domain(domain_path)
+    spec = load_densities(densities_path) if densities_path else None
+    mesh = mesh_domain(domain, spacing, target_length, DEFAULT_ITERATIONS if smooth is None else smooth, spec)
+    json_path, obj_path = write_mesh(mesh, Path(out_dir))
+    stats = mesh_stats(mesh, domain)
+    click.echo(
+        f"wrote {json_path} and {obj_path}: {stats['vertices']} vertices, {stats['quads']} quads, "
+        f"{stats['triangles']} triangles; {mesh.info['patches']} patches, {mesh.info['edge_groups']} edge groups"
+    )
+    click.echo(
+        f"singular: {stats['interior_singular']} interior, {stats['boundary_singular']} boundary; "
+        f"min scaled Jacobian {stats['min_scaled_jacobian']:.3f}"
+    )
+
+
+@main.command("stats")
+@click.argument("mesh_path", metavar="MESH", type=click.Path(dir_okay=False))
+@click.option("--domain", "domain_path", type=click.Path(dir_okay=False), default=None,
+              help="The domain: corner angles and the boundary distance are measured against it.")
+@click.option("--json", "as_json", is_flag=True, help="Print the metrics as JSON.")
+def stats_command(mesh_path, domain_path, as_json) -> None:
+    """Quality metrics of a MESH (mesh.json): singularities, scaled Jacobian, angles, boundary fit."""
+    from vaultgram.domain import load_domain
+    from vaultgram.mesh import format_stats, mesh_from_json, mesh_stats
+
+    mesh = mesh_from_json(read_json(mesh_path), mesh_path)
+    domain = load_domain(domain_path) if domain_path else None
+    stats = mesh_stats(mesh, domain)
+    click.echo(json.dumps(stats, indent=1) if as_json else format_stats(stats))

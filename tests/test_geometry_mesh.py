@@ -1,0 +1,263 @@
+"""The meshing pipeline (paper §3.2) against the acceptance properties, the files and the CLI."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from paths import ARCHITECTURE, EXAMPLES
+
+from vaultgram.cli import main
+from vaultgram.decomposition import decompose
+from vaultgram.domain import domain_from_dict, load_domain
+from vaultgram.edge_groups import edge_groups, group_counts
+from vaultgram.errors import VaultgramError
+from vaultgram.mesh import mesh_domain, mesh_from_json, mesh_stats, mesh_to_json, read_mesh, write_mesh
+
+# Examples that meet every acceptance property, and for the others the property that fails (kept as
+# strict xfails so that a fix shows up). The failures come from the decomposition, see the report in
+# docs/ or the module docstring of vaultgram.mesh: reflex corners that are the pole of two triangles
+# or the corner of only two patches, and a notch narrower than the target length.
+PASSING = ["quad_with_hole", "british_museum_map", "rv_lips_pattern", "rv_pillow_pattern",
+           "rv_quad_pattern", "rv_ring_pattern"]
+FAILING = {
+    "l_shape": "reflex corner (5, 5) is a corner of 2 quads: valence 3, regular is 4",
+    "armadillo_vault_plan": "2 boundary singularities",
+    "hiroshi_senju_museum": "reflex corners shared by two triangle poles; an inverted face",
+    "mexico_airport": "1 boundary singularity",
+    "multiple_lobes": "1 boundary singularity; boundary distance 0.9% at a narrow notch",
+    "rolex_learning_centre": "3 boundary singularities; boundary distance 0.64%",
+    "two_holes_five_points": "2 boundary singularities next to the boundary feature point (4.5, 9.22)",
+    "rv_star_pattern": "reflex corners shared by two triangle poles",
+}
+
+
+def _path(name):
+    p = EXAMPLES / f"{name}.json"
+    return p if p.is_file() else ARCHITECTURE / f"{name}.json"
+
+
+def expected_interior_singular(layout, counts, mesh) -> set:
+    """Interior vertices whose valence the patterns make other than 4: patch corners where the
+    faces of the incident patches (1 per quad or non-pole corner, the opposite count at a pole) do
+    not add up to 4."""
+    faces = {}
+    side_count = counts[layout.group_of]
+    for pat in layout.patterns:
+        for k, c in enumerate(pat.corners):
+            if pat.pole == k:
+                faces[c] = faces.get(c, 0) + int(side_count[pat.sides[(k + 1) % 3][0]])
+            else:
+                faces[c] = faces.get(c, 0) + 1
+    vid = {int(n): v for v, n in enumerate(mesh.node) if n >= 0}
+    return {vid[c] for c, f in faces.items() if not mesh.boundary[vid[c]] and f != 4}
+
+
+def acceptance_failures(mesh, stats, domain) -> list[str]:
+    out = []
+    tri = [f for f in mesh.faces if len(f) == 3]
+    if any(len(f) not in (3, 4) for f in mesh.faces):
+        out.append("faces other than quads and triangles")
+    if tri and not all(mesh.pole[np.asarray(tri)].any(axis=1)):
+        out.append("a triangle away from a pole")
+    if stats["boundary_singular"]:
+        out.append(f"{stats['boundary_singular']} boundary singularities")
+    if not stats["min_scaled_jacobian"] > 0:
+        out.append(f"min scaled Jacobian {stats['min_scaled_jacobian']:.3f}")
+    if not stats["boundary_distance_relative"] < 0.005:
+        out.append(f"boundary distance {100 * stats['boundary_distance_relative']:.2f}%")
+    if not (stats["manifold"] and stats["oriented"]):
+        out.append("not manifold or not oriented")
+    if stats["boundary_loops"] != len(domain.rings):
+        out.append(f"{stats['boundary_loops']} boundary loops for {len(domain.rings)} rings")
+    return out
+
+
+@pytest.fixture(scope="module")
+def meshed():
+    cache = {}
+
+    def get(name, factor=1.0):
+        if (name, factor) not in cache:
+            path = _path(name)
+            if not path.is_file():
+                pytest.skip(f"{path} not found")
+            domain = load_domain(path)
+            dec = decompose(domain)
+            layout = edge_groups(dec)
+            target = 0.025 * domain.diagonal * factor
+            counts = group_counts(layout, target_length=target)
+            mesh = mesh_domain(domain, target_length=target)
+            cache[name, factor] = (domain, layout, counts, mesh, mesh_stats(mesh, domain))
+        return cache[name, factor]
+
+    return get
+
+
+@pytest.mark.parametrize("name", PASSING)
+def test_examples_meet_acceptance(meshed, name):
+    domain, layout, counts, mesh, stats = meshed(name)
+    assert acceptance_failures(mesh, stats, domain) == []
+    assert set(stats["interior_singular_vertices"]) == expected_interior_singular(layout, counts, mesh)
+    # interior singularities sit at decomposition nodes (singularities, loop cuts) and poles
+    assert (mesh.singular | mesh.pole)[stats["interior_singular_vertices"]].all()
+
+
+@pytest.mark.parametrize("name", sorted(FAILING))
+def test_examples_with_known_defects(meshed, name):
+    """Still a valid, consistently oriented mesh; the listed acceptance property fails (strict xfail)."""
+    domain, layout, counts, mesh, stats = meshed(name)
+    assert stats["manifold"] and stats["oriented"]
+    assert set(stats["interior_singular_vertices"]) == expected_interior_singular(layout, counts, mesh)
+    if acceptance_failures(mesh, stats, domain):
+        pytest.xfail(FAILING[name])
+    pytest.fail(f"{name} now meets every acceptance property: move it to PASSING")
+
+
+@pytest.mark.parametrize("name", ["quad_with_hole", "rv_lips_pattern", "rv_quad_pattern"])
+def test_halved_target_length(meshed, name):
+    domain, _, _, mesh, stats = meshed(name)
+    _, _, _, fine, fine_stats = meshed(name, 0.5)
+    assert 3.3 < fine.n_faces / mesh.n_faces < 4.7
+    assert acceptance_failures(fine, fine_stats, domain) == []
+
+    def singular_nodes(m, s):  # by decomposition node, since vertex numbers change
+        return sorted(int(m.node[v]) for v in s["interior_singular_vertices"])
+
+    assert singular_nodes(fine, fine_stats) == singular_nodes(mesh, stats)
+
+
+def test_welding_is_exact(meshed):
+    _, _, _, mesh, _ = meshed("quad_with_hole")
+    used = np.zeros(mesh.n_vertices, dtype=bool)
+    used[np.concatenate([np.asarray(f) for f in mesh.faces])] = True
+    assert used.all()  # no duplicate or stray vertex
+    x = mesh.vertices
+    d = np.hypot(*(x[:, None] - x[None]).transpose(2, 0, 1))
+    np.fill_diagonal(d, np.inf)
+    assert d.min() > 1e-3 * mesh.info["diagonal"]  # no two vertices at one place
+
+
+def test_labels(meshed):
+    domain, _, _, mesh, _ = meshed("two_holes_five_points")
+    assert mesh.boundary[mesh.fixed & ~mesh.feature].all()
+    assert mesh.feature.sum() >= 1 and mesh.pole.sum() >= 1
+    assert set(np.unique(mesh.ring[mesh.boundary])) == {0, 1, 2}
+    assert (mesh.ring[~mesh.boundary] == -1).all()
+    assert len(mesh.groups) == mesh.info["edge_groups"] > 0
+
+
+def test_json_and_obj_round_trip(tmp_path, meshed):
+    domain, _, _, mesh, stats = meshed("rv_lips_pattern")
+    json_path, obj_path = write_mesh(mesh, tmp_path / "out")
+    data = json.loads(json_path.read_text())
+    assert len(data["vertices"][0]) == 3 and len(data["faces"]) == mesh.n_faces
+    assert {"labels", "edge_groups"} <= set(data)
+    back = read_mesh(json_path)
+    assert np.allclose(back.vertices, mesh.vertices) and back.faces == mesh.faces
+    assert (back.pole == mesh.pole).all() and (back.fixed == mesh.fixed).all()
+    assert mesh_stats(back) == {k: v for k, v in stats.items() if not k.startswith("boundary_distance")}
+    obj = obj_path.read_text().splitlines()
+    assert sum(line.startswith("v ") for line in obj) == mesh.n_vertices
+    assert sum(line.startswith("f ") for line in obj) == mesh.n_faces
+    assert not list((tmp_path / "out").glob(".*tmp"))
+    assert mesh_from_json(mesh_to_json(mesh)).n_faces == mesh.n_faces
+
+
+def test_stats_without_labels_use_mesh_topology():
+    v = [[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0], [1, 1, 0], [2, 1, 0]]
+    stats = mesh_stats(mesh_from_json({"vertices": v, "faces": [[0, 1, 4, 3], [1, 2, 5, 4]]}))
+    assert stats["quads"] == 2 and stats["interior_singular"] == 0
+    assert stats["boundary_singular"] == 4  # no corner labels: the four corners count as singular
+    assert stats["min_scaled_jacobian"] == pytest.approx(1.0)
+    assert stats["min_angle"] == pytest.approx(90.0) and stats["max_angle"] == pytest.approx(90.0)
+    flipped = mesh_stats(mesh_from_json({"vertices": v, "faces": [[0, 3, 4, 1], [1, 2, 5, 4]]}))
+    assert flipped["inverted_faces"] == 1 and not flipped["oriented"]
+
+
+def test_cli_mesh_and_stats(tmp_path):
+    runner = CliRunner()
+    domain = str(EXAMPLES / "quad_with_hole.json")
+    out = tmp_path / "m"
+    res = runner.invoke(main, ["mesh", domain, "--out", str(out), "--target-length", "0.6", "--smooth", "5"])
+    assert res.exit_code == 0, res.output
+    assert (out / "mesh.json").is_file() and (out / "mesh.obj").is_file()
+    res = runner.invoke(main, ["stats", str(out / "mesh.json"), "--domain", domain, "--json"])
+    assert res.exit_code == 0, res.output
+    stats = json.loads(res.output)
+    assert stats["boundary_singular"] == 0 and stats["interior_singular"] == 4 and stats["triangles"] == 0
+    res = runner.invoke(main, ["stats", str(out / "mesh.json")])
+    assert res.exit_code == 0 and "min_scaled_jacobian" in res.output
+    dens = tmp_path / "d.json"
+    dens.write_text(json.dumps({"groups": {"0": 3, "1": 4}}))
+    res = runner.invoke(main, ["mesh", domain, "--out", str(out), "--densities", str(dens)])
+    assert res.exit_code == 0, res.output
+    assert [g["count"] for g in json.loads((out / "mesh.json").read_text())["edge_groups"]][:2] == [3, 4]
+
+
+def test_cli_errors_are_one_line(tmp_path):
+    runner = CliRunner()
+    dens = tmp_path / "d.json"
+    dens.write_text('{"groups": {"0": -2}}')
+    res = runner.invoke(main, ["mesh", str(EXAMPLES / "l_shape.json"), "--out", str(tmp_path), "--densities", str(dens)])
+    assert res.exit_code == 2 and "positive integer" in res.output and "Traceback" not in res.output
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"vertices": [[0, 0]], "faces": [[0, 1, 2]]}')
+    res = runner.invoke(main, ["stats", str(bad)])
+    assert res.exit_code == 2 and "faces" in res.output
+
+
+# ---------------------------------------------------------------------------------------------
+# Random domains
+# ---------------------------------------------------------------------------------------------
+
+
+@st.composite
+def convex_domains(draw):
+    """Convex polygons (rectangles or perturbed regular polygons), maybe with a circular hole."""
+    n = draw(st.integers(4, 7))
+    radii = draw(st.lists(st.floats(0.85, 1.15), min_size=n, max_size=n))
+    phase = draw(st.floats(0, 2 * math.pi / n))
+    t = phase + 2 * math.pi * np.arange(n) / n
+    outer = np.column_stack([10 * np.array(radii) * np.cos(t), 10 * np.array(radii) * np.sin(t)])
+    data = {"outer": outer.tolist()}
+    if draw(st.booleans()):
+        r = draw(st.floats(1.5, 3.5))
+        c = np.array(draw(st.tuples(st.floats(-1.5, 1.5), st.floats(-1.5, 1.5))))
+        s = np.linspace(0, 2 * math.pi, 40, endpoint=False)
+        data["holes"] = [(c + r * np.column_stack([np.cos(s), np.sin(s)])).tolist()]
+    return domain_from_dict(data)
+
+
+@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(convex_domains(), st.sampled_from([0.03, 0.05]))
+def test_random_domains_mesh_or_fail_clearly(domain, fraction):
+    try:
+        mesh = mesh_domain(domain, target_length=fraction * domain.diagonal)
+    except VaultgramError as exc:
+        assert str(exc)
+        return
+    stats = mesh_stats(mesh, domain)
+    assert stats["manifold"] and stats["oriented"]
+    assert stats["min_scaled_jacobian"] > 0
+    assert stats["boundary_loops"] == len(domain.rings)
+    assert stats["boundary_distance_relative"] < 0.005
+    tri = [f for f in mesh.faces if len(f) == 3]
+    assert not tri or mesh.pole[np.asarray(tri)].any(axis=1).all()
+    assert (mesh.singular | mesh.pole)[stats["interior_singular_vertices"]].all()
+    # boundary singularities are not asserted here: see test_near_symmetric_kite
+
+
+@pytest.mark.xfail(strict=True, reason="two singularities 0.03 apart make two sliver triangles whose poles "
+                   "are smooth boundary points; needs a rule merging singularities closer than the spacing")
+def test_near_symmetric_kite():
+    """Found by hypothesis: a near-square kite decomposes into 4 quads and 2 sliver triangles."""
+    domain = domain_from_dict({"outer": [[10, 0], [0, 10], [-11.25, 0], [0, -11.25]]})
+    stats = mesh_stats(mesh_domain(domain, target_length=0.03 * domain.diagonal), domain)
+    assert stats["min_scaled_jacobian"] > 0
+    assert stats["boundary_singular"] == 0

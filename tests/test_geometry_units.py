@@ -1,0 +1,215 @@
+"""Geometry stage parts (paper §3.2): edge groups, densities, discrete Coons patches, resampling,
+constrained Laplacian smoothing."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from paths import ARCHITECTURE, EXAMPLES
+
+from vaultgram.coons import coons_grid, grid_faces
+from vaultgram.decomposition import decompose
+from vaultgram.domain import load_domain
+from vaultgram.edge_groups import DensitySpec, densities_from_dict, edge_groups, group_counts, load_densities
+from vaultgram.errors import VaultgramError
+from vaultgram.meshes import grid_mesh
+from vaultgram.smoothing import laplacian_smooth, project_to_polyline
+from vaultgram.weld import SlideConstraint, resample_polyline
+
+
+@pytest.fixture(scope="module")
+def qwh_layout():
+    return edge_groups(decompose(load_domain(EXAMPLES / "quad_with_hole.json")))
+
+
+@pytest.fixture(scope="module")
+def pillow_layout():
+    path = ARCHITECTURE / "rv_pillow_pattern.json"
+    if not path.is_file():
+        pytest.skip("shared architecture data not found")
+    return edge_groups(decompose(load_domain(path)))
+
+
+# ---------------------------------------------------------------------------------------------
+# Edge groups
+# ---------------------------------------------------------------------------------------------
+
+
+def test_quad_opposite_sides_share_a_group(qwh_layout):
+    lay = qwh_layout
+    assert len(lay.patterns) == 12
+    for pat in lay.patterns:
+        assert pat.pole is None
+        g = [int(lay.group_of[s]) for s, _ in pat.sides]
+        assert g[0] == g[2] and g[1] == g[3]
+    # every side is in exactly one group, and each group is named once
+    assert sorted(s for grp in lay.groups for s in grp.sides) == list(range(len(lay.sides)))
+    assert lay.n_groups == len(set(lay.group_of.tolist()))
+
+
+def test_shared_sides_are_stored_once(qwh_layout):
+    uses = np.zeros(len(qwh_layout.sides), dtype=int)
+    for pat in qwh_layout.patterns:
+        for s, rev in pat.sides:
+            uses[s] += 1
+            side = qwh_layout.sides[s]
+            assert uses[s] == 1 or rev  # the second traversal is reversed
+            assert (side.boundary and uses[s] == 1) or not side.boundary
+    boundary = np.array([s.boundary for s in qwh_layout.sides])
+    assert (uses[boundary] == 1).all() and (uses[~boundary] == 2).all()
+
+
+def test_pillow_poles_are_the_centre_singularity(pillow_layout):
+    lay = pillow_layout
+    graph = lay.decomposition.graph
+    assert [p.pole is not None for p in lay.patterns] == [True] * 3
+    poles = {p.corners[p.pole] for p in lay.patterns}
+    assert len(poles) == 1 and graph.node_type(poles.pop()) == "Singularity"
+    for pat in lay.patterns:  # the two sides at the pole share a group; the third side is free
+        k = pat.pole
+        assert lay.group_of[pat.sides[k - 1][0]] == lay.group_of[pat.sides[k][0]]
+
+
+# ---------------------------------------------------------------------------------------------
+# Densities
+# ---------------------------------------------------------------------------------------------
+
+
+def test_counts_follow_target_length(qwh_layout):
+    diag = qwh_layout.decomposition.disc.domain.diagonal
+    c1 = group_counts(qwh_layout, target_length=0.05 * diag)
+    c2 = group_counts(qwh_layout, target_length=0.025 * diag)
+    assert (c1 >= 1).all()
+    assert np.allclose(c2 / c1, 2, atol=0.5)
+    for g, c in zip(qwh_layout.groups, c2):
+        assert c == max(1, round(g.mean_length / (0.025 * diag)))
+    cmax = group_counts(qwh_layout, DensitySpec(length_mode="max"), target_length=0.025 * diag)
+    assert (cmax >= c2).all()
+
+
+def test_designer_counts_regions_and_minimum(qwh_layout):
+    spec = DensitySpec(target_length=100.0, min_count=3, groups={"0": 7, 1: {"length": 0.5}})
+    c = group_counts(qwh_layout, spec)
+    assert c[0] == 7
+    assert c[1] == max(3, round(qwh_layout.groups[1].mean_length / 0.5))
+    assert (np.delete(c, [0, 1]) == 3).all()  # huge target length: the minimum
+    # a region covering the whole domain sets every group
+    region = DensitySpec(regions=((np.array([[-1, -1], [11, -1], [11, 11], [-1, 11.0]]), {"count": 5}),))
+    assert (group_counts(qwh_layout, region) == 5).all()
+    # a region covering nothing changes nothing
+    away = DensitySpec(regions=((np.array([[50, 50], [51, 50], [51, 51.0]]), {"count": 5}),))
+    assert (group_counts(qwh_layout, away) == group_counts(qwh_layout)).all()
+
+
+def test_density_file(tmp_path, qwh_layout):
+    path = tmp_path / "d.json"
+    path.write_text(json.dumps({"target_length": 1.0, "groups": {"2": 9},
+                                "regions": [{"polygon": [[0, 0], [1, 0], [0, 1]], "length": 0.1}]}))
+    spec = load_densities(path)
+    assert spec.target_length == 1.0 and spec.groups == {"2": 9} and len(spec.regions) == 1
+    assert group_counts(qwh_layout, spec)[2] == 9
+
+
+@pytest.mark.parametrize(
+    "data, message",
+    [
+        ({"groups": {"x": 3}}, "integer"),
+        ({"groups": {"99": 3}}, "groups 0 to"),
+        ({"groups": {"0": 0}}, "positive integer"),
+        ({"groups": {"0": {"count": 2, "length": 1}}}, "count or a length"),
+        ({"regions": [{"polygon": [[0, 0], [1, 1]], "count": 2}]}, "at least 3"),
+        ({"target_length": -1}, "positive"),
+        ({"colour": "red"}, "unknown key"),
+    ],
+)
+def test_bad_densities_raise_clear_errors(qwh_layout, data, message):
+    with pytest.raises(VaultgramError, match=message):
+        group_counts(qwh_layout, densities_from_dict(data))
+
+
+def test_bad_target_length(qwh_layout):
+    with pytest.raises(VaultgramError, match="target length"):
+        group_counts(qwh_layout, target_length=0.0)
+
+
+# ---------------------------------------------------------------------------------------------
+# Discrete Coons patches and resampling
+# ---------------------------------------------------------------------------------------------
+
+
+def _lin(a, b, n):
+    return np.linspace(a, b, n + 1)
+
+
+def test_coons_reproduces_bilinear_patch():
+    c0, c1, c2, c3 = map(np.array, ([0.0, 0.0], [4.0, 0.5], [5.0, 3.0], [-0.5, 2.0]))
+    m, n = 5, 3
+    grid = coons_grid(_lin(c0, c1, m), _lin(c1, c2, n), _lin(c3, c2, m), _lin(c0, c3, n))
+    u = np.linspace(0, 1, m + 1)[:, None, None]
+    v = np.linspace(0, 1, n + 1)[None, :, None]
+    bilinear = (1 - u) * (1 - v) * c0 + u * (1 - v) * c1 + u * v * c2 + (1 - u) * v * c3
+    assert np.allclose(grid, bilinear)
+
+
+def test_coons_keeps_curved_boundaries_exactly():
+    t = np.linspace(0, np.pi, 9)
+    bottom = np.column_stack([t, 0.3 * np.sin(t)])
+    top = bottom + [0, 2.0]
+    left = _lin(bottom[0], top[0], 4)
+    right = _lin(bottom[-1], top[-1], 4)
+    grid = coons_grid(bottom, right, top, left)
+    assert np.array_equal(grid[:, 0], bottom) and np.array_equal(grid[:, -1], top)
+    assert np.array_equal(grid[0], left) and np.array_equal(grid[-1], right)
+    with pytest.raises(ValueError):
+        coons_grid(bottom, right, top[:-1], left)
+
+
+def test_triangle_pattern_fans_around_pole():
+    ids = np.arange(4 * 3).reshape(4, 3)
+    ids[0, :] = 0  # column 0 collapsed to the pole
+    quads, tris = grid_faces(ids, pole=True)
+    assert len(quads) == 2 * 2 and len(tris) == 2  # 3 x 2 cells, the first column triangles
+    assert (tris[:, 0] == 0).all() and not np.isin(0, quads)
+
+
+def test_resample_hits_anchors_and_ends():
+    poly = np.array([[0, 0], [1, 0], [2, 0], [2, 1], [2, 2.0]])
+    pts, hit = resample_polyline(poly, 6, anchors=[2])
+    assert len(pts) == 7 and hit == [3]
+    assert np.allclose(pts[3], [2, 0]) and np.allclose(pts[0], poly[0]) and np.allclose(pts[-1], poly[-1])
+    pts, hit = resample_polyline(poly, 1, anchors=[2])  # not enough subdivisions: anchors ignored
+    assert hit == [] and len(pts) == 2
+    pts, _ = resample_polyline(poly, 4)
+    assert np.allclose(np.hypot(*np.diff(pts, axis=0).T), 1.0)
+
+
+# ---------------------------------------------------------------------------------------------
+# Smoothing
+# ---------------------------------------------------------------------------------------------
+
+
+def test_projection_onto_polyline():
+    poly = np.array([[0, 0], [2, 0], [2, 2.0]])
+    p = np.array([[1, 0.5], [3, 1], [-1, -1], [2.5, 3]])
+    assert np.allclose(project_to_polyline(p, poly), [[1, 0], [2, 1], [0, 0], [2, 2]])
+    square = np.array([[0, 0], [1, 0], [1, 1], [0, 1.0]])
+    assert np.allclose(project_to_polyline(np.array([[-0.2, 0.5]]), square, closed=True), [[0, 0.5]])
+
+
+def test_smoothing_keeps_fixed_and_slides_on_boundary():
+    v, f = grid_mesh(6)
+    rng = np.random.default_rng(1)
+    inner = (v[:, 0] > 0) & (v[:, 0] < 6) & (v[:, 1] > 0) & (v[:, 1] < 6)
+    noisy = v.copy()
+    noisy[inner, :2] += rng.uniform(-0.3, 0.3, (inner.sum(), 2))
+    bottom = np.flatnonzero((v[:, 1] == 0) & (v[:, 0] > 0) & (v[:, 0] < 6))
+    noisy[bottom, 0] += rng.uniform(-0.3, 0.3, len(bottom))
+    corners = np.isin(np.arange(len(v)), [0, 6, 42, 48])
+    fixed = corners | ((~inner) & ~np.isin(np.arange(len(v)), bottom))
+    c = SlideConstraint(bottom, np.array([[0, 0], [6, 0.0]]))
+    out = laplacian_smooth(noisy, f, 200, fixed, [c])
+    assert np.array_equal(out[fixed], noisy[fixed])
+    assert np.allclose(out[bottom, 1], 0)  # stayed on the boundary
+    assert np.allclose(out[:, :2], v[:, :2], atol=1e-3)  # the grid is the fixed point

@@ -1,0 +1,386 @@
+"""From a domain to a smooth quad mesh (paper §3): the pipeline, its quality metrics and its files.
+
+:func:`mesh_domain` runs the stages in order::
+
+    Domain -> decompose (§3.1) -> edge_groups + group_counts (§3.2) -> weld (discrete Coons patches,
+    §3.2) -> laplacian_smooth (§3.2) -> QuadMesh
+
+:func:`mesh_stats` measures what the paper asks of the result: quads only (triangles only at poles),
+no boundary singularity, interior singularities where the decomposition has them, no inverted face,
+and a boundary that follows the domain's. :func:`write_mesh` writes ``mesh.json`` and ``mesh.obj``
+atomically; :func:`read_mesh` reads ``mesh.json`` back.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+import os
+import time
+from pathlib import Path
+
+import numpy as np
+
+from vaultgram.decomposition import decompose
+from vaultgram.domain import Domain
+from vaultgram.edge_groups import DensitySpec, edge_groups, group_counts
+from vaultgram.errors import VaultgramError
+from vaultgram.meshes import boundary_loops, corner_arrays
+from vaultgram.smoothing import DEFAULT_ITERATIONS, laplacian_smooth
+from vaultgram.weld import QuadMesh, weld
+
+__all__ = [
+    "mesh_domain",
+    "mesh_stats",
+    "regular_boundary_faces",
+    "write_mesh",
+    "read_mesh",
+    "mesh_to_json",
+    "mesh_from_json",
+    "format_stats",
+]
+
+#: Tolerance band (degrees) around 135 and 225 degrees inside which a boundary corner is regular
+#: with either neighbouring number of quads (a 135 degree corner takes 1 quad or 2 equally well).
+CORNER_TIE_BAND = 10.0
+
+
+def mesh_domain(
+    domain: Domain,
+    spacing: float = 0.02,
+    target_length: float | None = None,
+    smooth: int = DEFAULT_ITERATIONS,
+    densities: DensitySpec | None = None,
+    rules_dir=None,
+) -> QuadMesh:
+    """Topology and geometry of §3: a smooth quad mesh of ``domain``.
+
+    Parameters
+    ----------
+    domain : Domain
+    spacing : float
+        Relative discretisation spacing of the decomposition (§3.1).
+    target_length : float, optional
+        Global target edge length in the domain's units; default a fraction
+        (:data:`vaultgram.edge_groups.TARGET_FRACTION`) of the bounding-box diagonal. Overrides the
+        density file's.
+    smooth : int
+        Laplacian smoothing iterations.
+    densities : DensitySpec, optional
+        Local density control (:func:`vaultgram.edge_groups.load_densities`).
+
+    Returns
+    -------
+    QuadMesh
+        ``info`` holds the time per stage (seconds), the number of patches, triangles and edge groups.
+
+    Raises
+    ------
+    VaultgramError
+        From any stage (invalid domain, a patch that is not 3- or 4-sided, bad densities).
+    """
+    if smooth < 0:
+        raise VaultgramError(f"smoothing iterations must be >= 0, got {smooth}")
+    seconds = {}
+    t = time.perf_counter()
+    dec = decompose(domain, spacing, rules_dir)
+    seconds["decompose"] = time.perf_counter() - t
+    t = time.perf_counter()
+    layout = edge_groups(dec)
+    counts = group_counts(layout, densities, target_length)
+    seconds["groups"] = time.perf_counter() - t
+    t = time.perf_counter()
+    mesh = weld(layout, counts)
+    seconds["coons_weld"] = time.perf_counter() - t
+    seconds.update({f"weld.{k}": v for k, v in mesh.info.get("seconds", {}).items()})
+    t = time.perf_counter()
+    x = laplacian_smooth(mesh.vertices, mesh.faces, smooth, mesh.fixed, mesh.constraints)
+    seconds["smooth"] = time.perf_counter() - t
+    info = {
+        "domain": domain.name,
+        "spacing": spacing,
+        "diagonal": domain.diagonal,
+        "patches": len(layout.patterns),
+        "triangle_patches": sum(p.pole is not None for p in layout.patterns),
+        "edge_groups": layout.n_groups,
+        "smooth": smooth,
+        "ignored_curves": dec.ignored_curves,
+        "seconds": seconds,
+    }
+    return dataclasses.replace(mesh, vertices=x, info=info)
+
+
+# --------------------------------------------------------------------------------------------
+# Quality
+# --------------------------------------------------------------------------------------------
+
+
+def regular_boundary_faces(turning: np.ndarray, band: float = CORNER_TIE_BAND) -> tuple[np.ndarray, np.ndarray]:
+    """Regular number of faces at boundary vertices, from the domain's turning angle (degrees).
+
+    The interior angle ``180 - turning`` divided by 90 and rounded, at least 1: 1 face (valence 2)
+    at a convex corner, 2 (valence 3) on a smooth stretch, 3 (valence 4) at a reflex corner. Within
+    ``band`` degrees of a tie (135, 225, ...) both neighbours are regular.
+
+    Returns
+    -------
+    low, high : ndarray int
+        Lowest and highest regular number of faces.
+    """
+    q = (180.0 - np.asarray(turning, dtype=float)) / 90.0
+    base = np.maximum(1, np.floor(q + 0.5)).astype(np.int64)
+    frac = q - np.floor(q)
+    tie = np.abs(frac - 0.5) * 90.0 <= band
+    low = np.where(tie, np.maximum(1, np.floor(q)), base).astype(np.int64)
+    high = np.where(tie, np.maximum(1, np.floor(q) + 1), base).astype(np.int64)
+    return low, high
+
+
+def _face_array(faces) -> np.ndarray:
+    """Faces as an (f, 4) array, triangles padded with -1."""
+    out = np.full((len(faces), 4), -1, dtype=np.int64)
+    lens = np.fromiter((len(f) for f in faces), dtype=np.int64, count=len(faces))
+    if len(faces) and (lens.max() > 4 or lens.min() < 3):
+        raise VaultgramError("faces must be triangles or quads")
+    q = lens == 4
+    if q.any():
+        out[q] = np.array([f for f in faces if len(f) == 4], dtype=np.int64)
+    if (~q).any():
+        out[~q, :3] = np.array([f for f in faces if len(f) == 3], dtype=np.int64)
+    return out
+
+
+def _turning_from_domain(x: np.ndarray, domain: Domain) -> np.ndarray:
+    """Domain turning angle at each point lying on a domain ring vertex (0 elsewhere)."""
+    from scipy.spatial import cKDTree
+
+    from vaultgram.discretise import turning_angles
+
+    pts = np.vstack(domain.rings)
+    ang = np.concatenate([turning_angles(r) for r in domain.rings])
+    d, k = cKDTree(pts).query(x)
+    return np.where(d <= 1e-7 * domain.diagonal, ang[k], 0.0)
+
+
+def _boundary_distance(x: np.ndarray, loops, domain: Domain) -> float:
+    """Symmetric distance between the mesh boundary loops and the domain's rings."""
+    import shapely
+
+    rings = shapely.MultiLineString([np.vstack([r, r[:1]]) for r in domain.rings])
+    mesh_lines = shapely.MultiLineString([np.vstack([x[lp], x[lp[:1]]]) for lp in loops]) if loops else None
+    mids = np.vstack([0.5 * (x[lp] + x[np.roll(lp, -1)]) for lp in loops]) if loops else np.zeros((0, 2))
+    probe = np.vstack([x[np.concatenate(loops)], mids]) if loops else np.zeros((0, 2))
+    d1 = shapely.distance(shapely.points(probe), rings).max() if len(probe) else 0.0
+    dom_pts = np.vstack([*domain.rings, *[0.5 * (r + np.roll(r, -1, axis=0)) for r in domain.rings]])
+    d2 = shapely.distance(shapely.points(dom_pts), mesh_lines).max() if mesh_lines is not None else math.inf
+    return float(max(d1, d2))
+
+
+def mesh_stats(mesh: QuadMesh, domain: Domain | None = None) -> dict:
+    """Quality metrics of a quad mesh (the acceptance properties of §3.2).
+
+    Parameters
+    ----------
+    mesh : QuadMesh
+    domain : Domain, optional
+        Gives the corner angles of boundary vertices (else the mesh's ``turning`` labels) and the
+        distance of the mesh boundary from the domain boundary.
+
+    Returns
+    -------
+    dict
+        ``vertices, faces, quads, triangles``; ``interior_singular`` (interior vertices of valence
+        other than 4) and ``boundary_singular`` (boundary vertices whose number of faces is not the
+        regular one for their corner angle, see :func:`regular_boundary_faces`; feature points, singular
+        by design in §4.1, are counted apart in ``boundary_feature_singular``), with the vertex lists;
+        ``min_scaled_jacobian, mean_scaled_jacobian, inverted_faces``; ``min_angle, max_angle``
+        (degrees); ``manifold, oriented, boundary_loops``; ``boundary_distance`` and
+        ``boundary_distance_relative`` (to the domain's bounding-box diagonal) when ``domain`` is given.
+    """
+    x = np.asarray(mesh.vertices, dtype=float)[:, :2]
+    faces = mesh.faces
+    nv = len(x)
+    fa = _face_array(faces)
+    is_tri = fa[:, 3] < 0
+    face_of, u, v, w = corner_arrays(faces)  # corner: vertex u, next v, previous w
+
+    # topology
+    key = u * nv + v
+    uniq, mult = np.unique(key, return_counts=True)
+    oriented = bool((mult == 1).all())
+    und = np.minimum(u, v) * nv + np.maximum(u, v)
+    _, und_mult = np.unique(und, return_counts=True)
+    manifold = bool((und_mult <= 2).all())
+    twin = np.isin(v * nv + u, uniq)
+    try:
+        loops = [np.asarray(lp) for lp in boundary_loops(faces)]
+    except ValueError:
+        loops, manifold = [], False
+    on_boundary = np.zeros(nv, dtype=bool)
+    on_boundary[u[~twin]] = True
+
+    # valence: number of distinct edges at a vertex; faces per vertex
+    edges = np.unique(und)
+    valence = np.bincount(edges // nv, minlength=nv) + np.bincount(edges % nv, minlength=nv)
+    nfaces = np.bincount(u, minlength=nv)
+    used = nfaces > 0
+    interior_sing = np.flatnonzero(used & ~on_boundary & (valence != 4))
+    if domain is not None:
+        turning = _turning_from_domain(x, domain)
+    else:
+        turning = np.asarray(mesh.turning, dtype=float)
+    low, high = regular_boundary_faces(turning)
+    irregular = on_boundary & ((nfaces < low) | (nfaces > high))
+    # a boundary feature point is a pole on purpose (§4.1: "high valency vertices"): counted apart
+    feature = np.asarray(mesh.feature, dtype=bool) if len(mesh.feature) == nv else np.zeros(nv, dtype=bool)
+    boundary_sing = np.flatnonzero(irregular & ~feature)
+    feature_sing = np.flatnonzero(irregular & feature)
+
+    # shape
+    e1, e2 = x[v] - x[u], x[w] - x[u]
+    cross = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
+    norm = np.hypot(*e1.T) * np.hypot(*e2.T)
+    sj = np.where(norm > 0, cross / np.where(norm > 0, norm, 1.0), -1.0)
+    sj = np.where(is_tri[face_of], np.minimum(sj * 2.0 / math.sqrt(3.0), 1.0), sj)
+    face_sj = np.full(len(faces), np.inf)
+    np.minimum.at(face_sj, face_of, sj)
+    angle = np.degrees(np.arctan2(cross, (e1 * e2).sum(1)))
+    angle = np.where(angle < 0, 360.0 + angle, angle)
+
+    stats = {
+        "vertices": int(used.sum()),
+        "faces": len(faces),
+        "quads": int((~is_tri).sum()),
+        "triangles": int(is_tri.sum()),
+        "interior_singular": len(interior_sing),
+        "interior_singular_vertices": interior_sing.tolist(),
+        "interior_singular_valences": valence[interior_sing].tolist(),
+        "boundary_singular": len(boundary_sing),
+        "boundary_singular_vertices": boundary_sing.tolist(),
+        "boundary_feature_singular": len(feature_sing),
+        "min_scaled_jacobian": float(face_sj.min()) if len(faces) else None,
+        "mean_scaled_jacobian": float(face_sj.mean()) if len(faces) else None,
+        "inverted_faces": int((face_sj <= 0).sum()),
+        "min_angle": float(angle.min()) if len(angle) else None,
+        "max_angle": float(angle.max()) if len(angle) else None,
+        "manifold": manifold,
+        "oriented": oriented,
+        "boundary_loops": len(loops),
+    }
+    if domain is not None:
+        d = _boundary_distance(x, loops, domain)
+        stats["boundary_distance"] = d
+        stats["boundary_distance_relative"] = d / domain.diagonal
+    return stats
+
+
+def format_stats(stats: dict) -> str:
+    """A two-column text table of :func:`mesh_stats` (vertex lists summarised by their length)."""
+    rows = []
+    for k, val in stats.items():
+        if isinstance(val, list):
+            continue
+        if isinstance(val, float):
+            val = f"{val:.6g}"
+        rows.append((k, str(val)))
+    width = max(len(k) for k, _ in rows)
+    return "\n".join(f"{k:<{width}}  {val}" for k, val in rows)
+
+
+# --------------------------------------------------------------------------------------------
+# Files
+# --------------------------------------------------------------------------------------------
+
+
+def mesh_to_json(mesh: QuadMesh) -> dict:
+    """``{"vertices": [[x, y, z], ...], "faces": [...], "labels": {...}, "turning": [[v, deg], ...],
+    "face_patch": [...], "edge_groups": [...], "info": {...}}``."""
+    x = np.asarray(mesh.vertices, dtype=float)
+    if x.shape[1] == 2:
+        x = np.column_stack([x, np.zeros(len(x))])
+    tv = np.flatnonzero(mesh.turning != 0)
+    return {
+        "vertices": x.tolist(),
+        "faces": [list(f) for f in mesh.faces],
+        "labels": mesh.labels_json(),
+        "ring": mesh.ring.tolist(),
+        "turning": [[int(k), float(mesh.turning[k])] for k in tv],
+        "node": mesh.node.tolist(),
+        "face_patch": mesh.face_patch.tolist(),
+        "edge_groups": list(mesh.groups),
+        "info": mesh.info,
+    }
+
+
+def mesh_from_json(data: dict, where: str = "mesh") -> QuadMesh:
+    """A :class:`QuadMesh` from :func:`mesh_to_json` output (or any ``{"vertices", "faces"}`` dict)."""
+    try:
+        x = np.asarray(data["vertices"], dtype=float)
+        faces = [tuple(int(i) for i in f) for f in data["faces"]]
+    except (KeyError, TypeError, ValueError) as exc:
+        raise VaultgramError(f"{where}: not a mesh (needs 'vertices' and 'faces'): {exc}") from None
+    if x.ndim != 2 or x.shape[1] not in (2, 3):
+        raise VaultgramError(f"{where}: vertices must be [x, y] or [x, y, z] points")
+    n = len(x)
+    if any(len(f) not in (3, 4) or min(f) < 0 or max(f) >= n for f in faces):
+        raise VaultgramError(f"{where}: faces must be triangles or quads of valid vertex indices")
+    labels = data.get("labels", {})
+
+    def mask(name):
+        m = np.zeros(n, dtype=bool)
+        m[np.asarray(labels.get(name, []), dtype=np.int64)] = True
+        return m
+
+    corner = np.zeros(n, dtype=np.int8)
+    corner[mask("corner")] = 1
+    corner[mask("reflex_corner")] = -1
+    turning = np.zeros(n)
+    for k, a in data.get("turning", []):
+        turning[int(k)] = float(a)
+    ring = np.asarray(data.get("ring", [-1] * n), dtype=np.int64)
+    node = np.asarray(data.get("node", [-1] * n), dtype=np.int64)
+    fp = np.asarray(data.get("face_patch", [-1] * len(faces)), dtype=np.int64)
+    return QuadMesh(x[:, :2].copy(), faces, fp, mask("boundary"), ring, corner, turning, mask("fixed"),
+                    mask("pole"), mask("feature"), node, mask("singular_node"),
+                    tuple(data.get("edge_groups", ())), (), dict(data.get("info", {})))
+
+
+def _atomic_write(path: Path, text: str) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        tmp.write_text(text)
+        tmp.replace(path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+def _obj_text(mesh: QuadMesh) -> str:
+    x = np.asarray(mesh.vertices, dtype=float)
+    z = x[:, 2] if x.shape[1] == 3 else np.zeros(len(x))
+    lines = ["# vaultgram quad mesh"]
+    lines += [f"v {a:.12g} {b:.12g} {c:.12g}" for a, b, c in zip(x[:, 0].tolist(), x[:, 1].tolist(), z.tolist())]
+    lines += ["f " + " ".join(str(i + 1) for i in f) for f in mesh.faces]
+    return "\n".join(lines) + "\n"
+
+
+def write_mesh(mesh: QuadMesh, out_dir: str | Path) -> tuple[Path, Path]:
+    """Write ``out_dir/mesh.json`` and ``out_dir/mesh.obj`` (each to a temporary file, then renamed)."""
+    out = Path(out_dir)
+    paths = out / "mesh.json", out / "mesh.obj"
+    _atomic_write(paths[0], json.dumps(mesh_to_json(mesh), separators=(",", ":")))
+    _atomic_write(paths[1], _obj_text(mesh))
+    return paths
+
+
+def read_mesh(path: str | Path) -> QuadMesh:
+    """Read a ``mesh.json`` (see :func:`mesh_to_json`)."""
+    try:
+        data = json.loads(Path(path).read_text())
+    except OSError as exc:
+        raise VaultgramError(f"{path}: cannot read: {exc.strerror}") from None
+    except json.JSONDecodeError as exc:
+        raise VaultgramError(f"{path}:{exc.lineno}:{exc.colno}: invalid JSON: {exc.msg}") from None
+    return mesh_from_json(data, str(path))

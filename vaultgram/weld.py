@@ -1,0 +1,360 @@
+"""Meshing the patches and welding them into one quad mesh (paper §3.2, Figure 2g).
+
+"Now that a proper number of subdivisions has been assigned to each edge of each patch, these
+patches can be separately meshed, using discrete Coons patches. [...] The resulting set of meshes is
+welded to obtain a mesh that complies with our requirements: a fully structured quad mesh with a
+small number of singularities and no boundary singularities." (§3.2)
+
+Welding is exact by construction, not by a distance tolerance: every patch corner (a node of the
+decomposition graph) is one vertex, and every atomic side (:class:`vaultgram.edge_groups.Side`) is
+resampled once, at its group's count, into vertices that both patches along it index. Each patch
+then adds only its interior grid points (:func:`vaultgram.coons.coons_grid`). Faces are
+counter-clockwise because patches are and the grid's ``(i, j)`` axes follow the patch's corners.
+
+Resampling is uniform in arc length; on a boundary side, the domain's corners lying inside the side
+(ring points whose turning angle makes them corners) are made samples when the count allows, so the
+mesh keeps the domain's corners (they stay fixed in smoothing).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from vaultgram.coons import coons_grid, grid_faces
+from vaultgram.edge_groups import Layout, is_feature_node
+from vaultgram.errors import VaultgramError
+
+__all__ = ["QuadMesh", "SlideConstraint", "weld", "resample_polyline", "KEEP_ANGLE"]
+
+#: Input vertices of the domain's rings turning by at least this many degrees are kept as fixed mesh
+#: vertices (when their side's count allows), even below the discretisation's corner angle: sliding
+#: boundary vertices would otherwise cut them off.
+KEEP_ANGLE = 20.0
+
+
+@dataclass(frozen=True, eq=False)
+class SlideConstraint:
+    """Vertices that must stay on a polyline (a stretch of boundary between fixed vertices)."""
+
+    vertices: np.ndarray
+    polyline: np.ndarray
+    closed: bool = False
+
+
+@dataclass(frozen=True, eq=False)
+class QuadMesh:
+    """A welded quad mesh with the labels smoothing and the later stages need.
+
+    Attributes
+    ----------
+    vertices : ndarray (n, 2)
+    faces : list of tuple
+        Quads ``(i, j, k, l)`` and, at poles, triangles ``(pole, j, k)``, counter-clockwise.
+    face_patch : ndarray (f,) int
+        Patch id of each face.
+    boundary : ndarray (n,) bool
+        Vertex on a ring of the domain.
+    ring : ndarray (n,) int
+        Ring of a boundary vertex (0 outer, ``1 + k`` hole ``k``), -1 inside.
+    corner : ndarray (n,) int8
+        1 at a convex corner of the domain, -1 at a reflex corner, 0 elsewhere.
+    turning : ndarray (n,) float
+        Turning angle of the domain (degrees, positive convex) at boundary vertices lying on a ring
+        point of the discretisation; 0 elsewhere.
+    fixed : ndarray (n,) bool
+        Vertices smoothing does not move: domain corners and feature points.
+    pole : ndarray (n,) bool
+        Poles of three-sided patches.
+    feature : ndarray (n,) bool
+        Feature points (§4.1).
+    node : ndarray (n,) int
+        The decomposition-graph node a vertex stands for (patch corners), else -1.
+    singular : ndarray (n,) bool
+        Vertices at skeleton nodes of the decomposition (singularities and loop cuts).
+    groups : tuple of dict
+        The edge groups: ``{"id", "count", "sides", "mean_length", "max_length"}``.
+    constraints : tuple of SlideConstraint
+        Boundary stretches between fixed vertices, along which their vertices slide.
+    info : dict
+        Free-form facts about the run (timings per stage, counts).
+    """
+
+    vertices: np.ndarray
+    faces: list
+    face_patch: np.ndarray
+    boundary: np.ndarray
+    ring: np.ndarray
+    corner: np.ndarray
+    turning: np.ndarray
+    fixed: np.ndarray
+    pole: np.ndarray
+    feature: np.ndarray
+    node: np.ndarray
+    singular: np.ndarray
+    groups: tuple = ()
+    constraints: tuple = ()
+    info: dict = field(default_factory=dict)
+
+    @property
+    def n_vertices(self) -> int:
+        return len(self.vertices)
+
+    @property
+    def n_faces(self) -> int:
+        return len(self.faces)
+
+    def with_vertices(self, vertices: np.ndarray) -> "QuadMesh":
+        """The same mesh with new vertex positions."""
+        import dataclasses
+
+        return dataclasses.replace(self, vertices=np.asarray(vertices, dtype=float), info=dict(self.info))
+
+    def labels_json(self) -> dict:
+        """Per-vertex labels as JSON lists of vertex indices."""
+        return {
+            "boundary": np.flatnonzero(self.boundary).tolist(),
+            "corner": np.flatnonzero(self.corner > 0).tolist(),
+            "reflex_corner": np.flatnonzero(self.corner < 0).tolist(),
+            "fixed": np.flatnonzero(self.fixed).tolist(),
+            "pole": np.flatnonzero(self.pole).tolist(),
+            "feature": np.flatnonzero(self.feature).tolist(),
+            "singular_node": np.flatnonzero(self.singular).tolist(),
+        }
+
+
+def resample_polyline(poly: np.ndarray, n: int, anchors=()) -> tuple[np.ndarray, list[int]]:
+    """``n + 1`` points along a polyline, uniform in arc length, hitting the ``anchors`` if possible.
+
+    Parameters
+    ----------
+    poly : ndarray (k, 2)
+    n : int
+        Number of subdivisions (>= 1).
+    anchors : sequence of int
+        Indices of interior points of ``poly`` that should be samples. Honoured when ``n`` leaves at
+        least one subdivision per piece between anchors; the counts are shared in proportion to
+        the pieces' lengths.
+
+    Returns
+    -------
+    samples : ndarray (n + 1, 2)
+        First and last equal ``poly[0]`` and ``poly[-1]``.
+    hit : list of int
+        For each honoured anchor, its sample index (empty when the anchors were not honoured).
+    """
+    poly = np.asarray(poly, dtype=float)
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(poly, axis=0).T))])
+    anchors = sorted(int(a) for a in anchors if 0 < a < len(poly) - 1)
+    breaks = [0, *anchors, len(poly) - 1]
+    lengths = np.diff(s[breaks])
+    hit: list[int] = []
+    if anchors and n >= len(lengths) and np.all(lengths > 0):
+        share = lengths / lengths.sum() * n
+        m = np.maximum(1, np.floor(share)).astype(np.int64)
+        while m.sum() > n:  # take back from the pieces given most above their share
+            m[np.argmax(np.where(m > 1, m - share, -np.inf))] -= 1
+        while m.sum() < n:
+            m[np.argmax(share - m)] += 1
+        targets = np.concatenate(
+            [np.linspace(s[a], s[b], k + 1)[:-1] for a, b, k in zip(breaks[:-1], breaks[1:], m)] + [[s[-1]]]
+        )
+        hit = np.cumsum(m)[:-1].tolist()
+    else:
+        targets = np.linspace(0.0, s[-1], n + 1)
+    out = np.column_stack([np.interp(targets, s, poly[:, 0]), np.interp(targets, s, poly[:, 1])])
+    out[0], out[-1] = poly[0], poly[-1]
+    for a, h in zip(anchors if hit else (), hit):
+        out[h] = poly[a]
+    return out, hit
+
+
+def weld(layout: Layout, counts) -> QuadMesh:
+    """Mesh every patch with a discrete Coons patch and weld them into one :class:`QuadMesh`.
+
+    Parameters
+    ----------
+    layout : Layout
+        Patches, patterns, sides and groups (:func:`vaultgram.edge_groups.edge_groups`).
+    counts : sequence of int
+        Subdivisions per edge group (:func:`vaultgram.edge_groups.group_counts`).
+
+    Raises
+    ------
+    VaultgramError
+        If a count is not a positive integer or the number of counts is not the number of groups.
+    """
+    counts = np.asarray(counts)
+    if counts.shape != (layout.n_groups,) or not np.issubdtype(counts.dtype, np.integer) or (counts < 1).any():
+        raise VaultgramError(f"need one positive integer count per edge group ({layout.n_groups} groups)")
+    dec = layout.decomposition
+    graph, disc = dec.graph, dec.disc
+    t_start = time.perf_counter()
+    t_coons = 0.0
+    side_count = counts[layout.group_of]
+    # domain points the mesh must keep: corners, and input vertices turning by KEEP_ANGLE or more
+    keep_point = disc.is_corner | (disc.is_input_vertex & (np.abs(disc.turning) >= KEEP_ANGLE))
+
+    # 1. patch corners: one vertex per decomposition node
+    corner_nodes = sorted({c for p in layout.patterns for c in p.corners})
+    vid_of_node = {n: k for k, n in enumerate(corner_nodes)}
+    pos = [np.array([graph.get(n, "pos") for n in corner_nodes], dtype=float).reshape(-1, 2)]
+    n_vert = len(corner_nodes)
+    disc_point = [n if 0 <= n < disc.n_points and graph.schema.is_subtype(graph.node_type(n), "BoundaryVertex") else -1
+                  for n in corner_nodes]
+    vert_disc = [np.array(disc_point, dtype=np.int64)]  # disc point index of each vertex, or -1
+    node_arr = [np.array(corner_nodes, dtype=np.int64)]
+
+    # 2. atomic sides: shared samples, stored direction
+    side_ids: list[np.ndarray] = []
+    side_pts: list[np.ndarray] = []
+    side_anchor: list[tuple] = []  # (dense index, sample index) of honoured anchors
+    for side in layout.sides:
+        n = int(side_count[side.id])
+        anchors = []
+        if side.boundary:
+            anchors = [k for k, v in enumerate(side.nodes[1:-1], 1) if keep_point[v]]
+        pts, hit = resample_polyline(side.polyline, n, anchors)
+        ids = np.arange(n_vert, n_vert + n - 1)
+        n_vert += n - 1
+        pos.append(pts[1:-1])
+        d = np.full(n - 1, -1, dtype=np.int64)
+        for a, h in zip(anchors if hit else (), hit):
+            d[h - 1] = side.nodes[a]
+        vert_disc.append(d)
+        node_arr.append(np.full(n - 1, -1, dtype=np.int64))
+        side_ids.append(np.concatenate([[vid_of_node[side.start]], ids, [vid_of_node[side.end]]]))
+        side_pts.append(pts)
+        side_anchor.append(tuple(zip(anchors if hit else (), hit)))
+
+    def oriented(ref):
+        s, rev = ref
+        return (side_ids[s][::-1], side_pts[s][::-1]) if rev else (side_ids[s], side_pts[s])
+
+    # 3. patches: Coons grids, interior vertices, faces
+    quads, tris, quad_patch, tri_patch = [], [], [], []
+    for pat in layout.patterns:
+        if pat.pole is None:
+            (bi, bp), (ri, rp), (ti, tp), (li, lp) = (oriented(r) for r in pat.sides)
+            ti, tp, li, lp = ti[::-1], tp[::-1], li[::-1], lp[::-1]
+        else:
+            k = pat.pole
+            (bi, bp), (ri, rp), (ti, tp) = (oriented(pat.sides[(k + j) % 3]) for j in range(3))
+            ti, tp = ti[::-1], tp[::-1]
+            li = np.full(len(ri), bi[0])
+            lp = np.repeat(bp[:1], len(ri), axis=0)
+        if len(bi) != len(ti) or len(li) != len(ri):
+            raise VaultgramError(f"patch {pat.patch}: opposite sides have different counts (internal error)")
+        t = time.perf_counter()
+        grid = coons_grid(bp, rp, tp, lp)
+        t_coons += time.perf_counter() - t
+        m, n = len(bi) - 1, len(li) - 1
+        ids = np.empty((m + 1, n + 1), dtype=np.int64)
+        ids[1:-1, 1:-1] = np.arange(n_vert, n_vert + (m - 1) * (n - 1)).reshape(m - 1, n - 1)
+        n_vert += (m - 1) * (n - 1)
+        pos.append(grid[1:-1, 1:-1].reshape(-1, 2))
+        vert_disc.append(np.full((m - 1) * (n - 1), -1, dtype=np.int64))
+        node_arr.append(np.full((m - 1) * (n - 1), -1, dtype=np.int64))
+        ids[:, 0], ids[:, -1], ids[0, :], ids[-1, :] = bi, ti, li, ri
+        q, t = grid_faces(ids, pole=pat.pole is not None)
+        quads.append(q)
+        tris.append(t)
+        quad_patch.append(np.full(len(q), pat.patch))
+        tri_patch.append(np.full(len(t), pat.patch))
+
+    vertices = np.vstack(pos)
+    vdisc = np.concatenate(vert_disc)
+    node = np.concatenate(node_arr)
+    q = np.vstack(quads) if quads else np.zeros((0, 4), dtype=np.int64)
+    t = np.vstack(tris) if tris else np.zeros((0, 3), dtype=np.int64)
+    faces = [tuple(f) for f in q.tolist()] + [tuple(f) for f in t.tolist()]
+    face_patch = np.concatenate(quad_patch + tri_patch).astype(np.int64)
+
+    # 4. labels
+    nv = len(vertices)
+    boundary = np.zeros(nv, dtype=bool)
+    ring = np.full(nv, -1, dtype=np.int64)
+    for side in layout.sides:
+        if side.boundary:
+            boundary[side_ids[side.id]] = True
+            ring[side_ids[side.id]] = side.ring
+    on_disc = vdisc >= 0
+    corner = np.zeros(nv, dtype=np.int8)
+    turning = np.zeros(nv)
+    corner[on_disc] = disc.corner_kind[vdisc[on_disc]]
+    turning[on_disc] = disc.turning[vdisc[on_disc]]
+    feature = np.zeros(nv, dtype=bool)
+    singular = np.zeros(nv, dtype=bool)
+    for n, v in vid_of_node.items():
+        feature[v] = is_feature_node(dec, n)
+        singular[v] = graph.node_type(n) in ("Singularity", "LoopVertex")
+        if graph.node_type(n) == "Corner" and corner[v] == 0:
+            corner[v] = 1
+    fixed = (corner != 0) | feature
+    fixed[on_disc] |= keep_point[vdisc[on_disc]]
+    pole = np.zeros(nv, dtype=bool)
+    for pat in layout.patterns:
+        if pat.pole is not None:
+            pole[vid_of_node[pat.corners[pat.pole]]] = True
+
+    constraints = _boundary_constraints(layout, side_ids, side_anchor, fixed)
+    groups = tuple(
+        {"id": g.id, "count": int(counts[g.id]), "sides": len(g.sides),
+         "mean_length": g.mean_length, "max_length": g.max_length}
+        for g in layout.groups
+    )
+    seconds = {"coons": t_coons, "weld": time.perf_counter() - t_start - t_coons}
+    return QuadMesh(vertices, faces, face_patch, boundary, ring, corner, turning, fixed, pole, feature,
+                    node, singular, groups, constraints, {"seconds": seconds})
+
+
+def _boundary_constraints(layout: Layout, side_ids, side_anchor, fixed) -> tuple:
+    """Split every ring's chain of boundary sides at fixed vertices into sliding stretches."""
+    by_start = {}
+    for side in layout.sides:
+        if side.boundary:
+            by_start[side.start] = side
+    seen: set[int] = set()
+    out = []
+    for side in layout.sides:
+        if not side.boundary or side.id in seen:
+            continue
+        chain = []
+        s = side
+        while s.id not in seen:
+            seen.add(s.id)
+            chain.append(s)
+            s = by_start.get(s.end)
+            if s is None:
+                raise VaultgramError(f"boundary ring {side.ring} is not closed by patch sides (internal error)")
+        verts, dense, fixed_at = [], [], []  # vertex ids; dense polyline; (position in verts, dense index)
+        for s in chain:
+            off = len(dense)
+            ids = side_ids[s.id][:-1]
+            anchor_of_sample = {h: a for a, h in side_anchor[s.id]}
+            for k, v in enumerate(ids):
+                if fixed[v]:
+                    if k == 0:
+                        fixed_at.append((len(verts), off))
+                    elif k in anchor_of_sample:
+                        fixed_at.append((len(verts), off + anchor_of_sample[k]))
+                verts.append(v)
+            dense.extend(s.polyline[:-1])
+        verts = np.asarray(verts, dtype=np.int64)
+        dense = np.asarray(dense, dtype=float)
+        if not fixed_at:
+            out.append(SlideConstraint(verts, dense, closed=True))
+            continue
+        for (i, a), (j, b) in zip(fixed_at, fixed_at[1:] + fixed_at[:1]):
+            if j <= i:
+                j += len(verts)
+            if b <= a:
+                b += len(dense)
+            inner = np.take(verts, np.arange(i + 1, j), mode="wrap")
+            if len(inner) == 0:
+                continue
+            poly = np.take(dense, np.arange(a, b + 1), axis=0, mode="wrap")
+            out.append(SlideConstraint(inner, poly, closed=False))
+    return tuple(out)
