@@ -12,6 +12,7 @@ import sys
 from pathlib import Path
 
 import click
+import numpy as np
 
 from vaultgram.errors import VaultgramError
 from vaultgram.files import read_json, write_json
@@ -149,32 +150,45 @@ def decompose_command(
 @click.option("--zmax", type=float, default=None, help="Scale the thrust so the highest point reaches this height.")
 @click.option("--thickness", type=float, default=1.0, show_default=True, help="Shell thickness for self-weight.")
 @click.option("--density", type=float, default=1.0, show_default=True, help="Material density (weight per volume).")
+@click.option("--point-load", type=float, default=0.0, show_default=True,
+              help="Vertical load at every point feature of the mesh (a column load, a lantern...).")
 @click.option("--supports", "supports_path", type=click.Path(dir_okay=False), default=None,
               help='JSON: {"rings": [...]}, {"polylines": [...]} or {"vertices": [...]} (overrides the input).')
 @click.option("--tol-deg", type=float, default=0.5, show_default=True,
               help="Horizontal equilibrium: largest angle between form and force edges.")
-def formfind_command(input_path, out_dir, zmax, thickness, density, supports_path, tol_deg) -> None:
-    """Thrust Network Analysis (paper 5) on a mesh JSON ({"vertices", "faces"}) or a DOMAIN.
+@click.option("--spacing", default=0.02, show_default=True, type=float, help="For a DOMAIN: decomposition spacing.")
+@click.option("--target-length", type=float, default=None, help="For a DOMAIN: target mesh edge length.")
+def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, supports_path, tol_deg, spacing,
+                     target_length) -> None:
+    """Thrust Network Analysis (paper 5) on a MESH (mesh.json, or any {"vertices", "faces"}) or a DOMAIN.
 
+    A DOMAIN is meshed first (as `vaultgram mesh` does). Supports: --supports, else the input's own
+    (the domain's "supports", or a mesh's "supports" vertex list), else the outer boundary.
     Writes form.json, force.json, thrust.json, thrust.obj and summary.json to --out.
     """
+    from vaultgram.domain import load_domain
     from vaultgram.equilibrium import form_find
-    from vaultgram.errors import FormFindingError
-    from vaultgram.meshes import mesh_from_json, write_obj
+    from vaultgram.mesh import mesh_domain, mesh_from_json
+    from vaultgram.meshes import write_obj
     from vaultgram.supports import support_vertices
 
-    data = read_json(input_path)
-    if not (isinstance(data, dict) and "vertices" in data and "faces" in data):
-        raise FormFindingError(f"{input_path}: expected a mesh JSON with 'vertices' and 'faces'")
-    try:
-        vertices, faces = mesh_from_json(data)
-    except (ValueError, TypeError, KeyError) as exc:
-        raise FormFindingError(f"{input_path}: not a valid mesh: {exc}") from None
-    spec = read_json(supports_path) if supports_path else data.get("supports")
+    domain = None
+    data = read_json(input_path) if input_path.endswith(".json") else None
+    if isinstance(data, dict) and "vertices" in data and "faces" in data:
+        mesh = mesh_from_json(data, input_path)
+        spec = data.get("supports")
+    else:
+        domain = load_domain(input_path)
+        mesh = mesh_domain(domain, spacing, target_length)
+        spec = domain.supports
+    if supports_path:
+        spec = read_json(supports_path)
     if isinstance(spec, list):
         spec = {"vertices": spec}
-    supports = support_vertices(vertices, faces, spec)
-    network = form_find(vertices, faces, supports, zmax=zmax, thickness=thickness, density=density, tol_deg=tol_deg)
+    supports = support_vertices(mesh.vertices, mesh.faces, spec, domain)
+    loads = {int(v): point_load for v in np.flatnonzero(mesh.feature)} if point_load else None
+    network = form_find(mesh.vertices, mesh.faces, supports, zmax=zmax, thickness=thickness, density=density,
+                        point_loads=loads, tol_deg=tol_deg)
     summary = {k: v for k, v in network.summary.items() if k != "timings"}  # timings vary run to run
     out = Path(out_dir)
     write_json(out / "form.json", network.form.to_json())

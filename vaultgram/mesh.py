@@ -14,9 +14,7 @@ atomically; :func:`read_mesh` reads ``mesh.json`` back.
 from __future__ import annotations
 
 import dataclasses
-import json
 import math
-import os
 import time
 from pathlib import Path
 
@@ -26,7 +24,8 @@ from vaultgram.decomposition import decompose
 from vaultgram.domain import Domain
 from vaultgram.edge_groups import DensitySpec, edge_groups, group_counts
 from vaultgram.errors import VaultgramError
-from vaultgram.meshes import boundary_loops, corner_arrays
+from vaultgram.files import read_json, write_json
+from vaultgram.meshes import boundary_loops, corner_arrays, write_obj
 from vaultgram.smoothing import DEFAULT_ITERATIONS, laplacian_smooth
 from vaultgram.weld import QuadMesh, weld
 
@@ -309,7 +308,7 @@ def mesh_to_json(mesh: QuadMesh) -> dict:
         "node": mesh.node.tolist(),
         "face_patch": mesh.face_patch.tolist(),
         "edge_groups": list(mesh.groups),
-        "info": mesh.info,
+        "info": {k: v for k, v in mesh.info.items() if k != "seconds"},  # timings vary run to run
     }
 
 
@@ -346,41 +345,15 @@ def mesh_from_json(data: dict, where: str = "mesh") -> QuadMesh:
                     tuple(data.get("edge_groups", ())), (), dict(data.get("info", {})))
 
 
-def _atomic_write(path: Path, text: str) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    try:
-        tmp.write_text(text)
-        tmp.replace(path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
-
-
-def _obj_text(mesh: QuadMesh) -> str:
-    x = np.asarray(mesh.vertices, dtype=float)
-    z = x[:, 2] if x.shape[1] == 3 else np.zeros(len(x))
-    lines = ["# vaultgram quad mesh"]
-    lines += [f"v {a:.12g} {b:.12g} {c:.12g}" for a, b, c in zip(x[:, 0].tolist(), x[:, 1].tolist(), z.tolist())]
-    lines += ["f " + " ".join(str(i + 1) for i in f) for f in mesh.faces]
-    return "\n".join(lines) + "\n"
-
-
 def write_mesh(mesh: QuadMesh, out_dir: str | Path) -> tuple[Path, Path]:
     """Write ``out_dir/mesh.json`` and ``out_dir/mesh.obj`` (each to a temporary file, then renamed)."""
     out = Path(out_dir)
     paths = out / "mesh.json", out / "mesh.obj"
-    _atomic_write(paths[0], json.dumps(mesh_to_json(mesh), separators=(",", ":")))
-    _atomic_write(paths[1], _obj_text(mesh))
+    write_json(paths[0], mesh_to_json(mesh))
+    write_obj(paths[1], mesh.vertices, mesh.faces)
     return paths
 
 
 def read_mesh(path: str | Path) -> QuadMesh:
     """Read a ``mesh.json`` (see :func:`mesh_to_json`)."""
-    try:
-        data = json.loads(Path(path).read_text())
-    except OSError as exc:
-        raise VaultgramError(f"{path}: cannot read: {exc.strerror}") from None
-    except json.JSONDecodeError as exc:
-        raise VaultgramError(f"{path}:{exc.lineno}:{exc.colno}: invalid JSON: {exc.msg}") from None
-    return mesh_from_json(data, str(path))
+    return mesh_from_json(read_json(path), str(path))

@@ -8,13 +8,12 @@ benchmarks; they know nothing about statics.
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Iterable, Sequence
 
 import numpy as np
 
-from vaultgram.files import write_json, write_text
+from vaultgram.files import write_text
 
 __all__ = [
     "grid_mesh",
@@ -22,10 +21,6 @@ __all__ = [
     "remove_faces",
     "boundary_loops",
     "corner_arrays",
-    "mesh_to_json",
-    "mesh_from_json",
-    "read_mesh_json",
-    "write_mesh_json",
     "write_obj",
 ]
 
@@ -140,30 +135,6 @@ def boundary_loops(faces: Sequence[Sequence[int]]) -> list[list[int]]:
             b = nxt[b]
         loops.append(loop)
     return loops
-
-
-def mesh_to_json(vertices: np.ndarray, faces: Sequence[Sequence[int]], **extra) -> dict:
-    """A JSON-serialisable dict ``{"vertices": [[x, y, z], ...], "faces": [[...], ...], **extra}``."""
-    return {"vertices": np.asarray(vertices, dtype=float).tolist(),
-            "faces": [[int(v) for v in f] for f in faces], **extra}
-
-
-def mesh_from_json(data: dict) -> tuple[np.ndarray, list[tuple[int, ...]]]:
-    """Inverse of :func:`mesh_to_json` (extra keys are ignored)."""
-    vertices = np.asarray(data["vertices"], dtype=float)
-    if vertices.ndim != 2 or vertices.shape[1] not in (2, 3):
-        raise ValueError(f"mesh vertices must be a list of [x, y] or [x, y, z], got shape {vertices.shape}")
-    return vertices, [tuple(int(v) for v in f) for f in data["faces"]]
-
-
-def read_mesh_json(path: str | Path) -> tuple[np.ndarray, list[tuple[int, ...]]]:
-    """Read a mesh written by :func:`write_mesh_json`."""
-    return mesh_from_json(json.loads(Path(path).read_text()))
-
-
-def write_mesh_json(path: str | Path, vertices: np.ndarray, faces: Sequence[Sequence[int]], **extra) -> None:
-    """Write a mesh as JSON (see :func:`mesh_to_json`), atomically."""
-    write_json(path, mesh_to_json(vertices, faces, **extra))
 
 
 def write_obj(path: str | Path, vertices: np.ndarray, faces: Sequence[Sequence[int]],
