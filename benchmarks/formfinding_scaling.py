@@ -34,6 +34,7 @@ Differences between the two set-ups that the comparison cannot remove (see bench
 from __future__ import annotations
 
 import argparse
+from pathlib import Path
 import sys
 import time
 
@@ -156,6 +157,28 @@ def run_compas_tna(peer: dict, n: int, solver: str = "nodal", tight: bool = Fals
 
 # ---------------------------------------------------------------------------------------------------
 
+def run_meshes(face_counts) -> None:
+    """Form finding on the meshed quad-with-hole example (outer boundary supported, hole open)."""
+    from vaultgram.domain import load_domain
+    from vaultgram.equilibrium import form_find
+    from vaultgram.mesh import mesh_domain
+    from vaultgram.supports import support_vertices
+
+    domain = load_domain(Path(__file__).resolve().parents[1] / "examples" / "quad_with_hole.json")
+    print("\nquad_with_hole meshes (vaultgram mesh, then form_find with zmax 3); times in seconds")
+    head = f"{'faces':>8} {'verts':>7} {'form':>7} {'horiz':>7} {'vert':>7} {'total':>7} {'h_it':>5} {'v_it':>5} {'angle(deg)':>10}"
+    print(head)
+    print("-" * len(head))
+    for faces in face_counts:
+        mesh = mesh_domain(domain, 0.02, target_length=float(np.sqrt(domain.area / faces)))
+        supports = support_vertices(mesh.vertices, mesh.faces, None, domain)
+        tn = form_find(mesh.vertices, mesh.faces, supports, zmax=3.0)
+        t, sm = tn.summary["timings"], tn.summary
+        print(f"{len(mesh.faces):>8} {len(mesh.vertices):>7} {t['form']:>7.3f} {t['horizontal']:>7.3f} "
+              f"{t['vertical']:>7.3f} {t['total']:>7.3f} {sm['horizontal_iterations']:>5} "
+              f"{sm['vertical_iterations']:>5} {sm['max_angle_deg']:>10.2e}", flush=True)
+
+
 def parse_args(argv):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("sizes", nargs="*", type=int, help=f"grid sizes n (default {DEFAULT_SIZES})")
@@ -163,6 +186,10 @@ def parse_args(argv):
     p.add_argument("--peer-max-n", type=int, default=100,
                    help="largest n on which compas_tna is run (default 100; n = 200 takes minutes)")
     p.add_argument("--no-peer", action="store_true", help="do not run compas_tna even if importable")
+    p.add_argument("--no-meshes", action="store_true", help="skip the quad_with_hole meshes")
+    p.add_argument("--mesh-faces", type=int, nargs="+", default=[1_000, 10_000],
+                   help="approximate face counts of the quad_with_hole meshes (10^5 takes minutes: the "
+                        "parallelisation needs many iterations on open holes)")
     p.add_argument("--peer-horizontal", choices=("nodal", "sparse"), default="nodal",
                    help="compas_tna horizontal solver: horizontal_nodal_numpy (default) or horizontal_numpy")
     p.add_argument("--peer-tight", action="store_true",
@@ -192,6 +219,8 @@ def main(argv=None) -> None:
         if n == 100:
             print(f"     n = 100 floor (< 1 s): {'met' if r['total'] < 1.0 else 'MISSED'}")
 
+    if not args.no_meshes:
+        run_meshes(args.mesh_faces)
     if args.no_peer:
         print("\npeer comparison skipped (--no-peer)")
         return
