@@ -137,8 +137,6 @@ def decompose_command(
         plot_decomposition(dec, out / "decomposition.png")
     for report in dec.reports:
         click.echo(f"rules: {report.step}: {report.applications} application(s)")
-    if dec.ignored_curves:
-        click.echo(f"note: {dec.ignored_curves} curve feature(s) ignored (curve features are not decomposed yet)")
     counts = dec.patches_json()["counts"]
     click.echo(f"{len(dec.patches)} patches ({counts['4']} four-sided, {counts['3']} three-sided), "
                f"{len(dec.singularities())} singularities; wrote {out}")

@@ -20,7 +20,6 @@ patches (:mod:`vaultgram.patches`).
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass
 from importlib import resources
@@ -40,10 +39,13 @@ from vaultgram.triangulation import triangulate
 from vaultgram.vault_functions import vault_functions
 
 LOOP_CUTS = 4  # cut points on a skeleton loop without singularity (an annulus becomes 2 x 4 quads)
-PATCH_EDGES = ("Branch", "Rebranch", "Boundary", "Diagonal")
+PATCH_EDGES = ("Branch", "Rebranch", "Boundary", "Curve", "Diagonal")
+# strategies run on the Patch nodes, in this order: repair curve T-junctions, then split at features
+PATCH_STRATEGIES = ("curve_patching", "patching")
 # the node and edge types the pipeline creates; a rulebook's schema must declare them
 PIPELINE_TYPES = ("Singularity", "LoopVertex", "BoundaryVertex", "Corner", "FeaturePoint", "CurvePoint",
-                  "Branch", "Boundary", "Dual", "Rebranch")
+                  "CurveExtremity", "Branch", "Boundary", "Curve", "Dual", "Rebranch", "Diagonal", "Patch",
+                  "PatchCorner")
 
 
 @dataclass(frozen=True, eq=False)
@@ -56,7 +58,6 @@ class Decomposition:
     patches: tuple[Patch, ...]
     reports: tuple[StepReport, ...]
     trace: list[dict]
-    ignored_curves: int = 0
 
     def patch_nodes(self) -> list[int]:
         return [n for n in self.graph.nodes() if self.graph.node_type(n) == "Patch"]
@@ -77,7 +78,6 @@ class Decomposition:
             "nodes": [{"id": n, "type": g.node_type(n), **_plain_attrs(g.node_attrs(n))} for n in g.nodes()],
             "edges": [self._edge_json(e) for e in g.edges()],
             "rules": [{"step": r.step, "applications": r.applications} for r in self.reports],
-            "ignored_curves": self.ignored_curves,
         }
 
     def _edge_json(self, e: int) -> dict:
@@ -140,16 +140,22 @@ def decomposition_graph(sk: Skeleton, rulebook: Rulebook) -> HostGraph:
     corner_points = {int(n.point) for n in sk.nodes if n.kind == "corner"}
     for ring in disc.rings:
         for k, p in enumerate(ring):
-            kind = "Corner" if int(p) in corner_points else "BoundaryVertex"
+            kind = "Corner" if disc.corner_kind[p] == 1 else "BoundaryVertex"
             g.add_node(kind, {"pos": tuple(pts[p]), "ring": int(disc.ring[p]), "index": k}, id=int(p))
+    curve_ends = {int(c[k]) for c in disc.curves for k in (0, -1)}
     for p in np.flatnonzero(disc.ring < 0):  # feature points and curve points (section 4)
-        kind = "FeaturePoint" if disc.ring[p] == -2 else "CurvePoint"
+        kind = "FeaturePoint" if disc.ring[p] == -2 else "CurveExtremity" if p in curve_ends else "CurvePoint"
         g.add_node(kind, {"pos": tuple(pts[p])}, id=int(p))
     for p in disc.feature_points:  # point features, on the boundary or inside (section 4.1)
         g.set_node_attr(int(p), "feature", True)
+    for p in corner_points:
+        g.set_node_attr(p, "corner", True)
     for ring in disc.rings:
         for a, b in zip(ring, np.roll(ring, -1)):
             g.add_edge("Boundary", int(a), int(b))
+    for curve in disc.curves:
+        for a, b in zip(curve[:-1], curve[1:]):
+            g.add_edge("Curve", int(a), int(b))
 
     node_of: dict[int, int] = {}
     for node in sk.nodes:
@@ -243,29 +249,24 @@ def decompose(
     """Topology finding (§3.1, §4.1): discretise, triangulate, skeletonise, rewrite with the rules, patch.
 
     The rulebook's ``topology`` strategy rewrites the skeleton graph; the faces it leaves become
-    ``Patch`` nodes and the ``patching`` strategy (if any) may split them (Figure 4); the patches are
-    then read off the faces again.
-
-    Curve features are not part of the decomposition yet (their topological cut needs the T-junction
-    repair of §4.2): they are left out here, and :attr:`Decomposition.ignored_curves` says how many.
+    ``Patch`` nodes and the ``curve_patching`` and ``patching`` strategies (when the rulebook has
+    them) may split them (curve T-junctions, Figure 4); the patches are then read off the faces
+    again, and must all have 3 or 4 sides.
     """
     rulebook = load_vault_rulebook(rules_dir)
     if "topology" not in rulebook.strategies:
         raise DomainError(f"the rulebook ({', '.join(rulebook.files)}) has no strategy 'topology'")
-    ignored_curves = len(domain.curves)
-    if ignored_curves:
-        domain = dataclasses.replace(domain, curves=())
     disc = discretise(domain, spacing)
     sk = skeleton(triangulate(disc), smooth=smooth)
     graph = decomposition_graph(sk, rulebook)
     runner = Runner(rulebook, graph)
     runner.run("topology")
-    patches = find_patches(graph, disc, PATCH_EDGES)
-    if "patching" in rulebook.strategies:
+    patch_strategies = [name for name in PATCH_STRATEGIES if name in rulebook.strategies]
+    patches = find_patches(graph, disc, PATCH_EDGES, strict=not patch_strategies)
+    if patch_strategies:
         add_patch_nodes(graph, patches)
-        runner.run("patching")
+        for name in patch_strategies:
+            runner.run(name)
         patches = find_patches(graph, disc, PATCH_EDGES)
         check_patch_nodes(graph, patches)
-    return Decomposition(
-        disc, sk, graph, tuple(patches), tuple(runner.reports), runner.trace.to_json(), ignored_curves
-    )
+    return Decomposition(disc, sk, graph, tuple(patches), tuple(runner.reports), runner.trace.to_json())

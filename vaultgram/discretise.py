@@ -68,7 +68,9 @@ class Discretisation:
     index : ndarray (N,) int
         Position of the point along its ring or curve (0 for isolated point features).
     is_corner : ndarray (N,) bool
-        Ring vertices whose turning angle exceeds ``corner_angle``.
+        Ring vertices whose turning angle exceeds ``corner_angle``; also the ring points where a
+        curve feature ends and the curve vertices turning by more than ``corner_angle`` (the curve
+        cuts the domain, so the regions on its sides see convex corners there).
     corner_kind : ndarray (N,) int8
         0 none, 1 convex corner, -1 reflex corner.
     turning : ndarray (N,) float
@@ -391,6 +393,14 @@ def discretise(domain: Domain, spacing: float = 0.02, corner_angle: float = 30.0
     corner_kind = np.zeros(n, dtype=np.int8)
     corner_kind[is_corner & (turning_arr > 0)] = 1
     corner_kind[is_corner & (turning_arr < 0)] = -1
+    # Curve features cut the domain (§4.2): where a curve meets a ring, and where a curve turns
+    # sharply, the regions on either side see a convex corner.
+    on_curve = ring_arr == RING_CURVE
+    sharp = on_curve & (np.abs(turning_arr) > corner_angle)
+    ends = np.array([i for c in curve_idx for i in (c[0], c[-1]) if ring_arr[i] >= 0], dtype=np.int64)
+    for cut in (np.flatnonzero(sharp), ends):
+        is_corner[cut] = True
+        corner_kind[cut] = 1
 
     arrays = [points, ring_arr, index_arr, is_corner, corner_kind, turning_arr, is_vertex_arr, feature]
     for a in arrays:

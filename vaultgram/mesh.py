@@ -104,7 +104,6 @@ def mesh_domain(
         "triangle_patches": sum(p.pole is not None for p in layout.patterns),
         "edge_groups": layout.n_groups,
         "smooth": smooth,
-        "ignored_curves": dec.ignored_curves,
         "seconds": seconds,
     }
     return dataclasses.replace(mesh, vertices=x, info=info)

@@ -76,8 +76,12 @@ def half_edge_polyline(graph: HostGraph, edge: int, start: int) -> np.ndarray:
     return pts if graph.ends(edge)[0] == start else pts[::-1]
 
 
-def find_patches(graph: HostGraph, disc: Discretisation, edge_types) -> list[Patch]:
-    """The 3- and 4-sided patches of a rewritten decomposition graph (see the module docstring)."""
+def find_patches(graph: HostGraph, disc: Discretisation, edge_types, strict: bool = True) -> list[Patch]:
+    """The patches of a rewritten decomposition graph (see the module docstring).
+
+    With ``strict`` every patch must have 3 or 4 sides; without, faces with more sides are returned
+    too (for the patching rules to split).
+    """
     types = set(edge_types)
     patches = []
     for face in faces(graph, types):
@@ -99,7 +103,7 @@ def find_patches(graph: HostGraph, disc: Discretisation, edge_types) -> list[Pat
             else:
                 sides[-1].append(poly[1:])
                 side_edges[-1].append((e, u))
-        if len(corners) not in (3, 4):
+        if len(corners) < 3 or (strict and len(corners) > 4):
             raise DomainError(
                 f"patch around {_where(outline)} has {len(corners)} sides (corners at "
                 f"{', '.join(_fmt(graph.get(c, 'pos')) for c in corners)}); only 3- and 4-sided patches "
@@ -117,10 +121,12 @@ def find_patches(graph: HostGraph, disc: Discretisation, edge_types) -> list[Pat
 
 
 def _is_corner(graph: HostGraph, n: int, types) -> bool:
+    """Where a patch side ends: skeleton vertices, point features, curve extremities, corner vertices of
+    corner faces, and any point where a third edge of the plan arrives."""
     t = graph.node_type(n)
-    if t == "Corner" or not graph.schema.is_subtype(t, "BoundaryVertex"):
+    if t in ("FeaturePoint", "CurveExtremity") or graph.schema.is_subtype(t, "SkeletonVertex"):
         return True
-    return graph.degree(n, types) > 2
+    return graph.get(n, "corner") or graph.degree(n, types) > 2
 
 
 def _is_hole(graph: HostGraph, face) -> bool:

@@ -17,6 +17,7 @@ EDGE_STYLE = {
     "Branch": dict(color="tab:blue", lw=1.0),
     "Rebranch": dict(color="tab:orange", lw=1.0),
     "Diagonal": dict(color="tab:green", lw=1.0),
+    "Curve": dict(color="tab:purple", lw=2.0),
 }
 
 

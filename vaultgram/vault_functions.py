@@ -1,7 +1,8 @@
 """The geometric helper functions the vault pipeline registers for its rules.
 
-The engine knows nothing about geometry; rules in ``rules/`` may call these by name. Each is pure
-and local (it reads only its arguments), so rules using them re-match incrementally.
+The engine knows nothing about geometry; rules in ``rules/`` may call these by name. The point
+functions are pure and local (they read only their arguments), so rules using them re-match
+incrementally; the curve functions walk the graph along a curve feature and are declared non-local.
 """
 
 from __future__ import annotations
@@ -31,6 +32,44 @@ def angle_between(p, centre, q) -> float:
     return math.degrees(min(d, 2 * math.pi - d))
 
 
+PLAN_EDGES = ("Branch", "Rebranch", "Boundary", "Curve", "Diagonal")
+
+
+def curve_side(graph, p: int) -> int:
+    """Which side of its curve the plan edges at curve point ``p`` arrive from (§4.2 T-junctions).
+
+    +1: all from the left of the curve's direction (from its first point to its last), -1: all from
+    the right, 0: from both sides, from neither, or ``p`` is not an inner point of a curve.
+    """
+    rotation = [e for e in graph.rotation(p) if graph.edge_type(e) in PLAN_EDGES]
+    curve = [e for e in rotation if graph.edge_type(e) == "Curve"]
+    if len(curve) != 2 or len(rotation) == 2:
+        return 0
+    # curve edges are created along the curve, from its first point towards its last
+    ahead = next((e for e in curve if graph.ends(e)[0] == p), None)
+    if ahead is None:
+        return 0
+    k = rotation.index(ahead)
+    turn = rotation[k:] + rotation[:k]  # counter-clockwise from the direction of travel
+    back = turn.index(next(e for e in curve if e != ahead))
+    left, right = back - 1, len(turn) - back - 1
+    return 1 if right == 0 else -1 if left == 0 else 0
+
+
+def curve_neighbours(graph, p: int, q: int) -> bool:
+    """Whether ``q`` is reached from ``p`` along the curve through points where nothing else arrives."""
+    for first in [e for e in graph.incident(p, ["Curve"])]:
+        prev, node = p, graph.other(first, p)
+        while node != q and graph.degree(node, PLAN_EDGES) == 2 and not graph.get(node, "corner"):
+            nxt = [e for e in graph.incident(node, ["Curve"]) if graph.other(e, node) != prev]
+            if not nxt:
+                break
+            prev, node = node, graph.other(nxt[0], node)
+        if node == q:
+            return True
+    return False
+
+
 def vault_functions() -> Functions:
     """A registry with the engine's builtins plus the vault pipeline's geometry."""
     f = Functions()
@@ -38,4 +77,6 @@ def vault_functions() -> Functions:
     f.register("midpoint", midpoint, ("vec2", "vec2"), "vec2")
     f.register("lerp", lerp, ("vec2", "vec2", "number"), "vec2")
     f.register("angle_between", angle_between, ("vec2", "vec2", "vec2"), "float")
+    f.register("curve_side", curve_side, ("node",), "int", uses_graph=True, local=False)
+    f.register("curve_neighbours", curve_neighbours, ("node", "node"), "bool", uses_graph=True, local=False)
     return f
