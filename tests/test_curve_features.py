@@ -114,3 +114,31 @@ def test_random_curves_decompose_cleanly_or_fail_clearly(curves, spacing):
     assert_curve_is_clean(dec)
     area = sum(p.area() for p in dec.patches)
     assert abs(area - 100.0) < 1e-9 * 100
+
+
+@pytest.mark.parametrize("name", ["fig5_boundary_points", "fig6_inner_points", "fig7_curves", "features_combined"])
+def test_feature_examples_decompose(name):
+    from paths import EXAMPLES
+
+    from vaultgram.domain import load_domain
+
+    dec = decompose(load_domain(EXAMPLES / f"{name}.json"), 0.02)
+    g = dec.graph
+    assert {p.n_sides for p in dec.patches} <= {3, 4}
+    assert_curve_is_clean(dec)
+    for n in g.nodes():  # every point feature and curve extremity is a corner of a triangle (its pole)
+        if g.node_type(n) == "Patch":
+            continue
+        if g.get(n, "feature") or g.node_type(n) == "CurveExtremity":
+            assert any(p.n_sides == 3 and n in p.corners for p in dec.patches), g.get(n, "pos")
+
+
+def test_curve_tip_inside_a_patch_is_surrounded_by_triangles():
+    """A slit whose tips no rebranch reaches (fig7_curves, top): the tip patches are split into triangles."""
+    from paths import EXAMPLES
+
+    from vaultgram.domain import load_domain
+
+    dec = decompose(load_domain(EXAMPLES / "fig7_curves.json"), 0.02)
+    fired = Counter(step["rule"] for step in dec.trace)
+    assert fired["split_around_curve_tip"] >= 2

@@ -70,6 +70,14 @@ def curve_neighbours(graph, p: int, q: int) -> bool:
     return False
 
 
+def patch_corner(graph, patch: int, index: int) -> int:
+    """The corner of a Patch node with the given index (its PatchCorner edge's ``index``)."""
+    for e in graph.incident(patch, ["PatchCorner"]):
+        if graph.get_edge(e, "index") == index:
+            return graph.ends(e)[1]
+    raise ValueError(f"patch {patch} has no corner {index}")
+
+
 def vault_functions() -> Functions:
     """A registry with the engine's builtins plus the vault pipeline's geometry."""
     f = Functions()
@@ -79,4 +87,5 @@ def vault_functions() -> Functions:
     f.register("angle_between", angle_between, ("vec2", "vec2", "vec2"), "float")
     f.register("curve_side", curve_side, ("node",), "int", uses_graph=True, local=False)
     f.register("curve_neighbours", curve_neighbours, ("node", "node"), "bool", uses_graph=True, local=False)
+    f.register("patch_corner", patch_corner, ("node", "int"), "node", uses_graph=True, local=False)
     return f
