@@ -20,6 +20,7 @@ patches (:mod:`vaultgram.patches`).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from importlib import resources
@@ -101,11 +102,21 @@ def default_rules_dir() -> Path:
 
 
 def load_vault_rulebook(rules_dir: str | Path | None = None) -> Rulebook:
-    """The rulebook in ``rules_dir`` (default: the one shipped with vaultgram), with vault functions."""
+    """The rulebook in ``rules_dir`` (default: the one shipped with vaultgram), with vault functions.
+
+    Loaded rulebooks are kept for the life of the process, keyed by the folder and the modification
+    times of its rule files, so a changed file is read again.
+    """
     directory = Path(rules_dir) if rules_dir is not None else default_rules_dir()
     path = directory / "topology.vgr"
     if not path.is_file():
         raise DomainError(f"{directory}: no topology.vgr rule file there")
+    stamp = tuple(sorted((f.name, f.stat().st_mtime_ns) for f in directory.glob("*.vgr")))
+    return _load_checked(path.resolve(), stamp)
+
+
+@functools.lru_cache(maxsize=8)
+def _load_checked(path: Path, stamp: tuple) -> Rulebook:
     book = load_rulebook([path], vault_functions())
     missing = [t for t in PIPELINE_TYPES if t not in book.schema.node_types and t not in book.schema.edge_types]
     if missing:
