@@ -94,7 +94,27 @@ def test_designer_counts_regions_and_minimum(qwh_layout):
     c = group_counts(qwh_layout, spec)
     assert c[0] == 7
     assert c[1] == max(3, round(qwh_layout.groups[1].mean_length / 0.5))
-    assert (np.delete(c, [0, 1]) == 3).all()  # huge target length: the minimum
+    rest = np.delete(c, [0, 1])  # huge target length: the minimum, or more where a side is curved
+    assert rest.min() == 3 and (rest >= 3).all()
+
+
+def test_curved_boundary_sides_get_enough_subdivisions(qwh_layout):
+    """The chord constraint (CHORD_TOLERANCE): a curved boundary side resampled at its group's count
+    stays within the tolerance of the domain's ring, even for a huge target length."""
+    from vaultgram.edge_groups import CHORD_TOLERANCE
+    from vaultgram.weld import chord_deviation, kept_points, resample_polyline, side_anchors
+
+    c = group_counts(qwh_layout, target_length=100.0)
+    disc = qwh_layout.decomposition.disc
+    keep = kept_points(disc)
+    curved = 0
+    for side in qwh_layout.sides:
+        if side.boundary and len(side.polyline) > 2:
+            n = int(c[qwh_layout.group_of[side.id]])
+            pts, _ = resample_polyline(side.polyline, n, side_anchors(side, keep))
+            assert chord_deviation(side.polyline, pts) <= CHORD_TOLERANCE * disc.domain.diagonal
+            curved += chord_deviation(side.polyline, side.polyline[[0, -1]]) > 0
+    assert curved > 0  # the hole's sides are curved
     # a region covering the whole domain sets every group
     region = DensitySpec(regions=((np.array([[-1, -1], [11, -1], [11, 11], [-1, 11.0]]), {"count": 5}),))
     assert (group_counts(qwh_layout, region) == 5).all()
@@ -213,3 +233,48 @@ def test_smoothing_keeps_fixed_and_slides_on_boundary():
     assert np.array_equal(out[fixed], noisy[fixed])
     assert np.allclose(out[bottom, 1], 0)  # stayed on the boundary
     assert np.allclose(out[:, :2], v[:, :2], atol=1e-3)  # the grid is the fixed point
+
+
+def test_pole_of_a_triangle_is_not_on_the_boundary_when_it_can_be_inside():
+    """choose_pole: a three-sided patch with an inner corner never puts its pole on the boundary
+    (a boundary pole of n triangles is a boundary singularity for n >= 2), unless it is a feature."""
+    from paths import ARCHITECTURE
+
+    from vaultgram.decomposition import decompose
+    from vaultgram.domain import load_domain
+    from vaultgram.edge_groups import is_feature_node
+
+    path = ARCHITECTURE / "rv_star_pattern.json"
+    if not path.is_file():
+        pytest.skip(f"{path} not found")
+    dec = decompose(load_domain(path))
+    lay = edge_groups(dec)
+    disc = dec.disc
+    on_ring = lambda n: 0 <= n < disc.n_points and disc.ring[n] >= 0  # noqa: E731
+    tris = [p for p in lay.patterns if p.pole is not None]
+    assert tris
+    for pat in tris:
+        pole = pat.corners[pat.pole]
+        if on_ring(pole) and not is_feature_node(dec, pole):
+            assert all(on_ring(c) for c in pat.corners)
+
+
+def test_triangles_at_a_reflex_corner_are_merged():
+    """patching.vgr, merge_triangles_at_reflex_corner: the reflex corner (5.57, 5.59) of rv_star was
+    the corner of 2 quads and 2 triangles; it is now the corner of 3 patches (regular, valence 4)."""
+    from paths import ARCHITECTURE
+
+    from vaultgram.decomposition import decompose
+    from vaultgram.domain import load_domain
+
+    path = ARCHITECTURE / "rv_star_pattern.json"
+    if not path.is_file():
+        pytest.skip(f"{path} not found")
+    dec = decompose(load_domain(path))
+    steps = {r.step: r.applications for r in dec.reports}
+    assert any("merge_triangles_at_reflex_corner" in str(k) for k, v in steps.items() if v)
+    g = dec.graph
+    for target in ([5.57, 5.59], [5.75, 10.03]):
+        node = min((c for p in dec.patches for c in p.corners),
+                   key=lambda n: np.hypot(*(np.asarray(g.get(n, "pos")) - target)))
+        assert sum(node in p.corners for p in dec.patches) == 3

@@ -55,6 +55,14 @@ __all__ = [
 #: Default global target edge length, as a fraction of the bounding-box diagonal of the domain.
 TARGET_FRACTION = 0.025
 
+#: A boundary side is subdivided at least finely enough that its resampled polyline stays within this
+#: fraction of the bounding-box diagonal of the domain's ring (a curved side with too few
+#: subdivisions cuts across the domain and folds the faces next to it).
+CHORD_TOLERANCE = 0.002
+
+#: The geometric minimum count of a side is searched up to this multiple of its length count.
+CHORD_MAX_FACTOR = 6
+
 
 @dataclass(frozen=True, eq=False)
 class Side:
@@ -219,23 +227,27 @@ def _corner_angle(poly_in: np.ndarray, poly_out: np.ndarray) -> float:
 def choose_pole(decomposition: Decomposition, patch) -> int:
     """Index of the pole among a three-sided patch's corners (§3.2, §4.1, §4.2).
 
-    The corner labelled as a feature point if there is exactly one; else the unique naked corner
-    (on the boundary); else the unique non-naked corner. When the corners are all naked or all
-    non-naked (the paper leaves this open), the corner with the smallest angle: it is the one the
-    pole's fan of triangles splits least badly.
+    The corner labelled as a feature point if there is exactly one (§4.1, §4.2). Otherwise the paper
+    takes "the unique naked vertex (on the boundaries) or the unique non-naked vertex (on the
+    skeleton branches)"; we take a non-naked corner whenever there is one, because a pole on the
+    boundary is always a boundary singularity: a naked corner that is the pole of ``n`` triangles
+    takes ``n`` faces from this patch instead of 1, which at a reflex corner (corner of two more
+    patches, regular with 3 faces) or a smooth stretch (regular with 2) makes it irregular for any
+    ``n >= 2``. The interior pole is a singular node of the decomposition, where the acceptance
+    allows singularities. Among two non-naked (or three naked) corners the one with the smallest
+    angle: the pole's fan of triangles splits it least badly.
     """
     graph = decomposition.graph
     corners = patch.corners
     feature = [k for k, c in enumerate(corners) if is_feature_node(decomposition, c)]
     if len(feature) == 1:
         return feature[0]
-    naked = [k for k, c in enumerate(corners) if _is_boundary_node(graph, c)]
-    if len(naked) == 1:
-        return naked[0]
-    if len(naked) == 2:
-        return next(k for k in range(3) if k not in naked)
+    inner = [k for k, c in enumerate(corners) if not _is_boundary_node(graph, c)]
+    if len(inner) == 1:
+        return inner[0]
     angles = [_corner_angle(patch.sides[k - 1], patch.sides[k]) for k in range(3)]
-    return int(np.argmin(angles))
+    candidates = inner or [0, 1, 2]
+    return min(candidates, key=lambda k: angles[k])
 
 
 class _UnionFind:
@@ -383,7 +395,31 @@ def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length:
             counts[g.id] = v
         else:
             counts[g.id] = max(int(spec.min_count), int(round(g.length(spec.length_mode) / v)))
+            counts[g.id] = max(counts[g.id], _chord_count(layout, g, counts[g.id], CHORD_TOLERANCE * diag))
     return counts
+
+
+def _chord_count(layout: Layout, group: EdgeGroup, count: int, tol: float) -> int:
+    """The least count (from ``count`` up) at which every boundary side of the group, resampled as the
+    welding does it, stays within ``tol`` of its curve: the "additional constraint on the minimum
+    number of subdivisions" of §3.2, from the geometry. Capped at ``CHORD_MAX_FACTOR * count``."""
+    from vaultgram.weld import chord_deviation, kept_points, resample_polyline, side_anchors
+
+    keep = kept_points(layout.decomposition.disc)
+    best = count
+    for s in group.sides:
+        side = layout.sides[s]
+        if not side.boundary or len(side.polyline) <= 2:
+            continue
+        anchors = side_anchors(side, keep)
+        n = best
+        while n < CHORD_MAX_FACTOR * max(count, 1):
+            pts, _ = resample_polyline(side.polyline, n, anchors)
+            if chord_deviation(side.polyline, pts) <= tol:
+                break
+            n += max(1, n // 8)
+        best = max(best, n)
+    return best
 
 
 def _value(value, where: str):

@@ -44,6 +44,9 @@ __all__ = [
 #: with either neighbouring number of quads (a 135 degree corner takes 1 quad or 2 equally well).
 CORNER_TIE_BAND = 10.0
 
+#: Turning angle (degrees) beyond which a ring vertex is a corner (as in :func:`vaultgram.discretise.discretise`).
+CORNER_ANGLE = 30.0
+
 
 def mesh_domain(
     domain: Domain,
@@ -114,25 +117,35 @@ def mesh_domain(
 # --------------------------------------------------------------------------------------------
 
 
-def regular_boundary_faces(turning: np.ndarray, band: float = CORNER_TIE_BAND) -> tuple[np.ndarray, np.ndarray]:
+def regular_boundary_faces(
+    turning: np.ndarray, band: float = CORNER_TIE_BAND, corner_angle: float = CORNER_ANGLE
+) -> tuple[np.ndarray, np.ndarray]:
     """Regular number of faces at boundary vertices, from the domain's turning angle (degrees).
 
-    The interior angle ``180 - turning`` divided by 90 and rounded, at least 1: 1 face (valence 2)
-    at a convex corner, 2 (valence 3) on a smooth stretch, 3 (valence 4) at a reflex corner. Within
-    ``band`` degrees of a tie (135, 225, ...) both neighbours are regular.
+    Two readings of "regular" are accepted, and both are reported as regular:
+
+    * the acceptance's: valence 2 (1 face) at a convex corner, 3 (2 faces) on a smooth stretch,
+      4 (3 faces) at a reflex corner, a corner being a ring vertex turning by more than
+      ``corner_angle`` (the discretisation's corner threshold, §3.1);
+    * the corner angle's: the interior angle ``180 - turning`` divided by 90 and rounded, at least
+      1, and within ``band`` degrees of a tie (135, 225, ...) both neighbours. This one is stricter
+      on smooth stretches and at sharp corners (a 300 degree corner is regular with 3 faces only)
+      and adds flat corners (a 215 degree corner with 2 faces, a 145 degree one with 2).
 
     Returns
     -------
     low, high : ndarray int
         Lowest and highest regular number of faces.
     """
-    q = (180.0 - np.asarray(turning, dtype=float)) / 90.0
+    turning = np.asarray(turning, dtype=float)
+    q = (180.0 - turning) / 90.0
     base = np.maximum(1, np.floor(q + 0.5)).astype(np.int64)
     frac = q - np.floor(q)
     tie = np.abs(frac - 0.5) * 90.0 <= band
     low = np.where(tie, np.maximum(1, np.floor(q)), base).astype(np.int64)
     high = np.where(tie, np.maximum(1, np.floor(q) + 1), base).astype(np.int64)
-    return low, high
+    kind = np.where(turning > corner_angle, 1, np.where(turning < -corner_angle, 3, 2))
+    return np.minimum(low, kind), np.maximum(high, kind)
 
 
 def _face_array(faces) -> np.ndarray:

@@ -27,7 +27,8 @@ from vaultgram.coons import coons_grid, grid_faces
 from vaultgram.edge_groups import Layout, is_feature_node
 from vaultgram.errors import VaultgramError
 
-__all__ = ["QuadMesh", "SlideConstraint", "weld", "resample_polyline", "KEEP_ANGLE"]
+__all__ = ["QuadMesh", "SlideConstraint", "weld", "resample_polyline", "kept_points", "side_anchors", "chord_deviation",
+           "KEEP_ANGLE"]
 
 #: Input vertices of the domain's rings turning by at least this many degrees are kept as fixed mesh
 #: vertices (when their side's count allows), even below the discretisation's corner angle: sliding
@@ -171,6 +172,32 @@ def resample_polyline(poly: np.ndarray, n: int, anchors=()) -> tuple[np.ndarray,
     return out, hit
 
 
+def kept_points(disc) -> np.ndarray:
+    """Domain points the mesh must keep (fixed vertices): corners, and input vertices of the rings
+    turning by :data:`KEEP_ANGLE` or more."""
+    return disc.is_corner | (disc.is_input_vertex & (np.abs(disc.turning) >= KEEP_ANGLE))
+
+
+def side_anchors(side, keep_point) -> list[int]:
+    """Indices of a boundary side's polyline points that should be mesh vertices (see :func:`kept_points`)."""
+    if not side.boundary:
+        return []
+    return [k for k, v in enumerate(side.nodes[1:-1], 1) if keep_point[v]]
+
+
+def chord_deviation(poly: np.ndarray, samples: np.ndarray) -> float:
+    """Largest distance from a point of ``poly`` to the polyline through ``samples`` (both ordered
+    along the same curve): how far a side resampled into ``samples`` strays from the curve."""
+    poly = np.asarray(poly, dtype=float)
+    a, b = samples[:-1], samples[1:]
+    ab = b - a
+    ab2 = np.maximum((ab * ab).sum(1), 1e-300)
+    p = poly[:, None, :]
+    t = np.clip(((p - a) * ab).sum(-1) / ab2, 0.0, 1.0)
+    d = np.hypot(*(a + t[..., None] * ab - p).transpose(2, 0, 1))
+    return float(d.min(axis=1).max()) if len(poly) else 0.0
+
+
 def weld(layout: Layout, counts) -> QuadMesh:
     """Mesh every patch with a discrete Coons patch and weld them into one :class:`QuadMesh`.
 
@@ -194,8 +221,7 @@ def weld(layout: Layout, counts) -> QuadMesh:
     t_start = time.perf_counter()
     t_coons = 0.0
     side_count = counts[layout.group_of]
-    # domain points the mesh must keep: corners, and input vertices turning by KEEP_ANGLE or more
-    keep_point = disc.is_corner | (disc.is_input_vertex & (np.abs(disc.turning) >= KEEP_ANGLE))
+    keep_point = kept_points(disc)
 
     # 1. patch corners: one vertex per decomposition node
     corner_nodes = sorted({c for p in layout.patterns for c in p.corners})
@@ -213,9 +239,7 @@ def weld(layout: Layout, counts) -> QuadMesh:
     side_anchor: list[tuple] = []  # (dense index, sample index) of honoured anchors
     for side in layout.sides:
         n = int(side_count[side.id])
-        anchors = []
-        if side.boundary:
-            anchors = [k for k, v in enumerate(side.nodes[1:-1], 1) if keep_point[v]]
+        anchors = side_anchors(side, keep_point)
         pts, hit = resample_polyline(side.polyline, n, anchors)
         ids = np.arange(n_vert, n_vert + n - 1)
         n_vert += n - 1
