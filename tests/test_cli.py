@@ -21,7 +21,7 @@ def run(*args):
 def test_rules_check_prints_summary():
     result = run("rules", "check", RULES)
     assert result.exit_code == 0, result.output
-    assert "topology: prune_corner_branch all; rebranch all" in result.output
+    assert "prune_corner_branch all; rebranch all" in result.output
     assert "patching: split_quad_at_feature all" in result.output
 
 

@@ -180,3 +180,13 @@ def test_inner_point_feature_gets_a_fan_of_triangles():
     fan = [p for p in dec.patches if feature in p.corners]
     assert len(fan) == 4 and all(p.n_sides == 3 for p in fan)
     assert [dec.valence(s) for s in dec.singularities()] == [5, 5, 5, 5]
+
+
+def test_close_singularities_are_merged_by_the_rules():
+    """A near-square kite: the discretisation splits the centre junction in two, 0.03 apart; the rule
+    merge_close_singularities makes it one valence-4 junction of four quads."""
+    dec = decompose(domain_from_dict({"outer": [[10, 0], [0, 10], [-11.25, 0], [0, -11.25]]}), 0.02)
+    assert len(dec.skeleton.singularities()) == 2
+    assert [dec.valence(s) for s in dec.singularities()] == [4]
+    assert Counter(p.n_sides for p in dec.patches) == {4: 4}
+    assert Counter(step["rule"] for step in dec.trace)["merge_close_singularities"] == 1

@@ -27,9 +27,8 @@ from vaultgram.meshes import corner_arrays
 # the L-shape and multiple_lobes, whose decompositions have one more valence-5 singularity than a
 # boundary without singularities allows.
 PASSING = ["l_shape", "quad_with_hole", "square_point_loads", "british_museum_map", "mexico_airport",
-           "rv_lips_pattern", "rv_pillow_pattern", "rv_quad_pattern", "rv_ring_pattern"]
+           "rv_lips_pattern", "rv_pillow_pattern", "rv_quad_pattern", "rv_ring_pattern", "armadillo_vault_plan"]
 FAILING = {
-    "armadillo_vault_plan": "2 boundary singularities where the index theorem forces none",
     "hiroshi_senju_museum": "6 boundary singularities for 2 forced (a corridor one face wide); an inverted "
                             "face where a thin patch wraps the bean-shaped hole",
     "multiple_lobes": "a degenerate face (scaled Jacobian 1e-5) next to the forced boundary singularity",
@@ -320,10 +319,9 @@ def test_random_domains_mesh_or_fail_clearly(domain, fraction):
     # boundary singularities are not asserted here: see test_near_symmetric_kite
 
 
-@pytest.mark.xfail(strict=True, reason="two singularities 0.03 apart make two sliver triangles whose poles "
-                   "are smooth boundary points; needs a rule merging singularities closer than the spacing")
 def test_near_symmetric_kite():
-    """Found by hypothesis: a near-square kite decomposes into 4 quads and 2 sliver triangles."""
+    """Found by hypothesis: two singularities 0.03 apart made two sliver triangles; the topology rule
+    merge_close_singularities now makes them one junction of four quads."""
     domain = domain_from_dict({"outer": [[10, 0], [0, 10], [-11.25, 0], [0, -11.25]]})
     stats = mesh_stats(mesh_domain(domain, target_length=0.03 * domain.diagonal), domain)
     assert stats["min_scaled_jacobian"] > 0

@@ -174,7 +174,8 @@ def decomposition_graph(sk: Skeleton, rulebook: Rulebook) -> HostGraph:
             node_of[node.id] = int(node.point)
         else:  # a singularity, or the centre cell of a domain without corners and holes
             dual = node.dual if node.kind == "singularity" else tuple(sk.triangulation.triangles[node.face])
-            s = g.add_node("Singularity", {"pos": tuple(node.pos)})
+            radius = float(sk.triangulation.cell_radii[node.cell])
+            s = g.add_node("Singularity", {"pos": tuple(node.pos), "radius": radius})
             node_of[node.id] = s
             for p in dual:
                 g.add_edge("Dual", s, int(p))
@@ -215,7 +216,7 @@ def _add_loop_vertex(g: HostGraph, sk: Skeleton, poly: np.ndarray, faces, i: int
     rel = tri.points[verts] - p
     side = np.sign(d[0] * rel[:, 1] - d[1] * rel[:, 0])
     along = np.abs(rel @ d)
-    n = g.add_node("LoopVertex", {"pos": tuple(p)})
+    n = g.add_node("LoopVertex", {"pos": tuple(p), "radius": float(np.linalg.norm(rel, axis=1).max())})
     for s in (1, -1):
         candidates = np.flatnonzero(side == s)
         if len(candidates) == 0:

@@ -24,6 +24,16 @@ def lerp(p, q, t) -> tuple[float, ...]:
     return tuple(a + (b - a) * t for a, b in zip(p, q))
 
 
+def move_end(polyline, old, new) -> tuple:
+    """``polyline`` with the end point that lies at ``old`` moved to ``new`` (the nearer end)."""
+    points = [tuple(p) for p in polyline]
+    if len(points) < 2:
+        return tuple(points)
+    k = 0 if math.dist(points[0], old) <= math.dist(points[-1], old) else -1
+    points[k] = tuple(new)
+    return tuple(points)
+
+
 def angle_between(p, centre, q) -> float:
     """The angle p-centre-q in degrees, in [0, 180]."""
     a = math.atan2(p[1] - centre[1], p[0] - centre[0])
@@ -85,6 +95,7 @@ def vault_functions() -> Functions:
     f.register("midpoint", midpoint, ("vec2", "vec2"), "vec2")
     f.register("lerp", lerp, ("vec2", "vec2", "number"), "vec2")
     f.register("angle_between", angle_between, ("vec2", "vec2", "vec2"), "float")
+    f.register("move_end", move_end, ("list", "vec2", "vec2"), "list")
     f.register("curve_side", curve_side, ("node",), "int", uses_graph=True, local=False)
     f.register("curve_neighbours", curve_neighbours, ("node", "node"), "bool", uses_graph=True, local=False)
     f.register("patch_corner", patch_corner, ("node", "int"), "node", uses_graph=True, local=False)
