@@ -50,8 +50,3 @@ def faces(graph: HostGraph, edge_types: Iterable[str]) -> list[list[HalfEdge]]:
                 he = (nxt, v)
             out.append(face)
     return out
-
-
-def face_nodes(graph: HostGraph, face: list[HalfEdge]) -> list[int]:
-    """The nodes a face visits, in order (the start node of each half-edge)."""
-    return [u for _, u in face]

@@ -109,9 +109,6 @@ class TypeSchema:
     def is_node_type(self, name: str) -> bool:
         return name in self.node_types
 
-    def is_edge_type(self, name: str) -> bool:
-        return name in self.edge_types
-
     def subtypes(self, name: str) -> frozenset[str]:
         """The type and all its descendants (the types a pattern element of this type matches)."""
         return self._subtypes[name]
