@@ -166,7 +166,8 @@ def run_meshes(face_counts) -> None:
 
     domain = load_domain(Path(__file__).resolve().parents[1] / "examples" / "quad_with_hole.json")
     print("\nquad_with_hole meshes (vaultgram mesh, then form_find with zmax 3); times in seconds")
-    head = f"{'faces':>8} {'verts':>7} {'form':>7} {'horiz':>7} {'vert':>7} {'total':>7} {'h_it':>5} {'v_it':>5} {'angle(deg)':>10}"
+    head = (f"{'faces':>8} {'verts':>7} {'form':>7} {'relax':>7} {'force':>7} {'horiz':>7} {'vert':>7} "
+            f"{'total':>7} {'h_it':>5} {'v_it':>5} {'angle(deg)':>10} {'min q':>8}")
     print(head)
     print("-" * len(head))
     for faces in face_counts:
@@ -174,9 +175,12 @@ def run_meshes(face_counts) -> None:
         supports = support_vertices(mesh.vertices, mesh.faces, None, domain)
         tn = form_find(mesh.vertices, mesh.faces, supports, zmax=3.0)
         t, sm = tn.summary["timings"], tn.summary
-        print(f"{len(mesh.faces):>8} {len(mesh.vertices):>7} {t['form']:>7.3f} {t['horizontal']:>7.3f} "
-              f"{t['vertical']:>7.3f} {t['total']:>7.3f} {sm['horizontal_iterations']:>5} "
-              f"{sm['vertical_iterations']:>5} {sm['max_angle_deg']:>10.2e}", flush=True)
+        act = tn.form.active
+        qrel = tn.q[act].min() / np.median(tn.q[act])
+        print(f"{len(mesh.faces):>8} {len(mesh.vertices):>7} {t['form']:>7.3f} {t['relax']:>7.3f} {t['force']:>7.3f} "
+              f"{t['horizontal']:>7.3f} {t['vertical']:>7.3f} {t['total']:>7.3f} {sm['horizontal_iterations']:>5} "
+              f"{sm['vertical_iterations']:>5} {sm['max_angle_deg']:>10.2e} {qrel:>8.1e}", flush=True)
+    print("min q = smallest force density / median (all q > 0: compression only)")
 
 
 def parse_args(argv):
@@ -187,9 +191,9 @@ def parse_args(argv):
                    help="largest n on which compas_tna is run (default 100; n = 200 takes minutes)")
     p.add_argument("--no-peer", action="store_true", help="do not run compas_tna even if importable")
     p.add_argument("--no-meshes", action="store_true", help="skip the quad_with_hole meshes")
-    p.add_argument("--mesh-faces", type=int, nargs="+", default=[1_000, 10_000],
-                   help="approximate face counts of the quad_with_hole meshes (10^5 takes minutes: the "
-                        "parallelisation needs many iterations on open holes)")
+    p.add_argument("--mesh-faces", type=int, nargs="+", default=[1_000, 10_000, 100_000],
+                   help="approximate face counts of the quad_with_hole meshes (default 10^3, 10^4, 10^5; "
+                        "10^5 takes about 10 s to mesh and form-find)")
     p.add_argument("--peer-horizontal", choices=("nodal", "sparse"), default="nodal",
                    help="compas_tna horizontal solver: horizontal_nodal_numpy (default) or horizontal_numpy")
     p.add_argument("--peer-tight", action="store_true",

@@ -187,3 +187,43 @@ def test_deterministic():
     for name in ("vertices", "q", "forces", "loads", "reactions", "edges"):
         assert np.array_equal(getattr(a, name), getattr(b, name)), name
     assert np.array_equal(a.force.xy, b.force.xy)
+
+
+def test_weighted_fit_with_unit_weight_is_the_plain_fit():
+    from vaultgram.forcediagram import PinnedLaplacian, WeightedFit
+
+    v, f, outer = holed_grid(10, 3, 7)
+    form = form_diagram(v, f, supports=outer)
+    force = force_diagram(form)
+    rng = np.random.default_rng(0)
+    t = rng.normal(size=(force.n_edges, 2))
+    frame = rng.normal(size=(force.n_edges, 2))
+    frame /= np.linalg.norm(frame, axis=1)[:, None]
+    x0 = rng.normal(size=(force.n_vertices, 2))
+    plain = PinnedLaplacian(force.C, force.pins).solve(t, x0)
+    assert np.allclose(WeightedFit(force.C, force.pins, frame, 1.0).solve(t, x0), plain, atol=1e-10)
+    # with mu < 1 it minimises the weighted objective: its gradient vanishes at the free vertices
+    mu = 0.01
+    x = WeightedFit(force.C, force.pins, frame, mu).solve(t, x0)
+    assert np.array_equal(x[force.pins], x0[force.pins])
+    r = force.C @ x - t
+    n = np.column_stack([-frame[:, 1], frame[:, 0]])
+    wr = n * (n * r).sum(1)[:, None] + mu * frame * (frame * r).sum(1)[:, None]
+    grad = force.C.T @ wr
+    free = np.setdiff1d(np.arange(force.n_vertices), force.pins)
+    assert np.abs(grad[free]).max() < 1e-9
+
+
+def test_weighted_accelerated_iteration_keeps_the_guarantees_in_fewer_iterations():
+    """Default (mu = 0.01, Anderson 5) and the plain compas_tna update reach the same stopping test."""
+    v, f, outer = holed_grid(24, 8, 16)
+    v[:, :2] += 0.02 * np.sin(v[:, [1, 0]])         # break the symmetry
+    form = relax_openings(form_diagram(v, f, supports=outer), 0.1)
+    fast = horizontal(form)
+    plain = horizontal(form, length_weight=1.0, anderson=0)   # stalls here; the LP rescue finishes it
+    assert fast.method == "parallelisation"
+    for h in (fast, plain):
+        assert h.converged and h.max_angle < 0.5
+        assert np.all(h.q[form.active] > 0)
+    assert fast.iterations < plain.iterations
+    assert np.array_equal(fast.form.xy, form.xy)           # alpha = 100 keeps the plan

@@ -79,10 +79,14 @@ def test_straight_open_edges_have_no_compression_solution():
 def test_horizontal_iteration_cap():
     v, f, outer = holed()
     form = relax_openings(form_diagram(v, f, supports=outer), 0.1)
+    # the plain (compas_tna) fit: slow on openings
     with pytest.raises(ConvergenceError, match="did not converge") as info:
-        horizontal(form, kmax=3, rescue=False)
+        horizontal(form, kmax=3, rescue=False, length_weight=1.0, anderson=0)
     assert info.value.result.iterations == 3
     assert info.value.result.max_angle > 0.5
+    # the weighted, accelerated default: the cap and a tight tolerance still give a clear error
+    with pytest.raises(ConvergenceError, match=r"max angle deviation .* > 0.0001 deg after 2 iterations"):
+        horizontal(form, kmax=2, tol_deg=1e-4, rescue=False)
 
 
 def test_vertical_iteration_cap_and_bad_q():
@@ -115,3 +119,69 @@ def test_single_support_cannot_hold_a_strip():
         horizontal(form_diagram(v, f, supports=[grid_index(0, 0, 3)]))
     with pytest.raises(FormFindingError, match="collapsed"):
         form_find(v, f, supports=[grid_index(0, 0, 3)])
+
+
+# ---- the issue's bad-input list through the command line: one readable line, exit code 2 -------------
+
+def _cli_formfind(tmp_path, v, f, supports, *extra):
+    import json
+
+    from click.testing import CliRunner
+
+    from vaultgram.cli import main
+
+    mesh = tmp_path / "mesh.json"
+    mesh.write_text(json.dumps({"vertices": np.asarray(v)[:, :2].tolist(), "faces": [list(x) for x in f],
+                                "supports": [int(i) for i in supports]}))
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["formfind", str(mesh), "--out", str(out), *extra])
+    assert result.exit_code == 2, result.output
+    assert "Traceback" not in result.output and not out.exists()
+    return result.output
+
+
+def test_cli_no_supports(tmp_path):
+    v, f = grid_mesh(3)
+    assert "support" in _cli_formfind(tmp_path, v, f, [])
+
+
+def test_cli_unsupported_island(tmp_path):
+    v1, f1 = grid_mesh(3)
+    v2, f2 = grid_mesh(3, origin=(10.0, 0.0))
+    v = np.vstack([v1, v2])
+    f = f1 + [tuple(i + len(v1) for i in face) for face in f2]
+    sup = [i for i in range(len(v1)) if v1[i, 0] in (0, 3) or v1[i, 1] in (0, 3)]
+    assert "unsupported island: 16 vertices" in _cli_formfind(tmp_path, v, f, sup)
+
+
+def test_cli_no_compression_only_solution(tmp_path):
+    v, f = grid_mesh(3, 1)
+    assert "collapsed" in _cli_formfind(tmp_path, v, f, [grid_index(0, 0, 3)])
+
+
+def test_cli_tolerance_below_what_the_form_allows(tmp_path):
+    """A meshed pattern is only approximately balanceable (angle floor ~0.01 deg): 1e-6 deg is not met."""
+    from click.testing import CliRunner
+    from paths import EXAMPLES
+
+    from vaultgram.cli import main
+
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["formfind", str(EXAMPLES / "quad_with_hole.json"), "--out", str(out),
+                                       "--tol-deg", "1e-6"])
+    assert result.exit_code == 2, result.output
+    assert "stalled at a max angle deviation" in result.output and "> 1e-06 deg" in result.output
+    assert "raise tol_deg" in result.output and "Traceback" not in result.output and not out.exists()
+
+
+def test_no_compression_only_names_flipped_edges_with_default_solver():
+    """The weighted, accelerated iteration reports flipped edges, their angles and the LP proof."""
+    v, f, outer = holed()
+    form = form_diagram(v, f, supports=outer)
+    with pytest.raises(HorizontalEquilibriumError, match=r"checked exactly by linear programming.*flipped") as info:
+        horizontal(form)
+    assert all(a > 0 for a in info.value.angles) and len(info.value.edges) == len(info.value.angles)
+    # without the LP (too large, or rescue=False) the failure is still reported, marked as not checked
+    with pytest.raises((HorizontalEquilibriumError, ConvergenceError)) as info:
+        horizontal(form, lp_max_edges=0)
+    assert "not checked exactly" in str(info.value) or "did not converge" in str(info.value)

@@ -30,7 +30,7 @@ from scipy.sparse.linalg import splu
 from vaultgram.errors import FormFindingError
 from vaultgram.formdiagram import FormDiagram, connectivity_matrix
 
-__all__ = ["ForceDiagram", "force_diagram", "PinnedLaplacian"]
+__all__ = ["ForceDiagram", "force_diagram", "PinnedLaplacian", "WeightedFit"]
 
 
 class PinnedLaplacian:
@@ -62,6 +62,65 @@ class PinnedLaplacian:
         out = np.array(x, dtype=float, copy=True)
         rhs = self.CuT @ (t - self.Cp @ x[self.pinned])
         out[self.unpinned] = self.lu.solve(rhs)
+        return out
+
+
+class WeightedFit:
+    """Factorised weighted least-squares fit of a diagram's edge vectors, some vertices held fixed.
+
+    Solves ``min sum_e (C_e x - t_e)^T W_e (C_e x - t_e)`` over the unpinned vertices for many targets
+    ``t`` (k, 2), with the per-edge weight ``W_e = n_e n_e^T + mu f_e f_e^T`` in a fixed frame: ``f_e`` a
+    unit direction (the edge's target direction), ``n_e`` its normal. A deviation *across* the
+    direction costs ``1 / mu`` times more than one *along* it (a change of length); ``mu = 1`` is
+    the plain fit of :class:`PinnedLaplacian`. x and y are coupled, so the unknowns are interleaved
+    per vertex and ordered by the minimum-degree ordering of the graph Laplacian ``C^T C`` (the
+    2 x 2 block pattern keeps that ordering good), then factorised once without pivoting (the
+    matrix is symmetric positive definite when every component has a pinned vertex).
+    """
+
+    def __init__(self, C: sp.csr_matrix, pinned: np.ndarray, frame: np.ndarray, mu: float):
+        n = C.shape[1]
+        mask = np.zeros(n, dtype=bool)
+        mask[pinned] = True
+        self.pinned = np.flatnonzero(mask)
+        self.unpinned = np.flatnonzero(~mask)
+        Cu = C[:, self.unpinned].tocsc()
+        self.Cp = C[:, self.pinned].tocsc()
+        fx, fy = frame[:, 0], frame[:, 1]
+        # W = n n^T + mu f f^T with n = (-fy, fx)
+        self.w = (fy * fy + mu * fx * fx, -fx * fy + mu * fx * fy, fx * fx + mu * fy * fy)
+        wxx, wxy, wyy = (sp.diags(w) for w in self.w)
+        A = sp.bmat([[Cu.T @ wxx @ Cu, Cu.T @ wxy @ Cu], [Cu.T @ wxy @ Cu, Cu.T @ wyy @ Cu]]).tocsr()
+        N = len(self.unpinned)
+        try:
+            lap = splu((Cu.T @ Cu).tocsc(), permc_spec="MMD_AT_PLUS_A")
+        except RuntimeError as exc:  # pragma: no cover - guarded by connectivity checks
+            raise FormFindingError(f"singular least-squares system ({exc}); a part of the diagram is not connected to a fixed vertex") from None
+        order = np.argsort(lap.perm_c)
+        P = np.empty(2 * N, dtype=np.int64)
+        P[0::2] = order
+        P[1::2] = order + N
+        self.P = P
+        try:
+            self.lu = splu(A[P][:, P].tocsc(), permc_spec="NATURAL", diag_pivot_thresh=0.0,
+                           options=dict(SymmetricMode=True))
+        except RuntimeError as exc:  # pragma: no cover
+            raise FormFindingError(f"singular weighted least-squares system ({exc})") from None
+        self.CuT = Cu.T.tocsr()
+        self.N = N
+
+    def solve(self, t: np.ndarray, x: np.ndarray) -> np.ndarray:
+        """New positions: pinned rows of ``x`` kept, others solving the weighted least-squares fit."""
+        out = np.array(x, dtype=float, copy=True)
+        r = t - self.Cp @ x[self.pinned]
+        wxx, wxy, wyy = self.w
+        bx = self.CuT @ (wxx * r[:, 0] + wxy * r[:, 1])
+        by = self.CuT @ (wxy * r[:, 0] + wyy * r[:, 1])
+        b = np.concatenate([bx, by])[self.P]
+        z = np.empty(2 * self.N)
+        z[self.P] = self.lu.solve(b)
+        out[self.unpinned, 0] = z[:self.N]
+        out[self.unpinned, 1] = z[self.N:]
         return out
 
 
