@@ -50,6 +50,7 @@ __all__ = [
     "load_densities",
     "densities_from_dict",
     "polyline_length",
+    "curve_min_counts",
 ]
 
 #: Default global target edge length, as a fraction of the bounding-box diagonal of the domain.
@@ -83,6 +84,9 @@ class Side:
         The ring of a boundary side (0 outer, ``1 + k`` hole ``k``), else -1.
     length : float
         Arc length of the polyline.
+    curve : int
+        The curve feature a side made of ``Curve`` edges lies on (index into
+        ``Discretisation.curves``, §4.2), else -1.
     """
 
     id: int
@@ -93,6 +97,7 @@ class Side:
     boundary: bool
     ring: int
     length: float
+    curve: int = -1
 
 
 @dataclass(frozen=True, eq=False)
@@ -234,7 +239,8 @@ def choose_pole(decomposition: Decomposition, patch) -> int:
     takes ``n`` faces from this patch instead of 1, which at a reflex corner (corner of two more
     patches, regular with 3 faces) or a smooth stretch (regular with 2) makes it irregular for any
     ``n >= 2``. The interior pole is a singular node of the decomposition, where the acceptance
-    allows singularities. Among two non-naked (or three naked) corners the one with the smallest
+    allows singularities. Points inside a curve feature count as naked (the curve is a cut, and no
+    singular vertex may lie on it). Among two non-naked (or three naked) corners the one with the smallest
     angle: the pole's fan of triangles splits it least badly.
     """
     graph = decomposition.graph
@@ -242,12 +248,20 @@ def choose_pole(decomposition: Decomposition, patch) -> int:
     feature = [k for k, c in enumerate(corners) if is_feature_node(decomposition, c)]
     if len(feature) == 1:
         return feature[0]
-    inner = [k for k, c in enumerate(corners) if not _is_boundary_node(graph, c)]
+    # a point inside a curve feature is naked too: the curve cuts the domain (§4.2), and a pole there
+    # would be a singular vertex on the curve
+    on_cut = [graph.node_type(c) == "CurvePoint" for c in corners]
+    inner = [k for k, c in enumerate(corners) if not _is_boundary_node(graph, c) and not on_cut[k]]
     if len(inner) == 1:
         return inner[0]
     angles = [_corner_angle(patch.sides[k - 1], patch.sides[k]) for k in range(3)]
     candidates = inner or [0, 1, 2]
     return min(candidates, key=lambda k: angles[k])
+
+
+def _curve_of_segment(disc) -> dict:
+    """``{frozenset((a, b)): c}`` for every segment ``a-b`` of curve feature ``c`` (point indices)."""
+    return {frozenset((int(a), int(b))): c for c, pts in enumerate(disc.curves) for a, b in zip(pts[:-1], pts[1:])}
 
 
 class _UnionFind:
@@ -282,6 +296,7 @@ def edge_groups(decomposition: Decomposition) -> Layout:
     (12, 6)
     """
     graph = decomposition.graph
+    curve_of = _curve_of_segment(decomposition.disc)
     side_of_key: dict[frozenset, int] = {}
     sides: list[Side] = []
     patterns: list[PatchPattern] = []
@@ -298,8 +313,9 @@ def edge_groups(decomposition: Decomposition) -> Layout:
                 boundary = types == {"Boundary"}
                 ring = int(graph.get(start, "ring")) if boundary else -1
                 poly = np.asarray(patch.sides[i], dtype=float)
+                curve = curve_of.get(frozenset(nodes[:2]), -1) if types == {"Curve"} else -1
                 side_of_key[key] = len(sides)
-                sides.append(Side(len(sides), start, end, poly, nodes, boundary, ring, polyline_length(poly)))
+                sides.append(Side(len(sides), start, end, poly, nodes, boundary, ring, polyline_length(poly), curve))
                 refs.append((side_of_key[key], False))
             else:
                 s = sides[side_of_key[key]]
@@ -396,7 +412,24 @@ def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length:
         else:
             counts[g.id] = max(int(spec.min_count), int(round(g.length(spec.length_mode) / v)))
             counts[g.id] = max(counts[g.id], _chord_count(layout, g, counts[g.id], CHORD_TOLERANCE * diag))
-    return counts
+    return np.maximum(counts, curve_min_counts(layout))
+
+
+def curve_min_counts(layout: Layout) -> np.ndarray:
+    """Least number of subdivisions of each group that keeps every vertex of the input curve features
+    (§4.2) as a mesh vertex: one more than the number of input vertices inside each curve side of the
+    group (:func:`vaultgram.weld.side_anchors`), 1 for groups without curve sides. Applied to every
+    count, a designer's too: with fewer, the mesh edges would cut the curve's bends."""
+    from vaultgram.weld import kept_points, side_anchors
+
+    disc = layout.decomposition.disc
+    keep = kept_points(disc)
+    need = np.ones(layout.n_groups, dtype=np.int64)
+    for side in layout.sides:
+        if side.curve >= 0:
+            g = layout.group_of[side.id]
+            need[g] = max(need[g], len(side_anchors(side, keep, disc)) + 1)
+    return need
 
 
 def _chord_count(layout: Layout, group: EdgeGroup, count: int, tol: float) -> int:
@@ -411,7 +444,7 @@ def _chord_count(layout: Layout, group: EdgeGroup, count: int, tol: float) -> in
         side = layout.sides[s]
         if not side.boundary or len(side.polyline) <= 2:
             continue
-        anchors = side_anchors(side, keep)
+        anchors = side_anchors(side, keep, layout.decomposition.disc)
         n = best
         while n < CHORD_MAX_FACTOR * max(count, 1):
             pts, _ = resample_polyline(side.polyline, n, anchors)

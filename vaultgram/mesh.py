@@ -31,6 +31,8 @@ from vaultgram.weld import QuadMesh, weld
 
 __all__ = [
     "mesh_domain",
+    "check_feature_spacing",
+    "polyline_hausdorff",
     "mesh_stats",
     "regular_boundary_faces",
     "write_mesh",
@@ -84,6 +86,7 @@ def mesh_domain(
     """
     if smooth < 0:
         raise VaultgramError(f"smoothing iterations must be >= 0, got {smooth}")
+    check_feature_spacing(domain, spacing)
     seconds = {}
     t = time.perf_counter()
     dec = decompose(domain, spacing, rules_dir)
@@ -110,6 +113,87 @@ def mesh_domain(
         "seconds": seconds,
     }
     return dataclasses.replace(mesh, vertices=x, info=info)
+
+
+# --------------------------------------------------------------------------------------------
+# Features against the spacing
+# --------------------------------------------------------------------------------------------
+
+#: Features (§4) must be at least this many discretisation spacings ``h = spacing * diagonal`` from
+#: the boundary and from each other: closer, the Delaunay triangulation has no room for the skeleton
+#: between them and the patches in the gap degenerate.
+FEATURE_CLEARANCE = 1.0
+
+
+def check_feature_spacing(domain: Domain, spacing: float, clearance: float = FEATURE_CLEARANCE) -> None:
+    """Raise a :class:`DomainError` if a feature is too close to the boundary or to another feature
+    for the discretisation spacing (§3.1, §4).
+
+    Inner point features and curve features must be at least ``clearance * h`` (``h = spacing *
+    diagonal``) from the domain's boundary and from each other. What touches on purpose is not
+    measured: boundary point features; a curve's end on the boundary (the curve is measured outside a
+    disc of radius ``2 h`` around it, so that a curve leaving the boundary at 30 degrees or more
+    passes); a point feature on a curve; curves sharing an end point (likewise, outside ``2 h``).
+
+    Raises
+    ------
+    DomainError
+        Naming the features, where they are closest, the distance and the spacing.
+    """
+    import shapely
+
+    from vaultgram.errors import DomainError
+
+    diag = domain.diagonal
+    h = spacing * diag
+    tol = 1e-9 * diag
+    need = clearance * h
+    boundary = domain.polygon().boundary
+    items = []  # (name, geometry measured against others)
+    for i, p in enumerate(np.asarray(domain.points, dtype=float).reshape(-1, 2)):
+        if shapely.distance(shapely.Point(p), boundary) > tol:
+            items.append((f"point feature {i} at {_pt(p)}", shapely.Point(p), ()))
+    for c, curve in enumerate(domain.curves):
+        curve = np.asarray(curve, dtype=float)
+        ends = [e for e in (curve[0], curve[-1]) if shapely.distance(shapely.Point(e), boundary) <= tol]
+        items.append((f"curve feature {c}", shapely.LineString(curve), [shapely.Point(e) for e in ends]))
+    ends_all = [e for _, _, es in items for e in es]
+
+    def trimmed(geom, around):
+        if not around:
+            return geom
+        return shapely.difference(geom, shapely.union_all([e.buffer(2 * h) for e in around]))
+
+    def check(name, geom, other_name, other):
+        if geom.is_empty or other.is_empty:
+            return
+        d = shapely.distance(geom, other)
+        if d < need:
+            a, b = shapely.get_coordinates(shapely.shortest_line(geom, other))
+            raise DomainError(
+                f"{name} is {d:.4g} from {other_name} (closest at {_pt(a)} and {_pt(b)}), less than the "
+                f"spacing {need:.4g} (spacing {spacing:g} of the diagonal {diag:.4g}): move it, or mesh with "
+                f"a spacing below {d / (clearance * diag):.3g}"
+            )
+
+    for name, geom, ends in items:
+        check(name, trimmed(geom, ends), "the boundary", boundary)
+    for k, (name, geom, ends) in enumerate(items):
+        for name2, geom2, ends2 in items[k + 1:]:
+            if isinstance(geom, shapely.Point) and isinstance(geom2, shapely.LineString) \
+                    and shapely.distance(geom, geom2) <= tol:
+                continue  # a point feature on a curve is a point of the curve
+            if isinstance(geom2, shapely.Point) and isinstance(geom, shapely.LineString) \
+                    and shapely.distance(geom2, geom) <= tol:
+                continue
+            shared = [e for e in ends_all if shapely.distance(e, geom) <= tol and shapely.distance(e, geom2) <= tol]
+            if isinstance(geom, shapely.LineString) and isinstance(geom2, shapely.LineString):
+                shared += [shapely.Point(q) for q in shapely.get_coordinates(shapely.intersection(geom, geom2))]
+            check(name2, trimmed(geom2, shared), name, trimmed(geom, shared))
+
+
+def _pt(p) -> str:
+    return f"({p[0]:.6g}, {p[1]:.6g})"
 
 
 # --------------------------------------------------------------------------------------------
@@ -283,7 +367,82 @@ def mesh_stats(mesh: QuadMesh, domain: Domain | None = None) -> dict:
         d = _boundary_distance(x, loops, domain)
         stats["boundary_distance"] = d
         stats["boundary_distance_relative"] = d / domain.diagonal
+    stats.update(_feature_stats(mesh, x, valence, nfaces, on_boundary, low, high, und, nv, domain))
     return stats
+
+
+def _feature_stats(mesh: QuadMesh, x, valence, nfaces, on_boundary, low, high, und, nv, domain) -> dict:
+    """The §4 checks: point features and curve extremities are poles (a valence other than 4 inside,
+    a number of faces other than the regular one on the boundary); curve features are chains of mesh
+    edges (Hausdorff distance to the curve) without singular vertices inside."""
+    n = len(x)
+    curve, ext = mesh.curve_labels()
+    feature = np.asarray(mesh.feature, dtype=bool) if len(mesh.feature) == n else np.zeros(n, dtype=bool)
+    irregular = np.where(on_boundary, (nfaces < low) | (nfaces > high), valence != 4)
+    fp = np.flatnonzero(feature)
+    ex = np.flatnonzero(ext)
+    diag = domain.diagonal if domain is not None else _diagonal(x)
+    lines = [np.asarray(c, dtype=float) for c in domain.curves] if domain is not None else list(mesh.curve_lines)
+    # vertices inside a curve: on a curve, not its extremity, not on the boundary, not at a bend of
+    # the curve sharper than the corner angle (the curve cuts the domain: a corner on either side)
+    bend = np.zeros(n, dtype=bool)
+    if lines:
+        from scipy.spatial import cKDTree
+
+        from vaultgram.discretise import turning_angles
+
+        sharp = [ln[1:-1][np.abs(turning_angles(ln, closed=False)[1:-1]) > CORNER_ANGLE] for ln in lines if len(ln) > 2]
+        sharp = np.vstack(sharp) if sharp else np.zeros((0, 2))
+        if len(sharp):
+            d, _ = cKDTree(sharp).query(x)
+            bend = (d <= 1e-9 * diag) & (curve >= 0)
+    inside = np.flatnonzero((curve >= 0) & ~ext & ~on_boundary & ~bend)
+    sing_inside = inside[valence[inside] != 4]
+    edges = set(und.tolist())
+    hausdorff, continuous = [], True
+    for c, chain in enumerate(mesh.curves):
+        chain = np.asarray(chain, dtype=np.int64)
+        if len(chain) < 2 or c >= len(lines):
+            hausdorff.append(math.inf)
+            continuous = False
+            continue
+        a, b = np.minimum(chain[:-1], chain[1:]), np.maximum(chain[:-1], chain[1:])
+        continuous &= all(int(k) in edges for k in a * nv + b)
+        hausdorff.append(polyline_hausdorff(x[chain], lines[c]))
+    return {
+        "feature_points": len(fp),
+        "feature_points_pole": int(irregular[fp].sum()),
+        "feature_point_valences": valence[fp].tolist(),
+        "curve_extremities": len(ex),
+        "curve_extremities_pole": int(irregular[ex].sum()),
+        "curve_interior_singular": len(sing_inside),
+        "curve_interior_singular_vertices": sing_inside.tolist(),
+        "curve_bends": int(bend.sum()),
+        "curve_chains_continuous": bool(continuous),
+        "curve_hausdorff": [float(h) for h in hausdorff],
+        "curve_hausdorff_relative": float(max(hausdorff) / diag) if hausdorff else 0.0,
+    }
+
+
+def _diagonal(x: np.ndarray) -> float:
+    return float(np.hypot(*(x.max(axis=0) - x.min(axis=0)))) if len(x) else 1.0
+
+
+def polyline_hausdorff(a: np.ndarray, b: np.ndarray, samples: int = 8) -> float:
+    """Hausdorff distance between two polylines: the larger of the two directed distances, each the
+    largest distance from a point of one (its vertices and ``samples - 1`` points inside each segment)
+    to the other polyline."""
+    import shapely
+
+    def dense(p):
+        p = np.asarray(p, dtype=float)[:, :2]
+        t = np.linspace(0.0, 1.0, samples, endpoint=False)[None, :, None]
+        return np.vstack([(p[:-1, None, :] * (1 - t) + p[1:, None, :] * t).reshape(-1, 2), p[-1:]])
+
+    la, lb = shapely.LineString(np.asarray(a)[:, :2]), shapely.LineString(np.asarray(b)[:, :2])
+    d1 = shapely.distance(shapely.points(dense(a)), lb).max()
+    d2 = shapely.distance(shapely.points(dense(b)), la).max()
+    return float(max(d1, d2))
 
 
 def format_stats(stats: dict) -> str:
@@ -319,6 +478,8 @@ def mesh_to_json(mesh: QuadMesh) -> dict:
         "turning": [[int(k), float(mesh.turning[k])] for k in tv],
         "node": mesh.node.tolist(),
         "face_patch": mesh.face_patch.tolist(),
+        "curves": [{"vertices": np.asarray(c).tolist(), "polyline": np.asarray(p).tolist()}
+                   for c, p in zip(mesh.curves, mesh.curve_lines)],
         "edge_groups": list(mesh.groups),
         "info": {k: v for k, v in mesh.info.items() if k != "seconds"},  # timings vary run to run
     }
@@ -352,9 +513,18 @@ def mesh_from_json(data: dict, where: str = "mesh") -> QuadMesh:
     ring = np.asarray(data.get("ring", [-1] * n), dtype=np.int64)
     node = np.asarray(data.get("node", [-1] * n), dtype=np.int64)
     fp = np.asarray(data.get("face_patch", [-1] * len(faces)), dtype=np.int64)
+    try:
+        chains = tuple(np.asarray(c["vertices"], dtype=np.int64) for c in data.get("curves", []))
+        lines = tuple(np.asarray(c["polyline"], dtype=float).reshape(-1, 2) for c in data.get("curves", []))
+    except (KeyError, TypeError, ValueError) as exc:
+        raise VaultgramError(f"{where}: 'curves' must be a list of {{'vertices', 'polyline'}}: {exc}") from None
+    curve = np.full(n, -1, dtype=np.int64)
+    for c, chain in enumerate(chains):
+        curve[chain] = c
     return QuadMesh(x[:, :2].copy(), faces, fp, mask("boundary"), ring, corner, turning, mask("fixed"),
                     mask("pole"), mask("feature"), node, mask("singular_node"),
-                    tuple(data.get("edge_groups", ())), (), dict(data.get("info", {})))
+                    tuple(data.get("edge_groups", ())), (), dict(data.get("info", {})),
+                    curve, mask("curve_extremity"), chains, lines)
 
 
 def write_mesh(mesh: QuadMesh, out_dir: str | Path) -> tuple[Path, Path]:

@@ -70,7 +70,7 @@ class QuadMesh:
     pole : ndarray (n,) bool
         Poles of three-sided patches.
     feature : ndarray (n,) bool
-        Feature points (§4.1).
+        Point features (§4.1), inner and on the boundary; curve extremities are in ``extremity``.
     node : ndarray (n,) int
         The decomposition-graph node a vertex stands for (patch corners), else -1.
     singular : ndarray (n,) bool
@@ -78,9 +78,17 @@ class QuadMesh:
     groups : tuple of dict
         The edge groups: ``{"id", "count", "sides", "mean_length", "max_length"}``.
     constraints : tuple of SlideConstraint
-        Boundary stretches between fixed vertices, along which their vertices slide.
+        Boundary and curve stretches between fixed vertices, along which their vertices slide.
     info : dict
         Free-form facts about the run (timings per stage, counts).
+    curve : ndarray (n,) int
+        The curve feature a vertex lies on (§4.2), else -1 (empty: no curve labels).
+    extremity : ndarray (n,) bool
+        Curve feature extremities off the boundary (§4.2; also ``feature`` and ``fixed``).
+    curves : tuple of ndarray
+        For each curve feature, its mesh vertices in order along it: a chain of mesh edges.
+    curve_lines : tuple of ndarray (k, 2)
+        For each curve feature, its polyline (the discretised input curve).
     """
 
     vertices: np.ndarray
@@ -98,10 +106,21 @@ class QuadMesh:
     groups: tuple = ()
     constraints: tuple = ()
     info: dict = field(default_factory=dict)
+    curve: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    extremity: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool))
+    curves: tuple = ()
+    curve_lines: tuple = ()
 
     @property
     def n_vertices(self) -> int:
         return len(self.vertices)
+
+    def curve_labels(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(curve, extremity)`` as full per-vertex arrays (-1 / False where the mesh has no labels)."""
+        n = len(self.vertices)
+        curve = np.asarray(self.curve, dtype=np.int64) if len(self.curve) == n else np.full(n, -1, dtype=np.int64)
+        ext = np.asarray(self.extremity, dtype=bool) if len(self.extremity) == n else np.zeros(n, dtype=bool)
+        return curve, ext
 
     @property
     def n_faces(self) -> int:
@@ -122,6 +141,8 @@ class QuadMesh:
             "fixed": np.flatnonzero(self.fixed).tolist(),
             "pole": np.flatnonzero(self.pole).tolist(),
             "feature": np.flatnonzero(self.feature).tolist(),
+            "curve": np.flatnonzero(self.curve_labels()[0] >= 0).tolist(),
+            "curve_extremity": np.flatnonzero(self.curve_labels()[1]).tolist(),
             "singular_node": np.flatnonzero(self.singular).tolist(),
         }
 
@@ -173,16 +194,26 @@ def resample_polyline(poly: np.ndarray, n: int, anchors=()) -> tuple[np.ndarray,
 
 
 def kept_points(disc) -> np.ndarray:
-    """Domain points the mesh must keep (fixed vertices): corners, and input vertices of the rings
-    turning by :data:`KEEP_ANGLE` or more."""
-    return disc.is_corner | (disc.is_input_vertex & (np.abs(disc.turning) >= KEEP_ANGLE))
+    """Domain points the mesh must keep (fixed vertices): corners, point features, and input vertices
+    of the rings turning by :data:`KEEP_ANGLE` or more."""
+    keep = disc.is_corner | (disc.is_input_vertex & (np.abs(disc.turning) >= KEEP_ANGLE))
+    keep[np.asarray(disc.feature_points, dtype=np.int64)] = True  # boundary point features (§4.1)
+    return keep
 
 
-def side_anchors(side, keep_point) -> list[int]:
-    """Indices of a boundary side's polyline points that should be mesh vertices (see :func:`kept_points`)."""
-    if not side.boundary:
-        return []
-    return [k for k, v in enumerate(side.nodes[1:-1], 1) if keep_point[v]]
+def side_anchors(side, keep_point, disc=None) -> list[int]:
+    """Indices of a side's polyline points that should be mesh vertices.
+
+    On a boundary side the points of :func:`kept_points`; on a curve side (``side.curve >= 0``,
+    given ``disc``) every vertex of the input curve feature, so that the chain of mesh edges along the
+    curve passes through all its bends (§4.2: the curve is captured exactly, not by chords).
+    """
+    if side.boundary:
+        return [k for k, v in enumerate(side.nodes[1:-1], 1) if keep_point[v]]
+    if disc is not None and getattr(side, "curve", -1) >= 0 and len(side.nodes) == len(side.polyline):
+        return [k for k, v in enumerate(side.nodes[1:-1], 1)
+                if 0 <= v < disc.n_points and disc.is_input_vertex[v]]
+    return []
 
 
 def chord_deviation(poly: np.ndarray, samples: np.ndarray) -> float:
@@ -237,16 +268,25 @@ def weld(layout: Layout, counts) -> QuadMesh:
     side_ids: list[np.ndarray] = []
     side_pts: list[np.ndarray] = []
     side_anchor: list[tuple] = []  # (dense index, sample index) of honoured anchors
+    curve_anchor: list[int] = []  # vertices at input vertices of curve features
     for side in layout.sides:
         n = int(side_count[side.id])
-        anchors = side_anchors(side, keep_point)
+        anchors = side_anchors(side, keep_point, disc)
         pts, hit = resample_polyline(side.polyline, n, anchors)
+        if side.curve >= 0 and anchors and not hit:
+            raise VaultgramError(
+                f"curve feature {side.curve}: a side with {len(anchors)} input vertices inside needs at least "
+                f"{len(anchors) + 1} subdivisions, got {n} (see edge_groups.curve_min_counts)"
+            )
         ids = np.arange(n_vert, n_vert + n - 1)
         n_vert += n - 1
         pos.append(pts[1:-1])
         d = np.full(n - 1, -1, dtype=np.int64)
         for a, h in zip(anchors if hit else (), hit):
-            d[h - 1] = side.nodes[a]
+            if side.curve >= 0:
+                curve_anchor.append(ids[h - 1])
+            else:
+                d[h - 1] = side.nodes[a]
         vert_disc.append(d)
         node_arr.append(np.full(n - 1, -1, dtype=np.int64))
         side_ids.append(np.concatenate([[vid_of_node[side.start]], ids, [vid_of_node[side.end]]]))
@@ -312,26 +352,94 @@ def weld(layout: Layout, counts) -> QuadMesh:
     feature = np.zeros(nv, dtype=bool)
     singular = np.zeros(nv, dtype=bool)
     for n, v in vid_of_node.items():
-        feature[v] = is_feature_node(dec, n)
+        feature[v] = is_feature_node(dec, n) and graph.node_type(n) != "CurveExtremity"
         singular[v] = graph.node_type(n) in ("Singularity", "LoopVertex")
         if graph.node_type(n) == "Corner" and corner[v] == 0:
             corner[v] = 1
+    is_fp = np.zeros(disc.n_points, dtype=bool)
+    is_fp[np.asarray(disc.feature_points, dtype=np.int64)] = True
+    feature[on_disc] |= is_fp[vdisc[on_disc]]  # a boundary point feature inside a side (not a corner)
     fixed = (corner != 0) | feature
     fixed[on_disc] |= keep_point[vdisc[on_disc]]
     pole = np.zeros(nv, dtype=bool)
     for pat in layout.patterns:
         if pat.pole is not None:
             pole[vid_of_node[pat.corners[pat.pole]]] = True
+    curve = np.full(nv, -1, dtype=np.int64)
+    for side in layout.sides:
+        if side.curve >= 0:
+            curve[side_ids[side.id]] = side.curve
+    extremity = np.zeros(nv, dtype=bool)
+    for n, v in vid_of_node.items():
+        extremity[v] = graph.node_type(n) == "CurveExtremity"
+    fixed[np.asarray(curve_anchor, dtype=np.int64)] = True
+    for n, v in vid_of_node.items():  # patch corners at input vertices of a curve (its bends)
+        if 0 <= n < disc.n_points and curve[v] >= 0 and disc.is_input_vertex[n]:
+            fixed[v] = True
+    fixed |= extremity  # "point and curve constraints are added" (§4.2, Figure 7d)
+    chains = _curve_chains(layout, side_ids, vid_of_node)
 
     constraints = _boundary_constraints(layout, side_ids, side_anchor, fixed)
+    constraints += _curve_constraints(disc, chains, node, vertices, fixed)
     groups = tuple(
         {"id": g.id, "count": int(counts[g.id]), "sides": len(g.sides),
          "mean_length": g.mean_length, "max_length": g.max_length}
         for g in layout.groups
     )
     seconds = {"coons": t_coons, "weld": time.perf_counter() - t_start - t_coons}
+    curve_lines = tuple(np.asarray(disc.points[c], dtype=float) for c in disc.curves)
     return QuadMesh(vertices, faces, face_patch, boundary, ring, corner, turning, fixed, pole, feature,
-                    node, singular, groups, constraints, {"seconds": seconds})
+                    node, singular, groups, constraints, {"seconds": seconds}, curve, extremity, chains, curve_lines)
+
+
+def _curve_chains(layout: Layout, side_ids, vid_of_node) -> tuple:
+    """For each curve feature, its mesh vertices in order along the curve (the curve sides, joined)."""
+    disc = layout.decomposition.disc
+    out = []
+    for c, pts in enumerate(disc.curves):
+        where = {int(p): k for k, p in enumerate(pts)}
+        pieces = []
+        for side in layout.sides:
+            if side.curve != c:
+                continue
+            a, b = where.get(side.start), where.get(side.end)
+            if a is None or b is None:
+                raise VaultgramError(f"curve feature {c}: a side ends off the curve (internal error)")
+            ids = side_ids[side.id]
+            pieces.append((min(a, b), ids if a < b else ids[::-1]))
+        pieces.sort(key=lambda t: t[0])
+        if not pieces:
+            out.append(np.zeros(0, dtype=np.int64))
+            continue
+        chain = [pieces[0][1]]
+        for _, ids in pieces[1:]:
+            if ids[0] != chain[-1][-1]:
+                raise VaultgramError(f"curve feature {c}: its sides do not join into one chain (internal error)")
+            chain.append(ids[1:])
+        out.append(np.concatenate(chain))
+    return tuple(out)
+
+
+def _curve_constraints(disc, chains, node, vertices, fixed) -> tuple:
+    """Split each curve chain at its fixed vertices (extremities, input vertices of the curve, boundary
+    ends) into stretches that slide on the piece of the curve between them (§4.2, Figure 7d)."""
+    out = []
+    for c, chain in enumerate(chains):
+        if len(chain) < 3:
+            continue
+        line = np.asarray(disc.points[disc.curves[c]], dtype=float)
+        stops = [0] + [k for k in range(1, len(chain) - 1) if fixed[chain[k]]] + [len(chain) - 1]
+        for i, j in zip(stops[:-1], stops[1:]):
+            if j - i < 2:
+                continue
+            a, b = _curve_index(line, vertices[chain[i]]), _curve_index(line, vertices[chain[j]])
+            out.append(SlideConstraint(chain[i + 1:j].copy(), line[min(a, b):max(a, b) + 1], closed=False))
+    return tuple(out)
+
+
+def _curve_index(line: np.ndarray, p: np.ndarray) -> int:
+    """Index of the point of ``line`` at ``p`` (a mesh vertex standing for a curve point)."""
+    return int(np.argmin(np.hypot(*(line - p).T)))
 
 
 def _boundary_constraints(layout: Layout, side_ids, side_anchor, fixed) -> tuple:
