@@ -249,9 +249,8 @@ def test_regression_curve_point_corner_of_three_triangles():
     assert mesh_stats(mesh_domain(domain), domain)["curve_interior_singular"] == 0
 
 
-@pytest.mark.xfail(strict=True, reason="topology: the extremity (0.6, 0.75) is a flat corner of two quads, "
-                                       "no triangle makes it a pole (the Figure 8 split did not apply)")
 def test_regression_extremity_between_two_quads():
+    """The extremity (0.6, 0.75) was a reflex corner of a quad; the Figure 8 rule now splits it."""
     domain = domain_from_dict({"outer": [[0, 0], [6, 0], [6, 6], [0, 6]],
                                "curves": [[[0.6, 0.75], [1.2511297191192472, 0.8318177937840556]]]})
     stats = mesh_stats(mesh_domain(domain), domain)

@@ -24,6 +24,14 @@ def lerp(p, q, t) -> tuple[float, ...]:
     return tuple(a + (b - a) * t for a, b in zip(p, q))
 
 
+def interior_angle(before, corner, after) -> float:
+    """The angle inside a counter-clockwise polygon at ``corner`` (degrees in [0, 360)): the turn from
+    the direction towards the next corner (``after``) to the direction towards the previous one."""
+    a = math.atan2(after[1] - corner[1], after[0] - corner[0])
+    b = math.atan2(before[1] - corner[1], before[0] - corner[0])
+    return math.degrees((b - a) % (2 * math.pi))
+
+
 def move_end(polyline, old, new) -> tuple:
     """``polyline`` with the end point that lies at ``old`` moved to ``new`` (the nearer end)."""
     points = [tuple(p) for p in polyline]
@@ -96,6 +104,7 @@ def vault_functions() -> Functions:
     f.register("lerp", lerp, ("vec2", "vec2", "number"), "vec2")
     f.register("angle_between", angle_between, ("vec2", "vec2", "vec2"), "float")
     f.register("move_end", move_end, ("list", "vec2", "vec2"), "list")
+    f.register("interior_angle", interior_angle, ("vec2", "vec2", "vec2"), "float")
     f.register("curve_side", curve_side, ("node",), "int", uses_graph=True, local=False)
     f.register("curve_neighbours", curve_neighbours, ("node", "node"), "bool", uses_graph=True, local=False)
     f.register("patch_corner", patch_corner, ("node", "int"), "node", uses_graph=True, local=False)
