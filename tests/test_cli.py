@@ -100,3 +100,25 @@ def test_python_dash_m_runs_the_cli(tmp_path):
     done = subprocess.run([sys.executable, "-m", "vaultgram", "rules", "check", str(RULES)],
                           capture_output=True, text=True, cwd=tmp_path)
     assert done.returncode == 0 and "ok:" in done.stdout
+
+
+def test_design_runs_the_whole_pipeline_deterministically(tmp_path):
+    outs = [tmp_path / "a", tmp_path / "b"]
+    for out in outs:
+        result = run("design", EXAMPLES / "fig6_inner_points.json", "--out", out, "--zmax", "3", "--point-load", "2")
+        assert result.exit_code == 0, result.output
+    names = ["decomposition.json", "patches.json", "decomposition.png", "mesh.json", "mesh.obj", "form.json",
+             "force.json", "thrust.json", "thrust.obj", "summary.json"]
+    for name in names:
+        assert (outs[0] / name).read_bytes() == (outs[1] / name).read_bytes(), name
+    summary = json.loads((outs[0] / "summary.json").read_text())
+    assert summary["max_angle_deg"] < 0.5 and abs(summary["reaction_sum"] - summary["total_load"]) < 1e-9 * summary["total_load"]
+
+
+def test_design_failing_stage_writes_nothing(tmp_path):
+    domain = tmp_path / "d.json"
+    domain.write_text(json.dumps({"outer": [[0, 0], [10, 0], [10, 10], [0, 10]],
+                                  "supports": {"polylines": [[[20, 20], [30, 20]]]}}))
+    result = run("design", domain, "--out", tmp_path / "out")
+    assert result.exit_code == 2 and "nothing bears thrust" in result.output
+    assert not (tmp_path / "out").exists()

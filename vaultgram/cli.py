@@ -127,10 +127,15 @@ def decompose_command(
     """Block decomposition of a DOMAIN (JSON, GeoJSON or DXF) into 3- and 4-sided patches (paper 3.1)."""
     from vaultgram.decomposition import decompose
     from vaultgram.domain import load_domain
-    from vaultgram.plot import plot_decomposition
 
     dec = decompose(load_domain(domain_path), spacing, rules_dir, smooth=smooth_branches)
-    out = Path(out_dir)
+    write_decomposition(dec, Path(out_dir), plot)
+
+
+def write_decomposition(dec, out: Path, plot: bool = True) -> None:
+    """decomposition.json, patches.json and (optionally) decomposition.png, with a short report."""
+    from vaultgram.plot import plot_decomposition
+
     write_json(out / "decomposition.json", dec.to_json())
     write_json(out / "patches.json", dec.patches_json())
     if plot:
@@ -165,10 +170,7 @@ def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, 
     Writes form.json, force.json, thrust.json, thrust.obj and summary.json to --out.
     """
     from vaultgram.domain import load_domain
-    from vaultgram.equilibrium import form_find
     from vaultgram.mesh import mesh_domain, mesh_from_json
-    from vaultgram.meshes import write_obj
-    from vaultgram.supports import support_vertices
 
     domain = None
     data = read_json(input_path) if input_path.endswith(".json") else None
@@ -181,20 +183,73 @@ def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, 
         spec = domain.supports
     if supports_path:
         spec = read_json(supports_path)
+    network = thrust_network(mesh, spec, domain, zmax, thickness, density, point_load, tol_deg)
+    write_thrust(network, Path(out_dir))
+
+
+def thrust_network(mesh, spec, domain, zmax, thickness, density, point_load, tol_deg):
+    """Form finding of a mesh with a support specification, point loads at its point features."""
+    from vaultgram.equilibrium import form_find
+    from vaultgram.supports import support_vertices
+
     if isinstance(spec, list):
         spec = {"vertices": spec}
     supports = support_vertices(mesh.vertices, mesh.faces, spec, domain)
     loads = {int(v): point_load for v in np.flatnonzero(mesh.feature)} if point_load else None
-    network = form_find(mesh.vertices, mesh.faces, supports, zmax=zmax, thickness=thickness, density=density,
-                        point_loads=loads, tol_deg=tol_deg)
-    summary = {k: v for k, v in network.summary.items() if k != "timings"}  # timings vary run to run
-    out = Path(out_dir)
+    return form_find(mesh.vertices, mesh.faces, supports, zmax=zmax, thickness=thickness, density=density,
+                     point_loads=loads, tol_deg=tol_deg)
+
+
+def write_thrust(network, out: Path) -> None:
+    """form.json, force.json, thrust.json, thrust.obj and summary.json (no timings: deterministic bytes)."""
+    from vaultgram.meshes import write_obj
+
+    summary = {k: v for k, v in network.summary.items() if k != "timings"}
     write_json(out / "form.json", network.form.to_json())
     write_json(out / "force.json", network.force.to_json())
     write_json(out / "thrust.json", {**network.to_json(), "summary": summary})
     write_obj(out / "thrust.obj", network.vertices, network.faces)
     write_json(out / "summary.json", summary)
     click.echo(network.summary_text())
+
+
+@main.command("design")
+@click.argument("domain_path", metavar="DOMAIN", type=click.Path(dir_okay=False))
+@click.option("--out", "out_dir", required=True, type=click.Path(file_okay=False), help="Output directory.")
+@click.option("--spacing", default=0.02, show_default=True, type=float,
+              help="Boundary spacing as a fraction of the bounding-box diagonal (0.01 to 0.05 usual).")
+@click.option("--rules", "rules_dir", default=None, type=click.Path(file_okay=False, exists=True),
+              help="Directory with topology.vgr (default: the rulebook shipped with vaultgram).")
+@click.option("--target-length", type=float, default=None, help="Target mesh edge length (domain units).")
+@click.option("--smooth", default=None, type=int, help="Laplacian smoothing iterations (default 20).")
+@click.option("--zmax", type=float, default=None, help="Scale the thrust so the highest point reaches this height.")
+@click.option("--thickness", type=float, default=1.0, show_default=True, help="Shell thickness for self-weight.")
+@click.option("--density", type=float, default=1.0, show_default=True, help="Material density (weight per volume).")
+@click.option("--point-load", type=float, default=0.0, show_default=True,
+              help="Vertical load at every point feature.")
+@click.option("--tol-deg", type=float, default=0.5, show_default=True,
+              help="Horizontal equilibrium: largest angle between form and force edges.")
+def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smooth, zmax, thickness, density,
+                   point_load, tol_deg) -> None:
+    """The whole pipeline on a DOMAIN: decomposition (3.1, 4), mesh (3.2) and thrust network (5).
+
+    Everything is computed before anything is written, so a failing stage leaves no output.
+    """
+    from vaultgram.decomposition import decompose
+    from vaultgram.domain import load_domain
+    from vaultgram.mesh import check_feature_spacing, mesh_decomposition, write_mesh
+    from vaultgram.smoothing import DEFAULT_ITERATIONS
+
+    domain = load_domain(domain_path)
+    check_feature_spacing(domain, spacing)
+    dec = decompose(domain, spacing, rules_dir)
+    mesh = mesh_decomposition(dec, target_length, DEFAULT_ITERATIONS if smooth is None else smooth)
+    network = thrust_network(mesh, domain.supports, domain, zmax, thickness, density, point_load, tol_deg)
+    out = Path(out_dir)
+    write_decomposition(dec, out)
+    write_mesh(mesh, out)
+    click.echo(f"mesh: {len(mesh.vertices)} vertices, {len(mesh.faces)} faces; wrote mesh.json and mesh.obj")
+    write_thrust(network, out)
 
 
 @main.command("mesh")

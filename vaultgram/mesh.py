@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from vaultgram.decomposition import decompose
+from vaultgram.decomposition import Decomposition, decompose
 from vaultgram.domain import Domain
 from vaultgram.edge_groups import DensitySpec, edge_groups, group_counts
 from vaultgram.errors import VaultgramError
@@ -84,13 +84,27 @@ def mesh_domain(
     VaultgramError
         From any stage (invalid domain, a patch that is not 3- or 4-sided, bad densities).
     """
-    if smooth < 0:
-        raise VaultgramError(f"smoothing iterations must be >= 0, got {smooth}")
     check_feature_spacing(domain, spacing)
-    seconds = {}
     t = time.perf_counter()
     dec = decompose(domain, spacing, rules_dir)
-    seconds["decompose"] = time.perf_counter() - t
+    return mesh_decomposition(dec, target_length, smooth, densities, {"decompose": time.perf_counter() - t})
+
+
+def mesh_decomposition(
+    dec: Decomposition,
+    target_length: float | None = None,
+    smooth: int = DEFAULT_ITERATIONS,
+    densities: DensitySpec | None = None,
+    seconds: dict | None = None,
+) -> QuadMesh:
+    """Geometry of §3.2 for a decomposition: edge groups, Coons patches, welding, smoothing.
+
+    ``seconds`` (time already spent per stage) is extended with this function's stages in ``info``.
+    """
+    if smooth < 0:
+        raise VaultgramError(f"smoothing iterations must be >= 0, got {smooth}")
+    seconds = dict(seconds or {})
+    domain = dec.disc.domain
     t = time.perf_counter()
     layout = edge_groups(dec)
     counts = group_counts(layout, densities, target_length)
@@ -104,7 +118,7 @@ def mesh_domain(
     seconds["smooth"] = time.perf_counter() - t
     info = {
         "domain": domain.name,
-        "spacing": spacing,
+        "spacing": dec.disc.spacing,
         "diagonal": domain.diagonal,
         "patches": len(layout.patterns),
         "triangle_patches": sum(p.pole is not None for p in layout.patterns),
