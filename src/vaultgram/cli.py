@@ -29,6 +29,33 @@ class _Group(click.Group):
             sys.exit(2)
 
 
+# Options several commands share.
+OUT = click.option("--out", "out_dir", required=True, type=click.Path(file_okay=False), help="Output directory.")
+SPACING = click.option("--spacing", default=0.02, show_default=True, type=float,
+                       help="Boundary spacing as a fraction of the bounding-box diagonal (0.01 to 0.05 usual).")
+RULES = click.option("--rules", "rules_dir", default=None, type=click.Path(file_okay=False, exists=True),
+                     help="Directory with topology.vgr (default: the rulebook shipped with vaultgram).")
+TARGET_LENGTH = click.option("--target-length", type=float, default=None,
+                             help="Target mesh edge length (domain units); default 2.5% of the bounding-box diagonal.")
+SMOOTH = click.option("--smooth", default=None, type=int, help="Laplacian smoothing iterations (default 20).")
+THRUST = [
+    click.option("--zmax", type=float, default=None, help="Scale the thrust so the highest point reaches this height."),
+    click.option("--thickness", type=float, default=1.0, show_default=True, help="Shell thickness for self-weight."),
+    click.option("--density", type=float, default=1.0, show_default=True, help="Material density (weight per volume)."),
+    click.option("--point-load", type=float, default=0.0, show_default=True,
+                 help="Vertical load at every point feature (a column load, a lantern...)."),
+    click.option("--tol-deg", type=float, default=0.5, show_default=True,
+                 help="Horizontal equilibrium: largest angle between form and force edges."),
+]
+
+
+def thrust_options(command):
+    """The form-finding options of ``formfind`` and ``design``."""
+    for option in reversed(THRUST):
+        command = option(command)
+    return command
+
+
 @click.group(cls=_Group)
 @click.version_option(package_name="vaultgram")
 def main() -> None:
@@ -72,7 +99,7 @@ def rules_check(files, as_json: bool) -> None:
 @click.option("--graph", "graph_path", required=True, type=click.Path(dir_okay=False),
               help="Host graph JSON: {nodes: [{id, type, ...}], edges: [{id, type, source, target, ...}]}.")
 @click.option("--strategy", required=True, help="Name of the strategy to run.")
-@click.option("--out", "out_dir", required=True, type=click.Path(file_okay=False), help="Output directory.")
+@OUT
 def rules_run(files, graph_path: str, strategy: str, out_dir: str) -> None:
     """Run a STRATEGY of rule FILES on a host graph; write graph.json and trace.json to --out."""
     from vaultgram.engine.graph import HostGraph
@@ -114,11 +141,9 @@ def rules_why_not(files, graph_path: str, rule_name: str) -> None:
 
 @main.command("decompose")
 @click.argument("domain_path", metavar="DOMAIN", type=click.Path(dir_okay=False))
-@click.option("--out", "out_dir", required=True, type=click.Path(file_okay=False), help="Output directory.")
-@click.option("--spacing", default=0.02, show_default=True, type=float,
-              help="Boundary spacing as a fraction of the bounding-box diagonal (0.01 to 0.05 usual).")
-@click.option("--rules", "rules_dir", default=None, type=click.Path(file_okay=False, exists=True),
-              help="Directory with topology.vgr (default: the rulebook shipped with vaultgram).")
+@OUT
+@SPACING
+@RULES
 @click.option("--smooth-branches", is_flag=True, help="Smooth the skeleton branches with splines (scipy).")
 @click.option("--plot/--no-plot", default=True, show_default=True, help="Also write decomposition.png.")
 def decompose_command(
@@ -149,18 +174,12 @@ def write_decomposition(dec, out: Path, plot: bool = True) -> None:
 
 @main.command("formfind")
 @click.argument("input_path", metavar="DOMAIN|MESH", type=click.Path(dir_okay=False))
-@click.option("--out", "out_dir", required=True, type=click.Path(file_okay=False), help="Output directory.")
-@click.option("--zmax", type=float, default=None, help="Scale the thrust so the highest point reaches this height.")
-@click.option("--thickness", type=float, default=1.0, show_default=True, help="Shell thickness for self-weight.")
-@click.option("--density", type=float, default=1.0, show_default=True, help="Material density (weight per volume).")
-@click.option("--point-load", type=float, default=0.0, show_default=True,
-              help="Vertical load at every point feature of the mesh (a column load, a lantern...).")
+@OUT
+@thrust_options
 @click.option("--supports", "supports_path", type=click.Path(dir_okay=False), default=None,
               help='JSON: {"rings": [...]}, {"polylines": [...]} or {"vertices": [...]} (overrides the input).')
-@click.option("--tol-deg", type=float, default=0.5, show_default=True,
-              help="Horizontal equilibrium: largest angle between form and force edges.")
-@click.option("--spacing", default=0.02, show_default=True, type=float, help="For a DOMAIN: decomposition spacing.")
-@click.option("--target-length", type=float, default=None, help="For a DOMAIN: target mesh edge length.")
+@SPACING
+@TARGET_LENGTH
 def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, supports_path, tol_deg, spacing,
                      target_length) -> None:
     """Thrust Network Analysis (paper 5) on a MESH (mesh.json, or any {"vertices", "faces"}) or a DOMAIN.
@@ -215,20 +234,12 @@ def write_thrust(network, out: Path) -> None:
 
 @main.command("design")
 @click.argument("domain_path", metavar="DOMAIN", type=click.Path(dir_okay=False))
-@click.option("--out", "out_dir", required=True, type=click.Path(file_okay=False), help="Output directory.")
-@click.option("--spacing", default=0.02, show_default=True, type=float,
-              help="Boundary spacing as a fraction of the bounding-box diagonal (0.01 to 0.05 usual).")
-@click.option("--rules", "rules_dir", default=None, type=click.Path(file_okay=False, exists=True),
-              help="Directory with topology.vgr (default: the rulebook shipped with vaultgram).")
-@click.option("--target-length", type=float, default=None, help="Target mesh edge length (domain units).")
-@click.option("--smooth", default=None, type=int, help="Laplacian smoothing iterations (default 20).")
-@click.option("--zmax", type=float, default=None, help="Scale the thrust so the highest point reaches this height.")
-@click.option("--thickness", type=float, default=1.0, show_default=True, help="Shell thickness for self-weight.")
-@click.option("--density", type=float, default=1.0, show_default=True, help="Material density (weight per volume).")
-@click.option("--point-load", type=float, default=0.0, show_default=True,
-              help="Vertical load at every point feature.")
-@click.option("--tol-deg", type=float, default=0.5, show_default=True,
-              help="Horizontal equilibrium: largest angle between form and force edges.")
+@OUT
+@SPACING
+@RULES
+@TARGET_LENGTH
+@SMOOTH
+@thrust_options
 def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smooth, zmax, thickness, density,
                    point_load, tol_deg) -> None:
     """The whole pipeline on a DOMAIN: decomposition (3.1, 4), mesh (3.2) and thrust network (5).
@@ -254,12 +265,10 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
 
 @main.command("mesh")
 @click.argument("domain_path", metavar="DOMAIN", type=click.Path(dir_okay=False))
-@click.option("--out", "out_dir", required=True, type=click.Path(file_okay=False), help="Output directory.")
-@click.option("--spacing", default=0.02, show_default=True, type=float,
-              help="Discretisation spacing of the decomposition, as a fraction of the bounding-box diagonal.")
-@click.option("--target-length", type=float, default=None,
-              help="Target edge length (domain units); default 2.5% of the bounding-box diagonal.")
-@click.option("--smooth", default=None, type=int, help="Laplacian smoothing iterations (default 20).")
+@OUT
+@SPACING
+@TARGET_LENGTH
+@SMOOTH
 @click.option("--densities", "densities_path", type=click.Path(dir_okay=False), default=None,
               help="Density file: JSON {target_length, length_mode, min_count, groups, regions}.")
 def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities_path) -> None:
