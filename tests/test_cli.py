@@ -107,8 +107,8 @@ def test_design_runs_the_whole_pipeline_deterministically(tmp_path):
     for out in outs:
         result = run("design", EXAMPLES / "fig6_inner_points.json", "--out", out, "--zmax", "3", "--point-load", "2")
         assert result.exit_code == 0, result.output
-    names = ["decomposition.json", "patches.json", "decomposition.png", "mesh.json", "mesh.obj", "form.json",
-             "force.json", "thrust.json", "thrust.obj", "summary.json"]
+    names = ["decomposition.json", "patches.json", "decomposition.png", "mesh.json", "mesh.obj", "mesh.png",
+             "form.json", "force.json", "thrust.json", "thrust.obj", "summary.json", "thrust.png"]
     for name in names:
         assert (outs[0] / name).read_bytes() == (outs[1] / name).read_bytes(), name
     summary = json.loads((outs[0] / "summary.json").read_text())

@@ -249,6 +249,7 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
     from vaultgram.decomposition import decompose
     from vaultgram.domain import load_domain
     from vaultgram.mesh import check_feature_spacing, mesh_decomposition, write_mesh
+    from vaultgram.plot import plot_mesh, plot_thrust
     from vaultgram.smoothing import DEFAULT_ITERATIONS
 
     domain = load_domain(domain_path)
@@ -259,8 +260,10 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
     out = Path(out_dir)
     write_decomposition(dec, out)
     write_mesh(mesh, out)
+    plot_mesh(mesh, out / "mesh.png")
     click.echo(f"mesh: {len(mesh.vertices)} vertices, {len(mesh.faces)} faces; wrote mesh.json and mesh.obj")
     write_thrust(network, out)
+    plot_thrust(network, out / "thrust.png")
 
 
 @main.command("mesh")

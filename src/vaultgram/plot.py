@@ -9,6 +9,8 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.collections import PolyCollection  # noqa: E402
 
 from vaultgram.patches import half_edge_polyline  # noqa: E402
 
@@ -40,6 +42,38 @@ def plot_decomposition(decomposition, path: str | Path) -> None:
     ax.set_axis_off()
     ax.set_title(f"{len(decomposition.patches)} patches, {len(decomposition.singularities())} singularities")
     save_figure(fig, Path(path))
+
+
+def plot_mesh(mesh, path: str | Path) -> None:
+    """The quad mesh in plan, poles and feature vertices marked; written atomically as PNG."""
+    fig, ax = plt.subplots(figsize=(7, 7))
+    _faces(ax, mesh.vertices, mesh.faces, None)
+    poles = np.flatnonzero(mesh.pole)
+    ax.plot(mesh.vertices[poles, 0], mesh.vertices[poles, 1], "o", color="tab:red", ms=3)
+    ax.set_title(f"{len(mesh.faces)} faces, {len(poles)} poles")
+    save_figure(fig, Path(path))
+
+
+def plot_thrust(network, path: str | Path) -> None:
+    """The thrust network in plan, faces shaded by height; written atomically as PNG."""
+    fig, ax = plt.subplots(figsize=(7, 7))
+    collection = _faces(ax, network.vertices, network.faces, network.vertices[:, 2])
+    fig.colorbar(collection, ax=ax, shrink=0.7, label="height z")
+    ax.set_title(f"thrust network: z max {network.vertices[:, 2].max():.4g}")
+    save_figure(fig, Path(path))
+
+
+def _faces(ax, vertices, faces, heights):
+    polygons = [np.asarray(vertices)[list(f), :2] for f in faces]
+    collection = PolyCollection(polygons, facecolors="none" if heights is None else None,
+                                edgecolors="black", linewidths=0.3, cmap="viridis")
+    if heights is not None:
+        collection.set_array(np.array([np.mean(heights[list(f)]) for f in faces]))
+    ax.add_collection(collection)
+    ax.autoscale()
+    ax.set_aspect("equal")
+    ax.set_axis_off()
+    return collection
 
 
 def save_figure(fig, path: Path) -> None:
