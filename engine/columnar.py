@@ -47,6 +47,11 @@ class GraphArrays:
 _CACHE: "weakref.WeakKeyDictionary[HostGraph, GraphArrays]" = weakref.WeakKeyDictionary()
 
 
+def forget_arrays(g: HostGraph) -> None:
+    """Drop the cached arrays of ``g`` (benchmarks use it to time a search from scratch)."""
+    _CACHE.pop(g, None)
+
+
 def graph_arrays(g: HostGraph) -> GraphArrays:
     """The incidence arrays of ``g``, rebuilt only when its structure changed since the last call."""
     cached = _CACHE.get(g)
