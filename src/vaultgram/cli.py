@@ -46,6 +46,10 @@ THRUST = [
                  help="Vertical load at every point feature (a column load, a lantern...)."),
     click.option("--tol-deg", type=float, default=0.5, show_default=True,
                  help="Horizontal equilibrium: largest angle between form and force edges."),
+    click.option("--sag", type=float, default=0.1, show_default=True,
+                 help="How far unsupported boundary edges are bent inwards before form finding (relative)."),
+    click.option("--relax-mode", type=click.Choice(["boundary", "all"]), default="boundary", show_default=True,
+                 help="Bend only the unsupported boundary ('boundary') or let every vertex move ('all')."),
 ]
 
 
@@ -180,8 +184,8 @@ def write_decomposition(dec, out: Path, plot: bool = True) -> None:
               help='JSON: {"rings": [...]}, {"polylines": [...]} or {"vertices": [...]} (overrides the input).')
 @SPACING
 @TARGET_LENGTH
-def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, supports_path, tol_deg, spacing,
-                     target_length) -> None:
+def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, tol_deg, sag, relax_mode,
+                     supports_path, spacing, target_length) -> None:
     """Thrust Network Analysis (paper 5) on a MESH (mesh.json, or any {"vertices", "faces"}) or a DOMAIN.
 
     A DOMAIN is meshed first (as `vaultgram mesh` does). Supports: --supports, else the input's own
@@ -202,11 +206,11 @@ def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, 
         spec = domain.supports
     if supports_path:
         spec = read_json(supports_path)
-    network = thrust_network(mesh, spec, domain, zmax, thickness, density, point_load, tol_deg)
+    network = thrust_network(mesh, spec, domain, zmax, thickness, density, point_load, tol_deg, sag, relax_mode)
     write_thrust(network, Path(out_dir))
 
 
-def thrust_network(mesh, spec, domain, zmax, thickness, density, point_load, tol_deg):
+def thrust_network(mesh, spec, domain, zmax, thickness, density, point_load, tol_deg, sag, relax_mode):
     """Form finding of a mesh with a support specification, point loads at its point features."""
     from vaultgram.equilibrium import form_find
     from vaultgram.supports import support_vertices
@@ -216,7 +220,7 @@ def thrust_network(mesh, spec, domain, zmax, thickness, density, point_load, tol
     supports = support_vertices(mesh.vertices, mesh.faces, spec, domain)
     loads = {int(v): point_load for v in np.flatnonzero(mesh.feature)} if point_load else None
     return form_find(mesh.vertices, mesh.faces, supports, zmax=zmax, thickness=thickness, density=density,
-                     point_loads=loads, tol_deg=tol_deg)
+                     point_loads=loads, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode)
 
 
 def write_thrust(network, out: Path) -> None:
@@ -241,7 +245,7 @@ def write_thrust(network, out: Path) -> None:
 @SMOOTH
 @thrust_options
 def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smooth, zmax, thickness, density,
-                   point_load, tol_deg) -> None:
+                   point_load, tol_deg, sag, relax_mode) -> None:
     """The whole pipeline on a DOMAIN: decomposition (3.1, 4), mesh (3.2) and thrust network (5).
 
     Everything is computed before anything is written, so a failing stage leaves no output.
@@ -256,7 +260,8 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
     check_feature_spacing(domain, spacing)
     dec = decompose(domain, spacing, rules_dir)
     mesh = mesh_decomposition(dec, target_length, DEFAULT_ITERATIONS if smooth is None else smooth)
-    network = thrust_network(mesh, domain.supports, domain, zmax, thickness, density, point_load, tol_deg)
+    network = thrust_network(mesh, domain.supports, domain, zmax, thickness, density, point_load, tol_deg, sag,
+                             relax_mode)
     out = Path(out_dir)
     write_decomposition(dec, out)
     write_mesh(mesh, out)
