@@ -133,10 +133,9 @@ def test_curve_with_bends_keeps_its_input_vertices():
     assert_feature_properties(domain, mesh, dict(stats, curve_interior_singular=0))
 
 
-@pytest.mark.xfail(strict=True, reason="the decomposition makes the curve point (2.67, 4.17) a corner of 5 "
-                                       "patches (two triangles with their pole at the extremity (2, 3)): "
-                                       "valence 5 inside the curve; a topology matter (rules/curves.vgr)")
 def test_curve_with_bends_has_no_singular_vertex_inside():
+    """The curve point (2.67, 4.17) was a T-junction next to the free end (2, 3), then a corner of 5
+    patches; the rule snap_t_junction_to_curve_end now moves its rebranch to the end."""
     domain = domain_from_dict({"outer": [[0, 0], [10, 0], [10, 10], [0, 10]],
                                "curves": [[[2, 3], [4, 6.5], [6, 5.5], [8, 7]]]})
     assert mesh_stats(mesh_domain(domain), domain)["curve_interior_singular"] == 0
@@ -241,9 +240,9 @@ def test_random_feature_domains(data):
     assert np.all(mesh.fixed[mesh.extremity])
 
 
-@pytest.mark.xfail(strict=True, reason="topology: the curve point (4.45, 2.18) is a corner of three triangles "
-                                       "and the pole of none (a T-junction left on the curve): valence 3")
 def test_regression_curve_point_corner_of_three_triangles():
+    """The curve point (4.45, 2.18) was a T-junction left on the curve (a corner of three triangles);
+    snap_t_junction_to_curve_end now moves its rebranch to the curve's end."""
     domain = domain_from_dict({"outer": [[0, 0], [6, 0], [6, 8], [0, 8]],
                                "curves": [[[3.0, 2.0], [3.75, 2.0], [5.203368632565967, 2.3711059388817843]]]})
     assert mesh_stats(mesh_domain(domain), domain)["curve_interior_singular"] == 0
