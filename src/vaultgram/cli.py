@@ -302,6 +302,9 @@ def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities
         f"singular: {stats['interior_singular']} interior, {stats['boundary_singular']} boundary; "
         f"min scaled Jacobian {stats['min_scaled_jacobian']:.3f}"
     )
+    if stats["inverted_faces"]:
+        click.echo(f"warning: {stats['inverted_faces']} inverted face(s): the mesh folds; try a smaller --spacing "
+                   "or --target-length, or move the features away from the boundary", err=True)
 
 
 @main.command("stats")
