@@ -169,8 +169,11 @@ def write_decomposition(dec, out: Path, plot: bool = True) -> None:
     write_json(out / "patches.json", dec.patches_json())
     if plot:
         plot_decomposition(dec, out / "decomposition.png")
-    for report in dec.reports:
+    fired = [r for r in dec.reports if r.applications]
+    for report in fired:
         click.echo(f"rules: {report.step}: {report.applications} application(s)")
+    if len(fired) < len(dec.reports):
+        click.echo(f"rules: {len(dec.reports) - len(fired)} other step(s) found nothing to do")
     counts = dec.patches_json()["counts"]
     click.echo(f"{len(dec.patches)} patches ({counts['4']} four-sided, {counts['3']} three-sided), "
                f"{len(dec.singularities())} singularities; wrote {out}")
