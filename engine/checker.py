@@ -604,5 +604,11 @@ def describe(expr) -> str:
     if isinstance(expr, ast.Unary):
         return f"{expr.op} {describe(expr.operand)}" if expr.op == "not" else f"-{describe(expr.operand)}"
     if isinstance(expr, ast.Binary):
-        return f"{describe(expr.left)} {expr.op} {describe(expr.right)}"
+        return f"{_operand(expr.left)} {expr.op} {_operand(expr.right)}"
     return "?"
+
+
+def _operand(expr) -> str:
+    """An operand of a binary operator, in parentheses when it is itself an operation."""
+    text = describe(expr)
+    return f"({text})" if isinstance(expr, (ast.Binary, ast.Unary)) else text
