@@ -30,23 +30,24 @@ class _Group(click.Group):
 
 
 # Options several commands share.
+POSITIVE = click.FloatRange(min=0.0, min_open=True)
 OUT = click.option("--out", "out_dir", required=True, type=click.Path(file_okay=False), help="Output directory.")
 SPACING = click.option("--spacing", default=0.02, show_default=True, type=float,
                        help="Boundary spacing as a fraction of the bounding-box diagonal (0.01 to 0.05 usual).")
 RULES = click.option("--rules", "rules_dir", default=None, type=click.Path(file_okay=False, exists=True),
                      help="Directory with topology.vgr (default: the rulebook shipped with vaultgram).")
-TARGET_LENGTH = click.option("--target-length", type=float, default=None,
+TARGET_LENGTH = click.option("--target-length", type=POSITIVE, default=None,
                              help="Target mesh edge length (domain units); default 2.5% of the bounding-box diagonal.")
 SMOOTH = click.option("--smooth", default=None, type=int, help="Laplacian smoothing iterations (default 20).")
 THRUST = [
-    click.option("--zmax", type=float, default=None, help="Scale the thrust so the highest point reaches this height."),
-    click.option("--thickness", type=float, default=1.0, show_default=True, help="Shell thickness for self-weight."),
-    click.option("--density", type=float, default=1.0, show_default=True, help="Material density (weight per volume)."),
+    click.option("--zmax", type=POSITIVE, default=None, help="Scale the thrust so the highest point reaches this height."),
+    click.option("--thickness", type=POSITIVE, default=1.0, show_default=True, help="Shell thickness for self-weight."),
+    click.option("--density", type=POSITIVE, default=1.0, show_default=True, help="Material density (weight per volume)."),
     click.option("--point-load", type=float, default=0.0, show_default=True,
                  help="Vertical load at every point feature (a column load, a lantern...)."),
-    click.option("--tol-deg", type=float, default=0.5, show_default=True,
+    click.option("--tol-deg", type=POSITIVE, default=0.5, show_default=True,
                  help="Horizontal equilibrium: largest angle between form and force edges."),
-    click.option("--sag", type=float, default=0.1, show_default=True,
+    click.option("--sag", type=click.FloatRange(min=0.0), default=0.1, show_default=True,
                  help="How far unsupported boundary edges are bent inwards before form finding (relative)."),
     click.option("--relax-mode", type=click.Choice(["boundary", "all"]), default="boundary", show_default=True,
                  help="Bend only the unsupported boundary ('boundary') or let every vertex move ('all')."),
