@@ -13,6 +13,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 from vaultgram.errors import RewriteError
+from vaultgram.files import write_json
 
 from .graph import HostGraph
 from .matcher import Matcher
@@ -42,10 +43,7 @@ class Trace:
 
     def save(self, path: str | Path) -> None:
         """Write the trace as JSON (written to a temporary file, then renamed)."""
-        path = Path(path)
-        tmp = path.with_name(path.name + ".tmp")
-        tmp.write_text(json.dumps(self.to_json(), indent=1, sort_keys=True))
-        tmp.replace(path)
+        write_json(path, self.to_json())
 
 
 def _plain(value):

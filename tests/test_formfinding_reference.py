@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -13,7 +12,9 @@ from vaultgram.horizontal import horizontal
 from vaultgram.meshes import grid_index, grid_mesh
 from vaultgram.vertical import vertical
 
-REF = Path(__file__).resolve().parents[2] / "shared" / "reference" / "tna_square10.json"
+from paths import REFERENCE
+
+REF = REFERENCE / "tna_square10.json"
 pytestmark = pytest.mark.skipif(not REF.exists(), reason="reference file shared/reference/tna_square10.json absent")
 
 

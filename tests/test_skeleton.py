@@ -15,7 +15,7 @@ from vaultgram.domain import domain_from_dict, load_domain
 from vaultgram.skeleton import skeleton
 from vaultgram.triangulation import triangulate
 
-ARCHITECTURE = Path(__file__).resolve().parents[2] / "shared" / "data" / "architecture"
+from paths import ARCHITECTURE
 PLANS = sorted(ARCHITECTURE.glob("*.json")) if ARCHITECTURE.is_dir() else []
 SPACINGS = [0.01, 0.0125, 0.015, 0.0175, 0.02, 0.025, 0.03, 0.035, 0.04, 0.045, 0.05]
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
