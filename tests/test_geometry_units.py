@@ -278,3 +278,34 @@ def test_triangles_at_a_reflex_corner_are_merged():
         node = min((c for p in dec.patches for c in p.corners),
                    key=lambda n: np.hypot(*(np.asarray(g.get(n, "pos")) - target)))
         assert sum(node in p.corners for p in dec.patches) == 3
+
+
+def test_triangle_with_a_smooth_boundary_corner_becomes_a_quad():
+    """patching.vgr, spread_boundary_pole(_back): on rolex two pairs of neighbouring singularities
+    rebranch to one point of a hole, (5.33, 8.07) and (8.47, 6.87), each the corner of a triangle and
+    of 3 patches; one rebranch of each pair moves to the next free boundary point (forward at the
+    first, backward at the second, where the forward point is already a corner), so both points and
+    their new neighbours are corners of 2 patches, as a regular point of a smooth stretch."""
+    from paths import ARCHITECTURE
+
+    from vaultgram.decomposition import decompose
+    from vaultgram.domain import load_domain
+
+    path = ARCHITECTURE / "rolex_learning_centre.json"
+    if not path.is_file():
+        pytest.skip(f"{path} not found")
+    dec = decompose(load_domain(path))
+    applied = {str(r.step): r.applications for r in dec.reports}
+    assert applied["spread_boundary_pole all"] == applied["spread_boundary_pole_back all"] == 1
+    g = dec.graph
+    disc = dec.disc
+    ring_corners = {c for p in dec.patches for c in p.corners if 0 <= c < disc.n_points and disc.ring[c] >= 0}
+    for target in ([5.331, 8.067], [8.466, 6.866]):
+        node = min(ring_corners, key=lambda n: np.hypot(*(np.asarray(g.get(n, "pos")) - target)))
+        assert np.hypot(*(np.asarray(g.get(node, "pos")) - target)) < 0.01
+        assert sum(node in p.corners for p in dec.patches) == 2
+    # on the hole's smooth stretches every patch corner is the corner of exactly 2 patches
+    hole = disc.ring[min(ring_corners, key=lambda n: np.hypot(*(np.asarray(g.get(n, "pos")) - [5.331, 8.067])))]
+    for c in ring_corners:
+        if disc.ring[c] == hole and abs(disc.turning[c]) < 30:
+            assert sum(c in p.corners for p in dec.patches) == 2
