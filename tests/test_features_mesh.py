@@ -21,6 +21,7 @@ from vaultgram.domain import domain_from_dict, load_domain
 from vaultgram.errors import DomainError, VaultgramError
 from vaultgram.mesh import (check_feature_spacing, mesh_domain, mesh_from_json, mesh_stats, mesh_to_json,
                             polyline_hausdorff)
+from vaultgram.patches import half_edge_polyline
 
 FEATURE_EXAMPLES = ["fig5_boundary_points", "fig6_inner_points", "fig7_curves", "features_combined",
                     "square_point_loads"]
@@ -258,3 +259,32 @@ def test_regression_extremity_between_two_quads():
 
 def test_errors_are_vaultgram_errors():
     assert issubclass(DomainError, VaultgramError)
+
+
+def test_regression_figure8_diagonal_bends_round_a_reflex_corner():
+    """A curve (2.03, 7.14)-(1.62, 5.41) near the left of a tall rectangle: the quad left of the curve
+    wraps round its lower end, and the straight Figure 8 diagonal from the upper end to the opposite
+    corner crossed the rebranch from the lower end (the plan was no longer planar: an 8-sided
+    "patch"). The diagonal now bends inside the patch (diagonal_path) or is not drawn, and every
+    diagonal of the plan crosses no other plan edge."""
+    from vaultgram.decomposition import decompose
+    from vaultgram.vault_functions import path_clear
+
+    domain = domain_from_dict({"outer": [[0, 0], [7.306944729095649, 0], [7.306944729095649, 13.067349869068495],
+                                         [0, 13.067349869068495]],
+                               "curves": [[[2.031058208356363, 7.137361227498688],
+                                           [1.6213229288990911, 5.407066403445123]]]})
+    dec = decompose(domain)
+    g = dec.graph
+    diagonals = [e for e in g.edges() if g.edge_type(e) == "Diagonal"]
+    assert diagonals and all(p.n_sides in (3, 4) for p in dec.patches)
+    for e in diagonals:
+        assert path_clear(g, half_edge_polyline(g, e, g.ends(e)[0]))
+    # the straight segment from the upper end to the singularity below the curve's lower end crosses
+    upper = next(n for n in g.nodes() if g.node_type(n) == "CurveExtremity" and g.get(n, "pos")[1] > 7)
+    below = min(dec.singularities(), key=lambda n: np.hypot(*(np.asarray(g.get(n, "pos")) - [2.85, 2.85])))
+    assert not path_clear(g, [g.get(upper, "pos"), g.get(below, "pos")])
+    mesh = mesh_domain(domain)
+    stats = mesh_stats(mesh, domain)
+    assert_feature_properties(domain, mesh, stats)
+    assert stats["min_scaled_jacobian"] > 0

@@ -9,7 +9,10 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from vaultgram.engine.expressions import Functions
+from vaultgram.patches import half_edge_polyline
 
 
 def distance(p, q) -> float:
@@ -96,6 +99,107 @@ def patch_corner(graph, patch: int, index: int) -> int:
     raise ValueError(f"patch {patch} has no corner {index}")
 
 
+def _face_outline(graph, x: int, first: int) -> tuple[list[int], np.ndarray, list[int]]:
+    """Walk the face to the left of edge ``first`` leaving ``x`` (the rotation-system walk of
+    :mod:`vaultgram.engine.embedding`): the nodes met, the closed outline, and where each node starts."""
+    nodes, pieces, starts, count = [], [], [], 0
+    edge, u = first, x
+    while True:
+        poly = half_edge_polyline(graph, edge, u)
+        nodes.append(u)
+        starts.append(count)
+        pieces.append(poly[:-1])
+        count += len(poly) - 1
+        v = graph.other(edge, u)
+        rotation = [e for e in graph.rotation(v) if graph.edge_type(e) in PLAN_EDGES]
+        edge, u = rotation[(rotation.index(edge) - 1) % len(rotation)], v
+        if (edge, u) == (first, x) or len(nodes) > graph.num_edges:
+            break
+    return nodes, np.vstack(pieces + [graph.get(x, "pos")]), starts
+
+
+def patch_chains(graph, patch: int, x: int, o: int) -> tuple[np.ndarray, np.ndarray]:
+    """The outline of a Patch node split at its corners ``x`` and ``o``: the chain from ``x`` to ``o``
+    counter-clockwise (through the corners after ``x``) and the one clockwise (through those before)."""
+    corners = {graph.ends(e)[1] for e in graph.incident(patch, ["PatchCorner"])}
+    for first in graph.rotation(x):
+        if graph.edge_type(first) not in PLAN_EDGES:
+            continue
+        nodes, outline, starts = _face_outline(graph, x, first)
+        if corners <= set(nodes) and o in nodes and _signed_area(outline) > 0:
+            k = starts[nodes.index(o)]
+            return outline[: k + 1], outline[k:][::-1]
+    raise ValueError(f"no face of the plan has the corners of patch {patch}")
+
+
+def diagonal_path(graph, patch: int, x: int, o: int) -> tuple:
+    """A diagonal of a patch from corner ``x`` to corner ``o`` that stays inside it.
+
+    The straight segment when it crosses no plan edge; otherwise two straight pieces through the
+    nearest point (shortest detour) of the patch's mid-line that sees both ends, the mid-line being
+    the average of the two outline chains from ``x`` to ``o`` resampled at the same fractions of their
+    length. Where a side is curved or the patch wraps round a reflex corner (a curve extremity) the
+    diagonal thus bends inside the patch instead of cutting across a side. If no such point exists
+    the mid-line itself is returned, and a rule's ``path_clear`` check rejects it.
+    """
+    p, q = np.asarray(graph.get(x, "pos"), dtype=float), np.asarray(graph.get(o, "pos"), dtype=float)
+    segments = _plan_segments(graph)
+    if _clear(np.array([p, q]), *segments):
+        return _points([p, q])
+    a, b = patch_chains(graph, patch, x, o)
+    t = np.linspace(0.0, 1.0, max(len(a), len(b), 8) + 1)
+    mid = (_resample(a, t) + _resample(b, t)) / 2
+    detour = np.hypot(*(mid - p).T) + np.hypot(*(mid - q).T)
+    for k in np.argsort(detour[1:-1], kind="stable") + 1:
+        path = np.array([p, mid[k], q])
+        if _clear(path, *segments):
+            return _points(path)
+    mid[0], mid[-1] = p, q
+    return _points(mid)
+
+
+def path_clear(graph, path) -> bool:
+    """Whether a polyline crosses no plan edge (touching at its two ends does not count): a diagonal
+    drawn by a rule must keep the plan planar."""
+    return _clear(np.asarray(path, dtype=float), *_plan_segments(graph))
+
+
+def _plan_segments(graph) -> tuple[np.ndarray, np.ndarray]:
+    """Start and end points of every straight piece of every plan edge."""
+    pieces = [half_edge_polyline(graph, e, graph.ends(e)[0]) for e in graph.of_types(PLAN_EDGES)]
+    return np.concatenate([poly[:-1] for poly in pieces]), np.concatenate([poly[1:] for poly in pieces])
+
+
+def _clear(path: np.ndarray, start: np.ndarray, end: np.ndarray) -> bool:
+    """No piece of ``path`` properly crosses a segment ``start[i]``-``end[i]`` (vectorised)."""
+    p, q = path[:-1, None, :], path[1:, None, :]
+    s, e = start[None, :, :], end[None, :, :]
+    size = float(np.ptp(path, axis=0).max())
+    eps = (1e-9 * size * size) ** 2
+
+    def side(o, d, z):  # cross product (d - o) x (z - o)
+        return (d[..., 0] - o[..., 0]) * (z[..., 1] - o[..., 1]) - (d[..., 1] - o[..., 1]) * (z[..., 0] - o[..., 0])
+
+    straddles = side(p, q, s) * side(p, q, e) < -eps
+    crosses = side(s, e, p) * side(s, e, q) < -eps
+    return not bool(np.any(straddles & crosses))
+
+
+def _points(path) -> tuple:
+    return tuple((float(px), float(py)) for px, py in path)
+
+
+def _resample(chain: np.ndarray, t: np.ndarray) -> np.ndarray:
+    length = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(chain, axis=0).T))])
+    s = t * length[-1]
+    return np.column_stack([np.interp(s, length, chain[:, 0]), np.interp(s, length, chain[:, 1])])
+
+
+def _signed_area(ring: np.ndarray) -> float:
+    x, y = ring[:, 0], ring[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+
+
 def vault_functions() -> Functions:
     """A registry with the engine's builtins plus the vault pipeline's geometry."""
     f = Functions()
@@ -107,5 +211,7 @@ def vault_functions() -> Functions:
     f.register("interior_angle", interior_angle, ("vec2", "vec2", "vec2"), "float")
     f.register("curve_side", curve_side, ("node",), "int", uses_graph=True, local=False)
     f.register("curve_neighbours", curve_neighbours, ("node", "node"), "bool", uses_graph=True, local=False)
+    f.register("diagonal_path", diagonal_path, ("node", "node", "node"), "list", uses_graph=True, local=False)
+    f.register("path_clear", path_clear, ("list",), "bool", uses_graph=True, local=False)
     f.register("patch_corner", patch_corner, ("node", "int"), "node", uses_graph=True, local=False)
     return f
