@@ -288,3 +288,22 @@ def test_regression_figure8_diagonal_bends_round_a_reflex_corner():
     stats = mesh_stats(mesh, domain)
     assert_feature_properties(domain, mesh, stats)
     assert stats["min_scaled_jacobian"] > 0
+
+
+def test_regression_figure8_diagonal_through_the_neighbouring_patch():
+    """The curve (4.42, 9.21)-(7.27, 10.92): the quad above it wraps round the lower-left end (153
+    degrees), and the straight segment from that end to the quad's opposite corner crosses nothing,
+    but runs through the quad *below* the curve, which shares both corners. The Patch nodes then no
+    longer matched the faces (an internal error). diagonal_path now also requires the path to leave
+    and reach its corners within the patch's corner angles; here none does, and the quad is kept."""
+    from vaultgram.decomposition import decompose
+
+    domain = domain_from_dict({"outer": [[0, 0], [11.876294722595402, 0], [11.876294722595402, 11.285738087807067],
+                                         [0, 11.285738087807067]],
+                               "curves": [[[4.421088879652597, 9.214684144807414],
+                                           [7.267260240168615, 10.916207043927379]]]})
+    dec = decompose(domain)  # check_patch_nodes: the Patch nodes match the faces
+    assert all(p.n_sides in (3, 4) for p in dec.patches)
+    g = dec.graph
+    end = next(n for n in g.nodes() if g.node_type(n) == "CurveExtremity" and g.get(n, "pos")[0] < 5)
+    assert sum(end in p.corners for p in dec.patches) >= 3

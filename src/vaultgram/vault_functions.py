@@ -133,29 +133,41 @@ def patch_chains(graph, patch: int, x: int, o: int) -> tuple[np.ndarray, np.ndar
 
 
 def diagonal_path(graph, patch: int, x: int, o: int) -> tuple:
-    """A diagonal of a patch from corner ``x`` to corner ``o`` that stays inside it.
+    """A diagonal of a patch from corner ``x`` to corner ``o`` that stays inside it, or ``()``.
 
-    The straight segment when it crosses no plan edge; otherwise two straight pieces through the
-    nearest point (shortest detour) of the patch's mid-line that sees both ends, the mid-line being
-    the average of the two outline chains from ``x`` to ``o`` resampled at the same fractions of their
+    The straight segment when it runs inside the patch (it leaves ``x`` and reaches ``o`` within the
+    patch's corner angles there, and crosses no plan edge); otherwise two straight pieces through the
+    nearest point (shortest detour) of the patch's mid-line that does, the mid-line being the
+    average of the two outline chains from ``x`` to ``o`` resampled at the same fractions of their
     length. Where a side is curved or the patch wraps round a reflex corner (a curve extremity) the
-    diagonal thus bends inside the patch instead of cutting across a side. If no such point exists
-    the mid-line itself is returned, and a rule's ``path_clear`` check rejects it.
+    diagonal thus bends inside the patch instead of cutting across a side or running through the
+    neighbouring patch. ``()`` when no such path exists: a rule should then leave the patch whole.
     """
     p, q = np.asarray(graph.get(x, "pos"), dtype=float), np.asarray(graph.get(o, "pos"), dtype=float)
-    segments = _plan_segments(graph)
-    if _clear(np.array([p, q]), *segments):
-        return _points([p, q])
     a, b = patch_chains(graph, patch, x, o)
+    segments = _plan_segments(graph)
+
+    def inside(path):
+        return (_within(path[1] - p, a[1] - p, b[1] - p) and _within(path[-2] - q, b[-2] - q, a[-2] - q)
+                and _clear(path, *segments))
+
+    if inside(np.array([p, q])):
+        return _points([p, q])
     t = np.linspace(0.0, 1.0, max(len(a), len(b), 8) + 1)
     mid = (_resample(a, t) + _resample(b, t)) / 2
     detour = np.hypot(*(mid - p).T) + np.hypot(*(mid - q).T)
     for k in np.argsort(detour[1:-1], kind="stable") + 1:
         path = np.array([p, mid[k], q])
-        if _clear(path, *segments):
+        if inside(path):
             return _points(path)
-    mid[0], mid[-1] = p, q
-    return _points(mid)
+    return ()
+
+
+def _within(d, first, last) -> bool:
+    """Whether direction ``d`` lies strictly inside the counter-clockwise turn from ``first`` to ``last``."""
+    def angle(v):
+        return math.atan2(v[1], v[0])
+    return 0 < (angle(d) - angle(first)) % (2 * math.pi) < (angle(last) - angle(first)) % (2 * math.pi)
 
 
 def path_clear(graph, path) -> bool:
