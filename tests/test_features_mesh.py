@@ -239,6 +239,9 @@ def test_random_feature_domains(data):
     assert stats["curve_chains_continuous"] and stats["curve_hausdorff_relative"] < HAUSDORFF
     assert stats["curve_extremities"] == int(mesh.extremity.sum())
     assert np.all(mesh.fixed[mesh.extremity])
+    # no boundary singularity (benchmarks/quality_survey.py: none in 150 such domains since the
+    # spread_boundary_pole rules)
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_vertices"]
 
 
 def test_regression_curve_point_corner_of_three_triangles():
