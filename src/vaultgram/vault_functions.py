@@ -11,8 +11,9 @@ import math
 
 import numpy as np
 
+from vaultgram.engine.embedding import faces
 from vaultgram.engine.expressions import Functions
-from vaultgram.patches import half_edge_polyline
+from vaultgram.patches import half_edge_polyline, signed_area
 
 
 def distance(p, q) -> float:
@@ -99,36 +100,22 @@ def patch_corner(graph, patch: int, index: int) -> int:
     raise ValueError(f"patch {patch} has no corner {index}")
 
 
-def _face_outline(graph, x: int, first: int) -> tuple[list[int], np.ndarray, list[int]]:
-    """Walk the face to the left of edge ``first`` leaving ``x`` (the rotation-system walk of
-    :mod:`vaultgram.engine.embedding`): the nodes met, the closed outline, and where each node starts."""
-    nodes, pieces, starts, count = [], [], [], 0
-    edge, u = first, x
-    while True:
-        poly = half_edge_polyline(graph, edge, u)
-        nodes.append(u)
-        starts.append(count)
-        pieces.append(poly[:-1])
-        count += len(poly) - 1
-        v = graph.other(edge, u)
-        rotation = [e for e in graph.rotation(v) if graph.edge_type(e) in PLAN_EDGES]
-        edge, u = rotation[(rotation.index(edge) - 1) % len(rotation)], v
-        if (edge, u) == (first, x) or len(nodes) > graph.num_edges:
-            break
-    return nodes, np.vstack(pieces + [graph.get(x, "pos")]), starts
-
-
 def patch_chains(graph, patch: int, x: int, o: int) -> tuple[np.ndarray, np.ndarray]:
     """The outline of a Patch node split at its corners ``x`` and ``o``: the chain from ``x`` to ``o``
-    counter-clockwise (through the corners after ``x``) and the one clockwise (through those before)."""
+    counter-clockwise (through the corners after ``x``) and the one clockwise (through those before).
+    The outline is the bounded face of the plan that has all the patch's corners."""
     corners = {graph.ends(e)[1] for e in graph.incident(patch, ["PatchCorner"])}
-    for first in graph.rotation(x):
-        if graph.edge_type(first) not in PLAN_EDGES:
+    for face in faces(graph, PLAN_EDGES):
+        nodes = [u for _, u in face]
+        if not corners <= set(nodes):
             continue
-        nodes, outline, starts = _face_outline(graph, x, first)
-        if corners <= set(nodes) and o in nodes and _signed_area(outline) > 0:
-            k = starts[nodes.index(o)]
-            return outline[: k + 1], outline[k:][::-1]
+        k = nodes.index(x)
+        face = face[k:] + face[:k]
+        pieces = [half_edge_polyline(graph, e, u) for e, u in face]
+        outline = np.vstack([poly[:-1] for poly in pieces] + [pieces[0][:1]])
+        if signed_area(outline) > 0:
+            at = sum(len(poly) - 1 for poly in pieces[: [u for _, u in face].index(o)])
+            return outline[: at + 1], outline[at:][::-1]
     raise ValueError(f"no face of the plan has the corners of patch {patch}")
 
 
@@ -205,11 +192,6 @@ def _resample(chain: np.ndarray, t: np.ndarray) -> np.ndarray:
     length = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(chain, axis=0).T))])
     s = t * length[-1]
     return np.column_stack([np.interp(s, length, chain[:, 0]), np.interp(s, length, chain[:, 1])])
-
-
-def _signed_area(ring: np.ndarray) -> float:
-    x, y = ring[:, 0], ring[:, 1]
-    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
 
 
 def vault_functions() -> Functions:
