@@ -2,8 +2,8 @@
 
 Run: ``python benchmarks/quality_survey.py [--count N] [--seed S] [--kind convex|features|both]``.
 Draws domains like the property tests do (``convex``: perturbed regular polygons, maybe with a round
-hole; ``features``: a rectangle, maybe with a round hole, with 0-3 inner point features and 0-2
-curve features), meshes each at the default settings and sorts the outcome into
+hole; ``features``: a rectangle, maybe with a round hole, with 0-3 inner point features, 0-2 point
+features on its sides and 0-2 curve features), meshes each at the default settings and sorts the outcome into
 
 * ``ok`` -- every acceptance property holds;
 * ``error`` -- a clear :class:`~vaultgram.errors.VaultgramError` (a feature too close for the
@@ -46,7 +46,8 @@ def convex_domain(rng: np.random.Generator) -> dict:
 
 
 def feature_domain(rng: np.random.Generator) -> dict:
-    """A w x h rectangle, maybe with a round hole, with 0-3 inner points and 0-2 curves of 1-2 pieces."""
+    """A w x h rectangle, maybe with a round hole, with 0-3 inner points, 0-2 points on its sides and
+    0-2 curves of 1-2 pieces."""
     w, h = rng.uniform(6, 14, 2)
     data = {"outer": [[0, 0], [w, 0], [w, h], [0, h]], "points": [], "curves": []}
     if rng.random() < 0.5:
@@ -55,6 +56,9 @@ def feature_domain(rng: np.random.Generator) -> dict:
         data["holes"] = [np.column_stack([w / 2 + r * np.cos(t), h / 2 + r * np.sin(t)]).tolist()]
     for _ in range(int(rng.integers(0, 4))):
         data["points"].append([rng.uniform(0.05, 0.95) * w, rng.uniform(0.05, 0.95) * h])
+    for _ in range(int(rng.integers(0, 3))):  # on the outer boundary, away from its corners
+        t = rng.uniform(0.05, 0.95)
+        data["points"].append([[t * w, 0], [w, t * h], [t * w, h], [0, t * h]][int(rng.integers(0, 4))])
     for _ in range(int(rng.integers(0, 3))):
         pts = [np.array([rng.uniform(0.1, 0.9) * w, rng.uniform(0.1, 0.9) * h])]
         for _ in range(int(rng.integers(1, 3))):

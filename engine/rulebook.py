@@ -15,7 +15,7 @@ from vaultgram.errors import RuleTypeError, did_you_mean
 from vaultgram.grammar import ast
 from vaultgram.grammar.parser import load_files, parse_text
 
-from .checker import CompiledRule, RuleChecker
+from .checker import CompiledRule, RuleChecker, describe
 from .expressions import ExpressionCompiler, Functions
 from .schema import TypeSchema, build_schema, value_conforms
 
@@ -143,11 +143,18 @@ def _check_no_recursion(strategies: dict[str, ast.Strategy]) -> None:
         visit(name, [])
 
 
+def _rule_ref(ref) -> str:
+    """``name`` or ``name(arg = value, ...)`` as written in the strategy."""
+    if not ref.args:
+        return ref.name
+    return f"{ref.name}({', '.join(f'{k} = {describe(v)}' for k, v in ref.args)})"
+
+
 def describe_step(step) -> str:
     """A strategy step written back in the language's syntax."""
     if isinstance(step, ast.Run):
         return f"run {step.strategy}"
-    names = ", ".join(r.name for r in step.rules)
+    names = ", ".join(_rule_ref(r) for r in step.rules)
     group = names if len(step.rules) == 1 else "{ " + names + " }"
     limit = f" max {step.max_steps}" if step.max_steps else ""
     return f"{'choose ' if step.choose else ''}{group} {step.mode}{limit}"

@@ -190,7 +190,9 @@ def test_features_touching_on_purpose_pass():
 
 @st.composite
 def feature_domains(draw):
-    """A rectangle, maybe with a round hole, with 0-3 inner points and 0-2 curve features inside."""
+    """A rectangle, maybe with a round hole, with 0-3 inner points, 0-1 point on its sides and 0-2
+    curve features inside. (Two boundary points in one patch side: see
+    test_two_boundary_features_in_one_side.)"""
     w = draw(st.floats(6.0, 14.0))
     h = draw(st.floats(6.0, 14.0))
     data = {"outer": [[0, 0], [w, 0], [w, h], [0, h]], "points": [], "curves": []}
@@ -201,6 +203,9 @@ def feature_domains(draw):
     frac = st.floats(0.05, 0.95)
     for _ in range(draw(st.integers(0, 3))):
         data["points"].append([draw(frac) * w, draw(frac) * h])
+    for _ in range(draw(st.integers(0, 1))):  # on a side of the rectangle (§4.1 boundary features)
+        t = draw(frac)
+        data["points"].append(draw(st.sampled_from([[t * w, 0], [w, t * h], [t * w, h], [0, t * h]])))
     for _ in range(draw(st.integers(0, 2))):
         p = np.array([draw(st.floats(0.1, 0.9)) * w, draw(st.floats(0.1, 0.9)) * h])
         pts = [p]
@@ -240,8 +245,14 @@ def test_random_feature_domains(data):
     assert stats["curve_extremities"] == int(mesh.extremity.sum())
     assert np.all(mesh.fixed[mesh.extremity])
     # no boundary singularity (benchmarks/quality_survey.py: none in 150 such domains since the
-    # spread_boundary_pole rules)
-    assert stats["boundary_singular"] == 0, stats["boundary_singular_vertices"]
+    # spread_boundary_pole rules), unless a boundary feature's Figure 4 diagonal has to end on the
+    # boundary (test_boundary_feature_between_two_boundary_diagonals)
+    if not any(mesh.boundary[mesh.feature]):
+        assert stats["boundary_singular"] == 0, stats["boundary_singular_vertices"]
+    # the topology of §4: poles at point features (also on the boundary) and free curve ends (a
+    # singular vertex inside a curve is still found at hairpin bends: test_hairpin_curve)
+    assert stats["feature_points_pole"] == stats["feature_points"], stats["feature_point_valences"]
+    assert stats["curve_extremities_pole"] == stats["curve_extremities"]
 
 
 def test_regression_curve_point_corner_of_three_triangles():
@@ -310,3 +321,40 @@ def test_regression_figure8_diagonal_through_the_neighbouring_patch():
     g = dec.graph
     end = next(n for n in g.nodes() if g.node_type(n) == "CurveExtremity" and g.get(n, "pos")[0] < 5)
     assert sum(end in p.corners for p in dec.patches) >= 3
+
+
+@pytest.mark.parametrize("point", [[5.34, 0.0], [10.0, 9.05], [0.0, 2.4], [2.98, 10.0], [7.0, 5.0]])
+def test_boundary_feature_in_the_middle_of_a_side_is_a_pole(point):
+    """§4.1 on the quad with a hole: a boundary point feature where no branch arrives (the last one
+    on the hole) is a flat corner of its patch; split_at_boundary_feature cuts the patch at it, so it
+    is a fixed mesh vertex and a pole, and no other boundary vertex is singular."""
+    data = json.loads((EXAMPLES / "quad_with_hole.json").read_text())
+    domain = domain_from_dict(dict(data, points=[point]))
+    mesh = mesh_domain(domain)
+    stats = mesh_stats(mesh, domain)
+    assert_feature_properties(domain, mesh, stats)
+    assert stats["feature_point_valences"][0] > 4
+    assert stats["min_scaled_jacobian"] > 0
+
+
+def test_boundary_feature_between_two_boundary_diagonals():
+    """The midpoint of a square's side, where the rebranch from the centre arrives: the feature is the
+    corner of two quads whose opposite corners are both on the boundary. Figure 4 splits one (the
+    other is left whole: the feature is a pole already), so the feature is a pole at the price of one
+    boundary singularity at that opposite corner; without the split it would be a regular vertex."""
+    domain = domain_from_dict({"outer": [[0, 0], [6, 0], [6, 6], [0, 6]], "points": [[3, 0]]})
+    mesh = mesh_domain(domain)
+    stats = mesh_stats(mesh, domain)
+    assert stats["feature_points_pole"] == 1
+    (v,) = stats["boundary_singular_vertices"]
+    assert min(np.hypot(*(mesh.vertices[v, :2] - c)) for c in ([0, 3], [6, 3])) < 1e-9
+
+
+def test_two_boundary_features_in_one_side():
+    """Two features on one side of a patch: each gets its own diagonal to the centre first
+    (split_at_boundary_feature with onto_boundary = false), and both are poles."""
+    domain = domain_from_dict({"outer": [[0, 0], [6, 0], [6, 6], [0, 6]], "points": [[1.5, 0], [0.75, 0]]})
+    mesh = mesh_domain(domain)
+    stats = mesh_stats(mesh, domain)
+    assert stats["feature_points_pole"] == 2, stats["feature_point_valences"]
+    assert stats["min_scaled_jacobian"] > 0

@@ -121,12 +121,14 @@ def find_patches(graph: HostGraph, disc: Discretisation, edge_types, strict: boo
 
 
 def _is_corner(graph: HostGraph, n: int, types) -> bool:
-    """Where a patch side ends: skeleton vertices, point features, curve extremities, corner vertices of
-    corner faces, and any point where a third edge of the plan arrives."""
+    """Where a patch side ends: skeleton vertices, point features (inside or on the boundary, §4.1),
+    curve extremities, corner vertices of corner faces, and any point where a third edge of the plan
+    arrives. A boundary point feature in the middle of a side is thus a flat corner of its patch,
+    which the patching rules split there (``split_at_boundary_feature``)."""
     t = graph.node_type(n)
     if t in ("FeaturePoint", "CurveExtremity") or graph.schema.is_subtype(t, "SkeletonVertex"):
         return True
-    return graph.get(n, "corner") or graph.degree(n, types) > 2
+    return graph.get(n, "corner") or graph.get(n, "feature") or graph.degree(n, types) > 2
 
 
 def _is_hole(graph: HostGraph, face) -> bool:
