@@ -358,3 +358,48 @@ def test_two_boundary_features_in_one_side():
     stats = mesh_stats(mesh, domain)
     assert stats["feature_points_pole"] == 2, stats["feature_point_valences"]
     assert stats["min_scaled_jacobian"] > 0
+
+
+def test_quad_with_a_reflex_curve_bend_is_split_with_a_marked_pole():
+    """A curve bent back at (9.31, 1.46): on its reflex side the bend was the corner of a quad turning
+    by more than 180 degrees, one face that cannot be convex (the mesh folded). The patching rule
+    split_quad_at_reflex_corner splits that quad by the diagonal to its opposite corner, a skeleton
+    vertex, which it marks as the pole of both triangles (PatchCorner {pole = true}); edge_groups
+    honours the mark, and the mesh has no inverted face."""
+    from vaultgram.decomposition import decompose
+    from vaultgram.edge_groups import edge_groups
+
+    domain = domain_from_dict({
+        "outer": [[0, 0], [12.852573527551822, 0], [12.852573527551822, 6.001520012858748], [0, 6.001520012858748]],
+        "points": [[7.914166626817231, 1.6577566237697279], [3.0692187607810917, 3.682198684048451]],
+        "curves": [[[3.21088840618106, 4.8548692626957735], [4.142072496952191, 4.0063439857546514]],
+                   [[8.545378241901028, 2.7673572204560877], [9.30837962003061, 1.4557709055970893],
+                    [9.335471371240935, 2.0847333027848416]]]})
+    dec = decompose(domain)
+    assert {str(r.step): r.applications for r in dec.reports}["split_quad_at_reflex_corner fixpoint"] == 1
+    g = dec.graph
+    bend = min(g.nodes(), key=lambda n: np.hypot(*(np.asarray(g.get(n, "pos")) - [9.30837962003061, 1.4557709055970893]))
+                if "pos" in g.node_attrs(n) else np.inf)
+    (diagonal,) = [e for e in g.incident(bend, ["Diagonal"])]
+    apex = g.other(diagonal, bend)
+    assert g.schema.is_subtype(g.node_type(apex), "SkeletonVertex")
+    layout = edge_groups(dec)
+    split = [p for p in layout.patterns if bend in p.corners and apex in p.corners and len(p.corners) == 3]
+    assert len(split) == 2 and all(p.corners[p.pole] == apex for p in split)
+    mesh = mesh_domain(domain)
+    stats = mesh_stats(mesh, domain)
+    assert_feature_properties(domain, mesh, stats)
+    assert stats["min_scaled_jacobian"] > 0
+
+
+def test_regression_t_junction_diagonal_stays_inside_its_patch():
+    """A hairpin curve next to a short one, at spacing 0.01: spread_t_junction's straight diagonal
+    crossed the patch's curved side and the Patch nodes no longer matched the faces (an internal
+    error). The diagonal is now drawn inside the patch (diagonal_path)."""
+    from vaultgram.decomposition import decompose
+
+    domain = domain_from_dict({"outer": [[0, 0], [10, 0], [10, 10], [0, 10]],
+                               "curves": [[[2.0, 4.0], [7.0, 3.0], [3.0, 4.0]], [[2.0, 5.0], [4.0, 5.0]]]})
+    dec = decompose(domain, 0.01)
+    assert all(p.n_sides in (3, 4) for p in dec.patches)
+    assert {str(r.step): r.applications for r in dec.reports}["spread_t_junction fixpoint"] >= 1

@@ -60,6 +60,21 @@ class Decomposition:
     reports: tuple[StepReport, ...]
     trace: list[dict]
 
+    def marked_pole(self, patch: Patch) -> int | None:
+        """The corner a patching rule marked as the pole of this patch (``PatchCorner {pole = true}``)."""
+        return self._marked_poles.get(frozenset(patch.corners))
+
+    @functools.cached_property
+    def _marked_poles(self) -> dict:
+        g = self.graph
+        out = {}
+        for node in self.patch_nodes():
+            edges = list(g.incident(node, ["PatchCorner"]))
+            pole = [g.ends(e)[1] for e in edges if g.get_edge(e, "pole")]
+            if pole:
+                out[frozenset(g.ends(e)[1] for e in edges)] = pole[0]
+        return out
+
     def patch_nodes(self) -> list[int]:
         return [n for n in self.graph.nodes() if self.graph.node_type(n) == "Patch"]
 

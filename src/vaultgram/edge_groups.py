@@ -232,7 +232,8 @@ def _corner_angle(poly_in: np.ndarray, poly_out: np.ndarray) -> float:
 def choose_pole(decomposition: Decomposition, patch) -> int:
     """Index of the pole among a three-sided patch's corners (§3.2, §4.1, §4.2).
 
-    The corner labelled as a feature point if there is exactly one (§4.1, §4.2). Otherwise the paper
+    The corner a patching rule marked as the pole, if any (the rule knows why it made the triangle).
+    Else the corner labelled as a feature point if there is exactly one (§4.1, §4.2). Otherwise the paper
     takes "the unique naked vertex (on the boundaries) or the unique non-naked vertex (on the
     skeleton branches)"; we take a non-naked corner whenever there is one, because a pole on the
     boundary is always a boundary singularity: a naked corner that is the pole of ``n`` triangles
@@ -245,6 +246,9 @@ def choose_pole(decomposition: Decomposition, patch) -> int:
     """
     graph = decomposition.graph
     corners = patch.corners
+    marked = decomposition.marked_pole(patch)
+    if marked is not None:
+        return corners.index(marked)
     feature = [k for k, c in enumerate(corners) if is_feature_node(decomposition, c)]
     if len(feature) == 1:
         return feature[0]

@@ -100,10 +100,10 @@ def patch_corner(graph, patch: int, index: int) -> int:
     raise ValueError(f"patch {patch} has no corner {index}")
 
 
-def patch_chains(graph, patch: int, x: int, o: int) -> tuple[np.ndarray, np.ndarray]:
-    """The outline of a Patch node split at its corners ``x`` and ``o``: the chain from ``x`` to ``o``
-    counter-clockwise (through the corners after ``x``) and the one clockwise (through those before).
-    The outline is the bounded face of the plan that has all the patch's corners."""
+def _patch_outline(graph, patch: int, x: int) -> tuple[list, np.ndarray] | None:
+    """The bounded face of the plan that has all the corners of a Patch node, walked from its corner
+    ``x``: its half-edges and its closed outline (first point = last point = ``x``); None if no face
+    has them (a Patch node out of step with the plan, which decompose reports at the end)."""
     corners = {graph.ends(e)[1] for e in graph.incident(patch, ["PatchCorner"])}
     for face in faces(graph, PLAN_EDGES):
         nodes = [u for _, u in face]
@@ -114,9 +114,32 @@ def patch_chains(graph, patch: int, x: int, o: int) -> tuple[np.ndarray, np.ndar
         pieces = [half_edge_polyline(graph, e, u) for e, u in face]
         outline = np.vstack([poly[:-1] for poly in pieces] + [pieces[0][:1]])
         if signed_area(outline) > 0:
-            at = sum(len(poly) - 1 for poly in pieces[: [u for _, u in face].index(o)])
-            return outline[: at + 1], outline[at:][::-1]
-    raise ValueError(f"no face of the plan has the corners of patch {patch}")
+            return face, outline
+    return None
+
+
+def patch_chains(graph, patch: int, x: int, o: int) -> tuple[np.ndarray, np.ndarray] | None:
+    """The outline of a Patch node split at its corners ``x`` and ``o``: the chain from ``x`` to ``o``
+    counter-clockwise (through the corners after ``x``) and the one clockwise (through those before);
+    None if the patch is not a face of the plan."""
+    found = _patch_outline(graph, patch, x)
+    if found is None:
+        return None
+    face, outline = found
+    nodes = [u for _, u in face]
+    at = sum(len(half_edge_polyline(graph, e, u)) - 1 for e, u in face[: nodes.index(o)])
+    return outline[: at + 1], outline[at:][::-1]
+
+
+def patch_angle(graph, patch: int, x: int) -> float:
+    """The interior angle (degrees) of a Patch node at its corner ``x``, between the directions in
+    which its two sides leave ``x`` (not the chords to the neighbouring corners: sides may curve);
+    NaN (every comparison false) if the patch is not a face of the plan."""
+    found = _patch_outline(graph, patch, x)
+    if found is None:
+        return math.nan
+    outline = found[1]
+    return interior_angle(outline[-2], outline[0], outline[1])
 
 
 def diagonal_path(graph, patch: int, x: int, o: int) -> tuple:
@@ -131,7 +154,10 @@ def diagonal_path(graph, patch: int, x: int, o: int) -> tuple:
     neighbouring patch. ``()`` when no such path exists: a rule should then leave the patch whole.
     """
     p, q = np.asarray(graph.get(x, "pos"), dtype=float), np.asarray(graph.get(o, "pos"), dtype=float)
-    a, b = patch_chains(graph, patch, x, o)
+    chains = patch_chains(graph, patch, x, o)
+    if chains is None:
+        return ()
+    a, b = chains
     segments = _plan_segments(graph)
 
     def inside(path):
@@ -214,5 +240,6 @@ def vault_functions() -> Functions:
     f.register("diagonal_path", diagonal_path, ("node", "node", "node"), "list", uses_graph=True, local=False)
     f.register("path_clear", path_clear, ("list",), "bool", uses_graph=True, local=False)
     f.register("is_feature", is_feature, ("node",), "bool", uses_graph=True)
+    f.register("patch_angle", patch_angle, ("node", "node"), "float", uses_graph=True, local=False)
     f.register("patch_corner", patch_corner, ("node", "int"), "node", uses_graph=True, local=False)
     return f
