@@ -18,7 +18,7 @@ import numpy as np
 from .checker import CompiledPattern, CompiledRule, Condition
 from .columnar import Table, nac_rows, run_columnar
 from .graph import HostGraph
-from .plan import Bound, Check, Extend, Scan, Step, build_plan
+from .plan import Check, Extend, Scan, Step, build_plan
 from .rewriter import footprint
 
 
