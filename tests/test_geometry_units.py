@@ -14,8 +14,8 @@ from vaultgram.decomposition import decompose
 from vaultgram.domain import load_domain
 from vaultgram.edge_groups import DensitySpec, densities_from_dict, edge_groups, group_counts, load_densities
 from vaultgram.errors import VaultgramError
-from vaultgram.meshes import grid_mesh
-from vaultgram.smoothing import laplacian_smooth, project_to_polyline
+from vaultgram.meshes import corner_arrays, grid_mesh
+from vaultgram.smoothing import laplacian_smooth, project_to_polyline, untangle
 from vaultgram.weld import SlideConstraint, resample_polyline
 
 
@@ -233,6 +233,33 @@ def test_smoothing_keeps_fixed_and_slides_on_boundary():
     assert np.array_equal(out[fixed], noisy[fixed])
     assert np.allclose(out[bottom, 1], 0)  # stayed on the boundary
     assert np.allclose(out[:, :2], v[:, :2], atol=1e-3)  # the grid is the fixed point
+
+
+def _min_scaled_jacobian(x, faces):
+    _, u, v, p = corner_arrays(faces)
+    e1, e2 = x[v, :2] - x[u, :2], x[p, :2] - x[u, :2]
+    return float(((e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]) / (np.hypot(*e1.T) * np.hypot(*e2.T))).min())
+
+
+def test_untangle_repairs_folded_faces_and_leaves_good_meshes_alone():
+    """Two interior vertices of a 6 x 6 grid dragged across their neighbours (four inverted faces, a
+    fold Laplacian smoothing keeps next to a concave boundary): untangle brings every corner back to
+    a positive scaled Jacobian, moves no fixed vertex, keeps the sliding ones on their line, and
+    returns a mesh that is already good unchanged."""
+    v, f = grid_mesh(6)
+    on_boundary = (v[:, 0] % 6 == 0) | (v[:, 1] % 6 == 0)
+    bottom = np.flatnonzero((v[:, 1] == 0) & (v[:, 0] > 0) & (v[:, 0] < 6))
+    fixed = on_boundary & ~np.isin(np.arange(len(v)), bottom)
+    slide = SlideConstraint(bottom, np.array([[0, 0], [6, 0.0]]))
+    folded = v.copy()
+    folded[8, :2] = [2.6, 1.9]   # vertex (1, 1) pushed past (2, 2)
+    folded[9, :2] = [2.4, 0.7]   # vertex (2, 1) pushed past (3, 1)
+    assert _min_scaled_jacobian(folded, f) < 0
+    out = untangle(folded, f, fixed, [slide])
+    assert _min_scaled_jacobian(out, f) > 0
+    assert np.array_equal(out[fixed], folded[fixed])
+    assert np.allclose(out[bottom, 1], 0)
+    assert np.array_equal(untangle(v, f, fixed, [slide]), v)
 
 
 def test_pole_of_a_triangle_is_not_on_the_boundary_when_it_can_be_inside():

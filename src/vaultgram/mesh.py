@@ -26,7 +26,7 @@ from vaultgram.edge_groups import DensitySpec, edge_groups, group_counts
 from vaultgram.errors import VaultgramError
 from vaultgram.files import read_json, write_json
 from vaultgram.meshes import boundary_loops, corner_arrays, write_obj
-from vaultgram.smoothing import DEFAULT_ITERATIONS, laplacian_smooth
+from vaultgram.smoothing import DEFAULT_ITERATIONS, laplacian_smooth, untangle
 from vaultgram.weld import QuadMesh, weld
 
 __all__ = [
@@ -116,6 +116,10 @@ def mesh_decomposition(
     t = time.perf_counter()
     x = laplacian_smooth(mesh.vertices, mesh.faces, smooth, mesh.fixed, mesh.constraints)
     seconds["smooth"] = time.perf_counter() - t
+    t = time.perf_counter()
+    if smooth > 0:
+        x = untangle(x, mesh.faces, mesh.fixed, mesh.constraints)
+    seconds["untangle"] = time.perf_counter() - t
     info = {
         "domain": domain.name,
         "spacing": dec.disc.spacing,
