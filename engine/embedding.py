@@ -24,29 +24,27 @@ def faces(graph: HostGraph, edge_types: Iterable[str]) -> list[list[HalfEdge]]:
     Faces are listed in a deterministic order: by their smallest (edge id, start node) half-edge.
     """
     types = set(edge_types)
-    rotation: dict[int, list[int]] = {}
-    position: dict[tuple[int, int], int] = {}
-    for n in graph.nodes():
-        rot = [e for e in graph.rotation(n) if graph.edge_type(e) in types]
-        if rot:
-            rotation[n] = rot
-            for i, e in enumerate(rot):
-                position[(n, e)] = i
     seen: set[HalfEdge] = set()
     out: list[list[HalfEdge]] = []
     for e in sorted(e for e in graph.edges() if graph.edge_type(e) in types):
         for start in graph.ends(e):
-            if (e, start) in seen:
-                continue
-            face = []
-            he = (e, start)
-            while he not in seen:
-                seen.add(he)
-                face.append(he)
-                edge, u = he
-                v = graph.other(edge, u)
-                rot = rotation[v]
-                nxt = rot[(position[(v, edge)] - 1) % len(rot)]
-                he = (nxt, v)
-            out.append(face)
+            if (e, start) not in seen:
+                face = face_walk(graph, types, (e, start))
+                seen.update(face)
+                out.append(face)
     return out
+
+
+def face_walk(graph: HostGraph, edge_types: Iterable[str], start: HalfEdge) -> list[HalfEdge]:
+    """The face to the left of the half-edge ``start`` = (edge, node it leaves from), as the cycle of
+    half-edges around it; only edges of ``edge_types`` take part. Costs the length of that face."""
+    types = set(edge_types)
+    face = [start]
+    edge, u = start
+    while True:
+        v = graph.other(edge, u)
+        rot = [e for e in graph.rotation(v) if graph.edge_type(e) in types]
+        edge, u = rot[(rot.index(edge) - 1) % len(rot)], v
+        if (edge, u) == start:
+            return face
+        face.append((edge, u))

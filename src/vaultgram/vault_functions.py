@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from vaultgram.engine.embedding import faces
+from vaultgram.engine.embedding import face_walk
 from vaultgram.engine.expressions import Functions
 from vaultgram.patches import half_edge_polyline, signed_area
 
@@ -101,16 +101,17 @@ def patch_corner(graph, patch: int, index: int) -> int:
 
 
 def _patch_outline(graph, patch: int, x: int) -> tuple[list, np.ndarray] | None:
-    """The bounded face of the plan that has all the corners of a Patch node, walked from its corner
-    ``x``: its half-edges and its closed outline (first point = last point = ``x``); None if no face
-    has them (a Patch node out of step with the plan, which decompose reports at the end)."""
+    """The face of the plan around a Patch node, walked from its corner ``x``: its half-edges and its
+    closed outline (first point = last point = ``x``); None if no face at ``x`` has all the patch's
+    corners (a Patch node out of step with the plan, which decompose reports at the end). Only the
+    faces at ``x`` are walked."""
     corners = {graph.ends(e)[1] for e in graph.incident(patch, ["PatchCorner"])}
-    for face in faces(graph, PLAN_EDGES):
-        nodes = [u for _, u in face]
-        if not corners <= set(nodes):
+    for first in graph.rotation(x):
+        if graph.edge_type(first) not in PLAN_EDGES:
             continue
-        k = nodes.index(x)
-        face = face[k:] + face[:k]
+        face = face_walk(graph, PLAN_EDGES, (first, x))
+        if not corners <= {u for _, u in face}:
+            continue
         pieces = [half_edge_polyline(graph, e, u) for e, u in face]
         outline = np.vstack([poly[:-1] for poly in pieces] + [pieces[0][:1]])
         if signed_area(outline) > 0:
