@@ -190,9 +190,8 @@ def test_features_touching_on_purpose_pass():
 
 @st.composite
 def feature_domains(draw):
-    """A rectangle, maybe with a round hole, with 0-3 inner points, 0-1 point on its sides and 0-2
-    curve features inside. (Two boundary points in one patch side: see
-    test_two_boundary_features_in_one_side.)"""
+    """A rectangle, maybe with a round hole, with 0-3 inner points, 0-2 points on its sides and 0-2
+    curve features inside."""
     w = draw(st.floats(6.0, 14.0))
     h = draw(st.floats(6.0, 14.0))
     data = {"outer": [[0, 0], [w, 0], [w, h], [0, h]], "points": [], "curves": []}
@@ -203,7 +202,7 @@ def feature_domains(draw):
     frac = st.floats(0.05, 0.95)
     for _ in range(draw(st.integers(0, 3))):
         data["points"].append([draw(frac) * w, draw(frac) * h])
-    for _ in range(draw(st.integers(0, 1))):  # on a side of the rectangle (§4.1 boundary features)
+    for _ in range(draw(st.integers(0, 2))):  # on a side of the rectangle (§4.1 boundary features)
         t = draw(frac)
         data["points"].append(draw(st.sampled_from([[t * w, 0], [w, t * h], [t * w, h], [0, t * h]])))
     for _ in range(draw(st.integers(0, 2))):
@@ -352,11 +351,13 @@ def test_boundary_feature_between_two_boundary_diagonals():
 
 def test_two_boundary_features_in_one_side():
     """Two features on one side of a patch: each gets its own diagonal to the centre first
-    (split_at_boundary_feature with onto_boundary = false), and both are poles."""
+    (split_at_boundary_feature with onto_boundary = false) and is the marked pole of its triangle, so
+    Figure 4 leaves the quad beyond them whole: both are poles, no boundary vertex is singular."""
     domain = domain_from_dict({"outer": [[0, 0], [6, 0], [6, 6], [0, 6]], "points": [[1.5, 0], [0.75, 0]]})
     mesh = mesh_domain(domain)
     stats = mesh_stats(mesh, domain)
     assert stats["feature_points_pole"] == 2, stats["feature_point_valences"]
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_vertices"]
     assert stats["min_scaled_jacobian"] > 0
 
 
