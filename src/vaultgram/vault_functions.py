@@ -221,12 +221,6 @@ def _resample(chain: np.ndarray, t: np.ndarray) -> np.ndarray:
     return np.column_stack([np.interp(s, length, chain[:, 0]), np.interp(s, length, chain[:, 1])])
 
 
-def is_feature(graph, n: int) -> bool:
-    """Whether node ``n`` is labelled a point feature (its ``feature`` attribute), for nodes that a
-    rule reaches through a function such as ``patch_corner`` rather than by a typed pattern."""
-    return bool(graph.node_attrs(n).get("feature", False))
-
-
 def vault_functions() -> Functions:
     """A registry with the engine's builtins plus the vault pipeline's geometry."""
     f = Functions()
@@ -240,7 +234,6 @@ def vault_functions() -> Functions:
     f.register("curve_neighbours", curve_neighbours, ("node", "node"), "bool", uses_graph=True, local=False)
     f.register("diagonal_path", diagonal_path, ("node", "node", "node"), "list", uses_graph=True, local=False)
     f.register("path_clear", path_clear, ("list",), "bool", uses_graph=True, local=False)
-    f.register("is_feature", is_feature, ("node",), "bool", uses_graph=True)
     f.register("patch_angle", patch_angle, ("node", "node"), "float", uses_graph=True, local=False)
     f.register("patch_corner", patch_corner, ("node", "int"), "node", uses_graph=True, local=False)
     return f
