@@ -38,7 +38,8 @@ RULES = click.option("--rules", "rules_dir", default=None, type=click.Path(file_
                      help="Directory with topology.vgr (default: the rulebook shipped with vaultgram).")
 TARGET_LENGTH = click.option("--target-length", type=POSITIVE, default=None,
                              help="Target mesh edge length (domain units); default 2.5% of the bounding-box diagonal.")
-SMOOTH = click.option("--smooth", default=None, type=int, help="Laplacian smoothing iterations (default 20).")
+SMOOTH = click.option("--smooth", default=None, type=int,
+                      help="Laplacian smoothing iterations (default 20; 0: the raw Coons patches, not untangled either).")
 THRUST = [
     click.option("--zmax", type=POSITIVE, default=None, help="Scale the thrust so the highest point reaches this height."),
     click.option("--thickness", type=POSITIVE, default=1.0, show_default=True, help="Shell thickness for self-weight."),
