@@ -7,8 +7,10 @@ features on its sides and 0-2 curve features), meshes each at the default settin
 
 * ``ok`` -- every acceptance property holds;
 * ``error`` -- a clear :class:`~vaultgram.errors.VaultgramError` (a feature too close for the
-  spacing, a curve leaving the domain...);
-* defects: ``folded`` (a face with scaled Jacobian <= 1e-3), ``boundary singular`` (more boundary
+  spacing, a curve leaving the domain, a patch that is not 3- or 4-sided, a mesh that folds...);
+  ``--errors`` prints how many of each kind;
+* defects: ``folded`` (a face with scaled Jacobian <= 1e-3: inverted faces are a MeshFoldError, so
+  these are the nearly degenerate ones), ``boundary singular`` (more boundary
   singularities than the index theorem forces: for these domains, none), ``feature not pole``,
   ``curve singular`` (a singular vertex inside a curve feature), ``extremity not pole``.
 
@@ -84,6 +86,16 @@ def defects(stats: dict) -> list[str]:
     return out
 
 
+def error_kind(outcome: str) -> str:
+    """A short name for the kind of error in an ``error: ...`` outcome."""
+    for words, kind in ((("leaves the domain", "crosses", "inside hole"), "invalid domain"),
+                        (("from the boundary", "from point feature", "from curve feature"), "too close"),
+                        (("sides",), "patch not 3-4 sided"), (("mesh folds",), "mesh folds")):
+        if any(w in outcome for w in words):
+            return kind
+    return "other"
+
+
 def survey(kind: str, count: int, seed: int):
     """Yield ``(index, data, outcome list)`` for ``count`` domains of ``kind`` drawn from ``seed``."""
     rng = np.random.default_rng(seed)
@@ -106,6 +118,7 @@ def main() -> None:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--kind", choices=["convex", "features", "both"], default="both")
     ap.add_argument("--show", type=int, default=None, help="print domain K as JSON and stop")
+    ap.add_argument("--errors", action="store_true", help="also count the errors by kind")
     args = ap.parse_args()
     kinds = ["convex", "features"] if args.kind == "both" else [args.kind]
     for kind in kinds:
@@ -114,13 +127,17 @@ def main() -> None:
                 if k == args.show:
                     print(json.dumps(data))
             return
-        tally = Counter()
+        tally, errors = Counter(), Counter()
         for k, _, outcome in survey(kind, args.count, args.seed):
             for o in outcome:
                 tally["error" if o.startswith("error") else o] += 1
+                if o.startswith("error"):
+                    errors[error_kind(o)] += 1
             if outcome != ["ok"] and not outcome[0].startswith("error"):
                 print(f"  {kind} seed {args.seed} #{k}: {', '.join(outcome)}")
         print(f"{kind}: {args.count} domains -> " + ", ".join(f"{v} {k}" for k, v in sorted(tally.items())))
+        if args.errors and errors:
+            print("  errors: " + ", ".join(f"{v} {k}" for k, v in sorted(errors.items())))
 
 
 if __name__ == "__main__":

@@ -40,6 +40,8 @@ TARGET_LENGTH = click.option("--target-length", type=POSITIVE, default=None,
                              help="Target mesh edge length (domain units); default 2.5% of the bounding-box diagonal.")
 SMOOTH = click.option("--smooth", default=None, type=int,
                       help="Laplacian smoothing iterations (default 20; 0: the raw Coons patches, not untangled either).")
+ALLOW_FOLDS = click.option("--allow-folds", is_flag=True,
+                           help="Write a mesh that still has inverted faces (with a warning) instead of failing.")
 THRUST = [
     click.option("--zmax", type=POSITIVE, default=None, help="Scale the thrust so the highest point reaches this height."),
     click.option("--thickness", type=POSITIVE, default=1.0, show_default=True, help="Shell thickness for self-weight."),
@@ -284,7 +286,8 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
 @SMOOTH
 @click.option("--densities", "densities_path", type=click.Path(dir_okay=False), default=None,
               help="Density file: JSON {target_length, length_mode, min_count, groups, regions}.")
-def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities_path) -> None:
+@ALLOW_FOLDS
+def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities_path, allow_folds) -> None:
     """Quad-mesh a DOMAIN (paper 3): decompose, mesh the patches, weld, smooth.
 
     Writes mesh.json (vertices, faces, vertex labels, edge groups) and mesh.obj to --out.
@@ -296,7 +299,8 @@ def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities
 
     domain = load_domain(domain_path)
     spec = load_densities(densities_path) if densities_path else None
-    mesh = mesh_domain(domain, spacing, target_length, DEFAULT_ITERATIONS if smooth is None else smooth, spec)
+    mesh = mesh_domain(domain, spacing, target_length, DEFAULT_ITERATIONS if smooth is None else smooth, spec,
+                       allow_folds=allow_folds)
     json_path, obj_path = write_mesh(mesh, Path(out_dir))
     stats = mesh_stats(mesh, domain)
     click.echo(
@@ -308,8 +312,8 @@ def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities
         f"min scaled Jacobian {stats['min_scaled_jacobian']:.3f}"
     )
     if stats["inverted_faces"]:
-        click.echo(f"warning: {stats['inverted_faces']} inverted face(s): the mesh folds; try a smaller --spacing "
-                   "or --target-length, or move the features away from the boundary", err=True)
+        click.echo(f"warning: {stats['inverted_faces']} inverted face(s): the mesh folds; try a smaller "
+                   "--target-length, or move the features away from each other and from the boundary", err=True)
 
 
 @main.command("stats")

@@ -60,6 +60,12 @@ class DomainError(VaultgramError):
     """The domain (boundaries and features) is invalid: the message names the ring or feature and vertex."""
 
 
+class MeshFoldError(DomainError):
+    """The quad mesh still has inverted faces after smoothing and untangling: features, curves or
+    boundaries too close together for the mesh density, or a patch layout that cannot be meshed
+    there. The message says where."""
+
+
 class FormFindingError(VaultgramError):
     """The input cannot be form-found: bad mesh, bad supports, or no compression-only equilibrium."""
 

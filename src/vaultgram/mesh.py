@@ -23,7 +23,7 @@ import numpy as np
 from vaultgram.decomposition import Decomposition, decompose
 from vaultgram.domain import Domain
 from vaultgram.edge_groups import DensitySpec, edge_groups, group_counts
-from vaultgram.errors import VaultgramError
+from vaultgram.errors import MeshFoldError, VaultgramError
 from vaultgram.files import read_json, write_json
 from vaultgram.meshes import boundary_loops, corner_arrays, write_obj
 from vaultgram.smoothing import DEFAULT_ITERATIONS, laplacian_smooth, untangle
@@ -57,6 +57,7 @@ def mesh_domain(
     smooth: int = DEFAULT_ITERATIONS,
     densities: DensitySpec | None = None,
     rules_dir=None,
+    allow_folds: bool = False,
 ) -> QuadMesh:
     """Topology and geometry of §3: a smooth quad mesh of ``domain``.
 
@@ -73,6 +74,8 @@ def mesh_domain(
         Laplacian smoothing iterations.
     densities : DensitySpec, optional
         Local density control (:func:`vaultgram.edge_groups.load_densities`).
+    allow_folds : bool
+        Return a mesh that still has inverted faces after smoothing instead of raising.
 
     Returns
     -------
@@ -82,12 +85,14 @@ def mesh_domain(
     Raises
     ------
     VaultgramError
-        From any stage (invalid domain, a patch that is not 3- or 4-sided, bad densities).
+        From any stage (invalid domain, a patch that is not 3- or 4-sided, bad densities);
+        :class:`MeshFoldError` when the smoothed mesh has inverted faces (unless ``allow_folds``).
     """
     check_feature_spacing(domain, spacing)
     t = time.perf_counter()
     dec = decompose(domain, spacing, rules_dir)
-    return mesh_decomposition(dec, target_length, smooth, densities, {"decompose": time.perf_counter() - t})
+    return mesh_decomposition(dec, target_length, smooth, densities, {"decompose": time.perf_counter() - t},
+                              allow_folds)
 
 
 def mesh_decomposition(
@@ -96,10 +101,13 @@ def mesh_decomposition(
     smooth: int = DEFAULT_ITERATIONS,
     densities: DensitySpec | None = None,
     seconds: dict | None = None,
+    allow_folds: bool = False,
 ) -> QuadMesh:
     """Geometry of §3.2 for a decomposition: edge groups, Coons patches, welding, smoothing.
 
     ``seconds`` (time already spent per stage) is extended with this function's stages in ``info``.
+    A smoothed mesh with inverted faces raises :class:`MeshFoldError` unless ``allow_folds``; the raw
+    Coons patches (``smooth=0``) are returned as they are.
     """
     if smooth < 0:
         raise VaultgramError(f"smoothing iterations must be >= 0, got {smooth}")
@@ -130,7 +138,10 @@ def mesh_decomposition(
         "smooth": smooth,
         "seconds": seconds,
     }
-    return dataclasses.replace(mesh, vertices=x, info=info)
+    mesh = dataclasses.replace(mesh, vertices=x, info=info)
+    if smooth > 0 and not allow_folds:
+        check_not_folded(mesh, dec)
+    return mesh
 
 
 # --------------------------------------------------------------------------------------------
@@ -290,6 +301,39 @@ def _boundary_distance(x: np.ndarray, loops, domain: Domain) -> float:
     return float(max(d1, d2))
 
 
+def face_scaled_jacobians(x: np.ndarray, faces) -> np.ndarray:
+    """Per face, the smallest scaled Jacobian of its corners (the sine of the corner angle for a
+    quad, scaled so that an equilateral triangle has 1); <= 0 for an inverted or degenerate face."""
+    fa = _face_array(faces)
+    face_of, u, v, w = corner_arrays(faces)
+    x = np.asarray(x, dtype=float)[:, :2]
+    e1, e2 = x[v] - x[u], x[w] - x[u]
+    cross = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
+    norm = np.hypot(*e1.T) * np.hypot(*e2.T)
+    sj = np.where(norm > 0, cross / np.where(norm > 0, norm, 1.0), -1.0)
+    sj = np.where(fa[face_of, 3] < 0, np.minimum(sj * 2.0 / math.sqrt(3.0), 1.0), sj)
+    face_sj = np.full(len(faces), np.inf)
+    np.minimum.at(face_sj, face_of, sj)
+    return face_sj
+
+
+def check_not_folded(mesh: QuadMesh, decomposition: Decomposition) -> None:
+    """Raise :class:`MeshFoldError` naming where the mesh folds, if any face is inverted."""
+    face_sj = face_scaled_jacobians(mesh.vertices, mesh.faces)
+    bad = np.flatnonzero(face_sj <= 0)
+    if not len(bad):
+        return
+    first = int(bad[np.argmin(face_sj[bad])])
+    where = mesh.vertices[list(mesh.faces[first]), :2].mean(axis=0)
+    patch = decomposition.patches[int(mesh.face_patch[first])]
+    corners = ", ".join(_pt(decomposition.graph.get(c, "pos")) for c in patch.corners)
+    raise MeshFoldError(
+        f"the mesh folds: {len(bad)} inverted face(s), the worst near {_pt(where)} in the patch with corners "
+        f"{corners}; features, curves or boundaries this close together need a smaller --target-length "
+        "or more room (vaultgram mesh --allow-folds writes the mesh anyway)"
+    )
+
+
 def mesh_stats(mesh: QuadMesh, domain: Domain | None = None) -> dict:
     """Quality metrics of a quad mesh (the acceptance properties of §3.2).
 
@@ -353,11 +397,7 @@ def mesh_stats(mesh: QuadMesh, domain: Domain | None = None) -> dict:
     # shape
     e1, e2 = x[v] - x[u], x[w] - x[u]
     cross = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
-    norm = np.hypot(*e1.T) * np.hypot(*e2.T)
-    sj = np.where(norm > 0, cross / np.where(norm > 0, norm, 1.0), -1.0)
-    sj = np.where(is_tri[face_of], np.minimum(sj * 2.0 / math.sqrt(3.0), 1.0), sj)
-    face_sj = np.full(len(faces), np.inf)
-    np.minimum.at(face_sj, face_of, sj)
+    face_sj = face_scaled_jacobians(x, faces)
     angle = np.degrees(np.arctan2(cross, (e1 * e2).sum(1)))
     angle = np.where(angle < 0, 360.0 + angle, angle)
 
