@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from vaultgram.decomposition import Decomposition, decompose
+from vaultgram.vault_functions import interior_angle
 from vaultgram.domain import Domain
 from vaultgram.edge_groups import DensitySpec, edge_groups, group_counts
 from vaultgram.errors import MeshFoldError, VaultgramError
@@ -327,10 +328,17 @@ def check_not_folded(mesh: QuadMesh, decomposition: Decomposition) -> None:
     where = mesh.vertices[list(mesh.faces[first]), :2].mean(axis=0)
     patch = decomposition.patches[int(mesh.face_patch[first])]
     corners = ", ".join(_pt(decomposition.graph.get(c, "pos")) for c in patch.corners)
+    angles = [interior_angle(patch.sides[k - 1][-2], patch.sides[k][0], patch.sides[k][1])
+              for k in range(patch.n_sides)]
+    k = int(np.argmax(angles))
+    if angles[k] > 180:
+        why = (f"the patch turns by {angles[k]:.0f} degrees at its corner {_pt(patch.sides[k][0])}, which no "
+               "quad mesh of it can do at any density: move the feature or curve there")
+    else:
+        why = "features, curves or boundaries this close together need a smaller --target-length or more room"
     raise MeshFoldError(
         f"the mesh folds: {len(bad)} inverted face(s), the worst near {_pt(where)} in the patch with corners "
-        f"{corners}; features, curves or boundaries this close together need a smaller --target-length "
-        "or more room (vaultgram mesh --allow-folds writes the mesh anyway)"
+        f"{corners}; {why} (vaultgram mesh --allow-folds writes the mesh anyway)"
     )
 
 
