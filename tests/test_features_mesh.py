@@ -435,3 +435,21 @@ def test_hairpin_curve_end_is_not_split_onto_its_own_curve():
         mesh_domain(domain)
     mesh = mesh_domain(domain, allow_folds=True)
     assert mesh_stats(mesh, domain)["curve_interior_singular"] == 0
+
+
+@pytest.mark.parametrize("curve", [[[3, 2], [2.3, 4], [3, 6]], [[4, 2], [3, 4], [4, 6]]])
+def test_patch_with_a_curve_bend_on_its_outer_side_is_split(curve):
+    """A curve bent at its middle vertex: the bend is a corner on both sides of the curve (the curve
+    cuts the domain), so the patch on the outer side of the bend had 5 sides ("patch ... has 5
+    sides" error). spread_t_junction now splits such a patch at the bend as at a T-junction: the
+    domain meshes with every §4 property."""
+    from vaultgram.decomposition import decompose
+
+    domain = domain_from_dict({"outer": [[0, 0], [10, 0], [10, 8], [0, 8]], "curves": [curve]})
+    dec = decompose(domain)
+    assert {str(r.step): r.applications for r in dec.reports}["spread_t_junction fixpoint"] >= 1
+    assert all(p.n_sides in (3, 4) for p in dec.patches)
+    mesh = mesh_domain(domain)
+    stats = mesh_stats(mesh, domain)
+    assert_feature_properties(domain, mesh, stats)
+    assert stats["min_scaled_jacobian"] > 0
