@@ -3,7 +3,10 @@
 :func:`mesh_domain` runs the stages in order::
 
     Domain -> decompose (§3.1) -> edge_groups + group_counts (§3.2) -> weld (discrete Coons patches,
-    §3.2) -> laplacian_smooth (§3.2) -> QuadMesh
+    §3.2) -> laplacian_smooth (§3.2) -> untangle -> check_not_folded -> QuadMesh
+
+A mesh that still has inverted faces after smoothing and untangling is a :class:`MeshFoldError`
+saying where (``allow_folds`` returns it anyway).
 
 :func:`mesh_stats` measures what the paper asks of the result: quads only (triangles only at poles),
 no boundary singularity, interior singularities where the decomposition has them, no inverted face,

@@ -11,6 +11,10 @@ One iteration is one sparse matrix product ``x <- D^-1 A x`` (``A`` the vertex a
 edges, ``D`` the degrees), fixed vertices reset, then each :class:`SlideConstraint`'s vertices
 projected onto its polyline: the nearest point over all segments, computed for all vertices of the
 constraint at once (:func:`project_to_polyline`). No Python loop runs over vertices.
+
+Uniform Laplacian smoothing can leave faces folded next to concave boundaries (its fixed point lies
+outside the valid region there); :func:`untangle` then works on those faces only, by gradient steps
+on their corners' scaled Jacobians (not in the paper: the paper's meshes are coarser).
 """
 
 from __future__ import annotations
