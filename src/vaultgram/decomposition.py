@@ -33,7 +33,7 @@ from vaultgram.domain import Domain
 from vaultgram.engine.graph import HostGraph
 from vaultgram.engine.rulebook import Rulebook, load_rulebook
 from vaultgram.engine.strategy import Runner, StepReport
-from vaultgram.errors import DomainError
+from vaultgram.errors import DomainError, RewriteError
 from vaultgram.patches import Patch, find_patches, half_edge_polyline
 from vaultgram.skeleton import Skeleton, skeleton
 from vaultgram.triangulation import triangulate
@@ -263,8 +263,8 @@ def check_patch_nodes(graph: HostGraph, patches) -> None:
         for p in graph.nodes() if graph.node_type(p) == "Patch"
     )
     faces = sorted(sorted(patch.corners) for patch in patches)
-    if nodes != faces:
-        raise DomainError(
+    if nodes != faces:  # a fault of the rules, not of the domain
+        raise RewriteError(
             f"after the patching rules the graph has {len(nodes)} patch nodes but the plan has {len(faces)} "
             "patches with other corners: a patching rule must replace the Patch nodes it splits"
         )
