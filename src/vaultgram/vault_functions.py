@@ -132,6 +132,13 @@ def patch_chains(graph, patch: int, x: int, o: int) -> tuple[np.ndarray, np.ndar
     return outline[: at + 1], outline[at:][::-1]
 
 
+def patch_side_starts(graph, patch: int, x: int, y: int) -> bool:
+    """Whether the outline of a Patch node, walked counter-clockwise from its corner ``x``, goes to
+    ``y`` first (``y`` a neighbour of ``x``, e.g. the next point of a boundary side)."""
+    found = _patch_outline(graph, patch, x)
+    return found is not None and graph.other(found[0][0][0], x) == y
+
+
 def patch_angle(graph, patch: int, x: int) -> float:
     """The interior angle (degrees) of a Patch node at its corner ``x``, between the directions in
     which its two sides leave ``x`` (not the chords to the neighbouring corners: sides may curve);
@@ -235,5 +242,7 @@ def vault_functions() -> Functions:
     f.register("diagonal_path", diagonal_path, ("node", "node", "node"), "list", uses_graph=True, local=False)
     f.register("path_clear", path_clear, ("list",), "bool", uses_graph=True, local=False)
     f.register("patch_angle", patch_angle, ("node", "node"), "float", uses_graph=True, local=False)
+    f.register("patch_side_starts", patch_side_starts, ("node", "node", "node"), "bool", uses_graph=True,
+               local=False)
     f.register("patch_corner", patch_corner, ("node", "int"), "node", uses_graph=True, local=False)
     return f
