@@ -178,10 +178,6 @@ class ForceDiagram:
         xy.setflags(write=False)
         return replace(self, xy=xy)
 
-    def perpendicular_xy(self) -> np.ndarray:
-        """The classical (perpendicular) reciprocal: positions turned back by +90 degrees."""
-        return np.column_stack([-self.xy[:, 1], self.xy[:, 0]])
-
     def to_json(self) -> dict:
         """JSON-serialisable description (for ``force.json``)."""
         return {

@@ -126,12 +126,6 @@ class QuadMesh:
     def n_faces(self) -> int:
         return len(self.faces)
 
-    def with_vertices(self, vertices: np.ndarray) -> "QuadMesh":
-        """The same mesh with new vertex positions."""
-        import dataclasses
-
-        return dataclasses.replace(self, vertices=np.asarray(vertices, dtype=float), info=dict(self.info))
-
     def labels_json(self) -> dict:
         """Per-vertex labels as JSON lists of vertex indices."""
         return {
