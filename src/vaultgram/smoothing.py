@@ -193,9 +193,10 @@ def untangle(
     sum of the corner deficits ``target - c / (|e1| |e2|)`` (the gradient of the cross product
     ``c``, scaled by ``|e1| |e2|``), each by at most :data:`UNTANGLE_STEP` of its shortest edge,
     keeps fixed vertices and projects sliding ones back onto their polylines. A step is taken when it
-    leaves fewer inverted corners, or as many and a smaller total deficit; otherwise it is halved. It stops when no corner is below its target, the step
-    has shrunk to nothing, or after ``steps`` steps, and returns the input unchanged when nothing is
-    below target (good meshes are not touched). Vectorised over corners.
+    leaves fewer inverted corners, or as many and a smaller total deficit; otherwise it is halved.
+    It stops when no corner is below its target, the step has shrunk to nothing, or after ``steps``
+    steps, and returns the input unchanged when nothing is below target (good meshes are not
+    touched). Vectorised over corners.
     """
     x = np.array(vertices, dtype=float)
     if len(faces) == 0:
@@ -203,7 +204,8 @@ def untangle(
     n = len(x)
     face_of, u, v, p = corner_arrays(faces)
     goal = _corner_targets(x, u, v, p, n, target)
-    bad = _degenerate_faces(x, face_of, u, v, p, len(faces), goal)
+    bad = np.zeros(len(faces), dtype=bool)
+    bad[face_of[_corners(x, u, v, p)[-1] < goal]] = True
     if not bad.any():
         return x
     keep = np.asarray(fixed, dtype=bool).copy() if fixed is not None else np.zeros(n, dtype=bool)
@@ -219,10 +221,8 @@ def untangle(
     fu, fv, fp, goal = u[work], v[work], p[work], goal[work]
 
     def deficits(y):
-        e1, e2 = y[fv, :2] - y[fu, :2], y[fp, :2] - y[fu, :2]
-        l1, l2 = np.hypot(*e1.T), np.hypot(*e2.T)
+        e1, e2, l1, l2, sj = _corners(y, fu, fv, fp)
         scale = np.maximum(l1 * l2, 1e-300)
-        sj = (e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]) / scale
         return np.maximum(goal - sj, 0.0), e1, e2, l1, l2, scale, int((sj <= 0).sum())
 
     def settle(y):
@@ -264,6 +264,15 @@ def untangle(
     return x
 
 
+def _corners(x, u, v, p):
+    """Per corner (vertex ``u``, next ``v``, previous ``p``): the two edge vectors, their lengths and
+    the scaled Jacobian ``(e1 x e2) / (|e1| |e2|)``."""
+    e1, e2 = x[v, :2] - x[u, :2], x[p, :2] - x[u, :2]
+    l1, l2 = np.hypot(*e1.T), np.hypot(*e2.T)
+    sj = (e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]) / np.maximum(l1 * l2, 1e-300)
+    return e1, e2, l1, l2, sj
+
+
 def _corner_targets(x, u, v, p, n, target: float) -> np.ndarray:
     """Per corner, the scaled Jacobian to aim at: ``target``, or half the sine of the mean corner
     angle at its vertex where that is smaller (the corners of a pole's fan of many triangles, or at
@@ -273,13 +282,3 @@ def _corner_targets(x, u, v, p, n, target: float) -> np.ndarray:
     total = np.bincount(u, weights=angle, minlength=n)
     mean = total[u] / np.bincount(u, minlength=n)[u]
     return np.minimum(target, 0.5 * np.sin(np.minimum(mean, np.pi / 2)))
-
-
-def _degenerate_faces(x, face_of, u, v, p, n_faces, goal: np.ndarray) -> np.ndarray:
-    """Faces with a corner whose scaled Jacobian is below its ``goal``."""
-    e1, e2 = x[v, :2] - x[u, :2], x[p, :2] - x[u, :2]
-    cross = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
-    scale = np.maximum(np.hypot(*e1.T) * np.hypot(*e2.T), 1e-300)
-    out = np.zeros(n_faces, dtype=bool)
-    out[face_of[cross / scale < goal]] = True
-    return out
