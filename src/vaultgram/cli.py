@@ -121,7 +121,7 @@ def rules_run(files, graph_path: str, strategy: str, out_dir: str) -> None:
     runner.run(strategy)
     out = Path(out_dir)
     write_json(out / "graph.json", graph.to_json())
-    runner.trace.save(out / "trace.json")
+    write_json(out / "trace.json", runner.trace.to_json())
     for report in runner.reports:
         click.echo(f"{report.step}: {report.applications} application(s) in {report.seconds * 1000:.1f} ms")
     click.echo(f"wrote {out / 'graph.json'} ({len(graph)} nodes, {graph.num_edges} edges) and {out / 'trace.json'}")

@@ -1,0 +1,92 @@
+"""Record, or compare against a record, what ``vaultgram design`` writes on every example and plan.
+
+Run: ``python benchmarks/golden_outputs.py record DIR`` before a refactor, then
+``python benchmarks/golden_outputs.py compare DIR`` after it: every JSON and OBJ file and the printed
+summary must be byte-identical (PNG files are left out: matplotlib embeds its version). Plans where
+the default fails are run again with ``--relax-mode all``; a plan that fails both ways records its
+error line, which must not change either. Extra ``vaultgram design`` options may follow DIR.
+
+Inputs: ``examples/*.json`` (except the graph ``skeleton_*``) and ``../shared/data/architecture``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import hashlib
+import json
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+ARCHITECTURE = REPO.parent / "shared" / "data" / "architecture"
+KEPT = (".json", ".obj")
+
+
+def inputs() -> list[Path]:
+    """Every bundled example domain and every shared plan, in a fixed order."""
+    examples = [p for p in sorted((REPO / "examples").glob("*.json")) if not p.name.startswith("skeleton_")]
+    plans = sorted(ARCHITECTURE.glob("*.json")) if ARCHITECTURE.is_dir() else []
+    return examples + plans
+
+
+def run_design(domain: Path, options: list[str]) -> dict:
+    """One design run (default relaxation, then ``--relax-mode all``): its exit code, output and files."""
+    for extra in ([], ["--relax-mode", "all"]):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = Path(tmp) / "out"
+            cmd = [sys.executable, "-m", "vaultgram", "design", str(domain), "--out", str(out), *options, *extra]
+            proc = subprocess.run(cmd, capture_output=True, text=True)
+            files = {p.name: hashlib.sha256(p.read_bytes()).hexdigest()
+                     for p in sorted(out.glob("*")) if p.suffix in KEPT} if out.is_dir() else {}
+            if proc.returncode == 0:
+                break
+    return {"options": extra, "code": proc.returncode, "stdout": proc.stdout, "stderr": proc.stderr.strip(),
+            "files": files}
+
+
+def record(options: list[str]) -> dict:
+    """The outcome of every input, keyed by file name."""
+    result = {}
+    for domain in inputs():
+        result[domain.name] = run_design(domain, options)
+        print(f"{domain.name}: exit {result[domain.name]['code']}, {len(result[domain.name]['files'])} files",
+              flush=True)
+    return result
+
+
+def differences(before: dict, after: dict) -> list[str]:
+    """One line per input whose outcome changed, naming what changed."""
+    lines = []
+    for name in sorted(set(before) | set(after)):
+        a, b = before.get(name), after.get(name)
+        if a is None or b is None:
+            lines.append(f"{name}: only {'after' if a is None else 'before'}")
+            continue
+        changed = [key for key in ("options", "code", "stdout", "stderr") if a[key] != b[key]]
+        changed += [f"file {f}" for f in sorted(set(a["files"]) | set(b["files"]))
+                    if a["files"].get(f) != b["files"].get(f)]
+        if changed:
+            lines.append(f"{name}: " + ", ".join(changed))
+    return lines
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("mode", choices=["record", "compare"])
+    parser.add_argument("dir", type=Path)
+    args, options = parser.parse_known_args()
+    now = record(options)
+    args.dir.mkdir(parents=True, exist_ok=True)
+    target = args.dir / ("golden.json" if args.mode == "record" else "now.json")
+    target.write_text(json.dumps(now, indent=1, sort_keys=True))
+    if args.mode == "record":
+        return 0
+    lines = differences(json.loads((args.dir / "golden.json").read_text()), now)
+    print("\n".join(lines) if lines else f"identical: {len(now)} inputs")
+    return 1 if lines else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
