@@ -2,7 +2,7 @@
 
 Run: ``python benchmarks/golden_outputs.py record DIR`` before a refactor, then
 ``python benchmarks/golden_outputs.py compare DIR`` after it: every JSON and OBJ file and the printed
-summary must be byte-identical (PNG files are left out: matplotlib embeds its version). Plans where
+summary must be byte-identical (timings and the temporary folder aside; PNG files are left out: matplotlib embeds its version). Plans where
 the default fails are run again with ``--relax-mode all``; a plan that fails both ways records its
 error line, which must not change either. Extra ``vaultgram design`` options may follow DIR.
 
@@ -14,6 +14,7 @@ from __future__ import annotations
 import argparse
 import hashlib
 import json
+import re
 import subprocess
 import sys
 import tempfile
@@ -56,15 +57,22 @@ def record(options: list[str]) -> dict:
     return result
 
 
+def normalised(stdout: str) -> str:
+    """The printed summary without what varies from run to run: timings and the output folder."""
+    lines = [line for line in stdout.splitlines() if not line.startswith(("time:", "timings:"))]
+    return "\n".join(re.sub(r"/\S*/out\b", "OUT", line) for line in lines)
+
+
 def differences(before: dict, after: dict) -> list[str]:
-    """One line per input whose outcome changed, naming what changed."""
+    """One line per input whose outcome changed, naming what changed (timings and paths aside)."""
     lines = []
     for name in sorted(set(before) | set(after)):
         a, b = before.get(name), after.get(name)
         if a is None or b is None:
             lines.append(f"{name}: only {'after' if a is None else 'before'}")
             continue
-        changed = [key for key in ("options", "code", "stdout", "stderr") if a[key] != b[key]]
+        changed = [key for key in ("options", "code", "stderr") if a[key] != b[key]]
+        changed += ["stdout"] if normalised(a["stdout"]) != normalised(b["stdout"]) else []
         changed += [f"file {f}" for f in sorted(set(a["files"]) | set(b["files"]))
                     if a["files"].get(f) != b["files"].get(f)]
         if changed:
