@@ -40,11 +40,11 @@ import time
 
 import numpy as np
 
-from vaultgram.equilibrium import form_find
-from vaultgram.forcediagram import force_diagram
-from vaultgram.formdiagram import form_diagram
-from vaultgram.horizontal import angle_deviations, horizontal
-from vaultgram.meshes import grid_mesh
+from vaultgram.formfinding.thrust import form_find
+from vaultgram.formfinding.forcediagram import force_diagram
+from vaultgram.formfinding.formdiagram import form_diagram
+from vaultgram.formfinding.horizontal import angle_deviations, horizontal
+from vaultgram.geometry.meshes import grid_mesh
 
 DEFAULT_SIZES = [10, 20, 50, 100, 200]
 QUICK_SIZES = [10, 20]
@@ -159,10 +159,10 @@ def run_compas_tna(peer: dict, n: int, solver: str = "nodal", tight: bool = Fals
 
 def run_meshes(face_counts) -> None:
     """Form finding on the meshed quad-with-hole example (outer boundary supported, hole open)."""
-    from vaultgram.domain import load_domain
-    from vaultgram.equilibrium import form_find
-    from vaultgram.mesh import mesh_domain
-    from vaultgram.supports import support_vertices
+    from vaultgram.domain.model import load_domain
+    from vaultgram.formfinding.thrust import form_find
+    from vaultgram.meshing.mesh import mesh_domain
+    from vaultgram.formfinding.supports import support_vertices
 
     domain = load_domain(Path(__file__).resolve().parents[1] / "examples" / "quad_with_hole.json")
     print("\nquad_with_hole meshes (vaultgram mesh, then form_find with zmax 3); times in seconds")

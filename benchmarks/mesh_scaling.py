@@ -5,7 +5,7 @@ examples/quad_with_hole.json and a square with three circular holes. For each ta
 target edge length is ``sqrt(area / faces)``; each row gives the faces obtained and the best-of-N
 time of each stage: decompose (§3.1), edge groups and counts, discrete Coons patches, welding,
 smoothing (default iterations), untangling (of the faces left nearly degenerate), and the whole
-:func:`vaultgram.mesh.mesh_domain` call. Also printed: smoothing time per 10^5 faces (it should stay
+:func:`vaultgram.meshing.mesh.mesh_domain` call. Also printed: smoothing time per 10^5 faces (it should stay
 flat: smoothing is linear in faces), and the mesh's minimum scaled Jacobian.
 Floor: 10^5 faces in under 5 s end to end.
 """
@@ -19,9 +19,9 @@ from pathlib import Path
 
 import numpy as np
 
-from vaultgram.domain import domain_from_dict, load_domain
-from vaultgram.mesh import mesh_domain, mesh_stats
-from vaultgram.smoothing import DEFAULT_ITERATIONS
+from vaultgram.domain.model import domain_from_dict, load_domain
+from vaultgram.meshing.mesh import mesh_domain, mesh_stats
+from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "quad_with_hole.json"
 

@@ -27,9 +27,9 @@ from collections import Counter
 
 import numpy as np
 
-from vaultgram.domain import domain_from_dict
+from vaultgram.domain.model import domain_from_dict
 from vaultgram.errors import VaultgramError
-from vaultgram.mesh import mesh_domain, mesh_stats
+from vaultgram.meshing.mesh import mesh_domain, mesh_stats
 
 DEGENERATE = 1e-3
 

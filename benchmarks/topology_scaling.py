@@ -12,13 +12,13 @@ import argparse
 import time
 from pathlib import Path
 
-from vaultgram.decomposition import PATCH_EDGES, decompose, decomposition_graph, load_vault_rulebook
-from vaultgram.discretise import discretise
-from vaultgram.domain import load_domain
+from vaultgram.topology.decomposition import PATCH_EDGES, decompose, decomposition_graph, load_vault_rulebook
+from vaultgram.topology.discretise import discretise
+from vaultgram.domain.model import load_domain
 from vaultgram.engine.strategy import Runner
-from vaultgram.patches import find_patches
-from vaultgram.skeleton import skeleton
-from vaultgram.triangulation import triangulate
+from vaultgram.topology.patches import find_patches
+from vaultgram.topology.skeleton import skeleton
+from vaultgram.topology.triangulation import triangulate
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "quad_with_hole.json"
 SPACINGS = (0.05, 0.02, 0.01, 0.005, 0.002)

@@ -13,7 +13,6 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 from vaultgram.errors import RewriteError
-from vaultgram.files import write_json
 
 from .graph import HostGraph
 from .matcher import Matcher
@@ -40,10 +39,6 @@ class Trace:
             d["params"] = {k: _plain(v) for k, v in d["params"].items()}
             out.append(d)
         return out
-
-    def save(self, path: str | Path) -> None:
-        """Write the trace as JSON (written to a temporary file, then renamed)."""
-        write_json(path, self.to_json())
 
 
 def _plain(value):

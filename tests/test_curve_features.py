@@ -11,10 +11,10 @@ import shapely
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from vaultgram.decomposition import decompose, default_rules_dir
-from vaultgram.domain import domain_from_dict
+from vaultgram.topology.decomposition import decompose, default_rules_dir
+from vaultgram.domain.model import domain_from_dict
 from vaultgram.errors import DomainError
-from vaultgram.vault_functions import curve_side
+from vaultgram.topology.functions import curve_side
 
 SQUARE = [[0, 0], [10, 0], [10, 10], [0, 10]]
 
@@ -120,7 +120,7 @@ def test_random_curves_decompose_cleanly_or_fail_clearly(curves, spacing):
 def test_feature_examples_decompose(name):
     from paths import EXAMPLES
 
-    from vaultgram.domain import load_domain
+    from vaultgram.domain.model import load_domain
 
     dec = decompose(load_domain(EXAMPLES / f"{name}.json"), 0.02)
     g = dec.graph
@@ -137,7 +137,7 @@ def test_curve_tip_inside_a_patch_is_surrounded_by_triangles():
     """A slit whose tips no rebranch reaches (fig7_curves, top): the tip patches are split into triangles."""
     from paths import EXAMPLES
 
-    from vaultgram.domain import load_domain
+    from vaultgram.domain.model import load_domain
 
     dec = decompose(load_domain(EXAMPLES / "fig7_curves.json"), 0.02)
     fired = Counter(step["rule"] for step in dec.trace)

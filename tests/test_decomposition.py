@@ -13,8 +13,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from paths import ARCHITECTURE_PLANS, EXAMPLES
 
-from vaultgram.decomposition import decompose, default_rules_dir
-from vaultgram.domain import domain_from_dict, load_domain
+from vaultgram.topology.decomposition import decompose, default_rules_dir
+from vaultgram.domain.model import domain_from_dict, load_domain
 from vaultgram.errors import DomainError
 
 SPACINGS = [0.01, 0.0125, 0.015, 0.0175, 0.02, 0.025, 0.03, 0.035, 0.04, 0.045, 0.05]

@@ -1,4 +1,4 @@
-"""Loading and validation of domains (vaultgram.domain): formats, normalisation, one test per error."""
+"""Loading and validation of domains (vaultgram.domain.model): formats, normalisation, one test per error."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from vaultgram.domain import Domain, domain_from_dict, load_domain, validate_domain
+from vaultgram.domain.model import Domain, domain_from_dict, load_domain, validate_domain
 from vaultgram.errors import DomainError
 
 SQUARE = [[0, 0], [10, 0], [10, 10], [0, 10]]
@@ -258,7 +258,7 @@ def test_validate_domain_direct():
 def test_schema_documents_format():
     from importlib import resources
 
-    schema = json.loads(resources.files("vaultgram").joinpath("domain.schema.json").read_text())
+    schema = json.loads(resources.files("vaultgram.domain").joinpath("domain.schema.json").read_text())
     assert schema["$schema"].endswith("2020-12/schema")
     assert schema["required"] == ["outer"]
     assert {"name", "outer", "holes", "points", "curves", "supports"} <= set(schema["properties"])

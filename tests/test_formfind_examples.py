@@ -10,10 +10,10 @@ from click.testing import CliRunner
 from paths import EXAMPLES
 
 from vaultgram.cli import main
-from vaultgram.domain import load_domain
-from vaultgram.equilibrium import form_find
-from vaultgram.mesh import mesh_domain
-from vaultgram.supports import support_vertices
+from vaultgram.domain.model import load_domain
+from vaultgram.formfinding.thrust import form_find
+from vaultgram.meshing.mesh import mesh_domain
+from vaultgram.formfinding.supports import support_vertices
 
 CASES = ["quad_with_hole.json", "l_shape.json", "square_point_loads.json"]
 

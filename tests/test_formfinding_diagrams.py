@@ -7,13 +7,13 @@ import json
 import numpy as np
 import pytest
 
-from vaultgram.equilibrium import form_find
-from vaultgram.forcediagram import force_diagram
-from vaultgram.formdiagram import form_diagram
-from vaultgram.horizontal import angle_deviations, horizontal, relax_openings
-from vaultgram.loads import tributary_areas
-from vaultgram.meshes import boundary_loops, grid_index, grid_mesh, remove_faces, write_obj
-from vaultgram.vertical import vertical
+from vaultgram.formfinding.thrust import form_find
+from vaultgram.formfinding.forcediagram import force_diagram
+from vaultgram.formfinding.formdiagram import form_diagram
+from vaultgram.formfinding.horizontal import angle_deviations, horizontal, relax_openings
+from vaultgram.formfinding.loads import tributary_areas
+from vaultgram.geometry.meshes import boundary_loops, grid_index, grid_mesh, remove_faces, write_obj
+from vaultgram.formfinding.vertical import vertical
 
 
 def holed_grid(n=20, lo=7, hi=13):
@@ -190,7 +190,7 @@ def test_deterministic():
 
 
 def test_weighted_fit_with_unit_weight_is_the_plain_fit():
-    from vaultgram.forcediagram import PinnedLaplacian, WeightedFit
+    from vaultgram.formfinding.forcediagram import PinnedLaplacian, WeightedFit
 
     v, f, outer = holed_grid(10, 3, 7)
     form = form_diagram(v, f, supports=outer)

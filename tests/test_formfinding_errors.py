@@ -5,13 +5,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from vaultgram.equilibrium import form_find
+from vaultgram.formfinding.thrust import form_find
 from vaultgram.errors import ConvergenceError, VaultgramError
 from vaultgram.errors import FormFindingError, HorizontalEquilibriumError
-from vaultgram.formdiagram import form_diagram
-from vaultgram.horizontal import horizontal, relax_openings
-from vaultgram.meshes import boundary_loops, grid_index, grid_mesh, remove_faces
-from vaultgram.vertical import vertical
+from vaultgram.formfinding.formdiagram import form_diagram
+from vaultgram.formfinding.horizontal import horizontal, relax_openings
+from vaultgram.geometry.meshes import boundary_loops, grid_index, grid_mesh, remove_faces
+from vaultgram.formfinding.vertical import vertical
 
 
 def holed(n=12, lo=4, hi=8):

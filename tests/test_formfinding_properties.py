@@ -7,12 +7,12 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from vaultgram.equilibrium import form_find
+from vaultgram.formfinding.thrust import form_find
 from vaultgram.errors import VaultgramError
-from vaultgram.formdiagram import form_diagram
-from vaultgram.horizontal import angle_deviations
-from vaultgram.loads import tributary_areas
-from vaultgram.meshes import grid_mesh
+from vaultgram.formfinding.formdiagram import form_diagram
+from vaultgram.formfinding.horizontal import angle_deviations
+from vaultgram.formfinding.loads import tributary_areas
+from vaultgram.geometry.meshes import grid_mesh
 
 
 @st.composite
@@ -54,7 +54,7 @@ def test_perturbed_grid_converges_or_fails_clearly(mesh, alpha):
 def test_force_diagram_is_reciprocal_in_size(mesh):
     v, f = mesh
     form = form_diagram(v, f)
-    from vaultgram.forcediagram import force_diagram
+    from vaultgram.formfinding.forcediagram import force_diagram
     force = force_diagram(form)
     assert force.n_vertices == form.n_faces
     assert force.n_edges == int(form.active.sum())

@@ -7,10 +7,10 @@ import json
 import numpy as np
 import pytest
 
-from vaultgram.formdiagram import form_diagram
-from vaultgram.horizontal import horizontal
-from vaultgram.meshes import grid_index, grid_mesh
-from vaultgram.vertical import vertical
+from vaultgram.formfinding.formdiagram import form_diagram
+from vaultgram.formfinding.horizontal import horizontal
+from vaultgram.geometry.meshes import grid_index, grid_mesh
+from vaultgram.formfinding.vertical import vertical
 
 from paths import REFERENCE
 

@@ -9,14 +9,14 @@ import numpy as np
 import pytest
 from paths import ARCHITECTURE, EXAMPLES
 
-from vaultgram.coons import coons_grid, grid_faces
-from vaultgram.decomposition import decompose
-from vaultgram.domain import load_domain
-from vaultgram.edge_groups import DensitySpec, densities_from_dict, edge_groups, group_counts, load_densities
+from vaultgram.meshing.coons import coons_grid, grid_faces
+from vaultgram.topology.decomposition import decompose
+from vaultgram.domain.model import load_domain
+from vaultgram.meshing.edge_groups import DensitySpec, densities_from_dict, edge_groups, group_counts, load_densities
 from vaultgram.errors import VaultgramError
-from vaultgram.meshes import corner_arrays, grid_mesh
-from vaultgram.smoothing import laplacian_smooth, project_to_polyline, untangle
-from vaultgram.weld import SlideConstraint, resample_polyline
+from vaultgram.geometry.meshes import corner_arrays, grid_mesh
+from vaultgram.meshing.smoothing import laplacian_smooth, project_to_polyline, untangle
+from vaultgram.meshing.weld import SlideConstraint, resample_polyline
 
 
 @pytest.fixture(scope="module")
@@ -101,8 +101,8 @@ def test_designer_counts_regions_and_minimum(qwh_layout):
 def test_curved_boundary_sides_get_enough_subdivisions(qwh_layout):
     """The chord constraint (CHORD_TOLERANCE): a curved boundary side resampled at its group's count
     stays within the tolerance of the domain's ring, even for a huge target length."""
-    from vaultgram.edge_groups import CHORD_TOLERANCE
-    from vaultgram.weld import chord_deviation, kept_points, resample_polyline, side_anchors
+    from vaultgram.meshing.edge_groups import CHORD_TOLERANCE
+    from vaultgram.meshing.weld import chord_deviation, kept_points, resample_polyline, side_anchors
 
     c = group_counts(qwh_layout, target_length=100.0)
     disc = qwh_layout.decomposition.disc
@@ -267,9 +267,9 @@ def test_pole_of_a_triangle_is_not_on_the_boundary_when_it_can_be_inside():
     (a boundary pole of n triangles is a boundary singularity for n >= 2), unless it is a feature."""
     from paths import ARCHITECTURE
 
-    from vaultgram.decomposition import decompose
-    from vaultgram.domain import load_domain
-    from vaultgram.edge_groups import is_feature_node
+    from vaultgram.topology.decomposition import decompose
+    from vaultgram.domain.model import load_domain
+    from vaultgram.meshing.edge_groups import is_feature_node
 
     path = ARCHITECTURE / "rv_star_pattern.json"
     if not path.is_file():
@@ -291,8 +291,8 @@ def test_triangles_at_a_reflex_corner_are_merged():
     the corner of 2 quads and 2 triangles; it is now the corner of 3 patches (regular, valence 4)."""
     from paths import ARCHITECTURE
 
-    from vaultgram.decomposition import decompose
-    from vaultgram.domain import load_domain
+    from vaultgram.topology.decomposition import decompose
+    from vaultgram.domain.model import load_domain
 
     path = ARCHITECTURE / "rv_star_pattern.json"
     if not path.is_file():
@@ -315,8 +315,8 @@ def test_triangle_with_a_smooth_boundary_corner_becomes_a_quad():
     their new neighbours are corners of 2 patches, as a regular point of a smooth stretch."""
     from paths import ARCHITECTURE
 
-    from vaultgram.decomposition import decompose
-    from vaultgram.domain import load_domain
+    from vaultgram.topology.decomposition import decompose
+    from vaultgram.domain.model import load_domain
 
     path = ARCHITECTURE / "rolex_learning_centre.json"
     if not path.is_file():

@@ -8,10 +8,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from vaultgram.discretise import discretise
-from vaultgram.domain import domain_from_dict, load_domain
+from vaultgram.topology.discretise import discretise
+from vaultgram.domain.model import domain_from_dict, load_domain
 from vaultgram.errors import DomainError
-from vaultgram.triangulation import triangulate
+from vaultgram.topology.triangulation import triangulate
 
 from paths import ARCHITECTURE
 PLANS = sorted(ARCHITECTURE.glob("*.json")) if ARCHITECTURE.is_dir() else []

@@ -15,7 +15,7 @@ import click
 import numpy as np
 
 from vaultgram.errors import VaultgramError
-from vaultgram.files import read_json, write_json
+from vaultgram.io.files import read_json, write_json
 
 
 class _Group(click.Group):
@@ -81,7 +81,7 @@ def rules() -> None:
 def rules_check(files, as_json: bool) -> None:
     """Parse and type-check rule FILES; print their types, rules and strategies."""
     from vaultgram.engine.rulebook import load_rulebook
-    from vaultgram.vault_functions import vault_functions
+    from vaultgram.topology.functions import vault_functions
 
     book = load_rulebook(files, vault_functions())
     summary = book.summary()
@@ -113,7 +113,7 @@ def rules_run(files, graph_path: str, strategy: str, out_dir: str) -> None:
     from vaultgram.engine.graph import HostGraph
     from vaultgram.engine.rulebook import load_rulebook
     from vaultgram.engine.strategy import Runner
-    from vaultgram.vault_functions import vault_functions
+    from vaultgram.topology.functions import vault_functions
 
     book = load_rulebook(files, vault_functions())
     graph = HostGraph.from_json(read_json(graph_path), book.schema)
@@ -138,7 +138,7 @@ def rules_why_not(files, graph_path: str, rule_name: str) -> None:
     from vaultgram.engine.rulebook import load_rulebook
     from vaultgram.engine.whynot import why_not
     from vaultgram.errors import RewriteError
-    from vaultgram.vault_functions import vault_functions
+    from vaultgram.topology.functions import vault_functions
 
     book = load_rulebook(files, vault_functions())
     if rule_name not in book.rules:
@@ -158,8 +158,8 @@ def decompose_command(
     domain_path: str, out_dir: str, spacing: float, rules_dir: str | None, smooth_branches: bool, plot: bool
 ) -> None:
     """Block decomposition of a DOMAIN (JSON, GeoJSON or DXF) into 3- and 4-sided patches (paper 3.1)."""
-    from vaultgram.decomposition import decompose
-    from vaultgram.domain import load_domain
+    from vaultgram.topology.decomposition import decompose
+    from vaultgram.domain.model import load_domain
 
     dec = decompose(load_domain(domain_path), spacing, rules_dir, smooth=smooth_branches)
     write_decomposition(dec, Path(out_dir), plot)
@@ -167,7 +167,7 @@ def decompose_command(
 
 def write_decomposition(dec, out: Path, plot: bool = True) -> None:
     """decomposition.json, patches.json and (optionally) decomposition.png, with a short report."""
-    from vaultgram.plot import plot_decomposition
+    from vaultgram.io.plots import plot_decomposition
 
     write_json(out / "decomposition.json", dec.to_json())
     write_json(out / "patches.json", dec.patches_json())
@@ -199,8 +199,8 @@ def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, 
     (the domain's "supports", or a mesh's "supports" vertex list), else the outer boundary.
     Writes form.json, force.json, thrust.json, thrust.obj and summary.json to --out.
     """
-    from vaultgram.domain import load_domain
-    from vaultgram.mesh import mesh_domain, mesh_from_json
+    from vaultgram.domain.model import load_domain
+    from vaultgram.meshing.mesh import mesh_domain, mesh_from_json
 
     domain = None
     data = read_json(input_path) if input_path.endswith(".json") else None
@@ -219,8 +219,8 @@ def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, 
 
 def thrust_network(mesh, spec, domain, zmax, thickness, density, point_load, tol_deg, sag, relax_mode):
     """Form finding of a mesh with a support specification, point loads at its point features."""
-    from vaultgram.equilibrium import form_find
-    from vaultgram.supports import support_vertices
+    from vaultgram.formfinding.thrust import form_find
+    from vaultgram.formfinding.supports import support_vertices
 
     if isinstance(spec, list):
         spec = {"vertices": spec}
@@ -232,7 +232,7 @@ def thrust_network(mesh, spec, domain, zmax, thickness, density, point_load, tol
 
 def write_thrust(network, out: Path) -> None:
     """form.json, force.json, thrust.json, thrust.obj and summary.json (no timings: deterministic bytes)."""
-    from vaultgram.meshes import write_obj
+    from vaultgram.geometry.meshes import write_obj
 
     summary = {k: v for k, v in network.summary.items() if k != "timings"}
     write_json(out / "form.json", network.form.to_json())
@@ -257,11 +257,11 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
 
     Everything is computed before anything is written, so a failing stage leaves no output.
     """
-    from vaultgram.decomposition import decompose
-    from vaultgram.domain import load_domain
-    from vaultgram.mesh import check_feature_spacing, mesh_decomposition, write_mesh
-    from vaultgram.plot import plot_mesh, plot_thrust
-    from vaultgram.smoothing import DEFAULT_ITERATIONS
+    from vaultgram.topology.decomposition import decompose
+    from vaultgram.domain.model import load_domain
+    from vaultgram.meshing.mesh import check_feature_spacing, mesh_decomposition, write_mesh
+    from vaultgram.io.plots import plot_mesh, plot_thrust
+    from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
 
     domain = load_domain(domain_path)
     check_feature_spacing(domain, spacing)
@@ -292,10 +292,10 @@ def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities
 
     Writes mesh.json (vertices, faces, vertex labels, edge groups) and mesh.obj to --out.
     """
-    from vaultgram.domain import load_domain
-    from vaultgram.edge_groups import load_densities
-    from vaultgram.mesh import mesh_domain, mesh_stats, write_mesh
-    from vaultgram.smoothing import DEFAULT_ITERATIONS
+    from vaultgram.domain.model import load_domain
+    from vaultgram.meshing.edge_groups import load_densities
+    from vaultgram.meshing.mesh import mesh_domain, mesh_stats, write_mesh
+    from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
 
     domain = load_domain(domain_path)
     spec = load_densities(densities_path) if densities_path else None
@@ -323,8 +323,8 @@ def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities
 @click.option("--json", "as_json", is_flag=True, help="Print the metrics as JSON.")
 def stats_command(mesh_path, domain_path, as_json) -> None:
     """Quality metrics of a MESH (mesh.json): singularities, scaled Jacobian, angles, boundary fit."""
-    from vaultgram.domain import load_domain
-    from vaultgram.mesh import format_stats, mesh_from_json, mesh_stats
+    from vaultgram.domain.model import load_domain
+    from vaultgram.meshing.mesh import format_stats, mesh_from_json, mesh_stats
 
     mesh = mesh_from_json(read_json(mesh_path), mesh_path)
     domain = load_domain(domain_path) if domain_path else None

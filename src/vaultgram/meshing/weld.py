@@ -6,9 +6,9 @@ welded to obtain a mesh that complies with our requirements: a fully structured 
 small number of singularities and no boundary singularities." (§3.2)
 
 Welding is exact by construction, not by a distance tolerance: every patch corner (a node of the
-decomposition graph) is one vertex, and every atomic side (:class:`vaultgram.edge_groups.Side`) is
+decomposition graph) is one vertex, and every atomic side (:class:`vaultgram.meshing.edge_groups.Side`) is
 resampled once, at its group's count, into vertices that both patches along it index. Each patch
-then adds only its interior grid points (:func:`vaultgram.coons.coons_grid`). Faces are
+then adds only its interior grid points (:func:`vaultgram.meshing.coons.coons_grid`). Faces are
 counter-clockwise because patches are and the grid's ``(i, j)`` axes follow the patch's corners.
 
 Resampling is uniform in arc length; on a boundary side, the domain's corners lying inside the side
@@ -23,8 +23,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from vaultgram.coons import coons_grid, grid_faces
-from vaultgram.edge_groups import Layout, is_feature_node
+from vaultgram.meshing.coons import coons_grid, grid_faces
+from vaultgram.meshing.edge_groups import Layout, is_feature_node
 from vaultgram.errors import VaultgramError
 
 __all__ = ["QuadMesh", "SlideConstraint", "weld", "resample_polyline", "kept_points", "side_anchors", "chord_deviation",
@@ -229,9 +229,9 @@ def weld(layout: Layout, counts) -> QuadMesh:
     Parameters
     ----------
     layout : Layout
-        Patches, patterns, sides and groups (:func:`vaultgram.edge_groups.edge_groups`).
+        Patches, patterns, sides and groups (:func:`vaultgram.meshing.edge_groups.edge_groups`).
     counts : sequence of int
-        Subdivisions per edge group (:func:`vaultgram.edge_groups.group_counts`).
+        Subdivisions per edge group (:func:`vaultgram.meshing.edge_groups.group_counts`).
 
     Raises
     ------

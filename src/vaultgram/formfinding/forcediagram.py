@@ -28,7 +28,7 @@ from scipy.sparse.csgraph import connected_components
 from scipy.sparse.linalg import splu
 
 from vaultgram.errors import FormFindingError
-from vaultgram.formdiagram import FormDiagram, connectivity_matrix
+from vaultgram.formfinding.formdiagram import FormDiagram, connectivity_matrix
 
 __all__ = ["ForceDiagram", "force_diagram", "PinnedLaplacian", "WeightedFit"]
 

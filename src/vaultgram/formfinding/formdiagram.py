@@ -31,8 +31,8 @@ import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components
 
 from vaultgram.errors import FormFindingError
-from vaultgram.meshes import corner_arrays
-from vaultgram.supports import outer_loop
+from vaultgram.geometry.meshes import corner_arrays
+from vaultgram.formfinding.supports import outer_loop
 
 __all__ = ["FormDiagram", "form_diagram", "connectivity_matrix"]
 
@@ -204,7 +204,7 @@ def form_diagram(vertices, faces: Sequence[Sequence[int]], supports: Iterable[in
 
     Example
     -------
-    >>> from vaultgram.meshes import grid_mesh
+    >>> from vaultgram.geometry.meshes import grid_mesh
     >>> v, f = grid_mesh(4)
     >>> form = form_diagram(v, f)
     >>> form.n_vertices, form.n_edges, int(form.loaded.sum()), int((~form.loaded).sum())

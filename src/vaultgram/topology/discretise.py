@@ -3,7 +3,7 @@
 "The input boundary curves are discretised into a set of points. The discretisation spacing is set
 as a percentage of the length of the diagonal of the bounding box, with values between 1% to 5%
 usually providing good results." (§3.1). The points are the sites of the Delaunay triangulation
-(:mod:`vaultgram.triangulation`) from which the topological skeleton is built.
+(:mod:`vaultgram.topology.triangulation`) from which the topological skeleton is built.
 
 Method
 ------
@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
-from vaultgram.domain import Domain
+from vaultgram.domain.model import Domain
 from vaultgram.errors import DomainError
 
 __all__ = ["Discretisation", "discretise", "turning_angles", "SPACING_RANGE"]

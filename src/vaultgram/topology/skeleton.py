@@ -8,7 +8,7 @@ singularities, i.e. the centre of the circumcircles of the singular faces." (§3
 Method
 ------
 The skeleton is the dual graph of the Delaunay mesh, built on the *cells* of
-:class:`~vaultgram.triangulation.Triangulation` (faces with coincident circumcircles merged, slivers
+:class:`~vaultgram.topology.triangulation.Triangulation` (faces with coincident circumcircles merged, slivers
 absorbed), so that arbitrary diagonals of cocircular point sets never create singularities.
 
 1. **Cell graph.** Two cells are adjacent when a face of one is adjacent to a face of the other
@@ -41,7 +41,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from vaultgram.triangulation import Triangulation
+from vaultgram.topology.triangulation import Triangulation
 
 __all__ = ["SkeletonNode", "Branch", "Loop", "Skeleton", "skeleton"]
 

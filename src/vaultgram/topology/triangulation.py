@@ -35,7 +35,7 @@ therefore group faces into **cells**, the faces of the true Delaunay *subdivisio
 * faces of near-zero area (``area < sliver_tol * h**2``, whose circumcentres are meaningless) are
   merged into the neighbour across their longest edge.
 
-The skeleton (:mod:`vaultgram.skeleton`) is built on cells, not faces; ``kind`` stays the paper's
+The skeleton (:mod:`vaultgram.topology.skeleton`) is built on cells, not faces; ``kind`` stays the paper's
 per-face classification. Ear faces at points that are not corners by angle are handled there (they
 are pruned as spurious branches).
 """
@@ -50,8 +50,8 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import Delaunay, QhullError
 
-from vaultgram.discretise import Discretisation
-from vaultgram.domain import ring_name
+from vaultgram.topology.discretise import Discretisation
+from vaultgram.domain.model import ring_name
 from vaultgram.errors import DomainError
 
 __all__ = ["Triangulation", "triangulate", "circumcentres", "KIND_CORNER", "KIND_REGULAR", "KIND_SINGULAR"]
@@ -167,7 +167,7 @@ def triangulate(
     Parameters
     ----------
     disc : Discretisation
-        From :func:`vaultgram.discretise.discretise`.
+        From :func:`vaultgram.topology.discretise.discretise`.
     cut_curves : bool
         Make curve-feature edges non-adjacent (the §4.2 topological cut).
     cocircular_tol : float

@@ -12,7 +12,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import PolyCollection  # noqa: E402
 
-from vaultgram.patches import half_edge_polyline  # noqa: E402
+from vaultgram.topology.patches import half_edge_polyline  # noqa: E402
 
 EDGE_STYLE = {
     "Boundary": dict(color="black", lw=1.2),

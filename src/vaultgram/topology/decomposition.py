@@ -15,7 +15,7 @@
 
 :func:`decompose` then runs the rulebook's ``topology`` strategy on it (prune corner branches,
 rebranch) -- the topology is decided by the rule files, not by this module -- and extracts the
-patches (:mod:`vaultgram.patches`).
+patches (:mod:`vaultgram.topology.patches`).
 """
 
 from __future__ import annotations
@@ -28,16 +28,16 @@ from pathlib import Path
 
 import numpy as np
 
-from vaultgram.discretise import Discretisation, discretise
-from vaultgram.domain import Domain
+from vaultgram.topology.discretise import Discretisation, discretise
+from vaultgram.domain.model import Domain
 from vaultgram.engine.graph import HostGraph
 from vaultgram.engine.rulebook import Rulebook, load_rulebook
 from vaultgram.engine.strategy import Runner, StepReport
 from vaultgram.errors import DomainError, RewriteError
-from vaultgram.patches import Patch, find_patches, half_edge_polyline
-from vaultgram.skeleton import Skeleton, skeleton
-from vaultgram.triangulation import triangulate
-from vaultgram.vault_functions import vault_functions
+from vaultgram.topology.patches import Patch, find_patches, half_edge_polyline
+from vaultgram.topology.skeleton import Skeleton, skeleton
+from vaultgram.topology.triangulation import triangulate
+from vaultgram.topology.functions import vault_functions
 
 LOOP_CUTS = 4  # cut points on a skeleton loop without singularity (an annulus becomes 2 x 4 quads)
 PATCH_EDGES = ("Branch", "Rebranch", "Boundary", "Curve", "Diagonal")

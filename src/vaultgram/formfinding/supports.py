@@ -20,7 +20,7 @@ import numpy as np
 import shapely
 
 from vaultgram.errors import FormFindingError
-from vaultgram.meshes import boundary_loops
+from vaultgram.geometry.meshes import boundary_loops
 
 
 def outer_loop(vertices: np.ndarray, faces: Sequence[Sequence[int]]) -> list[int]:

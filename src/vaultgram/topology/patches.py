@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from vaultgram.discretise import Discretisation
+from vaultgram.topology.discretise import Discretisation
 from vaultgram.engine.embedding import faces
 from vaultgram.engine.graph import HostGraph
 from vaultgram.errors import DomainError

@@ -8,7 +8,7 @@ to the area of the faces triangulated at their centroids. This is the convention
 ``LoadUpdater`` and of the reference figures in ``shared/reference/tna_square10.json``.
 
 Because the areas are measured on the 3D network, the loads change with the heights and vertical
-equilibrium iterates loads and heights together (:mod:`vaultgram.vertical`). Everything here is
+equilibrium iterates loads and heights together (:mod:`vaultgram.formfinding.vertical`). Everything here is
 vectorised over face corners (no loop over vertices).
 """
 
@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from vaultgram.meshes import corner_arrays
+from vaultgram.geometry.meshes import corner_arrays
 
 __all__ = ["TributaryAreas", "tributary_areas"]
 

@@ -2,7 +2,7 @@
 
 The form and force diagrams are reciprocal: they are in horizontal equilibrium when corresponding
 edges are parallel (our force diagram is stored turned by -90 degrees, see
-:mod:`vaultgram.forcediagram`). Following compas_tna / RhinoVAULT (Rippmann et al. 2012), both
+:mod:`vaultgram.formfinding.forcediagram`). Following compas_tna / RhinoVAULT (Rippmann et al. 2012), both
 diagrams are iteratively made parallel to target directions, the normalised blend
 
     t_e = alpha * form_e / |form_e| + (1 - alpha) * force_e / |force_e|,    alpha in [0, 1]
@@ -21,7 +21,7 @@ with openings; neither replaces it by a direct construction:
   ``mu = length_weight = 0.01``); modes are then damped by ``mu / (lambda + mu)`` instead of
   ``1 / (1 + lambda)`` per iteration, and the same meshes need 1, 4 and about 20 iterations. The
   frame is fixed, so each diagram's matrix is factorised once (x and y are coupled; see
-  :class:`vaultgram.forcediagram.WeightedFit`) and every iteration is one sparse triangular solve
+  :class:`vaultgram.formfinding.forcediagram.WeightedFit`) and every iteration is one sparse triangular solve
   per moving diagram -- no Python loop over vertices or edges.
 * **safeguarded Anderson acceleration** (window ``anderson = 5``) of the fixed-point map: an
   extrapolated iterate is taken only when its max angle is not worse than the plain update's.
@@ -51,8 +51,8 @@ import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 
 from vaultgram.errors import ConvergenceError, FormFindingError, HorizontalEquilibriumError
-from vaultgram.forcediagram import ForceDiagram, PinnedLaplacian, WeightedFit, force_diagram
-from vaultgram.formdiagram import FormDiagram
+from vaultgram.formfinding.forcediagram import ForceDiagram, PinnedLaplacian, WeightedFit, force_diagram
+from vaultgram.formfinding.formdiagram import FormDiagram
 
 __all__ = ["HorizontalResult", "horizontal", "angle_deviations", "compression_lp",
            "relax_openings", "opening_edges"]
@@ -168,7 +168,7 @@ def horizontal(form: FormDiagram, force: ForceDiagram | None = None, *, alpha: f
     ----------
     form : FormDiagram
     force : ForceDiagram, optional
-        Initial force diagram (default: :func:`vaultgram.forcediagram.force_diagram` least squares).
+        Initial force diagram (default: :func:`vaultgram.formfinding.forcediagram.force_diagram` least squares).
     alpha : float
         Percentage weight of the form diagram in the target directions (100: form fixed, force moves;
         0: force fixed, form moves), as compas_tna ``horizontal_nodal``.

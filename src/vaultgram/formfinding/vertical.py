@@ -9,7 +9,7 @@ with ``C`` the branch-node matrix, ``Q = diag(scale * q)``, ``z_f`` the (fixed) 
 ``p`` the vertical loads. Sign convention (that of the reference figures): ``q > 0`` is compression and
 positive loads give positive z, i.e. the vault stands above its supports and loads act downwards.
 
-Self-weight depends on the 3D tributary areas (:mod:`vaultgram.loads`), so loads and heights are
+Self-weight depends on the 3D tributary areas (:mod:`vaultgram.formfinding.loads`), so loads and heights are
 iterated to a fixed point. With ``zmax`` the thrust scale is solved for as well, so that the highest
 free vertex is exactly ``zmax``; scale and loads are iterated together. The matrix pattern and
 values are fixed (a common scale only divides the solution), so the system is factorised once.
@@ -25,8 +25,8 @@ import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 
 from vaultgram.errors import ConvergenceError, FormFindingError
-from vaultgram.formdiagram import FormDiagram
-from vaultgram.loads import TributaryAreas
+from vaultgram.formfinding.formdiagram import FormDiagram
+from vaultgram.formfinding.loads import TributaryAreas
 
 __all__ = ["VerticalResult", "vertical", "point_load_vector"]
 
@@ -135,7 +135,7 @@ def vertical(form: FormDiagram, q, *, scale: float = 1.0, zmax: float | None = N
     form : FormDiagram
     q : array (m,)
         Force densities of the form edges, usually ``|force edge| / |form edge|`` from
-        :func:`vaultgram.horizontal.horizontal`; positive (compression) on every edge with a free end.
+        :func:`vaultgram.formfinding.horizontal.horizontal`; positive (compression) on every edge with a free end.
     scale : float
         Horizontal thrust scale: the force densities used are ``scale * q`` (ignored with ``zmax``).
     zmax : float, optional

@@ -35,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from vaultgram.decomposition import Decomposition
+from vaultgram.topology.decomposition import Decomposition
 from vaultgram.errors import DomainError, VaultgramError
 
 __all__ = [
@@ -107,7 +107,7 @@ class PatchPattern:
     Attributes
     ----------
     patch : int
-        Id of the :class:`vaultgram.patches.Patch`.
+        Id of the :class:`vaultgram.topology.patches.Patch`.
     corners : tuple of int
         Corner node ids, counter-clockwise.
     sides : tuple of (int, bool)
@@ -293,8 +293,8 @@ def edge_groups(decomposition: Decomposition) -> Layout:
 
     Example
     -------
-    >>> from vaultgram.domain import load_domain
-    >>> from vaultgram.decomposition import decompose
+    >>> from vaultgram.domain.model import load_domain
+    >>> from vaultgram.topology.decomposition import decompose
     >>> layout = edge_groups(decompose(load_domain("examples/quad_with_hole.json")))
     >>> len(layout.patterns), layout.n_groups  # doctest: +SKIP
     (12, 6)
@@ -422,9 +422,9 @@ def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length:
 def curve_min_counts(layout: Layout) -> np.ndarray:
     """Least number of subdivisions of each group that keeps every vertex of the input curve features
     (§4.2) as a mesh vertex: one more than the number of input vertices inside each curve side of the
-    group (:func:`vaultgram.weld.side_anchors`), 1 for groups without curve sides. Applied to every
+    group (:func:`vaultgram.meshing.weld.side_anchors`), 1 for groups without curve sides. Applied to every
     count, a designer's too: with fewer, the mesh edges would cut the curve's bends."""
-    from vaultgram.weld import kept_points, side_anchors
+    from vaultgram.meshing.weld import kept_points, side_anchors
 
     disc = layout.decomposition.disc
     keep = kept_points(disc)
@@ -440,7 +440,7 @@ def _chord_count(layout: Layout, group: EdgeGroup, count: int, tol: float) -> in
     """The least count (from ``count`` up) at which every boundary side of the group, resampled as the
     welding does it, stays within ``tol`` of its curve: the "additional constraint on the minimum
     number of subdivisions" of §3.2, from the geometry. Capped at ``CHORD_MAX_FACTOR * count``."""
-    from vaultgram.weld import chord_deviation, kept_points, resample_polyline, side_anchors
+    from vaultgram.meshing.weld import chord_deviation, kept_points, resample_polyline, side_anchors
 
     keep = kept_points(layout.decomposition.disc)
     best = count

@@ -23,15 +23,15 @@ from pathlib import Path
 
 import numpy as np
 
-from vaultgram.decomposition import Decomposition, decompose
-from vaultgram.vault_functions import interior_angle
-from vaultgram.domain import Domain
-from vaultgram.edge_groups import DensitySpec, edge_groups, group_counts
+from vaultgram.topology.decomposition import Decomposition, decompose
+from vaultgram.topology.functions import interior_angle
+from vaultgram.domain.model import Domain
+from vaultgram.meshing.edge_groups import DensitySpec, edge_groups, group_counts
 from vaultgram.errors import MeshFoldError, VaultgramError
-from vaultgram.files import read_json, write_json
-from vaultgram.meshes import boundary_loops, corner_arrays, write_obj
-from vaultgram.smoothing import DEFAULT_ITERATIONS, laplacian_smooth, untangle
-from vaultgram.weld import QuadMesh, weld
+from vaultgram.io.files import read_json, write_json
+from vaultgram.geometry.meshes import boundary_loops, corner_arrays, write_obj
+from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS, laplacian_smooth, untangle
+from vaultgram.meshing.weld import QuadMesh, weld
 
 __all__ = [
     "mesh_domain",
@@ -50,7 +50,7 @@ __all__ = [
 #: with either neighbouring number of quads (a 135 degree corner takes 1 quad or 2 equally well).
 CORNER_TIE_BAND = 10.0
 
-#: Turning angle (degrees) beyond which a ring vertex is a corner (as in :func:`vaultgram.discretise.discretise`).
+#: Turning angle (degrees) beyond which a ring vertex is a corner (as in :func:`vaultgram.topology.discretise.discretise`).
 CORNER_ANGLE = 30.0
 
 
@@ -72,12 +72,12 @@ def mesh_domain(
         Relative discretisation spacing of the decomposition (§3.1).
     target_length : float, optional
         Global target edge length in the domain's units; default a fraction
-        (:data:`vaultgram.edge_groups.TARGET_FRACTION`) of the bounding-box diagonal. Overrides the
+        (:data:`vaultgram.meshing.edge_groups.TARGET_FRACTION`) of the bounding-box diagonal. Overrides the
         density file's.
     smooth : int
         Laplacian smoothing iterations.
     densities : DensitySpec, optional
-        Local density control (:func:`vaultgram.edge_groups.load_densities`).
+        Local density control (:func:`vaultgram.meshing.edge_groups.load_densities`).
     allow_folds : bool
         Return a mesh that still has inverted faces after smoothing instead of raising.
 
@@ -283,7 +283,7 @@ def _turning_from_domain(x: np.ndarray, domain: Domain) -> np.ndarray:
     """Domain turning angle at each point lying on a domain ring vertex (0 elsewhere)."""
     from scipy.spatial import cKDTree
 
-    from vaultgram.discretise import turning_angles
+    from vaultgram.topology.discretise import turning_angles
 
     pts = np.vstack(domain.rings)
     ang = np.concatenate([turning_angles(r) for r in domain.rings])
@@ -458,7 +458,7 @@ def _feature_stats(mesh: QuadMesh, x, valence, nfaces, on_boundary, low, high, u
     if lines:
         from scipy.spatial import cKDTree
 
-        from vaultgram.discretise import turning_angles
+        from vaultgram.topology.discretise import turning_angles
 
         sharp = [ln[1:-1][np.abs(turning_angles(ln, closed=False)[1:-1]) > CORNER_ANGLE] for ln in lines if len(ln) > 2]
         sharp = np.vstack(sharp) if sharp else np.zeros((0, 2))

@@ -13,7 +13,7 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
-from vaultgram.files import write_text
+from vaultgram.io.files import write_text
 
 __all__ = [
     "grid_mesh",

@@ -13,7 +13,7 @@ import numpy as np
 
 from vaultgram.engine.embedding import face_walk
 from vaultgram.engine.expressions import Functions
-from vaultgram.patches import half_edge_polyline, signed_area
+from vaultgram.topology.patches import half_edge_polyline, signed_area
 
 
 def distance(p, q) -> float:

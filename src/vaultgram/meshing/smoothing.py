@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from vaultgram.meshes import corner_arrays
+from vaultgram.geometry.meshes import corner_arrays
 
 __all__ = ["adjacency", "laplacian_smooth", "untangle", "project_to_polyline", "DEFAULT_ITERATIONS"]
 
@@ -118,7 +118,7 @@ def laplacian_smooth(
 
     Example
     -------
-    >>> from vaultgram.meshes import grid_mesh
+    >>> from vaultgram.geometry.meshes import grid_mesh
     >>> v, f = grid_mesh(2)
     >>> v[4, :2] += 0.3
     >>> boundary = np.ones(9, bool); boundary[4] = False

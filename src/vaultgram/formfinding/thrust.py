@@ -4,11 +4,11 @@ The paper (§5, Armadillo Vault) turns the meshed pattern into a form diagram, c
 force diagram and horizontal equilibrium, then vertical equilibrium "to generate the final funicular
 geometry". :func:`form_find` chains the stage functions of this package in that order:
 
-1. :func:`vaultgram.formdiagram.form_diagram` -- remove fully supported edges, add opening faces;
-2. :func:`vaultgram.horizontal.relax_openings` -- bend unsupported edges into arches (if any);
-3. :func:`vaultgram.forcediagram.force_diagram` -- the reciprocal diagram (least squares);
-4. :func:`vaultgram.horizontal.horizontal` -- parallelise until the max angle < ``tol_deg``;
-5. :func:`vaultgram.vertical.vertical` -- heights under self-weight and point loads, optionally
+1. :func:`vaultgram.formfinding.formdiagram.form_diagram` -- remove fully supported edges, add opening faces;
+2. :func:`vaultgram.formfinding.horizontal.relax_openings` -- bend unsupported edges into arches (if any);
+3. :func:`vaultgram.formfinding.forcediagram.force_diagram` -- the reciprocal diagram (least squares);
+4. :func:`vaultgram.formfinding.horizontal.horizontal` -- parallelise until the max angle < ``tol_deg``;
+5. :func:`vaultgram.formfinding.vertical.vertical` -- heights under self-weight and point loads, optionally
    scaled to ``zmax``.
 
 References: P. Block and J. Ochsendorf, "Thrust Network Analysis: a new methodology for
@@ -24,11 +24,11 @@ import time
 
 import numpy as np
 
-from vaultgram.forcediagram import ForceDiagram, force_diagram
-from vaultgram.formdiagram import FormDiagram, form_diagram
-from vaultgram.horizontal import HorizontalResult, horizontal, relax_openings
-from vaultgram.meshes import write_obj
-from vaultgram.vertical import VerticalResult, vertical
+from vaultgram.formfinding.forcediagram import ForceDiagram, force_diagram
+from vaultgram.formfinding.formdiagram import FormDiagram, form_diagram
+from vaultgram.formfinding.horizontal import HorizontalResult, horizontal, relax_openings
+from vaultgram.geometry.meshes import write_obj
+from vaultgram.formfinding.vertical import VerticalResult, vertical
 
 __all__ = ["ThrustNetwork", "form_find", "format_summary"]
 
@@ -151,9 +151,9 @@ def form_find(mesh_vertices, faces, supports=None, *, zmax: float | None = None,
     alpha : float
         Form weight (percent) in horizontal equilibrium; 100 keeps the form diagram.
     relax, sag, relax_mode
-        Relax open edges (:func:`vaultgram.horizontal.relax_openings`) before horizontal equilibrium.
+        Relax open edges (:func:`vaultgram.formfinding.horizontal.relax_openings`) before horizontal equilibrium.
     update_boundaries : bool
-        See :func:`vaultgram.formdiagram.form_diagram`.
+        See :func:`vaultgram.formfinding.formdiagram.form_diagram`.
 
     Returns
     -------
@@ -166,7 +166,7 @@ def form_find(mesh_vertices, faces, supports=None, *, zmax: float | None = None,
 
     Example
     -------
-    >>> from vaultgram.meshes import grid_mesh
+    >>> from vaultgram.geometry.meshes import grid_mesh
     >>> v, f = grid_mesh(6)
     >>> tn = form_find(v, f, zmax=2.0)
     >>> round(float(tn.vertices[:, 2].max()), 9), tn.summary["max_angle_deg"] < 0.5
