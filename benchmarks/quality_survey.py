@@ -27,9 +27,10 @@ from collections import Counter
 
 import numpy as np
 
-from vaultgram.domain.model import domain_from_dict
+from vaultgram.domain import domain_from_dict
 from vaultgram.errors import VaultgramError
-from vaultgram.meshing.mesh import mesh_domain, mesh_stats
+from vaultgram.meshing.quality import mesh_stats
+from vaultgram.pipeline import mesh_domain
 
 DEGENERATE = 1e-3
 

@@ -12,13 +12,16 @@ import argparse
 import time
 from pathlib import Path
 
-from vaultgram.topology.decomposition import PATCH_EDGES, decompose, decomposition_graph, load_vault_rulebook
-from vaultgram.topology.discretise import discretise
-from vaultgram.domain.model import load_domain
+from vaultgram.domain import load_domain
 from vaultgram.engine.strategy import Runner
+from vaultgram.pipeline import decompose
+from vaultgram.topology.decomposition import decomposition_graph
+from vaultgram.topology.discretise import discretise
 from vaultgram.topology.patches import find_patches
+from vaultgram.topology.rulebook import load_vault_rulebook
 from vaultgram.topology.skeleton import skeleton
 from vaultgram.topology.triangulation import triangulate
+from vaultgram.topology.types import PLAN_EDGES
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "quad_with_hole.json"
 SPACINGS = (0.05, 0.02, 0.01, 0.005, 0.002)
@@ -57,7 +60,7 @@ def main() -> None:
             return time.perf_counter() - start, graph
 
         t_r, graph = min(rewrite() for _ in range(args.repeat))
-        t_p, patches = best_of(lambda: find_patches(graph, disc, PATCH_EDGES), args.repeat)
+        t_p, patches = best_of(lambda: find_patches(graph, disc, PLAN_EDGES), args.repeat)
         t_all, _ = best_of(lambda: decompose(domain, s), args.repeat)
         print(
             f"{s:>8g} {len(disc.points):>7d} {tri.n_faces:>7d} {len(sk.singularities()):>5d} {len(patches):>7d} "

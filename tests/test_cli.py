@@ -7,9 +7,10 @@ import subprocess
 import sys
 
 from click.testing import CliRunner
-from paths import EXAMPLES, REPO
 
 from vaultgram.cli import main
+
+from paths import EXAMPLES, REPO
 
 RULES = REPO / "rules" / "topology.vgr"
 

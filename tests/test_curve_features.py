@@ -11,10 +11,11 @@ import shapely
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from vaultgram.topology.decomposition import decompose, default_rules_dir
-from vaultgram.domain.model import domain_from_dict
+from vaultgram.domain import domain_from_dict
 from vaultgram.errors import DomainError
+from vaultgram.pipeline import decompose
 from vaultgram.topology.functions import curve_side
+from vaultgram.topology.rulebook import default_rules_dir
 
 SQUARE = [[0, 0], [10, 0], [10, 10], [0, 10]]
 
@@ -118,9 +119,9 @@ def test_random_curves_decompose_cleanly_or_fail_clearly(curves, spacing):
 
 @pytest.mark.parametrize("name", ["fig5_boundary_points", "fig6_inner_points", "fig7_curves", "features_combined"])
 def test_feature_examples_decompose(name):
-    from paths import EXAMPLES
+    from vaultgram.domain import load_domain
 
-    from vaultgram.domain.model import load_domain
+    from paths import EXAMPLES
 
     dec = decompose(load_domain(EXAMPLES / f"{name}.json"), 0.02)
     g = dec.graph
@@ -135,9 +136,9 @@ def test_feature_examples_decompose(name):
 
 def test_curve_tip_inside_a_patch_is_surrounded_by_triangles():
     """A slit whose tips no rebranch reaches (fig7_curves, top): the tip patches are split into triangles."""
-    from paths import EXAMPLES
+    from vaultgram.domain import load_domain
 
-    from vaultgram.domain.model import load_domain
+    from paths import EXAMPLES
 
     dec = decompose(load_domain(EXAMPLES / "fig7_curves.json"), 0.02)
     fired = Counter(step["rule"] for step in dec.trace)

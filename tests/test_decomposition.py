@@ -11,11 +11,13 @@ import pytest
 import shapely
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from paths import ARCHITECTURE_PLANS, EXAMPLES
 
-from vaultgram.topology.decomposition import decompose, default_rules_dir
-from vaultgram.domain.model import domain_from_dict, load_domain
-from vaultgram.errors import DomainError
+from vaultgram.domain import domain_from_dict, load_domain
+from vaultgram.errors import DomainError, RuleError
+from vaultgram.pipeline import decompose
+from vaultgram.topology.rulebook import default_rules_dir
+
+from paths import ARCHITECTURE_PLANS, EXAMPLES
 
 SPACINGS = [0.01, 0.0125, 0.015, 0.0175, 0.02, 0.025, 0.03, 0.035, 0.04, 0.045, 0.05]
 
@@ -149,7 +151,7 @@ def test_random_domains_decompose_or_fail_clearly(data, spacing):
 
 def test_rulebook_without_pipeline_types_is_a_clear_error(tmp_path):
     (tmp_path / "topology.vgr").write_text("schema s { node Point { pos: vec2 } }\n")
-    with pytest.raises(DomainError, match="lacks the type"):
+    with pytest.raises(RuleError, match="lacks the type"):  # a fault of the rulebook, not of the domain
         decompose(load_domain(EXAMPLES / "l_shape.json"), 0.02, rules_dir=tmp_path)
 
 

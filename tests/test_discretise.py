@@ -7,9 +7,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from vaultgram.topology.discretise import discretise
-from vaultgram.domain.model import domain_from_dict, load_domain
+from vaultgram.domain import domain_from_dict, load_domain
 from vaultgram.errors import DomainError
+from vaultgram.topology.discretise import discretise
 
 L_SHAPE = [[0, 0], [10, 0], [10, 5], [5, 5], [5, 10], [0, 10]]
 

@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from vaultgram.domain.model import Domain, domain_from_dict, load_domain, validate_domain
+from vaultgram.domain import Domain, domain_from_dict, load_domain, validate_domain
 from vaultgram.errors import DomainError
 
 SQUARE = [[0, 0], [10, 0], [10, 10], [0, 10]]

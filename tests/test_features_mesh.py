@@ -15,13 +15,16 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from paths import ARCHITECTURE, EXAMPLES
 
-from vaultgram.domain.model import domain_from_dict, load_domain
+from vaultgram.domain import check_feature_spacing, domain_from_dict, load_domain
 from vaultgram.errors import DomainError, VaultgramError
-from vaultgram.meshing.mesh import (check_feature_spacing, mesh_domain, mesh_from_json, mesh_stats, mesh_to_json,
-                            polyline_hausdorff)
+from vaultgram.geometry.polylines import polyline_hausdorff
+from vaultgram.io.meshfiles import mesh_from_json, mesh_to_json
+from vaultgram.meshing.quality import mesh_stats
+from vaultgram.pipeline import mesh_domain
 from vaultgram.topology.patches import half_edge_polyline
+
+from paths import ARCHITECTURE, EXAMPLES
 
 FEATURE_EXAMPLES = ["fig5_boundary_points", "fig6_inner_points", "fig7_curves", "features_combined",
                     "square_point_loads"]
@@ -283,7 +286,7 @@ def test_regression_figure8_diagonal_bends_round_a_reflex_corner():
     corner crossed the rebranch from the lower end (the plan was no longer planar: an 8-sided
     "patch"). The diagonal now bends inside the patch (diagonal_path) or is not drawn, and every
     diagonal of the plan crosses no other plan edge."""
-    from vaultgram.topology.decomposition import decompose
+    from vaultgram.pipeline import decompose
     from vaultgram.topology.functions import path_clear
 
     domain = domain_from_dict({"outer": [[0, 0], [7.306944729095649, 0], [7.306944729095649, 13.067349869068495],
@@ -312,7 +315,7 @@ def test_regression_figure8_diagonal_through_the_neighbouring_patch():
     but runs through the quad *below* the curve, which shares both corners. The Patch nodes then no
     longer matched the faces (an internal error). diagonal_path now also requires the path to leave
     and reach its corners within the patch's corner angles; here none does, and the quad is kept."""
-    from vaultgram.topology.decomposition import decompose
+    from vaultgram.pipeline import decompose
 
     domain = domain_from_dict({"outer": [[0, 0], [11.876294722595402, 0], [11.876294722595402, 11.285738087807067],
                                          [0, 11.285738087807067]],
@@ -345,7 +348,7 @@ def test_boundary_feature_whose_quads_have_their_far_corners_on_the_boundary():
     one of them a boundary singularity. split_quad_at_feature_beside_boundary draws it to the next
     boundary point instead (a quad and a triangle with the feature as pole): the feature is a pole
     and no boundary vertex is singular."""
-    from vaultgram.topology.decomposition import decompose
+    from vaultgram.pipeline import decompose
 
     domain = domain_from_dict({"outer": [[0, 0], [6, 0], [6, 6], [0, 6]], "points": [[3, 0]]})
     dec = decompose(domain)
@@ -374,8 +377,8 @@ def test_quad_with_a_reflex_curve_bend_is_split_with_a_marked_pole():
     split_quad_at_reflex_corner splits that quad by the diagonal to its opposite corner, a skeleton
     vertex, which it marks as the pole of both triangles (PatchCorner {pole = true}); edge_groups
     honours the mark, and the mesh has no inverted face."""
-    from vaultgram.topology.decomposition import decompose
-    from vaultgram.meshing.edge_groups import edge_groups
+    from vaultgram.meshing.layout import edge_groups
+    from vaultgram.pipeline import decompose
 
     domain = domain_from_dict({
         "outer": [[0, 0], [12.852573527551822, 0], [12.852573527551822, 6.001520012858748], [0, 6.001520012858748]],
@@ -404,7 +407,7 @@ def test_regression_t_junction_diagonal_stays_inside_its_patch():
     """A hairpin curve next to a short one, at spacing 0.01: spread_t_junction's straight diagonal
     crossed the patch's curved side and the Patch nodes no longer matched the faces (an internal
     error). The diagonal is now drawn inside the patch (diagonal_path)."""
-    from vaultgram.topology.decomposition import decompose
+    from vaultgram.pipeline import decompose
 
     domain = domain_from_dict({"outer": [[0, 0], [10, 0], [10, 10], [0, 10]],
                                "curves": [[[2.0, 4.0], [7.0, 3.0], [3.0, 4.0]], [[2.0, 5.0], [4.0, 5.0]]]})
@@ -447,7 +450,7 @@ def test_patch_with_a_curve_bend_on_its_outer_side_is_split(curve):
     cuts the domain), so the patch on the outer side of the bend had 5 sides ("patch ... has 5
     sides" error). spread_t_junction now splits such a patch at the bend as at a T-junction: the
     domain meshes with every §4 property."""
-    from vaultgram.topology.decomposition import decompose
+    from vaultgram.pipeline import decompose
 
     domain = domain_from_dict({"outer": [[0, 0], [10, 0], [10, 8], [0, 8]], "curves": [curve]})
     dec = decompose(domain)

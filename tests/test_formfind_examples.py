@@ -7,13 +7,13 @@ import json
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from paths import EXAMPLES
 
 from vaultgram.cli import main
-from vaultgram.domain.model import load_domain
-from vaultgram.formfinding.thrust import form_find
-from vaultgram.meshing.mesh import mesh_domain
+from vaultgram.domain import load_domain
 from vaultgram.formfinding.supports import support_vertices
+from vaultgram.pipeline import form_find, mesh_domain
+
+from paths import EXAMPLES
 
 CASES = ["quad_with_hole.json", "l_shape.json", "square_point_loads.json"]
 

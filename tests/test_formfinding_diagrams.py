@@ -7,13 +7,14 @@ import json
 import numpy as np
 import pytest
 
-from vaultgram.formfinding.thrust import form_find
 from vaultgram.formfinding.forcediagram import force_diagram
 from vaultgram.formfinding.formdiagram import form_diagram
 from vaultgram.formfinding.horizontal import angle_deviations, horizontal, relax_openings
 from vaultgram.formfinding.loads import tributary_areas
-from vaultgram.geometry.meshes import boundary_loops, grid_index, grid_mesh, remove_faces, write_obj
 from vaultgram.formfinding.vertical import vertical
+from vaultgram.geometry.meshes import boundary_loops, grid_index, grid_mesh, remove_faces
+from vaultgram.io.files import write_obj
+from vaultgram.pipeline import form_find
 
 
 def holed_grid(n=20, lo=7, hi=13):
@@ -172,7 +173,7 @@ def test_outputs_are_json_and_obj(tmp_path):
     for obj in (tn.to_json(), tn.form.to_json(), tn.force.to_json()):
         json.loads(json.dumps(obj))
     path = tmp_path / "thrust.obj"
-    tn.write_obj(path)
+    write_obj(path, tn.vertices, tn.faces)
     lines = path.read_text().splitlines()
     assert sum(ln.startswith("v ") for ln in lines) == tn.vertices.shape[0]
     assert sum(ln.startswith("f ") for ln in lines) == len(tn.faces)

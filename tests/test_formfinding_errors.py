@@ -5,13 +5,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from vaultgram.formfinding.thrust import form_find
-from vaultgram.errors import ConvergenceError, VaultgramError
-from vaultgram.errors import FormFindingError, HorizontalEquilibriumError
+from vaultgram.errors import ConvergenceError, FormFindingError, HorizontalEquilibriumError, VaultgramError
 from vaultgram.formfinding.formdiagram import form_diagram
 from vaultgram.formfinding.horizontal import horizontal, relax_openings
-from vaultgram.geometry.meshes import boundary_loops, grid_index, grid_mesh, remove_faces
 from vaultgram.formfinding.vertical import vertical
+from vaultgram.geometry.meshes import boundary_loops, grid_index, grid_mesh, remove_faces
+from vaultgram.pipeline import form_find
 
 
 def holed(n=12, lo=4, hi=8):
@@ -162,9 +161,10 @@ def test_cli_no_compression_only_solution(tmp_path):
 def test_cli_tolerance_below_what_the_form_allows(tmp_path):
     """A meshed pattern is only approximately balanceable (angle floor ~0.01 deg): 1e-6 deg is not met."""
     from click.testing import CliRunner
-    from paths import EXAMPLES
 
     from vaultgram.cli import main
+
+    from paths import EXAMPLES
 
     out = tmp_path / "out"
     result = CliRunner().invoke(main, ["formfind", str(EXAMPLES / "quad_with_hole.json"), "--out", str(out),

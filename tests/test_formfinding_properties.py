@@ -7,12 +7,12 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from vaultgram.formfinding.thrust import form_find
 from vaultgram.errors import VaultgramError
 from vaultgram.formfinding.formdiagram import form_diagram
 from vaultgram.formfinding.horizontal import angle_deviations
 from vaultgram.formfinding.loads import tributary_areas
 from vaultgram.geometry.meshes import grid_mesh
+from vaultgram.pipeline import form_find
 
 
 @st.composite

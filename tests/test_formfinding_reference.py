@@ -9,8 +9,8 @@ import pytest
 
 from vaultgram.formfinding.formdiagram import form_diagram
 from vaultgram.formfinding.horizontal import horizontal
-from vaultgram.geometry.meshes import grid_index, grid_mesh
 from vaultgram.formfinding.vertical import vertical
+from vaultgram.geometry.meshes import grid_index, grid_mesh
 
 from paths import REFERENCE
 

@@ -10,16 +10,18 @@ import pytest
 from click.testing import CliRunner
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from paths import ARCHITECTURE, EXAMPLES
 
 from vaultgram.cli import main
-from vaultgram.topology.decomposition import decompose
-from vaultgram.domain.model import domain_from_dict, load_domain
-from vaultgram.meshing.edge_groups import edge_groups, group_counts, is_feature_node
+from vaultgram.domain import domain_from_dict, load_domain
 from vaultgram.errors import VaultgramError
-from vaultgram.meshing.mesh import (mesh_domain, mesh_from_json, mesh_stats, mesh_to_json, read_mesh, regular_boundary_faces,
-                            write_mesh)
 from vaultgram.geometry.meshes import corner_arrays
+from vaultgram.io.meshfiles import mesh_from_json, mesh_to_json, read_mesh, write_mesh
+from vaultgram.meshing.densities import group_counts
+from vaultgram.meshing.layout import edge_groups, is_feature_node
+from vaultgram.meshing.quality import mesh_stats, regular_boundary_faces
+from vaultgram.pipeline import decompose, mesh_domain
+
+from paths import ARCHITECTURE, EXAMPLES
 
 # Examples that meet every acceptance property, and for the others the property that fails (kept as
 # strict xfails so that a fix shows up). "Boundary singularities" are compared with the number the
@@ -72,7 +74,7 @@ def forced_boundary_singular(layout) -> int:
     regular. So the patch layout fixes the interior index ``I`` and the index of boundary feature
     points ``F``, and the rest of the boundary must sum to ``4 chi - I - F``. A regular boundary
     vertex has index ``2 - faces`` with ``faces`` in its regular range
-    (:func:`vaultgram.meshing.mesh.regular_boundary_faces`); each boundary singularity moves the sum by at
+    (:func:`vaultgram.meshing.quality.regular_boundary_faces`); each boundary singularity moves the sum by at
     least one, so at least ``distance(4 chi - I - F, [sum of lows, sum of highs])`` are forced.
     """
     dec = layout.decomposition

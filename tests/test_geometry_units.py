@@ -7,16 +7,20 @@ import json
 
 import numpy as np
 import pytest
-from paths import ARCHITECTURE, EXAMPLES
 
-from vaultgram.meshing.coons import coons_grid, grid_faces
-from vaultgram.topology.decomposition import decompose
-from vaultgram.domain.model import load_domain
-from vaultgram.meshing.edge_groups import DensitySpec, densities_from_dict, edge_groups, group_counts, load_densities
+from vaultgram.domain import load_domain
 from vaultgram.errors import VaultgramError
 from vaultgram.geometry.meshes import corner_arrays, grid_mesh
-from vaultgram.meshing.smoothing import laplacian_smooth, project_to_polyline, untangle
-from vaultgram.meshing.weld import SlideConstraint, resample_polyline
+from vaultgram.geometry.polylines import project_to_polyline, resample_polyline
+from vaultgram.meshing.coons import coons_grid, grid_faces
+from vaultgram.meshing.densities import DensitySpec, densities_from_dict, group_counts, load_densities
+from vaultgram.meshing.layout import edge_groups
+from vaultgram.meshing.quadmesh import SlideConstraint
+from vaultgram.meshing.smoothing import laplacian_smooth
+from vaultgram.meshing.untangle import untangle
+from vaultgram.pipeline import decompose
+
+from paths import ARCHITECTURE, EXAMPLES
 
 
 @pytest.fixture(scope="module")
@@ -101,8 +105,9 @@ def test_designer_counts_regions_and_minimum(qwh_layout):
 def test_curved_boundary_sides_get_enough_subdivisions(qwh_layout):
     """The chord constraint (CHORD_TOLERANCE): a curved boundary side resampled at its group's count
     stays within the tolerance of the domain's ring, even for a huge target length."""
-    from vaultgram.meshing.edge_groups import CHORD_TOLERANCE
-    from vaultgram.meshing.weld import chord_deviation, kept_points, resample_polyline, side_anchors
+    from vaultgram.geometry.polylines import chord_deviation, resample_polyline
+    from vaultgram.meshing.densities import CHORD_TOLERANCE
+    from vaultgram.meshing.layout import kept_points, side_anchors
 
     c = group_counts(qwh_layout, target_length=100.0)
     disc = qwh_layout.decomposition.disc
@@ -265,11 +270,11 @@ def test_untangle_repairs_folded_faces_and_leaves_good_meshes_alone():
 def test_pole_of_a_triangle_is_not_on_the_boundary_when_it_can_be_inside():
     """choose_pole: a three-sided patch with an inner corner never puts its pole on the boundary
     (a boundary pole of n triangles is a boundary singularity for n >= 2), unless it is a feature."""
-    from paths import ARCHITECTURE
+    from vaultgram.domain import load_domain
+    from vaultgram.meshing.layout import is_feature_node
+    from vaultgram.pipeline import decompose
 
-    from vaultgram.topology.decomposition import decompose
-    from vaultgram.domain.model import load_domain
-    from vaultgram.meshing.edge_groups import is_feature_node
+    from paths import ARCHITECTURE
 
     path = ARCHITECTURE / "rv_star_pattern.json"
     if not path.is_file():
@@ -289,10 +294,10 @@ def test_pole_of_a_triangle_is_not_on_the_boundary_when_it_can_be_inside():
 def test_triangles_at_a_reflex_corner_are_merged():
     """patching.vgr, merge_triangles_at_reflex_corner: the reflex corner (5.57, 5.59) of rv_star was
     the corner of 2 quads and 2 triangles; it is now the corner of 3 patches (regular, valence 4)."""
-    from paths import ARCHITECTURE
+    from vaultgram.domain import load_domain
+    from vaultgram.pipeline import decompose
 
-    from vaultgram.topology.decomposition import decompose
-    from vaultgram.domain.model import load_domain
+    from paths import ARCHITECTURE
 
     path = ARCHITECTURE / "rv_star_pattern.json"
     if not path.is_file():
@@ -313,10 +318,10 @@ def test_triangle_with_a_smooth_boundary_corner_becomes_a_quad():
     of 3 patches; one rebranch of each pair moves to the next free boundary point (forward at the
     first, backward at the second, where the forward point is already a corner), so both points and
     their new neighbours are corners of 2 patches, as a regular point of a smooth stretch."""
-    from paths import ARCHITECTURE
+    from vaultgram.domain import load_domain
+    from vaultgram.pipeline import decompose
 
-    from vaultgram.topology.decomposition import decompose
-    from vaultgram.domain.model import load_domain
+    from paths import ARCHITECTURE
 
     path = ARCHITECTURE / "rolex_learning_centre.json"
     if not path.is_file():

@@ -10,12 +10,13 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from vaultgram.domain import domain_from_dict, load_domain
 from vaultgram.topology.discretise import discretise
-from vaultgram.domain.model import domain_from_dict, load_domain
 from vaultgram.topology.skeleton import skeleton
 from vaultgram.topology.triangulation import triangulate
 
 from paths import ARCHITECTURE
+
 PLANS = sorted(ARCHITECTURE.glob("*.json")) if ARCHITECTURE.is_dir() else []
 SPACINGS = [0.01, 0.0125, 0.015, 0.0175, 0.02, 0.025, 0.03, 0.035, 0.04, 0.045, 0.05]
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"

@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from vaultgram.domain.model import domain_from_dict
+from vaultgram.domain import domain_from_dict
 from vaultgram.errors import FormFindingError
-from vaultgram.geometry.meshes import grid_mesh, remove_faces
 from vaultgram.formfinding.supports import support_vertices
+from vaultgram.geometry.meshes import grid_mesh, remove_faces
 
 
 def grid_with_hole():

@@ -2,18 +2,18 @@
 
 from __future__ import annotations
 
-
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from vaultgram.topology.discretise import discretise
-from vaultgram.domain.model import domain_from_dict, load_domain
+from vaultgram.domain import domain_from_dict, load_domain
 from vaultgram.errors import DomainError
+from vaultgram.topology.discretise import discretise
 from vaultgram.topology.triangulation import triangulate
 
 from paths import ARCHITECTURE
+
 PLANS = sorted(ARCHITECTURE.glob("*.json")) if ARCHITECTURE.is_dir() else []
 SPACINGS = [0.01, 0.0125, 0.015, 0.0175, 0.02, 0.025, 0.03, 0.035, 0.04, 0.045, 0.05]
 

@@ -12,7 +12,6 @@ import sys
 from pathlib import Path
 
 import click
-import numpy as np
 
 from vaultgram.errors import VaultgramError
 from vaultgram.io.files import read_json, write_json
@@ -158,21 +157,17 @@ def decompose_command(
     domain_path: str, out_dir: str, spacing: float, rules_dir: str | None, smooth_branches: bool, plot: bool
 ) -> None:
     """Block decomposition of a DOMAIN (JSON, GeoJSON or DXF) into 3- and 4-sided patches (paper 3.1)."""
-    from vaultgram.topology.decomposition import decompose
-    from vaultgram.domain.model import load_domain
+    from vaultgram.domain import load_domain
+    from vaultgram.io.outputs import write_decomposition
+    from vaultgram.pipeline import decompose
 
     dec = decompose(load_domain(domain_path), spacing, rules_dir, smooth=smooth_branches)
     write_decomposition(dec, Path(out_dir), plot)
+    echo_decomposition(dec, Path(out_dir))
 
 
-def write_decomposition(dec, out: Path, plot: bool = True) -> None:
-    """decomposition.json, patches.json and (optionally) decomposition.png, with a short report."""
-    from vaultgram.io.plots import plot_decomposition
-
-    write_json(out / "decomposition.json", dec.to_json())
-    write_json(out / "patches.json", dec.patches_json())
-    if plot:
-        plot_decomposition(dec, out / "decomposition.png")
+def echo_decomposition(dec, out: Path) -> None:
+    """The rule steps that applied something, and the patch counts."""
     fired = [r for r in dec.reports if r.applications]
     for report in fired:
         click.echo(f"rules: {report.step}: {report.applications} application(s)")
@@ -181,6 +176,11 @@ def write_decomposition(dec, out: Path, plot: bool = True) -> None:
     counts = dec.patches_json()["counts"]
     click.echo(f"{len(dec.patches)} patches ({counts['4']} four-sided, {counts['3']} three-sided), "
                f"{len(dec.singularities())} singularities; wrote {out}")
+
+
+def echo_timings(timings: dict) -> None:
+    """One line with the seconds per stage (measured by the pipeline, never written to a file)."""
+    click.echo("time:       " + ", ".join(f"{k} {v * 1000:.1f} ms" for k, v in timings.items()))
 
 
 @main.command("formfind")
@@ -199,48 +199,28 @@ def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, 
     (the domain's "supports", or a mesh's "supports" vertex list), else the outer boundary.
     Writes form.json, force.json, thrust.json, thrust.obj and summary.json to --out.
     """
-    from vaultgram.domain.model import load_domain
-    from vaultgram.meshing.mesh import mesh_domain, mesh_from_json
+    from vaultgram.domain import load_domain
+    from vaultgram.io.meshfiles import mesh_from_json
+    from vaultgram.io.outputs import write_thrust
+    from vaultgram.pipeline import mesh_domain, thrust_of_mesh
 
     domain = None
+    timings: dict = {}
     data = read_json(input_path) if input_path.endswith(".json") else None
     if isinstance(data, dict) and "vertices" in data and "faces" in data:
         mesh = mesh_from_json(data, input_path)
         spec = data.get("supports")
     else:
         domain = load_domain(input_path)
-        mesh = mesh_domain(domain, spacing, target_length)
+        mesh = mesh_domain(domain, spacing, target_length, timings=timings)
         spec = domain.supports
     if supports_path:
         spec = read_json(supports_path)
-    network = thrust_network(mesh, spec, domain, zmax, thickness, density, point_load, tol_deg, sag, relax_mode)
+    network = thrust_of_mesh(mesh, spec, domain, point_load, timings, zmax=zmax, thickness=thickness,
+                             density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode)
     write_thrust(network, Path(out_dir))
-
-
-def thrust_network(mesh, spec, domain, zmax, thickness, density, point_load, tol_deg, sag, relax_mode):
-    """Form finding of a mesh with a support specification, point loads at its point features."""
-    from vaultgram.formfinding.thrust import form_find
-    from vaultgram.formfinding.supports import support_vertices
-
-    if isinstance(spec, list):
-        spec = {"vertices": spec}
-    supports = support_vertices(mesh.vertices, mesh.faces, spec, domain)
-    loads = {int(v): point_load for v in np.flatnonzero(mesh.feature)} if point_load else None
-    return form_find(mesh.vertices, mesh.faces, supports, zmax=zmax, thickness=thickness, density=density,
-                     point_loads=loads, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode)
-
-
-def write_thrust(network, out: Path) -> None:
-    """form.json, force.json, thrust.json, thrust.obj and summary.json (no timings: deterministic bytes)."""
-    from vaultgram.geometry.meshes import write_obj
-
-    summary = {k: v for k, v in network.summary.items() if k != "timings"}
-    write_json(out / "form.json", network.form.to_json())
-    write_json(out / "force.json", network.force.to_json())
-    write_json(out / "thrust.json", {**network.to_json(), "summary": summary})
-    write_obj(out / "thrust.obj", network.vertices, network.faces)
-    write_json(out / "summary.json", summary)
     click.echo(network.summary_text())
+    echo_timings(timings)
 
 
 @main.command("design")
@@ -257,25 +237,23 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
 
     Everything is computed before anything is written, so a failing stage leaves no output.
     """
-    from vaultgram.topology.decomposition import decompose
-    from vaultgram.domain.model import load_domain
-    from vaultgram.meshing.mesh import check_feature_spacing, mesh_decomposition, write_mesh
-    from vaultgram.io.plots import plot_mesh, plot_thrust
+    from vaultgram.domain import load_domain
+    from vaultgram.io.outputs import write_decomposition, write_mesh_files, write_thrust
     from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
+    from vaultgram.pipeline import design
 
-    domain = load_domain(domain_path)
-    check_feature_spacing(domain, spacing)
-    dec = decompose(domain, spacing, rules_dir)
-    mesh = mesh_decomposition(dec, target_length, DEFAULT_ITERATIONS if smooth is None else smooth)
-    network = thrust_network(mesh, domain.supports, domain, zmax, thickness, density, point_load, tol_deg, sag,
-                             relax_mode)
+    result = design(load_domain(domain_path), spacing, rules_dir, target_length,
+                    DEFAULT_ITERATIONS if smooth is None else smooth, point_load=point_load, zmax=zmax,
+                    thickness=thickness, density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode)
     out = Path(out_dir)
-    write_decomposition(dec, out)
-    write_mesh(mesh, out)
-    plot_mesh(mesh, out / "mesh.png")
-    click.echo(f"mesh: {len(mesh.vertices)} vertices, {len(mesh.faces)} faces; wrote mesh.json and mesh.obj")
-    write_thrust(network, out)
-    plot_thrust(network, out / "thrust.png")
+    write_decomposition(result.decomposition, out)
+    echo_decomposition(result.decomposition, out)
+    write_mesh_files(result.mesh, out)
+    click.echo(f"mesh: {len(result.mesh.vertices)} vertices, {len(result.mesh.faces)} faces; "
+               "wrote mesh.json and mesh.obj")
+    write_thrust(result.network, out, plot=True)
+    click.echo(result.network.summary_text())
+    echo_timings(result.timings)
 
 
 @main.command("mesh")
@@ -292,10 +270,12 @@ def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities
 
     Writes mesh.json (vertices, faces, vertex labels, edge groups) and mesh.obj to --out.
     """
-    from vaultgram.domain.model import load_domain
-    from vaultgram.meshing.edge_groups import load_densities
-    from vaultgram.meshing.mesh import mesh_domain, mesh_stats, write_mesh
+    from vaultgram.domain import load_domain
+    from vaultgram.io.meshfiles import write_mesh
+    from vaultgram.meshing.densities import load_densities
+    from vaultgram.meshing.quality import mesh_stats
     from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
+    from vaultgram.pipeline import mesh_domain
 
     domain = load_domain(domain_path)
     spec = load_densities(densities_path) if densities_path else None
@@ -323,8 +303,9 @@ def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities
 @click.option("--json", "as_json", is_flag=True, help="Print the metrics as JSON.")
 def stats_command(mesh_path, domain_path, as_json) -> None:
     """Quality metrics of a MESH (mesh.json): singularities, scaled Jacobian, angles, boundary fit."""
-    from vaultgram.domain.model import load_domain
-    from vaultgram.meshing.mesh import format_stats, mesh_from_json, mesh_stats
+    from vaultgram.domain import load_domain
+    from vaultgram.io.meshfiles import mesh_from_json
+    from vaultgram.meshing.quality import format_stats, mesh_stats
 
     mesh = mesh_from_json(read_json(mesh_path), mesh_path)
     domain = load_domain(domain_path) if domain_path else None

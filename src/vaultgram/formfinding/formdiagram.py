@@ -31,8 +31,8 @@ import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components
 
 from vaultgram.errors import FormFindingError
-from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.formfinding.supports import outer_loop
+from vaultgram.geometry.meshes import corner_arrays
 
 __all__ = ["FormDiagram", "form_diagram", "connectivity_matrix"]
 

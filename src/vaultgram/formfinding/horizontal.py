@@ -44,7 +44,6 @@ method into arches with a prescribed sag (as RhinoVAULT's "relax").
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-import time
 
 import numpy as np
 import scipy.sparse as sp
@@ -80,7 +79,6 @@ class HorizontalResult:
     method : str
         ``"parallelisation"`` or ``"lp"`` (the iteration stalled and :func:`compression_lp` found the
         compression-only reciprocal of the current form diagram).
-    seconds : float
     """
 
     form: FormDiagram
@@ -92,7 +90,6 @@ class HorizontalResult:
     history: tuple = field(repr=False)
     converged: bool = True
     method: str = "parallelisation"
-    seconds: float = 0.0
 
 
 def angle_deviations(u: np.ndarray, d: np.ndarray) -> np.ndarray:
@@ -213,7 +210,6 @@ def horizontal(form: FormDiagram, force: ForceDiagram | None = None, *, alpha: f
     ConvergenceError
         the angle did not drop below ``tol_deg`` within ``kmax`` iterations (``.result`` attached).
     """
-    t0 = time.perf_counter()
     if force is None:
         force = force_diagram(form)
     a = min(max(float(alpha) / 100.0, 0.0), 1.0)
@@ -339,8 +335,7 @@ def horizontal(form: FormDiagram, force: ForceDiagram | None = None, *, alpha: f
     q = np.zeros(form.n_edges)
     q[act] = np.where(angles > 90.0, -1.0, 1.0) * ld / lu_
     res = HorizontalResult(form=new_form, force=force.with_xy(y), q=q, angles=angles, max_angle=amax,
-                           iterations=k, history=tuple(history), converged=converged, method=method,
-                           seconds=time.perf_counter() - t0)
+                           iterations=k, history=tuple(history), converged=converged, method=method)
     if converged or not raise_on_failure:
         return res
     flipped = np.flatnonzero(angles > 90.0)

@@ -19,9 +19,10 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
+from vaultgram.errors import FormFindingError
 from vaultgram.geometry.meshes import corner_arrays
 
-__all__ = ["TributaryAreas", "tributary_areas"]
+__all__ = ["TributaryAreas", "tributary_areas", "mesh_point_loads"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -73,3 +74,15 @@ def tributary_areas(xyz: np.ndarray, faces, n: int | None = None) -> np.ndarray:
     """
     xyz = np.asarray(xyz, dtype=float)
     return TributaryAreas.from_faces(faces, len(xyz) if n is None else n)(xyz)
+
+
+def mesh_point_loads(point_loads, n_mesh: int) -> dict | None:
+    """Point loads as ``{mesh vertex: load}`` from a dict, or from an array with one load per mesh
+    vertex (zeros dropped); positive downwards."""
+    if point_loads is None or isinstance(point_loads, dict):
+        return point_loads
+    arr = np.asarray(point_loads, dtype=float).ravel()
+    if arr.shape != (n_mesh,):
+        raise FormFindingError(f"point_loads has {arr.size} entries; give one per mesh vertex ({n_mesh}) "
+                               f"or a dict {{mesh vertex: load}}")
+    return {int(i): float(arr[i]) for i in np.flatnonzero(arr)}

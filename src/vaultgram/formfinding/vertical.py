@@ -18,7 +18,6 @@ values are fixed (a common scale only divides the solution), so the system is fa
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-import time
 
 import numpy as np
 import scipy.sparse as sp
@@ -70,7 +69,6 @@ class VerticalResult:
     residual_xy: float
     iterations: int
     history: tuple = field(repr=False)
-    seconds: float = 0.0
 
     @property
     def z(self) -> np.ndarray:
@@ -167,7 +165,6 @@ def vertical(form: FormDiagram, q, *, scale: float = 1.0, zmax: float | None = N
     ConvergenceError
         loads/scale not converged within ``kmax`` iterations (``.result`` holds the last state).
     """
-    t0 = time.perf_counter()
     q0 = np.asarray(q, dtype=float).ravel()
     if q0.shape != (form.n_edges,):
         raise ValueError(f"q has {q0.size} entries, the form diagram has {form.n_edges} edges")
@@ -237,7 +234,7 @@ def vertical(form: FormDiagram, q, *, scale: float = 1.0, zmax: float | None = N
         xyz=xyz, q=qs, scale=s, loads=p, reactions=reactions, total_load=float(p.sum()),
         residual=float(np.max(np.abs(r[free]))) if len(free) else 0.0,
         residual_xy=float(np.max(np.abs(rxy[free]))) if len(free) else 0.0,
-        iterations=k, history=tuple(history), seconds=time.perf_counter() - t0)
+        iterations=k, history=tuple(history))
     if not converged:
         err = ConvergenceError(
             f"vertical equilibrium: loads{' and scale' if zmax is not None else ''} did not converge in "

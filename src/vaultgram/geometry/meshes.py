@@ -1,19 +1,17 @@
-"""Small helpers for planar polygonal meshes: regular grids, boundary loops, JSON and OBJ.
+"""Polygonal meshes as plain data: per-corner arrays, adjacency, boundary loops, regular grids.
 
-A mesh here is plain data: ``vertices`` an ``(n, 2)`` or ``(n, 3)`` float array and ``faces`` a
-list of vertex-index sequences, counter-clockwise seen from +z. These helpers feed the form-finding
-stage (§5 of the paper: "To convert this mesh into a proper form diagram ...") and its tests and
-benchmarks; they know nothing about statics.
+A mesh here is ``vertices``, an ``(n, 2)`` or ``(n, 3)`` float array, and ``faces``, a list of
+vertex-index sequences, counter-clockwise seen from +z. Every stage that walks a mesh (smoothing,
+quality, form finding, tessellation) uses these vectorised helpers instead of loops over faces; they
+know nothing about vaults or statics.
 """
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Iterable, Sequence
 
 import numpy as np
-
-from vaultgram.io.files import write_text
+import scipy.sparse as sp
 
 __all__ = [
     "grid_mesh",
@@ -21,7 +19,8 @@ __all__ = [
     "remove_faces",
     "boundary_loops",
     "corner_arrays",
-    "write_obj",
+    "adjacency",
+    "boundary_adjacency",
 ]
 
 
@@ -137,15 +136,21 @@ def boundary_loops(faces: Sequence[Sequence[int]]) -> list[list[int]]:
     return loops
 
 
-def write_obj(path: str | Path, vertices: np.ndarray, faces: Sequence[Sequence[int]],
-              edges: Sequence[Sequence[int]] | None = None) -> None:
-    """Write a Wavefront OBJ file (1-based indices); ``edges`` become ``l`` lines if given."""
-    v = np.asarray(vertices, dtype=float)
-    if v.shape[1] == 2:
-        v = np.column_stack([v, np.zeros(len(v))])
-    lines = ["# vaultgram"]
-    lines += [f"v {x:.12g} {y:.12g} {z:.12g}" for x, y, z in v.tolist()]
-    lines += ["f " + " ".join(str(int(i) + 1) for i in f) for f in faces]
-    if edges is not None:
-        lines += [f"l {int(a) + 1} {int(b) + 1}" for a, b in edges]
-    write_text(path, "\n".join(lines) + "\n")
+def adjacency(n: int, faces) -> sp.csr_matrix:
+    """Symmetric 0/1 vertex adjacency (``n x n``) of the edges of ``faces``."""
+    _, u, v, _ = corner_arrays(faces)
+    a = sp.coo_matrix((np.ones(len(u)), (u, v)), shape=(n, n)).tocsr()
+    a = a + a.T
+    a.data[:] = 1.0
+    return a
+
+
+def boundary_adjacency(n: int, faces) -> sp.csr_matrix:
+    """Symmetric 0/1 adjacency of the boundary edges (half-edges without twin) of ``faces``."""
+    _, u, v, _ = corner_arrays(faces)
+    code = u * n + v
+    free = ~np.isin(v * n + u, code)
+    a = sp.coo_matrix((np.ones(int(free.sum())), (u[free], v[free])), shape=(n, n)).tocsr()
+    a = a + a.T
+    a.data[:] = 1.0
+    return a

@@ -1,4 +1,4 @@
-"""Reading input files with clear errors, and writing outputs atomically.
+"""Reading input files with clear errors, and writing outputs (JSON, OBJ) atomically.
 
 Outputs are written to a temporary file in the destination folder and renamed into place, so a
 failed or interrupted run never leaves a half-written file behind; JSON is written with sorted keys
@@ -10,6 +10,9 @@ from __future__ import annotations
 import json
 import os
 from pathlib import Path
+from typing import Sequence
+
+import numpy as np
 
 from vaultgram.errors import VaultgramError
 
@@ -38,3 +41,17 @@ def write_text(path: str | Path, text: str) -> None:
 def write_json(path: str | Path, data) -> None:
     """Write JSON atomically, keys sorted (deterministic bytes)."""
     write_text(path, json.dumps(data, indent=1, sort_keys=True))
+
+
+def write_obj(path: str | Path, vertices: np.ndarray, faces: Sequence[Sequence[int]],
+              edges: Sequence[Sequence[int]] | None = None) -> None:
+    """Write a Wavefront OBJ file (1-based indices); ``edges`` become ``l`` lines if given."""
+    v = np.asarray(vertices, dtype=float)
+    if v.shape[1] == 2:
+        v = np.column_stack([v, np.zeros(len(v))])
+    lines = ["# vaultgram"]
+    lines += [f"v {x:.12g} {y:.12g} {z:.12g}" for x, y, z in v.tolist()]
+    lines += ["f " + " ".join(str(int(i) + 1) for i in f) for f in faces]
+    if edges is not None:
+        lines += [f"l {int(a) + 1} {int(b) + 1}" for a, b in edges]
+    write_text(path, "\n".join(lines) + "\n")

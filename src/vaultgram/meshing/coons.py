@@ -22,16 +22,9 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["coons_grid", "grid_faces", "arc_parameters"]
+from vaultgram.geometry.polylines import arc_parameters
 
-
-def arc_parameters(poly: np.ndarray) -> np.ndarray:
-    """Normalised arc length of each point of a polyline, from 0 to 1 (uniform if it has no length)."""
-    seg = np.hypot(*np.diff(poly, axis=0).T)
-    s = np.concatenate([[0.0], np.cumsum(seg)])
-    if s[-1] <= 0:
-        return np.linspace(0.0, 1.0, len(poly))
-    return s / s[-1]
+__all__ = ["coons_grid", "grid_faces"]
 
 
 def coons_grid(bottom: np.ndarray, right: np.ndarray, top: np.ndarray, left: np.ndarray) -> np.ndarray:

@@ -6,7 +6,7 @@ welded to obtain a mesh that complies with our requirements: a fully structured 
 small number of singularities and no boundary singularities." (§3.2)
 
 Welding is exact by construction, not by a distance tolerance: every patch corner (a node of the
-decomposition graph) is one vertex, and every atomic side (:class:`vaultgram.meshing.edge_groups.Side`) is
+decomposition graph) is one vertex, and every atomic side (:class:`vaultgram.meshing.layout.Side`) is
 resampled once, at its group's count, into vertices that both patches along it index. Each patch
 then adds only its interior grid points (:func:`vaultgram.meshing.coons.coons_grid`). Faces are
 counter-clockwise because patches are and the grid's ``(i, j)`` axes follow the patch's corners.
@@ -18,209 +18,15 @@ mesh keeps the domain's corners (they stay fixed in smoothing).
 
 from __future__ import annotations
 
-import time
-from dataclasses import dataclass, field
-
 import numpy as np
 
-from vaultgram.meshing.coons import coons_grid, grid_faces
-from vaultgram.meshing.edge_groups import Layout, is_feature_node
 from vaultgram.errors import VaultgramError
+from vaultgram.geometry.polylines import resample_polyline
+from vaultgram.meshing.coons import coons_grid, grid_faces
+from vaultgram.meshing.layout import Layout, is_feature_node, kept_points, side_anchors
+from vaultgram.meshing.quadmesh import QuadMesh, SlideConstraint
 
-__all__ = ["QuadMesh", "SlideConstraint", "weld", "resample_polyline", "kept_points", "side_anchors", "chord_deviation",
-           "KEEP_ANGLE"]
-
-#: Input vertices of the domain's rings turning by at least this many degrees are kept as fixed mesh
-#: vertices (when their side's count allows), even below the discretisation's corner angle: sliding
-#: boundary vertices would otherwise cut them off.
-KEEP_ANGLE = 20.0
-
-
-@dataclass(frozen=True, eq=False)
-class SlideConstraint:
-    """Vertices that must stay on a polyline (a stretch of boundary between fixed vertices)."""
-
-    vertices: np.ndarray
-    polyline: np.ndarray
-    closed: bool = False
-
-
-@dataclass(frozen=True, eq=False)
-class QuadMesh:
-    """A welded quad mesh with the labels smoothing and the later stages need.
-
-    Attributes
-    ----------
-    vertices : ndarray (n, 2)
-    faces : list of tuple
-        Quads ``(i, j, k, l)`` and, at poles, triangles ``(pole, j, k)``, counter-clockwise.
-    face_patch : ndarray (f,) int
-        Patch id of each face.
-    boundary : ndarray (n,) bool
-        Vertex on a ring of the domain.
-    ring : ndarray (n,) int
-        Ring of a boundary vertex (0 outer, ``1 + k`` hole ``k``), -1 inside.
-    corner : ndarray (n,) int8
-        1 at a convex corner of the domain, -1 at a reflex corner, 0 elsewhere.
-    turning : ndarray (n,) float
-        Turning angle of the domain (degrees, positive convex) at boundary vertices lying on a ring
-        point of the discretisation; 0 elsewhere.
-    fixed : ndarray (n,) bool
-        Vertices smoothing does not move: domain corners and feature points.
-    pole : ndarray (n,) bool
-        Poles of three-sided patches.
-    feature : ndarray (n,) bool
-        Point features (§4.1), inner and on the boundary; curve extremities are in ``extremity``.
-    node : ndarray (n,) int
-        The decomposition-graph node a vertex stands for (patch corners), else -1.
-    singular : ndarray (n,) bool
-        Vertices at skeleton nodes of the decomposition (singularities and loop cuts).
-    groups : tuple of dict
-        The edge groups: ``{"id", "count", "sides", "mean_length", "max_length"}``.
-    constraints : tuple of SlideConstraint
-        Boundary and curve stretches between fixed vertices, along which their vertices slide.
-    info : dict
-        Free-form facts about the run (timings per stage, counts).
-    curve : ndarray (n,) int
-        The curve feature a vertex lies on (§4.2), else -1 (empty: no curve labels).
-    extremity : ndarray (n,) bool
-        Curve feature extremities off the boundary (§4.2; also ``feature`` and ``fixed``).
-    curves : tuple of ndarray
-        For each curve feature, its mesh vertices in order along it: a chain of mesh edges.
-    curve_lines : tuple of ndarray (k, 2)
-        For each curve feature, its polyline (the discretised input curve).
-    """
-
-    vertices: np.ndarray
-    faces: list
-    face_patch: np.ndarray
-    boundary: np.ndarray
-    ring: np.ndarray
-    corner: np.ndarray
-    turning: np.ndarray
-    fixed: np.ndarray
-    pole: np.ndarray
-    feature: np.ndarray
-    node: np.ndarray
-    singular: np.ndarray
-    groups: tuple = ()
-    constraints: tuple = ()
-    info: dict = field(default_factory=dict)
-    curve: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
-    extremity: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool))
-    curves: tuple = ()
-    curve_lines: tuple = ()
-
-    @property
-    def n_vertices(self) -> int:
-        return len(self.vertices)
-
-    def curve_labels(self) -> tuple[np.ndarray, np.ndarray]:
-        """``(curve, extremity)`` as full per-vertex arrays (-1 / False where the mesh has no labels)."""
-        n = len(self.vertices)
-        curve = np.asarray(self.curve, dtype=np.int64) if len(self.curve) == n else np.full(n, -1, dtype=np.int64)
-        ext = np.asarray(self.extremity, dtype=bool) if len(self.extremity) == n else np.zeros(n, dtype=bool)
-        return curve, ext
-
-    @property
-    def n_faces(self) -> int:
-        return len(self.faces)
-
-    def labels_json(self) -> dict:
-        """Per-vertex labels as JSON lists of vertex indices."""
-        return {
-            "boundary": np.flatnonzero(self.boundary).tolist(),
-            "corner": np.flatnonzero(self.corner > 0).tolist(),
-            "reflex_corner": np.flatnonzero(self.corner < 0).tolist(),
-            "fixed": np.flatnonzero(self.fixed).tolist(),
-            "pole": np.flatnonzero(self.pole).tolist(),
-            "feature": np.flatnonzero(self.feature).tolist(),
-            "curve": np.flatnonzero(self.curve_labels()[0] >= 0).tolist(),
-            "curve_extremity": np.flatnonzero(self.curve_labels()[1]).tolist(),
-            "singular_node": np.flatnonzero(self.singular).tolist(),
-        }
-
-
-def resample_polyline(poly: np.ndarray, n: int, anchors=()) -> tuple[np.ndarray, list[int]]:
-    """``n + 1`` points along a polyline, uniform in arc length, hitting the ``anchors`` if possible.
-
-    Parameters
-    ----------
-    poly : ndarray (k, 2)
-    n : int
-        Number of subdivisions (>= 1).
-    anchors : sequence of int
-        Indices of interior points of ``poly`` that should be samples. Honoured when ``n`` leaves at
-        least one subdivision per piece between anchors; the counts are shared in proportion to
-        the pieces' lengths.
-
-    Returns
-    -------
-    samples : ndarray (n + 1, 2)
-        First and last equal ``poly[0]`` and ``poly[-1]``.
-    hit : list of int
-        For each honoured anchor, its sample index (empty when the anchors were not honoured).
-    """
-    poly = np.asarray(poly, dtype=float)
-    s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(poly, axis=0).T))])
-    anchors = sorted(int(a) for a in anchors if 0 < a < len(poly) - 1)
-    breaks = [0, *anchors, len(poly) - 1]
-    lengths = np.diff(s[breaks])
-    hit: list[int] = []
-    if anchors and n >= len(lengths) and np.all(lengths > 0):
-        share = lengths / lengths.sum() * n
-        m = np.maximum(1, np.floor(share)).astype(np.int64)
-        while m.sum() > n:  # take back from the pieces given most above their share
-            m[np.argmax(np.where(m > 1, m - share, -np.inf))] -= 1
-        while m.sum() < n:
-            m[np.argmax(share - m)] += 1
-        targets = np.concatenate(
-            [np.linspace(s[a], s[b], k + 1)[:-1] for a, b, k in zip(breaks[:-1], breaks[1:], m)] + [[s[-1]]]
-        )
-        hit = np.cumsum(m)[:-1].tolist()
-    else:
-        targets = np.linspace(0.0, s[-1], n + 1)
-    out = np.column_stack([np.interp(targets, s, poly[:, 0]), np.interp(targets, s, poly[:, 1])])
-    out[0], out[-1] = poly[0], poly[-1]
-    for a, h in zip(anchors if hit else (), hit):
-        out[h] = poly[a]
-    return out, hit
-
-
-def kept_points(disc) -> np.ndarray:
-    """Domain points the mesh must keep (fixed vertices): corners, point features, and input vertices
-    of the rings turning by :data:`KEEP_ANGLE` or more."""
-    keep = disc.is_corner | (disc.is_input_vertex & (np.abs(disc.turning) >= KEEP_ANGLE))
-    keep[np.asarray(disc.feature_points, dtype=np.int64)] = True  # boundary point features (§4.1)
-    return keep
-
-
-def side_anchors(side, keep_point, disc=None) -> list[int]:
-    """Indices of a side's polyline points that should be mesh vertices.
-
-    On a boundary side the points of :func:`kept_points`; on a curve side (``side.curve >= 0``,
-    given ``disc``) every vertex of the input curve feature, so that the chain of mesh edges along the
-    curve passes through all its bends (§4.2: the curve is captured exactly, not by chords).
-    """
-    if side.boundary:
-        return [k for k, v in enumerate(side.nodes[1:-1], 1) if keep_point[v]]
-    if disc is not None and getattr(side, "curve", -1) >= 0 and len(side.nodes) == len(side.polyline):
-        return [k for k, v in enumerate(side.nodes[1:-1], 1)
-                if 0 <= v < disc.n_points and disc.is_input_vertex[v]]
-    return []
-
-
-def chord_deviation(poly: np.ndarray, samples: np.ndarray) -> float:
-    """Largest distance from a point of ``poly`` to the polyline through ``samples`` (both ordered
-    along the same curve): how far a side resampled into ``samples`` strays from the curve."""
-    poly = np.asarray(poly, dtype=float)
-    a, b = samples[:-1], samples[1:]
-    ab = b - a
-    ab2 = np.maximum((ab * ab).sum(1), 1e-300)
-    p = poly[:, None, :]
-    t = np.clip(((p - a) * ab).sum(-1) / ab2, 0.0, 1.0)
-    d = np.hypot(*(a + t[..., None] * ab - p).transpose(2, 0, 1))
-    return float(d.min(axis=1).max()) if len(poly) else 0.0
+__all__ = ["weld"]
 
 
 def weld(layout: Layout, counts) -> QuadMesh:
@@ -229,9 +35,9 @@ def weld(layout: Layout, counts) -> QuadMesh:
     Parameters
     ----------
     layout : Layout
-        Patches, patterns, sides and groups (:func:`vaultgram.meshing.edge_groups.edge_groups`).
+        Patches, patterns, sides and groups (:func:`vaultgram.meshing.layout.edge_groups`).
     counts : sequence of int
-        Subdivisions per edge group (:func:`vaultgram.meshing.edge_groups.group_counts`).
+        Subdivisions per edge group (:func:`vaultgram.meshing.densities.group_counts`).
 
     Raises
     ------
@@ -243,8 +49,6 @@ def weld(layout: Layout, counts) -> QuadMesh:
         raise VaultgramError(f"need one positive integer count per edge group ({layout.n_groups} groups)")
     dec = layout.decomposition
     graph, disc = dec.graph, dec.disc
-    t_start = time.perf_counter()
-    t_coons = 0.0
     side_count = counts[layout.group_of]
     keep_point = kept_points(disc)
 
@@ -305,9 +109,7 @@ def weld(layout: Layout, counts) -> QuadMesh:
             lp = np.repeat(bp[:1], len(ri), axis=0)
         if len(bi) != len(ti) or len(li) != len(ri):
             raise VaultgramError(f"patch {pat.patch}: opposite sides have different counts (internal error)")
-        t = time.perf_counter()
         grid = coons_grid(bp, rp, tp, lp)
-        t_coons += time.perf_counter() - t
         m, n = len(bi) - 1, len(li) - 1
         ids = np.empty((m + 1, n + 1), dtype=np.int64)
         ids[1:-1, 1:-1] = np.arange(n_vert, n_vert + (m - 1) * (n - 1)).reshape(m - 1, n - 1)
@@ -380,10 +182,9 @@ def weld(layout: Layout, counts) -> QuadMesh:
          "mean_length": g.mean_length, "max_length": g.max_length}
         for g in layout.groups
     )
-    seconds = {"coons": t_coons, "weld": time.perf_counter() - t_start - t_coons}
     curve_lines = tuple(np.asarray(disc.points[c], dtype=float) for c in disc.curves)
     return QuadMesh(vertices, faces, face_patch, boundary, ring, corner, turning, fixed, pole, feature,
-                    node, singular, groups, constraints, {"seconds": seconds}, curve, extremity, chains, curve_lines)
+                    node, singular, groups, constraints, {}, curve, extremity, chains, curve_lines)
 
 
 def _curve_chains(layout: Layout, side_ids, vid_of_node) -> tuple:

@@ -13,7 +13,7 @@
   circle touches, one on each side; a domain without corners or holes keeps its single centre cell
   as a singularity whose dual is that cell's face.
 
-:func:`decompose` then runs the rulebook's ``topology`` strategy on it (prune corner branches,
+:func:`block_decomposition` then runs the rulebook's ``topology`` strategy on it (prune corner branches,
 rebranch) -- the topology is decided by the rule files, not by this module -- and extracts the
 patches (:mod:`vaultgram.topology.patches`).
 """
@@ -23,30 +23,29 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass
-from importlib import resources
-from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
-from vaultgram.topology.discretise import Discretisation, discretise
-from vaultgram.domain.model import Domain
 from vaultgram.engine.graph import HostGraph
-from vaultgram.engine.rulebook import Rulebook, load_rulebook
-from vaultgram.engine.strategy import Runner, StepReport
+from vaultgram.engine.rulebook import Rulebook
+from vaultgram.engine.strategy import Runner
 from vaultgram.errors import DomainError, RewriteError
+from vaultgram.geometry.polylines import arc_lengths
+from vaultgram.geometry.text import fmt_point
+from vaultgram.topology.discretise import Discretisation
 from vaultgram.topology.patches import Patch, find_patches, half_edge_polyline
-from vaultgram.topology.skeleton import Skeleton, skeleton
-from vaultgram.topology.triangulation import triangulate
-from vaultgram.topology.functions import vault_functions
+from vaultgram.topology.skeleton import Skeleton
+from vaultgram.topology.types import PATCH_STRATEGIES, PLAN_EDGES, TOPOLOGY_STRATEGY
 
 LOOP_CUTS = 4  # cut points on a skeleton loop without singularity (an annulus becomes 2 x 4 quads)
-PATCH_EDGES = ("Branch", "Rebranch", "Boundary", "Curve", "Diagonal")
-# strategies run on the Patch nodes, in this order: repair curve T-junctions, then split at features
-PATCH_STRATEGIES = ("curve_patching", "patching")
-# the node and edge types the pipeline creates; a rulebook's schema must declare them
-PIPELINE_TYPES = ("Singularity", "LoopVertex", "BoundaryVertex", "Corner", "FeaturePoint", "CurvePoint",
-                  "CurveExtremity", "Branch", "Boundary", "Curve", "Dual", "Rebranch", "Diagonal", "Patch",
-                  "PatchCorner")
+
+
+class RuleStep(NamedTuple):
+    """A strategy step the rulebook ran, and how many rule applications it made."""
+
+    step: str
+    applications: int
 
 
 @dataclass(frozen=True, eq=False)
@@ -57,7 +56,7 @@ class Decomposition:
     skeleton: Skeleton
     graph: HostGraph
     patches: tuple[Patch, ...]
-    reports: tuple[StepReport, ...]
+    reports: tuple[RuleStep, ...]
     trace: list[dict]
 
     def marked_pole(self, patch: Patch) -> int | None:
@@ -83,7 +82,7 @@ class Decomposition:
 
     def valence(self, n: int) -> int:
         """Number of patch-layout edges (branches, rebranches, boundary pieces) at node ``n``."""
-        return self.graph.degree(n, PATCH_EDGES)
+        return self.graph.degree(n, PLAN_EDGES)
 
     def to_json(self) -> dict:
         """The typed graph: nodes with types and attributes, edges with types and polylines."""
@@ -110,36 +109,6 @@ class Decomposition:
             "patches": [p.to_json() for p in self.patches],
             "counts": {str(k): sum(p.n_sides == k for p in self.patches) for k in (3, 4)},
         }
-
-
-def default_rules_dir() -> Path:
-    return Path(str(resources.files("vaultgram.rules")))
-
-
-def load_vault_rulebook(rules_dir: str | Path | None = None) -> Rulebook:
-    """The rulebook in ``rules_dir`` (default: the one shipped with vaultgram), with vault functions.
-
-    Loaded rulebooks are kept for the life of the process, keyed by the folder and the modification
-    times of its rule files, so a changed file is read again.
-    """
-    directory = Path(rules_dir) if rules_dir is not None else default_rules_dir()
-    path = directory / "topology.vgr"
-    if not path.is_file():
-        raise DomainError(f"{directory}: no topology.vgr rule file there")
-    stamp = tuple(sorted((f.name, f.stat().st_mtime_ns) for f in directory.glob("*.vgr")))
-    return _load_checked(path.resolve(), stamp)
-
-
-@functools.lru_cache(maxsize=8)
-def _load_checked(path: Path, stamp: tuple) -> Rulebook:
-    book = load_rulebook([path], vault_functions())
-    missing = [t for t in PIPELINE_TYPES if t not in book.schema.node_types and t not in book.schema.edge_types]
-    if missing:
-        raise DomainError(
-            f"{path}: the rulebook's schema lacks the type(s) {', '.join(missing)} that the pipeline builds "
-            "its graph with (see rules/schema.vgr)"
-        )
-    return book
 
 
 def edge_angle(graph: HostGraph, e: int, n: int) -> float:
@@ -213,7 +182,7 @@ def _cut_loop(g: HostGraph, sk: Skeleton, loop) -> None:
     poly = loop.polyline[:-1]
     if len(poly) < 2 * LOOP_CUTS:
         raise DomainError("a skeleton loop is too short to cut into patches; use a smaller spacing")
-    length = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(loop.polyline, axis=0).T))])
+    length = arc_lengths(loop.polyline)
     at = [int(np.searchsorted(length, length[-1] * k / LOOP_CUTS)) % len(poly) for k in range(LOOP_CUTS)]
     cuts = [_add_loop_vertex(g, sk, loop.polyline, loop.faces, i) for i in at]
     for k in range(LOOP_CUTS):
@@ -235,7 +204,7 @@ def _add_loop_vertex(g: HostGraph, sk: Skeleton, poly: np.ndarray, faces, i: int
     for s in (1, -1):
         candidates = np.flatnonzero(side == s)
         if len(candidates) == 0:
-            raise DomainError(f"cannot cut the skeleton loop at ({p[0]:.6g}, {p[1]:.6g}); use a smaller spacing")
+            raise DomainError(f"cannot cut the skeleton loop at {fmt_point(p)}; use a smaller spacing")
         g.add_edge("Dual", n, int(verts[candidates[np.argmin(along[candidates])]]))
     return n
 
@@ -270,30 +239,25 @@ def check_patch_nodes(graph: HostGraph, patches) -> None:
         )
 
 
-def decompose(
-    domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None = None, smooth: bool = False
-) -> Decomposition:
-    """Topology finding (§3.1, §4.1): discretise, triangulate, skeletonise, rewrite with the rules, patch.
+def block_decomposition(sk: Skeleton, rulebook: Rulebook) -> Decomposition:
+    """The block decomposition of a skeleton by the rulebook (§3.1 pruning and rebranching, §4).
 
-    The rulebook's ``topology`` strategy rewrites the skeleton graph; the faces it leaves become
-    ``Patch`` nodes and the ``curve_patching`` and ``patching`` strategies (when the rulebook has
-    them) may split them (curve T-junctions, Figure 4); the patches are then read off the faces
-    again, and must all have 3 or 4 sides.
+    The rulebook's ``topology`` strategy rewrites the skeleton graph (:func:`decomposition_graph`);
+    the faces it leaves become ``Patch`` nodes and the ``curve_patching`` and ``patching`` strategies
+    (when the rulebook has them) may split them (curve T-junctions, Figures 4 and 8); the patches are
+    then read off the faces again, and must all have 3 or 4 sides.
     """
-    rulebook = load_vault_rulebook(rules_dir)
-    if "topology" not in rulebook.strategies:
-        raise DomainError(f"the rulebook ({', '.join(rulebook.files)}) has no strategy 'topology'")
-    disc = discretise(domain, spacing)
-    sk = skeleton(triangulate(disc), smooth=smooth)
+    disc = sk.triangulation.disc
     graph = decomposition_graph(sk, rulebook)
     runner = Runner(rulebook, graph)
-    runner.run("topology")
+    runner.run(TOPOLOGY_STRATEGY)
     patch_strategies = [name for name in PATCH_STRATEGIES if name in rulebook.strategies]
-    patches = find_patches(graph, disc, PATCH_EDGES, strict=not patch_strategies)
+    patches = find_patches(graph, disc, PLAN_EDGES, strict=not patch_strategies)
     if patch_strategies:
         add_patch_nodes(graph, patches)
         for name in patch_strategies:
             runner.run(name)
-        patches = find_patches(graph, disc, PATCH_EDGES)
+        patches = find_patches(graph, disc, PLAN_EDGES)
         check_patch_nodes(graph, patches)
-    return Decomposition(disc, sk, graph, tuple(patches), tuple(runner.reports), runner.trace.to_json())
+    reports = tuple(RuleStep(r.step, r.applications) for r in runner.reports)
+    return Decomposition(disc, sk, graph, tuple(patches), reports, runner.trace.to_json())

@@ -34,8 +34,9 @@ from scipy.spatial import cKDTree
 
 from vaultgram.domain.model import Domain
 from vaultgram.errors import DomainError
+from vaultgram.geometry.polylines import locate_on_polyline, turning_angles
 
-__all__ = ["Discretisation", "discretise", "turning_angles", "SPACING_RANGE"]
+__all__ = ["Discretisation", "discretise", "SPACING_RANGE"]
 
 #: The documented useful range of the relative spacing (paper §3.1: "between 1% to 5%").
 SPACING_RANGE = (0.01, 0.05)
@@ -124,27 +125,6 @@ class Discretisation:
         )
 
 
-def turning_angles(poly: np.ndarray, closed: bool = True) -> np.ndarray:
-    """Signed turning angle (degrees) at each vertex of a polyline; positive is a left turn.
-
-    For an open polyline the end points get 0.
-    """
-    if closed:
-        d_in = poly - np.roll(poly, 1, axis=0)
-        d_out = np.roll(poly, -1, axis=0) - poly
-    else:
-        d_in = np.zeros_like(poly)
-        d_out = np.zeros_like(poly)
-        d_in[1:-1] = poly[1:-1] - poly[:-2]
-        d_out[1:-1] = poly[2:] - poly[1:-1]
-    cross = d_in[:, 0] * d_out[:, 1] - d_in[:, 1] * d_out[:, 0]
-    dot = (d_in * d_out).sum(axis=1)
-    ang = np.degrees(np.arctan2(cross, dot))
-    if not closed and len(poly):
-        ang[[0, -1]] = 0.0
-    return ang
-
-
 def _resample(poly: np.ndarray, h: float, closed: bool):
     """Split every segment into equal parts no longer than ``h``.
 
@@ -172,17 +152,6 @@ def _resample(poly: np.ndarray, h: float, closed: bool):
     is_vertex = np.zeros(len(out), dtype=bool)
     is_vertex[vertex_pos] = True
     return out, vertex_pos, is_vertex
-
-
-def _locate_on_polyline(poly: np.ndarray, p: np.ndarray, closed: bool):
-    """Nearest segment of a polyline to p: (distance, segment index, parameter t in [0, 1])."""
-    a = poly if closed else poly[:-1]
-    b = np.roll(poly, -1, axis=0) if closed else poly[1:]
-    ab = b - a
-    t = np.clip(((p - a) * ab).sum(1) / np.maximum((ab * ab).sum(1), 1e-300), 0.0, 1.0)
-    d = np.hypot(*(a + t[:, None] * ab - p).T)
-    i = int(np.argmin(d))
-    return float(d[i]), i, float(t[i])
 
 
 def _insert(poly: np.ndarray, inserts: list, tol: float, closed: bool):
@@ -265,7 +234,7 @@ def discretise(domain: Domain, spacing: float = 0.02, corner_angle: float = 30.0
     def on_ring(p):
         best = None
         for r, ring in enumerate(rings):
-            d, seg, t = _locate_on_polyline(ring, p, closed=True)
+            d, seg, t = locate_on_polyline(ring, p, closed=True)
             if d <= tol and (best is None or d < best[0]):
                 best = (d, r, seg, t)
         return best
@@ -285,7 +254,7 @@ def discretise(domain: Domain, spacing: float = 0.02, corner_angle: float = 30.0
             ring_inserts[r].append((seg, t, p.copy()))
             continue
         for c, curve in enumerate(curves):
-            d, seg, t = _locate_on_polyline(curve, p, closed=False)
+            d, seg, t = locate_on_polyline(curve, p, closed=False)
             if d <= tol:
                 point_ref[i] = ("curve", c, len(curve_inserts[c]))
                 curve_inserts[c].append((seg, t, p.copy()))

@@ -13,7 +13,10 @@ import numpy as np
 
 from vaultgram.engine.embedding import face_walk
 from vaultgram.engine.expressions import Functions
-from vaultgram.topology.patches import half_edge_polyline, signed_area
+from vaultgram.geometry.polygons import interior_angle, signed_area
+from vaultgram.geometry.polylines import arc_lengths
+from vaultgram.topology.patches import half_edge_polyline
+from vaultgram.topology.types import PLAN_EDGES
 
 
 def distance(p, q) -> float:
@@ -26,14 +29,6 @@ def midpoint(p, q) -> tuple[float, ...]:
 
 def lerp(p, q, t) -> tuple[float, ...]:
     return tuple(a + (b - a) * t for a, b in zip(p, q))
-
-
-def interior_angle(before, corner, after) -> float:
-    """The angle inside a counter-clockwise polygon at ``corner`` (degrees in [0, 360)): the turn from
-    the direction towards the next corner (``after``) to the direction towards the previous one."""
-    a = math.atan2(after[1] - corner[1], after[0] - corner[0])
-    b = math.atan2(before[1] - corner[1], before[0] - corner[0])
-    return math.degrees((b - a) % (2 * math.pi))
 
 
 def move_end(polyline, old, new) -> tuple:
@@ -52,9 +47,6 @@ def angle_between(p, centre, q) -> float:
     b = math.atan2(q[1] - centre[1], q[0] - centre[0])
     d = abs(a - b) % (2 * math.pi)
     return math.degrees(min(d, 2 * math.pi - d))
-
-
-PLAN_EDGES = ("Branch", "Rebranch", "Boundary", "Curve", "Diagonal")
 
 
 def curve_side(graph, p: int) -> int:
@@ -223,7 +215,7 @@ def _points(path) -> tuple:
 
 
 def _resample(chain: np.ndarray, t: np.ndarray) -> np.ndarray:
-    length = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(chain, axis=0).T))])
+    length = arc_lengths(chain)
     s = t * length[-1]
     return np.column_stack([np.interp(s, length, chain[:, 0]), np.interp(s, length, chain[:, 1])])
 

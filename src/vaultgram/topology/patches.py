@@ -13,10 +13,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from vaultgram.topology.discretise import Discretisation
 from vaultgram.engine.embedding import faces
 from vaultgram.engine.graph import HostGraph
 from vaultgram.errors import DomainError
+from vaultgram.geometry.polygons import signed_area
+from vaultgram.geometry.text import fmt_point
+from vaultgram.topology.discretise import Discretisation
 
 
 @dataclass(frozen=True, eq=False)
@@ -57,12 +59,6 @@ class Patch:
             "n_sides": self.n_sides,
             "sides": [s.tolist() for s in self.sides],
         }
-
-
-def signed_area(poly: np.ndarray) -> float:
-    """Shoelace area: positive for a counter-clockwise polygon."""
-    x, y = poly[:, 0], poly[:, 1]
-    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
 
 
 def half_edge_polyline(graph: HostGraph, edge: int, start: int) -> np.ndarray:
@@ -106,7 +102,7 @@ def find_patches(graph: HostGraph, disc: Discretisation, edge_types, strict: boo
         if len(corners) < 3 or (strict and len(corners) > 4):
             raise DomainError(
                 f"patch around {_where(outline)} has {len(corners)} sides (corners at "
-                f"{', '.join(_fmt(graph.get(c, 'pos')) for c in corners)}); only 3- and 4-sided patches "
+                f"{', '.join(fmt_point(graph.get(c, 'pos')) for c in corners)}); only 3- and 4-sided patches "
                 "can be meshed: try another spacing or check the rules"
             )
         patches.append(
@@ -139,9 +135,5 @@ def _is_hole(graph: HostGraph, face) -> bool:
     return edge_types == {"Boundary"} and len(rings) == 1 and next(iter(rings)) > 0
 
 
-def _fmt(p) -> str:
-    return f"({p[0]:.6g}, {p[1]:.6g})"
-
-
 def _where(outline: np.ndarray) -> str:
-    return _fmt(outline.mean(axis=0))
+    return fmt_point(outline.mean(axis=0))

@@ -41,6 +41,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from vaultgram.geometry.polylines import arc_lengths, polyline_length
 from vaultgram.topology.triangulation import Triangulation
 
 __all__ = ["SkeletonNode", "Branch", "Loop", "Skeleton", "skeleton"]
@@ -106,7 +107,7 @@ class Branch:
 
     @property
     def length(self) -> float:
-        return float(np.hypot(*np.diff(self.polyline, axis=0).T).sum())
+        return polyline_length(self.polyline)
 
 
 @dataclass(frozen=True, eq=False)
@@ -412,7 +413,7 @@ def _smooth(poly: np.ndarray, s_per_point: float, closed: bool) -> np.ndarray:
     else:
         base = poly
         keep = np.ones(n, dtype=bool)
-    u = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(base, axis=0).T))])
+    u = arc_lengths(base)
     u /= u[-1]
     w = np.ones(len(base))
     w[[0, -1]] = 1e6

@@ -50,9 +50,10 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import Delaunay, QhullError
 
-from vaultgram.topology.discretise import Discretisation
 from vaultgram.domain.model import ring_name
 from vaultgram.errors import DomainError
+from vaultgram.geometry.text import fmt_point
+from vaultgram.topology.discretise import Discretisation
 
 __all__ = ["Triangulation", "triangulate", "circumcentres", "KIND_CORNER", "KIND_REGULAR", "KIND_SINGULAR"]
 
@@ -230,8 +231,8 @@ def triangulate(
         i, j = seg[s]
         r = int(disc.ring[i])
         raise DomainError(
-            f"{ring_name(r)}, vertex {int(disc.index[i])}: boundary segment from {_pt(pts[i])} to "
-            f"{_pt(pts[j])} is not an edge of the Delaunay triangulation (spacing {disc.spacing:g} is "
+            f"{ring_name(r)}, vertex {int(disc.index[i])}: boundary segment from {fmt_point(pts[i], 10)} to "
+            f"{fmt_point(pts[j], 10)} is not an edge of the Delaunay triangulation (spacing {disc.spacing:g} is "
             "too coarse for the geometry there); use a smaller spacing or add vertices to the ring"
         )
     cseg = disc.curve_segments()
@@ -244,7 +245,7 @@ def triangulate(
             c_id = next(k for k, cv in enumerate(disc.curves) if np.any((cv[:-1] == i) & (cv[1:] == j)))
             pos = int(np.flatnonzero(disc.curves[c_id] == i)[0])
             raise DomainError(
-                f"curve feature {c_id}, vertex {pos}: segment from {_pt(pts[i])} to {_pt(pts[j])} "
+                f"curve feature {c_id}, vertex {pos}: segment from {fmt_point(pts[i], 10)} to {fmt_point(pts[j], 10)} "
                 f"is not an edge of the Delaunay triangulation (spacing {disc.spacing:g} is too "
                 "coarse there); use a smaller spacing"
             )
@@ -295,10 +296,6 @@ def triangulate(
         cell_radii=cell_radii,
         cut_curves=cut_curves,
     )
-
-
-def _pt(p) -> str:
-    return f"({float(p[0]):.10g}, {float(p[1]):.10g})"
 
 
 def _cells(pts, tri, neighbours, centres, radii, areas, ctol, atol):

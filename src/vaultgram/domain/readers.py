@@ -1,0 +1,358 @@
+"""Reading a domain: vaultgram JSON, GeoJSON and DXF (§3.1 input).
+
+Every reader normalises the rings (closing vertex dropped, outer ring counter-clockwise, holes
+clockwise, so that the domain always lies to the *left* of every ring), projects point features
+digitised just outside the boundary onto it, and validates the result
+(:func:`~vaultgram.domain.validation.validate_domain`). Errors name the file, then the ring or
+feature and the vertex.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any, Iterable
+
+import numpy as np
+import shapely
+
+from vaultgram.domain.model import REL_TOL, Domain
+from vaultgram.domain.validation import check_finite, validate_domain
+from vaultgram.errors import DomainError
+from vaultgram.geometry.polygons import bbox_diagonal, signed_area
+
+__all__ = ["load_domain", "domain_from_dict", "domain_from_geojson", "domain_from_dxf", "POINT_SNAP"]
+
+#: Point features lying *outside* the domain but closer than ``POINT_SNAP * bbox diagonal`` to its
+#: boundary are boundary point features (§4.1) digitised against the true curve rather than against
+#: its polyline: they are projected onto the boundary. ``POINT_SNAP`` equals the default
+#: discretisation spacing, below which the boundary is not resolved anyway. Farther points are an
+#: error.
+POINT_SNAP = 0.02
+
+
+def _as_coords(value: Any, what: str, min_len: int = 0) -> np.ndarray:
+    """Turn a JSON list of ``[x, y]`` pairs into an (n, 2) float array, naming bad entries."""
+    if not isinstance(value, (list, tuple)):
+        raise DomainError(f"{what}: expected a list of [x, y] pairs, got {type(value).__name__}")
+    out = np.empty((len(value), 2), dtype=np.float64)
+    for i, p in enumerate(value):
+        if (
+            not isinstance(p, (list, tuple))
+            or len(p) < 2
+            or not all(isinstance(c, (int, float)) and not isinstance(c, bool) for c in p[:2])
+        ):
+            raise DomainError(f"{what}, vertex {i}: expected [x, y] with two numbers, got {p!r}")
+        out[i] = (float(p[0]), float(p[1]))
+    if len(out) < min_len:
+        raise DomainError(f"{what}: expected at least {min_len} vertices, got {len(out)}")
+    return out
+
+
+def _normalise_ring(ring: np.ndarray, what: str, ccw: bool, tol: float) -> np.ndarray:
+    """Drop the closing vertex and fix the orientation (outer ccw, holes cw)."""
+    check_finite(ring, what)
+    if len(ring) >= 2 and np.hypot(*(ring[0] - ring[-1])) <= tol:
+        ring = ring[:-1]
+    area = signed_area(ring) if len(ring) >= 3 else 0.0
+    if (area < 0) == ccw and area != 0:
+        ring = np.roll(ring[::-1], 1, axis=0)  # reversed, but vertex 0 stays vertex 0
+    return np.ascontiguousarray(ring, dtype=np.float64)
+
+
+def _normalise_supports(value: Any) -> Any:
+    """Check the shape of ``supports`` (semantics are applied later in the pipeline)."""
+    if value is None:
+        return None
+    if not isinstance(value, dict):
+        raise DomainError(
+            'supports: expected null, {"rings": [...]} or {"polylines": [...]}, '
+            f"got {type(value).__name__}"
+        )
+    keys = set(value) - {"comment"}
+    if keys == {"rings"}:
+        rings = value["rings"]
+        if not isinstance(rings, list) or not rings:
+            raise DomainError('supports.rings: expected a non-empty list of "outer" or hole indices')
+        for i, r in enumerate(rings):
+            if not (r == "outer" or (isinstance(r, int) and not isinstance(r, bool) and r >= 0)):
+                raise DomainError(
+                    f'supports.rings[{i}]: expected "outer" or a hole index (integer >= 0), got {r!r}'
+                )
+        return value
+    if keys == {"polylines"}:
+        pls = value["polylines"]
+        if not isinstance(pls, list) or not pls:
+            raise DomainError("supports.polylines: expected a non-empty list of polylines")
+        for i, pl in enumerate(pls):
+            arr = _as_coords(pl, f"supports.polylines[{i}]", min_len=2)
+            check_finite(arr, f"supports.polylines[{i}]")
+        return value
+    raise DomainError(
+        f'supports: expected exactly one of the keys "rings" or "polylines", got {sorted(value)}'
+    )
+
+
+def _build(
+    name: str,
+    outer: np.ndarray,
+    holes: Iterable[np.ndarray],
+    points: np.ndarray,
+    curves: Iterable[np.ndarray],
+    supports: Any,
+) -> Domain:
+    """Normalise raw arrays into a validated Domain."""
+    check_finite(outer, "outer ring")
+    tol = REL_TOL * bbox_diagonal(outer)
+    outer = _normalise_ring(outer, "outer ring", ccw=True, tol=tol)
+    holes = tuple(
+        _normalise_ring(h, f"hole {i}", ccw=False, tol=tol) for i, h in enumerate(holes)
+    )
+    points = np.ascontiguousarray(np.asarray(points, dtype=np.float64).reshape(-1, 2))
+    curves = tuple(np.ascontiguousarray(np.asarray(c, dtype=np.float64)) for c in curves)
+    supports = _normalise_supports(supports)
+    points = _snap_points(outer, holes, points, POINT_SNAP * bbox_diagonal(outer))
+    dom = Domain(str(name), outer, holes, points, curves, supports)
+    for ring in dom.rings:
+        ring.setflags(write=False)
+    dom.points.setflags(write=False)
+    for c in dom.curves:
+        c.setflags(write=False)
+    validate_domain(dom)
+    return dom
+
+
+def _snap_points(outer, holes, points, snap):
+    """Project point features lying just outside the domain (within ``snap``) onto its boundary."""
+    if len(points) == 0 or not np.isfinite(points).all() or len(outer) < 3:
+        return points
+    try:
+        poly = shapely.Polygon(outer, list(holes))
+        boundary = poly.boundary
+        geoms = shapely.points(points)
+        d = shapely.distance(geoms, boundary)
+        near = (~shapely.contains_xy(poly, points[:, 0], points[:, 1])) & (d <= snap) & (d > 0)
+    except (shapely.errors.GEOSException, ValueError):  # invalid rings: validation reports them
+        return points
+    if not near.any():
+        return points
+    points = points.copy()
+    lines = shapely.shortest_line(geoms[near], boundary)
+    points[near] = shapely.get_coordinates(lines).reshape(-1, 2, 2)[:, 1]
+    return points
+
+
+def domain_from_dict(d: Any, source: str = "<dict>") -> Domain:
+    """Build a validated :class:`Domain` from a vaultgram-JSON dictionary.
+
+    Only ``outer`` is required; ``name`` defaults to ``source``'s stem, ``holes``, ``points`` and
+    ``curves`` to empty lists, ``supports`` to ``None``. Unknown keys (``source``, ...) are ignored.
+    Errors are prefixed by ``source``.
+    """
+    try:
+        return _domain_from_dict(d, source)
+    except DomainError as e:
+        raise _prefixed(e, source) from None
+
+
+def _prefixed(e: DomainError, source: str) -> DomainError:
+    msg = str(e)
+    if source and not msg.startswith(source):
+        msg = f"{source}: {msg}"
+    return DomainError(msg)
+
+
+def _domain_from_dict(d: Any, source: str) -> Domain:
+    if not isinstance(d, dict):
+        raise DomainError(f"expected a JSON object with an 'outer' key, got {type(d).__name__}")
+    if "outer" not in d:
+        raise DomainError("missing required key 'outer' (a list of [x, y] pairs)")
+    name = d.get("name", Path(source).stem if source and not source.startswith("<") else "domain")
+    if not isinstance(name, str):
+        raise DomainError(f"name: expected a string, got {type(name).__name__}")
+    outer = _as_coords(d["outer"], "outer ring")
+    holes_raw = d.get("holes", []) or []
+    if not isinstance(holes_raw, list):
+        raise DomainError(f"holes: expected a list of rings, got {type(holes_raw).__name__}")
+    holes = [_as_coords(h, f"hole {i}") for i, h in enumerate(holes_raw)]
+    pts_raw = d.get("points", []) or []
+    if not isinstance(pts_raw, list):
+        raise DomainError(f"points: expected a list of [x, y] pairs, got {type(pts_raw).__name__}")
+    points = np.empty((len(pts_raw), 2))
+    for i, p in enumerate(pts_raw):
+        points[i] = _as_coords([p], f"point feature {i}")[0]
+    curves_raw = d.get("curves", []) or []
+    if not isinstance(curves_raw, list):
+        raise DomainError(f"curves: expected a list of polylines, got {type(curves_raw).__name__}")
+    curves = [_as_coords(c, f"curve feature {i}") for i, c in enumerate(curves_raw)]
+    return _build(name, outer, holes, points, curves, d.get("supports"))
+
+
+def domain_from_geojson(d: Any, source: str = "<geojson>") -> Domain:
+    """Build a validated :class:`Domain` from a GeoJSON ``FeatureCollection`` or ``Feature``.
+
+    Exactly one ``Polygon`` (or single-part ``MultiPolygon``) gives the outer ring and holes;
+    ``Point``/``MultiPoint`` features give point features, ``LineString``/``MultiLineString``
+    features give curve features (in file order). A top-level ``supports`` member is kept.
+    """
+    try:
+        return _domain_from_geojson(d, source)
+    except DomainError as e:
+        raise _prefixed(e, source) from None
+
+
+def _domain_from_geojson(d: Any, source: str) -> Domain:
+    kind = d.get("type")
+    if kind == "FeatureCollection":
+        feats = d.get("features")
+        if not isinstance(feats, list):
+            raise DomainError("features: expected a list of GeoJSON features")
+    elif kind == "Feature":
+        feats = [d]
+    elif kind in ("Polygon", "MultiPolygon", "GeometryCollection"):
+        feats = [{"type": "Feature", "geometry": d}]
+    else:
+        raise DomainError(f"type: expected 'FeatureCollection' or 'Feature', got {kind!r}")
+    polygons, points, curves = [], [], []
+
+    def add(geom: Any, i: int) -> None:
+        if not isinstance(geom, dict):
+            raise DomainError(f"features[{i}].geometry: expected a GeoJSON geometry object")
+        t, coords = geom.get("type"), geom.get("coordinates")
+        if t == "Polygon":
+            polygons.append((i, coords))
+        elif t == "MultiPolygon":
+            for part in coords or []:
+                polygons.append((i, part))
+        elif t == "Point":
+            points.append(coords)
+        elif t == "MultiPoint":
+            points.extend(coords or [])
+        elif t == "LineString":
+            curves.append(coords)
+        elif t == "MultiLineString":
+            curves.extend(coords or [])
+        elif t == "GeometryCollection":
+            for g in geom.get("geometries", []):
+                add(g, i)
+        else:
+            raise DomainError(f"features[{i}].geometry.type: unsupported geometry type {t!r}")
+
+    for i, f in enumerate(feats):
+        if not isinstance(f, dict) or f.get("type") != "Feature":
+            raise DomainError(f"features[{i}]: expected a GeoJSON Feature")
+        add(f.get("geometry"), i)
+    if len(polygons) != 1:
+        raise DomainError(f"expected exactly one Polygon feature (the domain), found {len(polygons)}")
+    i, rings = polygons[0]
+    if not isinstance(rings, list) or not rings:
+        raise DomainError(f"features[{i}].geometry.coordinates: expected a list of linear rings")
+    name = d.get("name") or (d.get("properties") or {}).get("name")
+    if not name:
+        props = feats[i].get("properties") or {}
+        name = props.get("name") or (Path(source).stem if not source.startswith("<") else "domain")
+    outer = _as_coords(rings[0], "outer ring")
+    holes = [_as_coords(r, f"hole {k}") for k, r in enumerate(rings[1:])]
+    pts = np.array([_as_coords([p], f"point feature {k}")[0] for k, p in enumerate(points)]).reshape(-1, 2)
+    crv = [_as_coords(c, f"curve feature {k}") for k, c in enumerate(curves)]
+    return _build(str(name), outer, holes, pts, crv, d.get("supports"))
+
+
+def domain_from_dxf(path: str | Path) -> Domain:
+    """Read a DXF drawing (modelspace) with ezdxf and build a validated :class:`Domain`.
+
+    Closed ``LWPOLYLINE``/``POLYLINE`` entities are rings (arc segments given by bulges are
+    flattened); the ring whose polygon contains all the others is the outer ring, the others are
+    holes. ``POINT`` entities are point features; open polylines and ``LINE`` entities are curve
+    features. Other entities are ignored.
+    """
+    path = Path(path)
+    try:
+        import ezdxf
+        from ezdxf import path as ezpath
+    except ImportError as e:  # pragma: no cover - dependency declared in pyproject
+        raise DomainError(f"{path}: reading DXF needs the 'ezdxf' package ({e})") from None
+    try:
+        doc = ezdxf.readfile(str(path))
+    except (IOError, ezdxf.DXFStructureError, ezdxf.DXFError) as e:
+        raise DomainError(f"{path}: not a readable DXF file ({e})") from None
+    closed, open_, pts = [], [], []
+    for e in doc.modelspace():
+        t = e.dxftype()
+        if t in ("LWPOLYLINE", "POLYLINE"):
+            if t == "POLYLINE" and not (e.is_2d_polyline or e.is_3d_polyline):
+                continue
+            p = ezpath.make_path(e)
+            verts = np.array([(v.x, v.y) for v in p.control_vertices()]) if not p.has_curves else None
+            if verts is None:
+                ext = np.array([(v.x, v.y) for v in p.control_vertices()])
+                dist = 1e-3 * max(bbox_diagonal(ext), 1e-12)
+                verts = np.array([(v.x, v.y) for v in p.flattening(distance=dist)])
+            is_closed = bool(e.is_closed) or (
+                len(verts) > 2 and np.allclose(verts[0], verts[-1], rtol=0, atol=1e-12)
+            )
+            if is_closed and len(verts) > 1 and np.allclose(verts[0], verts[-1], rtol=0, atol=0):
+                verts = verts[:-1]
+            (closed if is_closed else open_).append(verts)
+        elif t == "LINE":
+            open_.append(np.array([(e.dxf.start.x, e.dxf.start.y), (e.dxf.end.x, e.dxf.end.y)]))
+        elif t == "POINT":
+            pts.append((e.dxf.location.x, e.dxf.location.y))
+    if not closed:
+        raise DomainError(f"{path}: no closed polyline found (the outer boundary must be closed)")
+    areas = [abs(signed_area(r)) if len(r) >= 3 else 0.0 for r in closed]
+    k = int(np.argmax(areas))
+    outer_poly = shapely.Polygon(closed[k]) if len(closed[k]) >= 3 else None
+    for m, r in enumerate(closed):
+        if m != k and (outer_poly is None or not outer_poly.is_valid or not outer_poly.covers(shapely.MultiPoint(r))):
+            raise DomainError(
+                f"{path}: closed polyline {m} is not enclosed by the largest closed polyline "
+                f"{k}; exactly one closed polyline must enclose all others"
+            )
+    holes = [r for m, r in enumerate(closed) if m != k]
+    try:
+        return _build(path.stem, closed[k], holes, np.array(pts).reshape(-1, 2), open_, None)
+    except DomainError as e:
+        raise _prefixed(e, str(path)) from None
+
+
+def load_domain(path: str | Path) -> Domain:
+    """Load a domain file (vaultgram JSON, GeoJSON or DXF) and validate it.
+
+    The format is chosen by extension (``.json``, ``.geojson``, ``.dxf``) and, for unknown
+    extensions, by content. A JSON document with ``"type": "FeatureCollection"`` or
+    ``"Feature"`` is GeoJSON, otherwise vaultgram JSON.
+
+    Raises
+    ------
+    DomainError
+        If the file is missing, empty, malformed (JSON errors give line and column) or describes
+        an invalid domain (see :func:`validate_domain`).
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise DomainError(f"{path}: file not found")
+    raw = path.read_bytes()
+    if not raw.strip():
+        raise DomainError(f"{path}: file is empty")
+    ext = path.suffix.lower()
+    head = raw.lstrip()[:1]
+    if ext == ".dxf" or (ext not in (".json", ".geojson") and head != b"{"):
+        return domain_from_dxf(path)
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as e:
+        raise DomainError(f"{path}: not UTF-8 text ({e.reason} at byte {e.start})") from None
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as e:
+        raise DomainError(f"{path}:{e.lineno}:{e.colno}: invalid JSON: {e.msg}") from None
+    if isinstance(data, dict) and data.get("type") in (
+        "FeatureCollection",
+        "Feature",
+        "Polygon",
+        "MultiPolygon",
+        "GeometryCollection",
+    ):
+        return domain_from_geojson(data, source=str(path))
+    return domain_from_dict(data, source=str(path))

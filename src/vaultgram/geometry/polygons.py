@@ -1,0 +1,46 @@
+"""Polygons: signed area, bounding boxes, corner angles.
+
+A polygon is an ``(n, 2)`` array of its vertices without the closing one; counter-clockwise
+polygons have positive area (the domain lies to the left of every ring, §3.1).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["signed_area", "bbox_diagonal", "interior_angle"]
+
+
+def signed_area(poly: np.ndarray) -> float:
+    """Shoelace area: positive for a counter-clockwise polygon.
+
+    >>> signed_area(np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]]))
+    2.0
+    """
+    x, y = poly[:, 0], poly[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+
+
+def bbox_diagonal(points: np.ndarray) -> float:
+    """Length of the diagonal of the bounding box of ``points`` (0 for no points).
+
+    >>> bbox_diagonal(np.array([[0.0, 0.0], [3.0, 4.0], [1.0, 1.0]]))
+    5.0
+    """
+    if len(points) == 0:
+        return 0.0
+    return float(np.hypot(*(points.max(axis=0) - points.min(axis=0))))
+
+
+def interior_angle(before, corner, after) -> float:
+    """The angle inside a counter-clockwise polygon at ``corner`` (degrees in [0, 360)): the turn from
+    the direction towards the next corner (``after``) to the direction towards the previous one.
+
+    >>> interior_angle((0, 1), (0, 0), (1, 0)), interior_angle((1, 0), (0, 0), (0, 1))
+    (90.0, 270.0)
+    """
+    a = math.atan2(after[1] - corner[1], after[0] - corner[0])
+    b = math.atan2(before[1] - corner[1], before[0] - corner[0])
+    return math.degrees((b - a) % (2 * math.pi))

@@ -1,0 +1,240 @@
+"""Polylines: lengths, arc-length parameters, turning angles, nearest points, resampling.
+
+A polyline is an ``(n, 2)`` (or ``(n, 3)``) float array of points in order; ``closed`` polylines
+(rings) join their last point back to the first. Every stage measures and resamples its boundaries,
+skeleton branches, patch sides and curve features with these functions, vectorised over points and
+segments.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = [
+    "segment_lengths",
+    "arc_lengths",
+    "polyline_length",
+    "arc_parameters",
+    "point_at_length",
+    "halfway_point",
+    "turning_angles",
+    "locate_on_polyline",
+    "project_to_polyline",
+    "resample_polyline",
+    "chord_deviation",
+    "polyline_hausdorff",
+]
+
+_CHUNK = 2_000_000  # points x segments per block when projecting many points at once
+
+
+def segment_lengths(poly: np.ndarray) -> np.ndarray:
+    """Length of each segment ``poly[i] -> poly[i + 1]`` of an open polyline (in the plan)."""
+    return np.hypot(*np.diff(np.asarray(poly, dtype=float)[:, :2], axis=0).T)
+
+
+def arc_lengths(poly: np.ndarray) -> np.ndarray:
+    """Arc length from the first point to each point of an open polyline.
+
+    >>> arc_lengths(np.array([[0.0, 0.0], [3.0, 4.0], [3.0, 5.0]])).tolist()
+    [0.0, 5.0, 6.0]
+    """
+    return np.concatenate([[0.0], np.cumsum(segment_lengths(poly))])
+
+
+def polyline_length(poly: np.ndarray) -> float:
+    """Total length of an open polyline (0 for fewer than two points)."""
+    return float(segment_lengths(poly).sum()) if len(poly) > 1 else 0.0
+
+
+def arc_parameters(poly: np.ndarray) -> np.ndarray:
+    """Normalised arc length of each point of a polyline, from 0 to 1 (uniform if it has no length)."""
+    s = arc_lengths(poly)
+    if s[-1] <= 0:
+        return np.linspace(0.0, 1.0, len(poly))
+    return s / s[-1]
+
+
+def point_at_length(poly: np.ndarray, length: float) -> np.ndarray:
+    """The point of an open polyline at arc length ``length`` from its start (clamped to its ends).
+
+    >>> point_at_length(np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0]]), 3.0).tolist()
+    [2.0, 1.0]
+    """
+    s = arc_lengths(poly)
+    return np.array([np.interp(length, s, poly[:, 0]), np.interp(length, s, poly[:, 1])])
+
+
+def halfway_point(poly: np.ndarray) -> np.ndarray:
+    """The point halfway along an open polyline.
+
+    >>> halfway_point(np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0]])).tolist()
+    [2.0, 0.0]
+    """
+    return point_at_length(poly, arc_lengths(poly)[-1] / 2)
+
+
+def turning_angles(poly: np.ndarray, closed: bool = True) -> np.ndarray:
+    """Signed turning angle (degrees) at each vertex of a polyline; positive is a left turn.
+
+    For an open polyline the end points get 0.
+
+    >>> turning_angles(np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])).tolist()
+    [90.0, 90.0, 90.0, 90.0]
+    """
+    if closed:
+        d_in = poly - np.roll(poly, 1, axis=0)
+        d_out = np.roll(poly, -1, axis=0) - poly
+    else:
+        d_in = np.zeros_like(poly)
+        d_out = np.zeros_like(poly)
+        d_in[1:-1] = poly[1:-1] - poly[:-2]
+        d_out[1:-1] = poly[2:] - poly[1:-1]
+    cross = d_in[:, 0] * d_out[:, 1] - d_in[:, 1] * d_out[:, 0]
+    dot = (d_in * d_out).sum(axis=1)
+    ang = np.degrees(np.arctan2(cross, dot))
+    if not closed and len(poly):
+        ang[[0, -1]] = 0.0
+    return ang
+
+
+def _segments(poly: np.ndarray, closed: bool) -> tuple[np.ndarray, np.ndarray]:
+    """Start points and vectors of the segments of a polyline."""
+    a = np.asarray(poly, dtype=float)
+    b = np.roll(a, -1, axis=0) if closed else a[1:]
+    a = a if closed else a[:-1]
+    return a, b - a
+
+
+def _closest_on_segments(p: np.ndarray, a: np.ndarray, ab: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For points ``p`` (k, 2) and segments ``a + t ab``: the parameters ``t`` (k, s) of the nearest
+    point of every segment, and those points (k, s, 2)."""
+    ab2 = np.maximum((ab * ab).sum(-1), 1e-300)
+    t = np.clip(((p[:, None, :] - a) * ab).sum(-1) / ab2, 0.0, 1.0)
+    return t, a + t[..., None] * ab
+
+
+def locate_on_polyline(poly: np.ndarray, p: np.ndarray, closed: bool = False) -> tuple[float, int, float]:
+    """The segment of a polyline nearest to point ``p``: ``(distance, segment index, t in [0, 1])``.
+
+    >>> locate_on_polyline(np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0]]), np.array([3.0, 1.5]))
+    (1.0, 1, 0.75)
+    """
+    a, ab = _segments(poly, closed)
+    t, q = _closest_on_segments(np.asarray(p, dtype=float)[None, :], a, ab)
+    d = np.hypot(*(q[0] - p).T)
+    i = int(np.argmin(d))
+    return float(d[i]), i, float(t[0, i])
+
+
+def project_to_polyline(points: np.ndarray, poly: np.ndarray, closed: bool = False) -> np.ndarray:
+    """The nearest point of a polyline to each of ``points`` (vectorised over points and segments).
+
+    >>> project_to_polyline(np.array([[1.0, 1.0], [3.0, -1.0]]), np.array([[0.0, 0.0], [2.0, 0.0]])).tolist()
+    [[1.0, 0.0], [2.0, 0.0]]
+    """
+    points = np.asarray(points, dtype=float)
+    a, ab = _segments(poly, closed)
+    if len(a) == 0:
+        return np.repeat(np.asarray(poly, dtype=float)[:1], len(points), axis=0)
+    out = np.empty_like(points)
+    step = max(1, _CHUNK // len(a))
+    for k in range(0, len(points), step):
+        p = points[k:k + step]
+        _, q = _closest_on_segments(p, a, ab)
+        best = np.argmin(((q - p[:, None, :]) ** 2).sum(-1), axis=1)
+        out[k:k + step] = q[np.arange(len(best)), best]
+    return out
+
+
+def chord_deviation(poly: np.ndarray, samples: np.ndarray) -> float:
+    """Largest distance from a point of ``poly`` to the polyline through ``samples`` (both ordered
+    along the same curve): how far a side resampled into ``samples`` strays from the curve."""
+    poly = np.asarray(poly, dtype=float)
+    if not len(poly):
+        return 0.0
+    a, ab = _segments(samples, closed=False)
+    _, q = _closest_on_segments(poly, a, ab)
+    d = np.hypot(*(q - poly[:, None, :]).transpose(2, 0, 1))
+    return float(d.min(axis=1).max())
+
+
+def _share_counts(lengths: np.ndarray, n: int) -> np.ndarray:
+    """``n`` subdivisions shared among pieces in proportion to their lengths, at least one each."""
+    share = lengths / lengths.sum() * n
+    m = np.maximum(1, np.floor(share)).astype(np.int64)
+    while m.sum() > n:  # take back from the pieces given most above their share
+        m[np.argmax(np.where(m > 1, m - share, -np.inf))] -= 1
+    while m.sum() < n:
+        m[np.argmax(share - m)] += 1
+    return m
+
+
+def resample_polyline(poly: np.ndarray, n: int, anchors=()) -> tuple[np.ndarray, list[int]]:
+    """``n + 1`` points along a polyline, uniform in arc length, hitting the ``anchors`` if possible.
+
+    Parameters
+    ----------
+    poly : ndarray (k, 2)
+    n : int
+        Number of subdivisions (>= 1).
+    anchors : sequence of int
+        Indices of interior points of ``poly`` that should be samples. Honoured when ``n`` leaves at
+        least one subdivision per piece between anchors; the counts are shared in proportion to
+        the pieces' lengths.
+
+    Returns
+    -------
+    samples : ndarray (n + 1, 2)
+        First and last equal ``poly[0]`` and ``poly[-1]``.
+    hit : list of int
+        For each honoured anchor, its sample index (empty when the anchors were not honoured).
+
+    Example
+    -------
+    >>> pts, hit = resample_polyline(np.array([[0.0, 0.0], [1.0, 0.0], [4.0, 0.0]]), 4, anchors=[1])
+    >>> pts[:, 0].tolist(), hit
+    ([0.0, 1.0, 2.0, 3.0, 4.0], [1])
+    """
+    poly = np.asarray(poly, dtype=float)
+    s = arc_lengths(poly)
+    anchors = sorted(int(a) for a in anchors if 0 < a < len(poly) - 1)
+    breaks = [0, *anchors, len(poly) - 1]
+    lengths = np.diff(s[breaks])
+    hit: list[int] = []
+    if anchors and n >= len(lengths) and np.all(lengths > 0):
+        m = _share_counts(lengths, n)
+        targets = np.concatenate(
+            [np.linspace(s[a], s[b], k + 1)[:-1] for a, b, k in zip(breaks[:-1], breaks[1:], m)] + [[s[-1]]]
+        )
+        hit = np.cumsum(m)[:-1].tolist()
+    else:
+        targets = np.linspace(0.0, s[-1], n + 1)
+    out = np.column_stack([np.interp(targets, s, poly[:, 0]), np.interp(targets, s, poly[:, 1])])
+    out[0], out[-1] = poly[0], poly[-1]
+    for a, h in zip(anchors if hit else (), hit):
+        out[h] = poly[a]
+    return out, hit
+
+
+def _densified(poly: np.ndarray, samples: int) -> np.ndarray:
+    """The vertices of a polyline and ``samples - 1`` evenly spaced points inside each segment."""
+    p = np.asarray(poly, dtype=float)[:, :2]
+    t = np.linspace(0.0, 1.0, samples, endpoint=False)[None, :, None]
+    return np.vstack([(p[:-1, None, :] * (1 - t) + p[1:, None, :] * t).reshape(-1, 2), p[-1:]])
+
+
+def polyline_hausdorff(a: np.ndarray, b: np.ndarray, samples: int = 8) -> float:
+    """Hausdorff distance between two polylines: the larger of the two directed distances, each the
+    largest distance from a point of one (its vertices and ``samples - 1`` points inside each segment)
+    to the other polyline.
+
+    >>> polyline_hausdorff(np.array([[0.0, 0.0], [2.0, 0.0]]), np.array([[0.0, 1.0], [2.0, 1.0]]))
+    1.0
+    """
+    import shapely
+
+    la, lb = shapely.LineString(np.asarray(a)[:, :2]), shapely.LineString(np.asarray(b)[:, :2])
+    d1 = shapely.distance(shapely.points(_densified(a, samples)), lb).max()
+    d2 = shapely.distance(shapely.points(_densified(b, samples)), la).max()
+    return float(max(d1, d2))

@@ -1,0 +1,45 @@
+"""The files a run writes: one function per stage's outputs, each file written atomically.
+
+JSON is written with sorted keys and no timings, so the same input and options give byte-identical
+files (:mod:`vaultgram.io.files`).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from vaultgram.formfinding.thrust import ThrustNetwork
+from vaultgram.io.files import write_json, write_obj
+from vaultgram.io.meshfiles import write_mesh
+from vaultgram.io.plots import plot_decomposition, plot_mesh, plot_thrust
+from vaultgram.meshing.quadmesh import QuadMesh
+from vaultgram.topology.decomposition import Decomposition
+
+__all__ = ["write_decomposition", "write_mesh_files", "write_thrust"]
+
+
+def write_decomposition(dec: Decomposition, out: Path, plot: bool = True) -> None:
+    """``decomposition.json`` (the typed graph), ``patches.json`` and, if ``plot``, ``decomposition.png``."""
+    write_json(out / "decomposition.json", dec.to_json())
+    write_json(out / "patches.json", dec.patches_json())
+    if plot:
+        plot_decomposition(dec, out / "decomposition.png")
+
+
+def write_mesh_files(mesh: QuadMesh, out: Path, plot: bool = True) -> None:
+    """``mesh.json``, ``mesh.obj`` and, if ``plot``, ``mesh.png``."""
+    write_mesh(mesh, out)
+    if plot:
+        plot_mesh(mesh, out / "mesh.png")
+
+
+def write_thrust(network: ThrustNetwork, out: Path, plot: bool = False) -> None:
+    """``form.json``, ``force.json``, ``thrust.json``, ``thrust.obj``, ``summary.json`` and, if ``plot``,
+    ``thrust.png``."""
+    write_json(out / "form.json", network.form.to_json())
+    write_json(out / "force.json", network.force.to_json())
+    write_json(out / "thrust.json", network.to_json())
+    write_obj(out / "thrust.obj", network.vertices, network.faces)
+    write_json(out / "summary.json", network.summary)
+    if plot:
+        plot_thrust(network, out / "thrust.png")

@@ -1,0 +1,219 @@
+"""Mesh densities: the number of subdivisions of each edge group (paper §3.2, second paragraph).
+
+"The number of subdivisions of each group can be chosen by the designer or set based on a target
+length and the average or maximum length of the edges in the group, for instance. An additional
+constraint on the minimum number of subdivisions can also be taken into account." (§3.2)
+
+:func:`group_counts` gives each group of the :class:`~vaultgram.meshing.layout.Layout` its number of
+subdivisions: a designer's count, or the group's average (or maximum) side length divided by a
+target length, rounded, and at least a minimum; boundary sides are subdivided finely enough to follow
+their curve (:data:`CHORD_TOLERANCE`), curve sides keep every input vertex of the curve. Local control
+maps group ids, or regions given as polygons, to counts or lengths (:class:`DensitySpec`, read from a
+JSON density file by :func:`load_densities`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from vaultgram.errors import VaultgramError
+from vaultgram.geometry.polylines import chord_deviation, resample_polyline
+from vaultgram.io.files import read_json
+from vaultgram.meshing.layout import EdgeGroup, Layout, kept_points, side_anchors
+
+__all__ = ["DensitySpec", "group_counts", "curve_min_counts", "densities_from_dict", "load_densities",
+           "TARGET_FRACTION", "CHORD_TOLERANCE"]
+
+#: Default global target edge length, as a fraction of the bounding-box diagonal of the domain.
+TARGET_FRACTION = 0.025
+#: A boundary side is subdivided at least finely enough that its resampled polyline stays within this
+#: fraction of the bounding-box diagonal of the domain's ring (a curved side with too few
+#: subdivisions cuts across the domain and folds the faces next to it).
+CHORD_TOLERANCE = 0.002
+#: The geometric minimum count of a side is searched up to this multiple of its length count.
+CHORD_MAX_FACTOR = 6
+
+
+@dataclass(frozen=True)
+class DensitySpec:
+    """Local and global density control (§3.2).
+
+    Attributes
+    ----------
+    target_length : float or None
+        Global target edge length (absolute units); None: ``TARGET_FRACTION`` of the diagonal.
+    length_mode : str
+        ``"average"`` or ``"max"``: which side length of a group is divided by the target length.
+    min_count : int
+        Minimum number of subdivisions of every group.
+    groups : dict
+        Group id -> ``{"count": n}`` or ``{"length": L}``. Overrides regions.
+    regions : tuple of (ndarray (k, 2), dict)
+        Polygons with ``{"count": n}`` or ``{"length": L}``: a group any of whose sides has its
+        midpoint inside the polygon takes that value; a later region wins.
+    """
+
+    target_length: float | None = None
+    length_mode: str = "average"
+    min_count: int = 1
+    groups: dict = field(default_factory=dict)
+    regions: tuple = ()
+
+
+def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length: float | None = None) -> np.ndarray:
+    """Number of subdivisions of each edge group (§3.2).
+
+    Parameters
+    ----------
+    layout : Layout
+    spec : DensitySpec, optional
+        Local control and defaults; ``target_length`` overrides ``spec.target_length``.
+    target_length : float, optional
+        Global target edge length; default ``TARGET_FRACTION`` of the domain's diagonal.
+
+    Returns
+    -------
+    ndarray (n_groups,) int
+        ``max(min_count, round(L / target))`` for a group of length ``L`` (average or maximum of its
+        sides), unless a region or the designer gives a count or a local target length.
+
+    Raises
+    ------
+    VaultgramError
+        For a bad target length, count, length mode or group id.
+    """
+    spec = spec or DensitySpec()
+    diag = layout.decomposition.disc.domain.diagonal
+    target = target_length if target_length is not None else spec.target_length
+    if target is None:
+        target = TARGET_FRACTION * diag
+    if not (target > 0 and math.isfinite(target)):
+        raise VaultgramError(f"target length must be a positive number, got {target!r}")
+    if spec.length_mode not in ("average", "max"):
+        raise VaultgramError(f"length mode must be 'average' or 'max', got {spec.length_mode!r}")
+    if int(spec.min_count) < 1:
+        raise VaultgramError(f"minimum count must be at least 1, got {spec.min_count!r}")
+    n = layout.n_groups
+    local = [None] * n  # ("count", n) or ("length", L)
+    if spec.regions:
+        import shapely
+
+        for poly, value in spec.regions:
+            region = shapely.Polygon(np.asarray(poly, dtype=float))
+            for g in layout.groups:
+                if shapely.contains_xy(region, g.midpoints[:, 0], g.midpoints[:, 1]).any():
+                    local[g.id] = _value(value, f"region {np.asarray(poly).tolist()}")
+    for key, value in spec.groups.items():
+        try:
+            g = int(key)
+        except (TypeError, ValueError):
+            raise VaultgramError(f"density group id must be an integer, got {key!r}") from None
+        if not 0 <= g < n:
+            raise VaultgramError(f"density for group {g}: the layout has groups 0 to {n - 1}")
+        local[g] = _value(value, f"group {g}")
+    counts = np.empty(n, dtype=np.int64)
+    for g in layout.groups:
+        kind, v = local[g.id] or ("length", target)
+        if kind == "count":
+            counts[g.id] = v
+        else:
+            counts[g.id] = max(int(spec.min_count), int(round(g.length(spec.length_mode) / v)))
+            counts[g.id] = max(counts[g.id], _chord_count(layout, g, counts[g.id], CHORD_TOLERANCE * diag))
+    return np.maximum(counts, curve_min_counts(layout))
+
+
+def curve_min_counts(layout: Layout) -> np.ndarray:
+    """Least number of subdivisions of each group that keeps every vertex of the input curve features
+    (§4.2) as a mesh vertex: one more than the number of input vertices inside each curve side of the
+    group (:func:`vaultgram.meshing.layout.side_anchors`), 1 for groups without curve sides. Applied to every
+    count, a designer's too: with fewer, the mesh edges would cut the curve's bends."""
+    disc = layout.decomposition.disc
+    keep = kept_points(disc)
+    need = np.ones(layout.n_groups, dtype=np.int64)
+    for side in layout.sides:
+        if side.curve >= 0:
+            g = layout.group_of[side.id]
+            need[g] = max(need[g], len(side_anchors(side, keep, disc)) + 1)
+    return need
+
+
+def _chord_count(layout: Layout, group: EdgeGroup, count: int, tol: float) -> int:
+    """The least count (from ``count`` up) at which every boundary side of the group, resampled as the
+    welding does it, stays within ``tol`` of its curve: the "additional constraint on the minimum
+    number of subdivisions" of §3.2, from the geometry. Capped at ``CHORD_MAX_FACTOR * count``."""
+    keep = kept_points(layout.decomposition.disc)
+    best = count
+    for s in group.sides:
+        side = layout.sides[s]
+        if not side.boundary or len(side.polyline) <= 2:
+            continue
+        anchors = side_anchors(side, keep, layout.decomposition.disc)
+        n = best
+        while n < CHORD_MAX_FACTOR * max(count, 1):
+            pts, _ = resample_polyline(side.polyline, n, anchors)
+            if chord_deviation(side.polyline, pts) <= tol:
+                break
+            n += max(1, n // 8)
+        best = max(best, n)
+    return best
+
+
+def _value(value, where: str):
+    if isinstance(value, (int, np.integer)) and not isinstance(value, bool):
+        value = {"count": int(value)}
+    if not isinstance(value, dict) or len(set(value) & {"count", "length"}) != 1:
+        raise VaultgramError(f"density for {where}: give a count or a length, e.g. {{\"count\": 4}}")
+    if "count" in value:
+        c = value["count"]
+        if not isinstance(c, (int, np.integer)) or isinstance(c, bool) or c < 1:
+            raise VaultgramError(f"density for {where}: count must be a positive integer, got {c!r}")
+        return ("count", int(c))
+    length = value["length"]
+    if not isinstance(length, (int, float)) or isinstance(length, bool) or not length > 0:
+        raise VaultgramError(f"density for {where}: length must be a positive number, got {length!r}")
+    return ("length", float(length))
+
+
+def densities_from_dict(data: dict, where: str = "densities") -> DensitySpec:
+    """A :class:`DensitySpec` from the JSON form of a density file.
+
+    ``{"target_length": L, "length_mode": "average" | "max", "min_count": n,
+    "groups": {"3": 8, "5": {"length": 0.2}}, "regions": [{"polygon": [[x, y], ...], "count": 4}]}``,
+    every key optional.
+    """
+    if not isinstance(data, dict):
+        raise VaultgramError(f"{where}: a density file is a JSON object")
+    unknown = set(data) - {"target_length", "length_mode", "min_count", "groups", "regions"}
+    if unknown:
+        raise VaultgramError(f"{where}: unknown key(s) {', '.join(sorted(unknown))}")
+    regions = []
+    for k, r in enumerate(data.get("regions", [])):
+        if not isinstance(r, dict) or "polygon" not in r:
+            raise VaultgramError(f"{where}: region {k} needs a 'polygon' [[x, y], ...]")
+        poly = np.asarray(r["polygon"], dtype=float)
+        if poly.ndim != 2 or poly.shape[1] != 2 or len(poly) < 3:
+            raise VaultgramError(f"{where}: region {k}: polygon must have at least 3 [x, y] points")
+        value = {key: r[key] for key in ("count", "length") if key in r}
+        _value(value, f"region {k}")
+        regions.append((poly, value))
+    groups = data.get("groups", {})
+    if not isinstance(groups, dict):
+        raise VaultgramError(f"{where}: 'groups' maps group ids to counts or lengths")
+    target = data.get("target_length")
+    if target is not None and not (isinstance(target, (int, float)) and target > 0):
+        raise VaultgramError(f"{where}: target_length must be a positive number, got {target!r}")
+    min_count = data.get("min_count", 1)
+    if not isinstance(min_count, int) or min_count < 1:
+        raise VaultgramError(f"{where}: min_count must be a positive integer, got {min_count!r}")
+    for key, value in groups.items():
+        _value(value, f"group {key}")
+    return DensitySpec(target, data.get("length_mode", "average"), min_count, dict(groups), tuple(regions))
+
+
+def load_densities(path: str | Path) -> DensitySpec:
+    """Read a density file (see :func:`densities_from_dict`)."""
+    return densities_from_dict(read_json(path), str(path))

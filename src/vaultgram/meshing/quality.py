@@ -1,0 +1,320 @@
+"""Mesh quality: what the paper asks of a quad mesh (§3.2, §4), measured.
+
+:func:`mesh_stats` measures the acceptance properties: quads only (triangles only at poles), no
+boundary singularity, interior singularities where the decomposition has them, no inverted face, a
+boundary that follows the domain's, point features and curve extremities as poles, curve features as
+chains of mesh edges. :func:`check_not_folded` turns inverted faces into a :class:`MeshFoldError`
+that says where and why.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import shapely
+from scipy.spatial import cKDTree
+
+from vaultgram.domain.model import Domain
+from vaultgram.errors import MeshFoldError, VaultgramError
+from vaultgram.geometry.meshes import boundary_loops, corner_arrays
+from vaultgram.geometry.polygons import bbox_diagonal, interior_angle
+from vaultgram.geometry.polylines import polyline_hausdorff, turning_angles
+from vaultgram.geometry.text import fmt_point
+from vaultgram.meshing.quadmesh import QuadMesh
+from vaultgram.topology.decomposition import Decomposition
+
+__all__ = [
+    "mesh_stats",
+    "format_stats",
+    "regular_boundary_faces",
+    "face_scaled_jacobians",
+    "check_not_folded",
+    "CORNER_ANGLE",
+]
+
+#: Tolerance band (degrees) around 135 and 225 degrees inside which a boundary corner is regular
+#: with either neighbouring number of quads (a 135 degree corner takes 1 quad or 2 equally well).
+CORNER_TIE_BAND = 10.0
+
+#: Turning angle (degrees) beyond which a ring vertex is a corner (as in :func:`vaultgram.topology.discretise.discretise`).
+CORNER_ANGLE = 30.0
+
+
+# --------------------------------------------------------------------------------------------
+# Features against the spacing
+# --------------------------------------------------------------------------------------------
+
+
+# --------------------------------------------------------------------------------------------
+# Quality
+# --------------------------------------------------------------------------------------------
+
+
+def regular_boundary_faces(
+    turning: np.ndarray, band: float = CORNER_TIE_BAND, corner_angle: float = CORNER_ANGLE
+) -> tuple[np.ndarray, np.ndarray]:
+    """Regular number of faces at boundary vertices, from the domain's turning angle (degrees).
+
+    Two readings of "regular" are accepted, and both are reported as regular:
+
+    * the acceptance's: valence 2 (1 face) at a convex corner, 3 (2 faces) on a smooth stretch,
+      4 (3 faces) at a reflex corner, a corner being a ring vertex turning by more than
+      ``corner_angle`` (the discretisation's corner threshold, §3.1);
+    * the corner angle's: the interior angle ``180 - turning`` divided by 90 and rounded, at least
+      1, and within ``band`` degrees of a tie (135, 225, ...) both neighbours. This one is stricter
+      on smooth stretches and at sharp corners (a 300 degree corner is regular with 3 faces only)
+      and adds flat corners (a 215 degree corner with 2 faces, a 145 degree one with 2).
+
+    Returns
+    -------
+    low, high : ndarray int
+        Lowest and highest regular number of faces.
+    """
+    turning = np.asarray(turning, dtype=float)
+    q = (180.0 - turning) / 90.0
+    base = np.maximum(1, np.floor(q + 0.5)).astype(np.int64)
+    frac = q - np.floor(q)
+    tie = np.abs(frac - 0.5) * 90.0 <= band
+    low = np.where(tie, np.maximum(1, np.floor(q)), base).astype(np.int64)
+    high = np.where(tie, np.maximum(1, np.floor(q) + 1), base).astype(np.int64)
+    kind = np.where(turning > corner_angle, 1, np.where(turning < -corner_angle, 3, 2))
+    return np.minimum(low, kind), np.maximum(high, kind)
+
+
+def _face_array(faces) -> np.ndarray:
+    """Faces as an (f, 4) array, triangles padded with -1."""
+    out = np.full((len(faces), 4), -1, dtype=np.int64)
+    lens = np.fromiter((len(f) for f in faces), dtype=np.int64, count=len(faces))
+    if len(faces) and (lens.max() > 4 or lens.min() < 3):
+        raise VaultgramError("faces must be triangles or quads")
+    q = lens == 4
+    if q.any():
+        out[q] = np.array([f for f in faces if len(f) == 4], dtype=np.int64)
+    if (~q).any():
+        out[~q, :3] = np.array([f for f in faces if len(f) == 3], dtype=np.int64)
+    return out
+
+
+def _turning_from_domain(x: np.ndarray, domain: Domain) -> np.ndarray:
+    """Domain turning angle at each point lying on a domain ring vertex (0 elsewhere)."""
+    pts = np.vstack(domain.rings)
+    ang = np.concatenate([turning_angles(r) for r in domain.rings])
+    d, k = cKDTree(pts).query(x)
+    return np.where(d <= 1e-7 * domain.diagonal, ang[k], 0.0)
+
+
+def _boundary_distance(x: np.ndarray, loops, domain: Domain) -> float:
+    """Symmetric distance between the mesh boundary loops and the domain's rings."""
+    rings = shapely.MultiLineString([np.vstack([r, r[:1]]) for r in domain.rings])
+    mesh_lines = shapely.MultiLineString([np.vstack([x[lp], x[lp[:1]]]) for lp in loops]) if loops else None
+    mids = np.vstack([0.5 * (x[lp] + x[np.roll(lp, -1)]) for lp in loops]) if loops else np.zeros((0, 2))
+    probe = np.vstack([x[np.concatenate(loops)], mids]) if loops else np.zeros((0, 2))
+    d1 = shapely.distance(shapely.points(probe), rings).max() if len(probe) else 0.0
+    dom_pts = np.vstack([*domain.rings, *[0.5 * (r + np.roll(r, -1, axis=0)) for r in domain.rings]])
+    d2 = shapely.distance(shapely.points(dom_pts), mesh_lines).max() if mesh_lines is not None else math.inf
+    return float(max(d1, d2))
+
+
+def face_scaled_jacobians(x: np.ndarray, faces) -> np.ndarray:
+    """Per face, the smallest scaled Jacobian of its corners (the sine of the corner angle for a
+    quad, scaled so that an equilateral triangle has 1); <= 0 for an inverted or degenerate face."""
+    fa = _face_array(faces)
+    face_of, u, v, w = corner_arrays(faces)
+    x = np.asarray(x, dtype=float)[:, :2]
+    e1, e2 = x[v] - x[u], x[w] - x[u]
+    cross = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
+    norm = np.hypot(*e1.T) * np.hypot(*e2.T)
+    sj = np.where(norm > 0, cross / np.where(norm > 0, norm, 1.0), -1.0)
+    sj = np.where(fa[face_of, 3] < 0, np.minimum(sj * 2.0 / math.sqrt(3.0), 1.0), sj)
+    face_sj = np.full(len(faces), np.inf)
+    np.minimum.at(face_sj, face_of, sj)
+    return face_sj
+
+
+def check_not_folded(mesh: QuadMesh, decomposition: Decomposition) -> None:
+    """Raise :class:`MeshFoldError` naming where the mesh folds, if any face is inverted."""
+    face_sj = face_scaled_jacobians(mesh.vertices, mesh.faces)
+    bad = np.flatnonzero(face_sj <= 0)
+    if not len(bad):
+        return
+    first = int(bad[np.argmin(face_sj[bad])])
+    where = mesh.vertices[list(mesh.faces[first]), :2].mean(axis=0)
+    patch = decomposition.patches[int(mesh.face_patch[first])]
+    corners = ", ".join(fmt_point(decomposition.graph.get(c, "pos")) for c in patch.corners)
+    angles = [interior_angle(patch.sides[k - 1][-2], patch.sides[k][0], patch.sides[k][1])
+              for k in range(patch.n_sides)]
+    k = int(np.argmax(angles))
+    if angles[k] > 180:
+        why = (f"the patch turns by {angles[k]:.0f} degrees at its corner {fmt_point(patch.sides[k][0])}, which no "
+               "quad mesh of it can do at any density: move the feature or curve there")
+    else:
+        why = "features, curves or boundaries this close together need a smaller --target-length or more room"
+    raise MeshFoldError(
+        f"the mesh folds: {len(bad)} inverted face(s), the worst near {fmt_point(where)} in the patch with corners "
+        f"{corners}; {why} (vaultgram mesh --allow-folds writes the mesh anyway)"
+    )
+
+
+def mesh_stats(mesh: QuadMesh, domain: Domain | None = None) -> dict:
+    """Quality metrics of a quad mesh (the acceptance properties of §3.2).
+
+    Parameters
+    ----------
+    mesh : QuadMesh
+    domain : Domain, optional
+        Gives the corner angles of boundary vertices (else the mesh's ``turning`` labels) and the
+        distance of the mesh boundary from the domain boundary.
+
+    Returns
+    -------
+    dict
+        ``vertices, faces, quads, triangles``; ``interior_singular`` (interior vertices of valence
+        other than 4) and ``boundary_singular`` (boundary vertices whose number of faces is not the
+        regular one for their corner angle, see :func:`regular_boundary_faces`; feature points, singular
+        by design in §4.1, are counted apart in ``boundary_feature_singular``), with the vertex lists;
+        ``min_scaled_jacobian, mean_scaled_jacobian, inverted_faces``; ``min_angle, max_angle``
+        (degrees); ``manifold, oriented, boundary_loops``; ``boundary_distance`` and
+        ``boundary_distance_relative`` (to the domain's bounding-box diagonal) when ``domain`` is given.
+    """
+    x = np.asarray(mesh.vertices, dtype=float)[:, :2]
+    faces = mesh.faces
+    nv = len(x)
+    fa = _face_array(faces)
+    is_tri = fa[:, 3] < 0
+    face_of, u, v, w = corner_arrays(faces)  # corner: vertex u, next v, previous w
+
+    # topology
+    key = u * nv + v
+    uniq, mult = np.unique(key, return_counts=True)
+    oriented = bool((mult == 1).all())
+    und = np.minimum(u, v) * nv + np.maximum(u, v)
+    _, und_mult = np.unique(und, return_counts=True)
+    manifold = bool((und_mult <= 2).all())
+    twin = np.isin(v * nv + u, uniq)
+    try:
+        loops = [np.asarray(lp) for lp in boundary_loops(faces)]
+    except ValueError:
+        loops, manifold = [], False
+    on_boundary = np.zeros(nv, dtype=bool)
+    on_boundary[u[~twin]] = True
+
+    # valence: number of distinct edges at a vertex; faces per vertex
+    edges = np.unique(und)
+    valence = np.bincount(edges // nv, minlength=nv) + np.bincount(edges % nv, minlength=nv)
+    nfaces = np.bincount(u, minlength=nv)
+    used = nfaces > 0
+    interior_sing = np.flatnonzero(used & ~on_boundary & (valence != 4))
+    if domain is not None:
+        turning = _turning_from_domain(x, domain)
+    else:
+        turning = np.asarray(mesh.turning, dtype=float)
+    low, high = regular_boundary_faces(turning)
+    irregular = on_boundary & ((nfaces < low) | (nfaces > high))
+    # a boundary feature point is a pole on purpose (§4.1: "high valency vertices"): counted apart
+    feature = np.asarray(mesh.feature, dtype=bool) if len(mesh.feature) == nv else np.zeros(nv, dtype=bool)
+    boundary_sing = np.flatnonzero(irregular & ~feature)
+    feature_sing = np.flatnonzero(irregular & feature)
+
+    # shape
+    e1, e2 = x[v] - x[u], x[w] - x[u]
+    cross = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
+    face_sj = face_scaled_jacobians(x, faces)
+    angle = np.degrees(np.arctan2(cross, (e1 * e2).sum(1)))
+    angle = np.where(angle < 0, 360.0 + angle, angle)
+
+    stats = {
+        "vertices": int(used.sum()),
+        "faces": len(faces),
+        "quads": int((~is_tri).sum()),
+        "triangles": int(is_tri.sum()),
+        "interior_singular": len(interior_sing),
+        "interior_singular_vertices": interior_sing.tolist(),
+        "interior_singular_valences": valence[interior_sing].tolist(),
+        "boundary_singular": len(boundary_sing),
+        "boundary_singular_vertices": boundary_sing.tolist(),
+        "boundary_feature_singular": len(feature_sing),
+        "min_scaled_jacobian": float(face_sj.min()) if len(faces) else None,
+        "mean_scaled_jacobian": float(face_sj.mean()) if len(faces) else None,
+        "inverted_faces": int((face_sj <= 0).sum()),
+        "min_angle": float(angle.min()) if len(angle) else None,
+        "max_angle": float(angle.max()) if len(angle) else None,
+        "manifold": manifold,
+        "oriented": oriented,
+        "boundary_loops": len(loops),
+    }
+    if domain is not None:
+        d = _boundary_distance(x, loops, domain)
+        stats["boundary_distance"] = d
+        stats["boundary_distance_relative"] = d / domain.diagonal
+    stats.update(_feature_stats(mesh, x, valence, nfaces, on_boundary, low, high, und, nv, domain))
+    return stats
+
+
+def _feature_stats(mesh: QuadMesh, x, valence, nfaces, on_boundary, low, high, und, nv, domain) -> dict:
+    """The §4 checks: point features and curve extremities are poles (a valence other than 4 inside,
+    a number of faces other than the regular one on the boundary); curve features are chains of mesh
+    edges (Hausdorff distance to the curve) without singular vertices inside."""
+    n = len(x)
+    curve, ext = mesh.curve_labels()
+    feature = np.asarray(mesh.feature, dtype=bool) if len(mesh.feature) == n else np.zeros(n, dtype=bool)
+    irregular = np.where(on_boundary, (nfaces < low) | (nfaces > high), valence != 4)
+    fp = np.flatnonzero(feature)
+    ex = np.flatnonzero(ext)
+    diag = domain.diagonal if domain is not None else (bbox_diagonal(x) or 1.0)
+    lines = [np.asarray(c, dtype=float) for c in domain.curves] if domain is not None else list(mesh.curve_lines)
+    # vertices inside a curve: on a curve, not its extremity, not on the boundary, not at a bend of
+    # the curve sharper than the corner angle (the curve cuts the domain: a corner on either side)
+    bend = np.zeros(n, dtype=bool)
+    if lines:
+        sharp = [ln[1:-1][np.abs(turning_angles(ln, closed=False)[1:-1]) > CORNER_ANGLE] for ln in lines if len(ln) > 2]
+        sharp = np.vstack(sharp) if sharp else np.zeros((0, 2))
+        if len(sharp):
+            d, _ = cKDTree(sharp).query(x)
+            bend = (d <= 1e-9 * diag) & (curve >= 0)
+    inside = np.flatnonzero((curve >= 0) & ~ext & ~on_boundary & ~bend)
+    sing_inside = inside[valence[inside] != 4]
+    edges = set(und.tolist())
+    hausdorff, continuous = [], True
+    for c, chain in enumerate(mesh.curves):
+        chain = np.asarray(chain, dtype=np.int64)
+        if len(chain) < 2 or c >= len(lines):
+            hausdorff.append(math.inf)
+            continuous = False
+            continue
+        a, b = np.minimum(chain[:-1], chain[1:]), np.maximum(chain[:-1], chain[1:])
+        continuous &= all(int(k) in edges for k in a * nv + b)
+        hausdorff.append(polyline_hausdorff(x[chain], lines[c]))
+    return {
+        "feature_points": len(fp),
+        "feature_points_pole": int(irregular[fp].sum()),
+        "feature_point_valences": valence[fp].tolist(),
+        "curve_extremities": len(ex),
+        "curve_extremities_pole": int(irregular[ex].sum()),
+        "curve_interior_singular": len(sing_inside),
+        "curve_interior_singular_vertices": sing_inside.tolist(),
+        "curve_bends": int(bend.sum()),
+        "curve_chains_continuous": bool(continuous),
+        "curve_hausdorff": [float(h) for h in hausdorff],
+        "curve_hausdorff_relative": float(max(hausdorff) / diag) if hausdorff else 0.0,
+    }
+
+
+def format_stats(stats: dict) -> str:
+    """A two-column text table of :func:`mesh_stats` (vertex lists summarised by their length)."""
+    rows = []
+    for k, val in stats.items():
+        if isinstance(val, list):
+            continue
+        if isinstance(val, float):
+            val = f"{val:.6g}"
+        rows.append((k, str(val)))
+    width = max(len(k) for k, _ in rows)
+    return "\n".join(f"{k:<{width}}  {val}" for k, val in rows)
+
+
+# --------------------------------------------------------------------------------------------
+# Files
+# --------------------------------------------------------------------------------------------
+
+

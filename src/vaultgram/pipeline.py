@@ -1,0 +1,270 @@
+"""The vault pipeline: the one place that chains the stages of the paper, in order.
+
+Each stage is a function from one plain value to the next::
+
+    Domain -> Discretisation -> Triangulation -> Skeleton -> Decomposition      (topology, §3.1, §4)
+           -> Layout -> QuadMesh                                               (geometry, §3.2)
+           -> FormDiagram -> ForceDiagram -> ThrustNetwork                     (form finding, §5)
+
+:func:`decompose`, :func:`mesh_decomposition` and :func:`form_find` run one part each; :func:`design`
+runs them all. Stage values carry no timings: pass a dict as ``timings`` and every function adds
+the seconds each stage took (the command line prints them; they are never written to files).
+
+Example
+-------
+>>> from vaultgram.domain import load_domain
+>>> result = design(load_domain("examples/quad_with_hole.json"), zmax=3.0)
+>>> len(result.decomposition.patches), result.network.summary["zmax"]
+(12, 3.0)
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from vaultgram.domain import Domain, check_feature_spacing
+from vaultgram.errors import VaultgramError
+from vaultgram.formfinding.forcediagram import force_diagram
+from vaultgram.formfinding.formdiagram import form_diagram
+from vaultgram.formfinding.horizontal import horizontal, relax_openings
+from vaultgram.formfinding.loads import mesh_point_loads
+from vaultgram.formfinding.supports import support_vertices
+from vaultgram.formfinding.thrust import ThrustNetwork, thrust_network
+from vaultgram.formfinding.vertical import vertical
+from vaultgram.meshing.densities import DensitySpec, group_counts
+from vaultgram.meshing.layout import Layout, edge_groups
+from vaultgram.meshing.quadmesh import QuadMesh
+from vaultgram.meshing.quality import check_not_folded
+from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS, laplacian_smooth
+from vaultgram.meshing.untangle import untangle
+from vaultgram.meshing.weld import weld
+from vaultgram.topology.decomposition import Decomposition, block_decomposition
+from vaultgram.topology.discretise import discretise
+from vaultgram.topology.rulebook import load_vault_rulebook
+from vaultgram.topology.skeleton import skeleton
+from vaultgram.topology.triangulation import triangulate
+
+__all__ = ["decompose", "mesh_decomposition", "mesh_domain", "form_find", "thrust_of_mesh", "design", "Design"]
+
+
+@contextmanager
+def _timed(timings: dict | None, stage: str):
+    """Add the seconds the ``with`` block takes to ``timings[stage]`` (nothing if ``timings`` is None)."""
+    start = time.perf_counter()
+    yield
+    if timings is not None:
+        timings[stage] = timings.get(stage, 0.0) + time.perf_counter() - start
+
+
+# --------------------------------------------------------------------------------------------
+# Topology (§3.1, §4)
+# --------------------------------------------------------------------------------------------
+
+
+def decompose(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None = None, smooth: bool = False,
+              timings: dict | None = None) -> Decomposition:
+    """Topology finding (§3.1, §4): discretise, triangulate, skeletonise, rewrite with the rules, patch.
+
+    ``rules_dir`` holds the rulebook (default: the one shipped with vaultgram); ``smooth`` smooths the
+    skeleton branches with splines.
+    """
+    rulebook = load_vault_rulebook(rules_dir)
+    with _timed(timings, "discretise"):
+        disc = discretise(domain, spacing)
+    with _timed(timings, "triangulate"):
+        tri = triangulate(disc)
+    with _timed(timings, "skeleton"):
+        sk = skeleton(tri, smooth=smooth)
+    with _timed(timings, "rules"):
+        return block_decomposition(sk, rulebook)
+
+
+# --------------------------------------------------------------------------------------------
+# Geometry (§3.2)
+# --------------------------------------------------------------------------------------------
+
+
+def mesh_decomposition(dec: Decomposition, target_length: float | None = None, smooth: int = DEFAULT_ITERATIONS,
+                       densities: DensitySpec | None = None, allow_folds: bool = False,
+                       timings: dict | None = None) -> QuadMesh:
+    """Geometry of §3.2 for a decomposition: edge groups, densities, Coons patches, welding, smoothing.
+
+    A smoothed mesh with inverted faces raises :class:`~vaultgram.errors.MeshFoldError` unless
+    ``allow_folds``; the raw Coons patches (``smooth=0``) are returned as they are.
+    """
+    if smooth < 0:
+        raise VaultgramError(f"smoothing iterations must be >= 0, got {smooth}")
+    with _timed(timings, "groups"):
+        layout = edge_groups(dec)
+        counts = group_counts(layout, densities, target_length)
+    with _timed(timings, "weld"):
+        mesh = weld(layout, counts)
+    with _timed(timings, "smooth"):
+        x = laplacian_smooth(mesh.vertices, mesh.faces, smooth, mesh.fixed, mesh.constraints)
+    with _timed(timings, "untangle"):
+        if smooth > 0:
+            x = untangle(x, mesh.faces, mesh.fixed, mesh.constraints)
+    mesh = dataclasses.replace(mesh, vertices=x, info=_mesh_info(dec, layout, smooth))
+    if smooth > 0 and not allow_folds:
+        check_not_folded(mesh, dec)
+    return mesh
+
+
+def _mesh_info(dec: Decomposition, layout: Layout, smooth: int) -> dict:
+    """What ``mesh.json`` records of how the mesh was made."""
+    domain = dec.disc.domain
+    return {
+        "domain": domain.name,
+        "spacing": dec.disc.spacing,
+        "diagonal": domain.diagonal,
+        "patches": len(layout.patterns),
+        "triangle_patches": sum(p.pole is not None for p in layout.patterns),
+        "edge_groups": layout.n_groups,
+        "smooth": smooth,
+    }
+
+
+def mesh_domain(domain: Domain, spacing: float = 0.02, target_length: float | None = None,
+                smooth: int = DEFAULT_ITERATIONS, densities: DensitySpec | None = None, rules_dir=None,
+                allow_folds: bool = False, timings: dict | None = None) -> QuadMesh:
+    """Topology and geometry of §3: a smooth quad mesh of ``domain``.
+
+    Parameters
+    ----------
+    domain : Domain
+    spacing : float
+        Relative discretisation spacing of the decomposition (§3.1).
+    target_length : float, optional
+        Global target edge length in the domain's units; default a fraction
+        (:data:`vaultgram.meshing.densities.TARGET_FRACTION`) of the bounding-box diagonal. Overrides the
+        density file's.
+    smooth : int
+        Laplacian smoothing iterations.
+    densities : DensitySpec, optional
+        Local density control (:func:`vaultgram.meshing.densities.load_densities`).
+    allow_folds : bool
+        Return a mesh that still has inverted faces after smoothing instead of raising.
+
+    Raises
+    ------
+    VaultgramError
+        From any stage (invalid domain, a patch that is not 3- or 4-sided, bad densities);
+        :class:`~vaultgram.errors.MeshFoldError` when the smoothed mesh has inverted faces (unless
+        ``allow_folds``).
+    """
+    check_feature_spacing(domain, spacing)
+    dec = decompose(domain, spacing, rules_dir, timings=timings)
+    return mesh_decomposition(dec, target_length, smooth, densities, allow_folds, timings)
+
+
+# --------------------------------------------------------------------------------------------
+# Form finding (§5)
+# --------------------------------------------------------------------------------------------
+
+
+def form_find(mesh_vertices, faces, supports=None, *, zmax: float | None = None, scale: float = 1.0,
+              thickness=1.0, density: float = 1.0, point_loads=None, tol_deg: float = 0.5,
+              alpha: float = 100.0, relax: bool = True, sag: float = 0.1, relax_mode: str = "boundary",
+              update_boundaries: bool = True, kmax_horizontal: int = 1000, kmax_vertical: int = 500,
+              vertical_tol: float = 1e-12, timings: dict | None = None) -> ThrustNetwork:
+    """Form-find a funicular vault over a planar mesh by Thrust Network Analysis (§5).
+
+    Parameters
+    ----------
+    mesh_vertices : array (n, 2) or (n, 3)
+    faces : sequence of counter-clockwise vertex-index sequences
+    supports : vertex indices or boolean mask; default every boundary vertex
+    zmax : float, optional
+        Height of the highest vertex; the thrust scale is solved for. Without it ``scale`` is used.
+    scale : float
+        Thrust scale when ``zmax`` is None (force densities = scale x force/form length ratios).
+    thickness, density : self-weight = 3D tributary area x thickness x density
+    point_loads : dict {mesh vertex: load} or array (n_mesh,), positive downwards
+    tol_deg : float
+        Horizontal-equilibrium tolerance on the max angle between form and force edges (degrees).
+    alpha : float
+        Form weight (percent) in horizontal equilibrium; 100 keeps the form diagram.
+    relax, sag, relax_mode
+        Relax open edges (:func:`vaultgram.formfinding.horizontal.relax_openings`) before horizontal
+        equilibrium.
+    update_boundaries : bool
+        See :func:`vaultgram.formfinding.formdiagram.form_diagram`.
+
+    Raises
+    ------
+    FormFindingError, HorizontalEquilibriumError, ConvergenceError
+        bad input (named), no compression-only solution (edges and angles named), non-convergence.
+
+    Example
+    -------
+    >>> from vaultgram.geometry.meshes import grid_mesh
+    >>> v, f = grid_mesh(6)
+    >>> tn = form_find(v, f, zmax=2.0)
+    >>> round(float(tn.vertices[:, 2].max()), 9), tn.summary["max_angle_deg"] < 0.5
+    (2.0, True)
+    """
+    with _timed(timings, "form"):
+        form = form_diagram(mesh_vertices, faces, supports, update_boundaries=update_boundaries)
+    n_open = int((~form.loaded).sum())
+    with _timed(timings, "relax"):
+        if relax and n_open:
+            form = relax_openings(form, sag, mode=relax_mode)
+    with _timed(timings, "force"):
+        force = force_diagram(form)
+    with _timed(timings, "horizontal"):
+        h = horizontal(form, force, alpha=alpha, kmax=kmax_horizontal, tol_deg=tol_deg)
+    with _timed(timings, "vertical"):
+        v = vertical(h.form, h.q, scale=scale, zmax=zmax, thickness=thickness, density=density,
+                     point_loads=mesh_point_loads(point_loads, len(mesh_vertices)), kmax=kmax_vertical,
+                     tol=vertical_tol)
+    return thrust_network(h, v, n_open)
+
+
+def thrust_of_mesh(mesh: QuadMesh, supports=None, domain: Domain | None = None, point_load: float = 0.0,
+                   timings: dict | None = None, **options) -> ThrustNetwork:
+    """Form finding of a quad mesh with a support specification (:mod:`vaultgram.formfinding.supports`),
+    ``point_load`` at each of its point features; ``options`` are those of :func:`form_find`."""
+    if isinstance(supports, list):
+        supports = {"vertices": supports}
+    anchors = support_vertices(mesh.vertices, mesh.faces, supports, domain)
+    loads = {int(v): point_load for v in np.flatnonzero(mesh.feature)} if point_load else None
+    return form_find(mesh.vertices, mesh.faces, anchors, point_loads=loads, timings=timings, **options)
+
+
+# --------------------------------------------------------------------------------------------
+# Everything
+# --------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class Design:
+    """Every stage's value for one domain, and the seconds each stage took."""
+
+    domain: Domain
+    decomposition: Decomposition
+    mesh: QuadMesh
+    network: ThrustNetwork
+    timings: dict = field(default_factory=dict)
+
+
+def design(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None = None,
+           target_length: float | None = None, smooth: int = DEFAULT_ITERATIONS,
+           densities: DensitySpec | None = None, allow_folds: bool = False, supports=None,
+           point_load: float = 0.0, **options) -> Design:
+    """The whole pipeline on a domain: decomposition (§3.1, §4), mesh (§3.2) and thrust network (§5).
+
+    ``supports`` overrides the domain's own; ``options`` are those of :func:`form_find`.
+    """
+    timings: dict = {}
+    check_feature_spacing(domain, spacing)
+    dec = decompose(domain, spacing, rules_dir, timings=timings)
+    mesh = mesh_decomposition(dec, target_length, smooth, densities, allow_folds, timings)
+    spec = domain.supports if supports is None else supports
+    network = thrust_of_mesh(mesh, spec, domain, point_load, timings, **options)
+    return Design(domain, dec, mesh, network, timings)
