@@ -223,6 +223,50 @@ def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, 
     echo_timings(timings)
 
 
+TESSELLATION = [
+    click.option("--rhythm", type=click.Choice(["2", "4"]), default="2", show_default=True,
+                 help="Keep every second or every fourth edge along a course (voussoirs of about 2 or 4 faces)."),
+    click.option("--max-concavity", type=click.FloatRange(180.0, 360.0, max_open=True), default=190.0,
+                 show_default=True, help="Largest voussoir corner (degrees, in its best-fit plane)."),
+    click.option("--flat-extrados", is_flag=True, help="Make each voussoir's top face planar (best-fit plane)."),
+    click.option("--surface-smooth", type=click.IntRange(min=0), default=0, show_default=True,
+                 help="Laplacian smoothing iterations of the voussoir outlines on the thrust surface."),
+]
+
+
+def tessellation_options(command):
+    """The tessellation options of ``tessellate`` and ``design``."""
+    for option in reversed(TESSELLATION):
+        command = option(command)
+    return command
+
+
+@main.command("tessellate")
+@click.argument("thrust_path", metavar="THRUST", type=click.Path(dir_okay=False))
+@OUT
+@click.option("--thickness", type=POSITIVE, default=1.0, show_default=True, help="Voussoir thickness.")
+@tessellation_options
+@RULES
+def tessellate_command(thrust_path, out_dir, thickness, rhythm, max_concavity, flat_extrados, surface_smooth,
+                       rules_dir) -> None:
+    """Voussoirs from a THRUST network (thrust.json, paper 5): keystones, staggered bond, solids, courses.
+
+    Writes tessellation.json, voussoirs.obj and summary.json to --out.
+    """
+    from vaultgram.io.outputs import write_tessellation
+    from vaultgram.pipeline import tessellate
+    from vaultgram.tessellation.metrics import format_summary
+    from vaultgram.tessellation.surface import surface_from_json
+
+    timings: dict = {}
+    surface = surface_from_json(read_json(thrust_path), thrust_path)
+    result = tessellate(surface, int(rhythm), thickness, max_concavity, flat_extrados, surface_smooth, rules_dir,
+                        timings)
+    write_tessellation(result, Path(out_dir), summary=True)
+    click.echo(format_summary(result.summary))
+    echo_timings(timings)
+
+
 @main.command("design")
 @click.argument("domain_path", metavar="DOMAIN", type=click.Path(dir_okay=False))
 @OUT

@@ -92,3 +92,13 @@ def did_you_mean(name: str, candidates) -> str | None:
     """A hint naming the closest known name, or None."""
     close = difflib.get_close_matches(name, [str(c) for c in candidates], n=1)
     return f"did you mean '{close[0]}'?" if close else None
+
+
+class TessellationError(VaultgramError):
+    """The thrust network cannot be tessellated: no heights, a non-manifold or inconsistently oriented
+    mesh, bad options. The message names the element (face, edge, vertex) and its index."""
+
+
+class MeshTopologyError(VaultgramError):
+    """A mesh is not a manifold, consistently oriented polygon mesh; the message names the edge or
+    vertex and the faces."""

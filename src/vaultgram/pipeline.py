@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from vaultgram.domain import Domain, check_feature_spacing
-from vaultgram.errors import VaultgramError
+from vaultgram.errors import TessellationError, VaultgramError
 from vaultgram.formfinding.forcediagram import force_diagram
 from vaultgram.formfinding.formdiagram import form_diagram
 from vaultgram.formfinding.horizontal import horizontal, relax_openings
@@ -44,13 +44,28 @@ from vaultgram.meshing.quality import check_not_folded
 from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS, laplacian_smooth
 from vaultgram.meshing.untangle import untangle
 from vaultgram.meshing.weld import weld
+from vaultgram.geometry.halfedges import mesh_edges
+from vaultgram.geometry.surfaces import area_vectors, vertex_normals
+from vaultgram.tessellation.courses import support_zones, voussoir_courses, voussoir_names
+from vaultgram.tessellation.keystones import CutMesh, cut_keystones, load_tessellation_rulebook, pinwheel
+from vaultgram.tessellation.refine import refine_large_faces
+from vaultgram.tessellation.sizes import UPPER, split_large_quads, unmerge_large
+from vaultgram.tessellation.metrics import summarise
+from vaultgram.tessellation.model import Tessellation, voussoir_layout
+from vaultgram.tessellation.smoothing import smooth_on_surface
+from vaultgram.tessellation.solids import solid_volumes, voussoir_solids
+from vaultgram.tessellation.stagger import staggered_bond
+from vaultgram.tessellation.strips import quad_strips
+from vaultgram.tessellation.surface import ThrustSurface
+from vaultgram.tessellation.voussoirs import MAX_CONCAVITY, face_groups, fill_meeting_points, without_concavities
 from vaultgram.topology.decomposition import Decomposition, block_decomposition
 from vaultgram.topology.discretise import discretise
 from vaultgram.topology.rulebook import load_vault_rulebook
 from vaultgram.topology.skeleton import skeleton
 from vaultgram.topology.triangulation import triangulate
 
-__all__ = ["decompose", "mesh_decomposition", "mesh_domain", "form_find", "thrust_of_mesh", "design", "Design"]
+__all__ = ["decompose", "mesh_decomposition", "mesh_domain", "form_find", "thrust_of_mesh", "tessellate", "design",
+           "Design"]
 
 
 @contextmanager
@@ -235,6 +250,106 @@ def thrust_of_mesh(mesh: QuadMesh, supports=None, domain: Domain | None = None, 
     anchors = support_vertices(mesh.vertices, mesh.faces, supports, domain)
     loads = {int(v): point_load for v in np.flatnonzero(mesh.feature)} if point_load else None
     return form_find(mesh.vertices, mesh.faces, anchors, point_loads=loads, timings=timings, **options)
+
+
+# --------------------------------------------------------------------------------------------
+# Tessellation (§5)
+# --------------------------------------------------------------------------------------------
+
+
+def _check_tessellation_options(rhythm: int, thickness: float, max_concavity: float, surface_smooth: int) -> None:
+    if rhythm not in (2, 4):
+        raise TessellationError(f"rhythm must be 2 or 4 (keep every second or every fourth edge), got {rhythm}")
+    if not (thickness > 0 and np.isfinite(thickness)):
+        raise TessellationError(f"thickness must be a positive number, got {thickness}")
+    if not 180.0 <= max_concavity < 360.0:
+        raise TessellationError(f"max concavity must lie in [180, 360) degrees, got {max_concavity}")
+    if surface_smooth < 0:
+        raise TessellationError(f"surface smoothing iterations must be >= 0, got {surface_smooth}")
+
+
+def tessellate(surface: ThrustSurface, rhythm: int = 2, thickness: float = 1.0,
+               max_concavity: float = MAX_CONCAVITY, flat_extrados: bool = False, surface_smooth: int = 0,
+               rules_dir: str | Path | None = None, timings: dict | None = None) -> Tessellation:
+    """Voussoirs from a thrust surface (§5, Figures 11-13): keystones by the rulebook, a staggered
+    bond of ``rhythm`` faces per voussoir without strong concavities, solids ``thickness`` thick,
+    courses from the supports.
+
+    Example
+    -------
+    >>> from vaultgram.geometry.meshes import grid_mesh
+    >>> from vaultgram.tessellation.surface import surface_from_network
+    >>> v, f = grid_mesh(8)
+    >>> t = tessellate(surface_from_network(form_find(v, f, zmax=2.0)), thickness=0.2)
+    >>> t.summary["voussoirs"], t.summary["meeting_points"]
+    (32, {'3': 49})
+    """
+    _check_tessellation_options(rhythm, thickness, max_concavity, surface_smooth)
+    rulebook = load_tessellation_rulebook(rules_dir)
+    with _timed(timings, "refine"):
+        x, faces, supported, refined = _refine(surface)
+    with _timed(timings, "keystones"):
+        cut = cut_keystones(x, faces, mesh_edges(faces, len(x)), rulebook)
+        supported = np.where(cut.source >= 0, supported[np.maximum(cut.source, 0)], False)
+        me = mesh_edges(cut.faces, len(cut.vertices))
+    with _timed(timings, "stagger"):
+        face_areas = np.linalg.norm(area_vectors(cut.vertices, cut.faces), axis=1)
+        bond = staggered_bond(cut.vertices, me, quad_strips(me, cut.faces), supported, face_areas, rhythm,
+                              pinwheel(cut, me))
+        removed, restored = without_concavities(cut.vertices, me, bond.removed, max_concavity)
+        inner = ~np.isin(np.arange(len(cut.vertices)), me.edges[me.boundary])
+        largest = UPPER * bond.target
+        removed, joins = fill_meeting_points(cut.vertices, cut.faces, me, removed, inner, largest, max_concavity)
+        removed, unmerged = unmerge_large(cut.vertices, cut.faces, me, removed, inner, bond.target)
+    with _timed(timings, "sizes"):
+        cut, me, group, cuts = _cut_large(cut, face_groups(me, removed), bond.target)
+        layout = voussoir_layout(cut, me, group)
+        inner = ~np.isin(np.arange(len(cut.vertices)), me.edges[me.boundary])
+        supported = np.concatenate([supported, np.zeros(len(cut.vertices) - len(supported), dtype=bool)])
+    with _timed(timings, "surface_smooth"):
+        x = smooth_on_surface(cut.vertices, layout.loops, ~inner | supported, surface.vertices, surface.faces,
+                              surface_smooth)
+    with _timed(timings, "solids"):
+        normals = vertex_normals(x, cut.faces)
+        solids = voussoir_solids(x, normals, layout.loops, thickness, flat_extrados)
+    courses, zones = _courses(layout, supported, me)
+    kept = {"concavity": restored, "taken": bond.kept_taken, "aligned": bond.aligned, "filled": joins,
+            "unmerged": unmerged, "cut": cuts, "courses": bond.courses, "refined_strips": refined}
+    summary = summarise(x, normals, layout, max_concavity, kept, surface.holes,
+                        solid_volumes(solids, layout.n_voussoirs))
+    return Tessellation(layout, x, normals, solids, courses, zones, tuple(voussoir_names(courses, zones)),
+                        {**summary, "rhythm": rhythm, "thickness": thickness})
+
+
+def _refine(surface: ThrustSurface) -> tuple[np.ndarray, tuple, np.ndarray, int]:
+    """The surface's vertices, faces and supports with the strips of its large faces refined
+    (:mod:`vaultgram.tessellation.refine`)."""
+    x, faces, parents, _, refined = refine_large_faces(surface.vertices, surface.faces)
+    supported = list(surface.supported.tolist())
+    for p in parents:  # a point added between supported points is supported (parents come first)
+        supported.append(all(supported[v] for v in p))
+    return x, faces, np.array(supported, dtype=bool), refined
+
+
+def _cut_large(cut: CutMesh, group: np.ndarray, target: float):
+    """The cut mesh with its too large single quads cut in two (:mod:`vaultgram.tessellation.sizes`)."""
+    x, faces, group, _, cuts = split_large_quads(cut.vertices, cut.faces, group, target)
+    if cuts:
+        source = np.concatenate([cut.source, np.full(len(x) - len(cut.vertices), -1)])
+        cut = CutMesh(x, faces, cut.keystones, source, cut.steps)
+    return cut, mesh_edges(cut.faces, len(cut.vertices)), group, cuts
+
+
+def _courses(layout, supported: np.ndarray, me) -> tuple[np.ndarray, np.ndarray]:
+    """Construction course and support zone of every voussoir (:mod:`vaultgram.tessellation.courses`)."""
+    zone_of_vertex = support_zones(me.edges, supported)
+    zone = np.full(layout.n_voussoirs, np.iinfo(np.int64).max, dtype=np.int64)
+    for k, loop in enumerate(layout.loops):
+        z = zone_of_vertex[loop]
+        if (z >= 0).any():
+            zone[k] = z[z >= 0].min()
+    resting = np.flatnonzero(zone < np.iinfo(np.int64).max)
+    return voussoir_courses(layout.joint_voussoirs(), layout.n_voussoirs, resting, zone[resting])
 
 
 # --------------------------------------------------------------------------------------------

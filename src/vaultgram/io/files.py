@@ -43,15 +43,31 @@ def write_json(path: str | Path, data) -> None:
     write_text(path, json.dumps(data, indent=1, sort_keys=True))
 
 
-def write_obj(path: str | Path, vertices: np.ndarray, faces: Sequence[Sequence[int]],
-              edges: Sequence[Sequence[int]] | None = None) -> None:
-    """Write a Wavefront OBJ file (1-based indices); ``edges`` become ``l`` lines if given."""
+def _obj_vertices(vertices: np.ndarray) -> list[str]:
     v = np.asarray(vertices, dtype=float)
     if v.shape[1] == 2:
         v = np.column_stack([v, np.zeros(len(v))])
-    lines = ["# vaultgram"]
-    lines += [f"v {x:.12g} {y:.12g} {z:.12g}" for x, y, z in v.tolist()]
-    lines += ["f " + " ".join(str(int(i) + 1) for i in f) for f in faces]
+    return [f"v {x:.12g} {y:.12g} {z:.12g}" for x, y, z in v.tolist()]
+
+
+def _obj_faces(faces) -> list[str]:
+    return ["f " + " ".join(str(int(i) + 1) for i in f) for f in faces]
+
+
+def write_obj(path: str | Path, vertices: np.ndarray, faces: Sequence[Sequence[int]],
+              edges: Sequence[Sequence[int]] | None = None) -> None:
+    """Write a Wavefront OBJ file (1-based indices); ``edges`` become ``l`` lines if given."""
+    lines = ["# vaultgram", *_obj_vertices(vertices), *_obj_faces(faces)]
     if edges is not None:
         lines += [f"l {int(a) + 1} {int(b) + 1}" for a, b in edges]
+    write_text(path, "\n".join(lines) + "\n")
+
+
+def write_obj_objects(path: str | Path, vertices: np.ndarray, objects) -> None:
+    """Write an OBJ file of named objects over one vertex list: ``objects`` is a sequence of
+    ``(name, faces)``, each object an ``o name`` line followed by its faces (1-based indices)."""
+    lines = ["# vaultgram", *_obj_vertices(vertices)]
+    for name, faces in objects:
+        lines.append(f"o {name}")
+        lines += _obj_faces(faces)
     write_text(path, "\n".join(lines) + "\n")

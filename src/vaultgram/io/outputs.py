@@ -9,13 +9,14 @@ from __future__ import annotations
 from pathlib import Path
 
 from vaultgram.formfinding.thrust import ThrustNetwork
-from vaultgram.io.files import write_json, write_obj
+from vaultgram.io.files import write_json, write_obj, write_obj_objects
 from vaultgram.io.meshfiles import write_mesh
-from vaultgram.io.plots import plot_decomposition, plot_mesh, plot_thrust
+from vaultgram.io.plots import plot_decomposition, plot_mesh, plot_tessellation, plot_thrust
 from vaultgram.meshing.quadmesh import QuadMesh
+from vaultgram.tessellation.model import Tessellation
 from vaultgram.topology.decomposition import Decomposition
 
-__all__ = ["write_decomposition", "write_mesh_files", "write_thrust"]
+__all__ = ["write_decomposition", "write_mesh_files", "write_thrust", "write_tessellation"]
 
 
 def write_decomposition(dec: Decomposition, out: Path, plot: bool = True) -> None:
@@ -43,3 +44,17 @@ def write_thrust(network: ThrustNetwork, out: Path, plot: bool = False) -> None:
     write_json(out / "summary.json", network.summary)
     if plot:
         plot_thrust(network, out / "thrust.png")
+
+
+def write_tessellation(tessellation: Tessellation, out: Path, summary: bool = False, plot: bool = True) -> None:
+    """``tessellation.json``, ``voussoirs.obj`` (one closed solid ``o voussoir_N`` per voussoir, in the
+    order of ``voussoirs``) and, if ``plot``, ``tessellation.png``; with ``summary``, also
+    ``summary.json`` (the tessellation's alone)."""
+    write_json(out / "tessellation.json", tessellation.to_json())
+    solids = tessellation.solids
+    objects = [(f"voussoir_{k}", solids.of(k)) for k in range(tessellation.layout.n_voussoirs)]
+    write_obj_objects(out / "voussoirs.obj", solids.vertices, objects)
+    if summary:
+        write_json(out / "summary.json", tessellation.summary)
+    if plot:
+        plot_tessellation(tessellation, out / "tessellation.png")

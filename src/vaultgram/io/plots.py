@@ -63,6 +63,25 @@ def plot_thrust(network, path: str | Path) -> None:
     save_figure(fig, Path(path))
 
 
+def plot_tessellation(tessellation, path: str | Path) -> None:
+    """The voussoirs in plan (Figure 12b), coloured by construction course, keystones marked; PNG."""
+    x = tessellation.vertices
+    layout = tessellation.layout
+    fig, ax = plt.subplots(figsize=(7, 7))
+    polygons = [x[loop, :2] for loop in layout.loops]
+    collection = PolyCollection(polygons, edgecolors="black", linewidths=0.4, cmap="viridis")
+    collection.set_array(np.asarray(tessellation.courses, dtype=float))
+    ax.add_collection(collection)
+    for k in layout.keystones.tolist():
+        ax.fill(*x[layout.loops[k], :2].T, color="tab:red")
+    fig.colorbar(collection, ax=ax, shrink=0.7, label="course (voussoirs from a support)")
+    ax.autoscale()
+    ax.set_aspect("equal")
+    ax.set_axis_off()
+    ax.set_title(f"{layout.n_voussoirs} voussoirs, {len(layout.keystones)} keystones")
+    save_figure(fig, Path(path))
+
+
 def _faces(ax, vertices, faces, heights):
     polygons = [np.asarray(vertices)[list(f), :2] for f in faces]
     collection = PolyCollection(polygons, facecolors="none" if heights is None else None,

@@ -1,0 +1,116 @@
+"""The edges of a polygon mesh and the faces on either side of them, as arrays.
+
+Faces are counter-clockwise vertex loops (seen from +z for a plan or a height field). Side ``k`` of
+face ``f`` is the half-edge ``faces[f][k] -> faces[f][k + 1]``, with ``f`` on its left. Each
+undirected edge ``(a, b)``, ``a < b``, has up to two faces: the one whose side runs ``a -> b`` and the
+one whose side runs ``b -> a``; a boundary edge lacks one of them. :func:`mesh_edges` builds this once,
+vectorised, for stages that walk meshes by edges and faces (the tessellation's strips, joints and
+voussoir outlines).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from vaultgram.errors import MeshTopologyError
+from vaultgram.geometry.meshes import corner_arrays
+
+__all__ = ["MeshEdges", "mesh_edges"]
+
+
+@dataclass(frozen=True, eq=False)
+class MeshEdges:
+    """Edges of a polygon mesh with their faces.
+
+    Attributes
+    ----------
+    edges : ndarray (m, 2)
+        Undirected edges, ``edges[e, 0] < edges[e, 1]``, sorted.
+    corner_face, corner_vertex, corner_next : ndarray (c,)
+        Per face corner (in face order, then corner order): its face, its vertex and the next vertex.
+    corner_edge : ndarray (c,)
+        The edge of the side leaving each corner.
+    faces_of : ndarray (m, 2)
+        ``[face with the side low -> high, face with the side high -> low]``, -1 where there is none.
+    corners_of : ndarray (m, 2)
+        The corners whose sides those are (the side leaving the corner), -1 where there is none.
+    face_start : ndarray (f + 1,)
+        Corners of face ``f`` are ``face_start[f]:face_start[f + 1]``.
+    """
+
+    edges: np.ndarray
+    corner_face: np.ndarray
+    corner_vertex: np.ndarray
+    corner_next: np.ndarray
+    corner_edge: np.ndarray
+    faces_of: np.ndarray
+    corners_of: np.ndarray
+    face_start: np.ndarray
+
+    @property
+    def n_edges(self) -> int:
+        return len(self.edges)
+
+    @cached_property
+    def boundary(self) -> np.ndarray:
+        """Edges with a face on one side only."""
+        return (self.faces_of < 0).any(axis=1)
+
+    def face_edges(self, f: int) -> np.ndarray:
+        """The edges of face ``f``, side by side."""
+        return self.corner_edge[self.face_start[f]:self.face_start[f + 1]]
+
+    def other_face(self, e: np.ndarray, f: np.ndarray) -> np.ndarray:
+        """The face across edge ``e`` from face ``f`` (-1 on the boundary); vectorised."""
+        a, b = self.faces_of[e, 0], self.faces_of[e, 1]
+        return np.where(a == f, b, a)
+
+    @cached_property
+    def corner_side(self) -> np.ndarray:
+        """Per corner, its index in its face (0 for the first corner of every face)."""
+        return np.arange(len(self.corner_face)) - self.face_start[self.corner_face]
+
+    @cached_property
+    def corner_twin(self) -> np.ndarray:
+        """Per corner, the corner whose side runs the other way along the same edge (-1 on the boundary)."""
+        c = self.corners_of[self.corner_edge]
+        return np.where(c[:, 0] == np.arange(len(c)), c[:, 1], c[:, 0])
+
+
+def mesh_edges(faces, n_vertices: int | None = None) -> MeshEdges:
+    """The edges of ``faces`` and the faces on either side of them.
+
+    Raises :class:`~vaultgram.errors.MeshTopologyError` naming the edge and the faces if a half-edge
+    is used by two faces (a non-manifold or inconsistently oriented mesh).
+
+    Example
+    -------
+    >>> me = mesh_edges([(0, 1, 4, 3), (1, 2, 5, 4)])
+    >>> me.edges.tolist()
+    [[0, 1], [0, 3], [1, 2], [1, 4], [2, 5], [3, 4], [4, 5]]
+    >>> me.faces_of[3].tolist(), int(me.boundary.sum())
+    ([0, 1], 6)
+    """
+    face, u, v, _ = corner_arrays(faces)
+    n = int(max(u.max(), v.max())) + 1 if len(u) else 0
+    n = max(n, n_vertices or 0)
+    lo, hi = np.minimum(u, v), np.maximum(u, v)
+    keys, corner_edge = np.unique(lo * n + hi, return_inverse=True)
+    forward = u < v
+    half = corner_edge * 2 + (~forward)
+    order = np.argsort(half, kind="stable")
+    repeated = np.flatnonzero(np.diff(half[order]) == 0)
+    if len(repeated):
+        c = order[repeated[0]]
+        raise MeshTopologyError(f"edge {int(u[c])}-{int(v[c])} is traversed in the same direction by faces "
+                         f"{int(face[order[repeated[0]]])} and {int(face[order[repeated[0] + 1]])}")
+    corners_of = np.full((len(keys), 2), -1, dtype=np.int64)
+    corners_of[corner_edge, (~forward).astype(np.int64)] = np.arange(len(face))
+    faces_of = np.where(corners_of >= 0, face[corners_of], -1)
+    lens = np.bincount(face, minlength=len(faces)) if len(faces) else np.zeros(0, dtype=np.int64)
+    start = np.concatenate([[0], np.cumsum(lens)])
+    edges = np.column_stack([keys // n, keys % n]) if n else np.zeros((0, 2), dtype=np.int64)
+    return MeshEdges(edges.astype(np.int64), face, u, v, corner_edge, faces_of, corners_of, start)

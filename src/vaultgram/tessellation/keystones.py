@@ -1,0 +1,169 @@
+"""Keystones (paper §5, Figure 11b), decided by the rulebook on the thrust network's graph.
+
+"Having many voussoirs coming to the same point makes the assembly task more difficult [...].
+Therefore [...] singularities with a valency of five or more are transformed into their dual face"
+(§5). Which vertices become keystones, and how, is the rule ``keystone`` of
+``rules/tessellation.vgr``; this module only lays the network out as a host graph for it (a
+``Vertex`` per vertex, a ``Joint`` per edge, edges around each vertex counter-clockwise in plan),
+runs the strategy ``tessellation`` and reads the faces back: the faces no rule touched as they were,
+the others walked again with the graph's rotation system.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from vaultgram.engine.embedding import face_walk
+from vaultgram.engine.graph import HostGraph
+from vaultgram.engine.rulebook import Rulebook, load_rulebook
+from vaultgram.engine.strategy import Runner
+from vaultgram.errors import RuleError
+from vaultgram.geometry.halfedges import MeshEdges
+from vaultgram.tessellation.functions import tessellation_functions
+from vaultgram.topology.rulebook import default_rules_dir
+
+__all__ = ["CutMesh", "cut_keystones", "pinwheel", "load_tessellation_rulebook", "STRATEGY", "RULE_FILE"]
+
+STRATEGY = "tessellation"
+RULE_FILE = "tessellation.vgr"
+NODE, CORNER, EDGE = "Vertex", "KeystoneCorner", "Joint"
+
+
+@dataclass(frozen=True, eq=False)
+class CutMesh:
+    """The thrust network after the keystone rules: a polygon mesh on the thrust surface.
+
+    Attributes
+    ----------
+    vertices : ndarray (n, 3)
+        The network's vertices that remain, then the keystone corners.
+    faces : tuple of tuple
+        Counter-clockwise in plan.
+    keystones : ndarray (k,)
+        The faces that are keystones.
+    source : ndarray (n,)
+        For each vertex its index in the thrust network, -1 for a keystone corner.
+    steps : tuple of (str, int)
+        The strategy's steps and how many rule applications each made.
+    """
+
+    vertices: np.ndarray
+    faces: tuple
+    keystones: np.ndarray
+    source: np.ndarray
+    steps: tuple
+
+
+def load_tessellation_rulebook(rules_dir: str | Path | None = None) -> Rulebook:
+    """``tessellation.vgr`` from ``rules_dir`` if it has one, else the rulebook shipped with vaultgram."""
+    directory = Path(rules_dir) if rules_dir is not None else default_rules_dir()
+    path = directory / RULE_FILE if (directory / RULE_FILE).is_file() else default_rules_dir() / RULE_FILE
+    stamp = tuple(sorted((f.name, f.stat().st_mtime_ns) for f in path.parent.glob("*.vgr")))
+    return _load_checked(path.resolve(), stamp)
+
+
+@functools.lru_cache(maxsize=8)
+def _load_checked(path: Path, stamp: tuple) -> Rulebook:
+    book = load_rulebook([path], tessellation_functions())
+    missing = [t for t in (NODE, CORNER) if t not in book.schema.node_types]
+    missing += [t for t in (EDGE,) if t not in book.schema.edge_types]
+    if missing:
+        raise RuleError(f"{path}: the rulebook's schema lacks the type(s) {', '.join(missing)} that the "
+                        "tessellation builds its graph with (see rules/tessellation.vgr)")
+    if STRATEGY not in book.strategies:
+        raise RuleError(f"{path}: the rulebook has no strategy '{STRATEGY}'")
+    return book
+
+
+def _plan_angle(graph: HostGraph, e: int, n: int) -> float:
+    """Direction in plan in which edge ``e`` leaves node ``n`` (the rotation system's order)."""
+    p, q = graph.get(n, "pos"), graph.get(graph.other(e, n), "pos")
+    return math.atan2(q[1] - p[1], q[0] - p[0])
+
+
+def network_graph(x: np.ndarray, me: MeshEdges, rulebook: Rulebook) -> HostGraph:
+    """The host graph of a mesh: node ``i`` is vertex ``i``, edge ``e`` is mesh edge ``e``."""
+    graph = HostGraph(rulebook.schema, angle=_plan_angle)
+    on_boundary = np.zeros(len(x), dtype=bool)
+    on_boundary[me.edges[me.boundary].ravel()] = True
+    for i, (p, b) in enumerate(zip(x.tolist(), on_boundary.tolist())):
+        graph.add_node(NODE, {"pos": tuple(p), "index": i, "boundary": b}, id=i)
+    for a, b in me.edges.tolist():
+        graph.add_edge(EDGE, a, b)
+    return graph
+
+
+def _walked_faces(graph: HostGraph, new_nodes: list[int]) -> list[list[int]]:
+    """The faces around the nodes the rules created, each once, as node loops."""
+    seen: set[tuple[int, int]] = set()
+    out = []
+    for n in new_nodes:
+        for e in graph.rotation(n):
+            if (e, n) in seen:
+                continue
+            walk = face_walk(graph, (EDGE,), (e, n))
+            seen.update(walk)
+            out.append([u for _, u in walk])
+    return out
+
+
+def cut_keystones(x: np.ndarray, faces, me: MeshEdges, rulebook: Rulebook) -> CutMesh:
+    """Run the rulebook's ``tessellation`` strategy on the network's graph; the mesh it leaves."""
+    graph = network_graph(x, me, rulebook)
+    runner = Runner(rulebook, graph)
+    runner.run(STRATEGY)
+    n = len(x)
+    kept = [i for i in range(n) if graph.has_node(i)]
+    new = sorted(v for v in graph.nodes() if v >= n)
+    gone = np.ones(n, dtype=bool)
+    gone[kept] = False
+    old = [tuple(f) for f in faces if not gone[list(f)].any()]
+    walked = _walked_faces(graph, new)
+    ids = np.array(kept + new, dtype=np.int64)
+    index = {int(v): k for k, v in enumerate(ids.tolist())}
+    out_faces = tuple(tuple(index[v] for v in f) for f in old + walked)
+    keystone_of = [graph.get(v, "keystone") if graph.node_type(v) == CORNER else -1 for v in new]
+    corner_key = dict(zip(new, keystone_of))
+    keystones = [len(old) + k for k, f in enumerate(walked)
+                 if len({corner_key.get(v, -1) for v in f}) == 1 and corner_key.get(f[0], -1) >= 0]
+    vertices = np.array([graph.get(int(v), "pos") for v in ids], dtype=float).reshape(-1, 3)
+    source = np.where(ids < n, ids, -1)
+    steps = tuple((r.step, r.applications) for r in runner.reports)
+    return CutMesh(vertices, out_faces, np.array(keystones, dtype=np.int64), source, steps)
+
+
+def pinwheel(mesh: CutMesh, me: MeshEdges) -> np.ndarray:
+    """Edges to remove so that the keystones' neighbours turn like a pinwheel (Figure 11b).
+
+    Each face beside a keystone is joined to the face across its first side after the keystone's
+    spoke (the side leaving the spoke's far end, turning the same way round every keystone). Then
+    every point around the ring of neighbours is a point of three voussoirs, as the keystone's own
+    corners are, where joining nothing would leave points of four. A face already taken by another
+    join, a keystone, or a side on the boundary is skipped.
+    """
+    removed = np.zeros(me.n_edges, dtype=bool)
+    used = np.zeros(len(mesh.faces), dtype=bool)
+    used[mesh.keystones] = True
+    edge_of = {tuple(e): k for k, e in enumerate(me.edges.tolist())}
+    for key in mesh.keystones.tolist():
+        ring = list(mesh.faces[key])
+        for a, b in zip(ring, ring[1:] + ring[:1]):
+            e = edge_of[(min(a, b), max(a, b))]
+            neighbour = int(me.other_face(np.array([e]), np.array([key]))[0])
+            if neighbour < 0 or used[neighbour]:
+                continue
+            loop = list(mesh.faces[neighbour])
+            i = loop.index(a)  # the neighbour runs b -> a along the keystone, then a -> w (the spoke)
+            w, c = loop[(i + 1) % len(loop)], loop[(i + 2) % len(loop)]
+            side = edge_of[(min(w, c), max(w, c))]
+            across = int(me.other_face(np.array([side]), np.array([neighbour]))[0])
+            if across < 0 or used[across]:
+                continue
+            removed[side] = True
+            used[[neighbour, across]] = True
+    return removed

@@ -1,0 +1,127 @@
+"""The tessellation: voussoirs on the thrust surface, their joints, solids, courses and names (§5).
+
+:class:`VoussoirLayout` is what the bond and the keystones decide, in the cut mesh's terms: which
+faces form each voussoir, its outline, and the joints between voussoirs. :class:`Tessellation` is the
+stage's value: the layout's vertices (after the optional smoothing on the surface), solids, courses
+and names, with a summary; :meth:`Tessellation.to_json` is ``tessellation.json``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from vaultgram.geometry.halfedges import MeshEdges
+from vaultgram.geometry.surfaces import area_vectors
+from vaultgram.tessellation.keystones import CutMesh
+from vaultgram.tessellation.solids import Solids
+from vaultgram.tessellation.voussoirs import outlines
+
+__all__ = ["VoussoirLayout", "voussoir_layout", "Tessellation"]
+
+
+@dataclass(frozen=True, eq=False)
+class VoussoirLayout:
+    """Voussoirs as groups of faces of the cut mesh.
+
+    Attributes
+    ----------
+    mesh : CutMesh
+    edges : MeshEdges
+        The cut mesh's edges.
+    group : ndarray (f,)
+        The voussoir of each face.
+    loops : tuple of ndarray
+        Each voussoir's outline, counter-clockwise in plan.
+    keystones : ndarray
+        Voussoirs that are keystones.
+    joints : ndarray (j,)
+        Edges of the cut mesh between two voussoirs.
+    """
+
+    mesh: CutMesh
+    edges: MeshEdges
+    group: np.ndarray
+    loops: tuple
+    keystones: np.ndarray
+    joints: np.ndarray
+
+    @property
+    def n_voussoirs(self) -> int:
+        return len(self.loops)
+
+    def joint_voussoirs(self) -> np.ndarray:
+        """The two voussoirs on either side of each joint."""
+        return self.group[self.edges.faces_of[self.joints]]
+
+    def areas(self, x: np.ndarray) -> np.ndarray:
+        """Mid-surface area of each voussoir: the areas of its faces, on the surface ``x``."""
+        a = np.linalg.norm(area_vectors(x, self.mesh.faces), axis=1)
+        return np.bincount(self.group, weights=a, minlength=self.n_voussoirs)
+
+
+def voussoir_layout(mesh: CutMesh, me: MeshEdges, group: np.ndarray) -> VoussoirLayout:
+    """Voussoirs of the faces in each ``group``; joints are the inner edges between two groups."""
+    loops = tuple(outlines(me, group))
+    inner = (me.faces_of >= 0).all(axis=1)
+    joints = np.flatnonzero(inner & (group[np.maximum(me.faces_of[:, 0], 0)] != group[np.maximum(me.faces_of[:, 1], 0)]))
+    keystones = np.unique(group[mesh.keystones]) if len(mesh.keystones) else np.zeros(0, dtype=np.int64)
+    return VoussoirLayout(mesh, me, group, loops, keystones, joints)
+
+
+@dataclass(frozen=True, eq=False)
+class Tessellation:
+    """Voussoirs cut from a thrust surface.
+
+    Attributes
+    ----------
+    layout : VoussoirLayout
+    vertices : ndarray (n, 3)
+        The layout's vertices on the thrust surface (smoothed on it if asked).
+    normals : ndarray (n, 3)
+        The surface's unit normals there.
+    solids : Solids
+    courses, zones : ndarray (v,)
+        Construction course (voussoirs from a support) and support zone of each voussoir.
+    names : tuple of str
+    summary : dict
+    """
+
+    layout: VoussoirLayout
+    vertices: np.ndarray
+    normals: np.ndarray
+    solids: Solids
+    courses: np.ndarray
+    zones: np.ndarray
+    names: tuple
+    summary: dict
+
+    def to_json(self) -> dict:
+        """``tessellation.json``: vertices, voussoir loops, keystones, neighbours, joints, courses..."""
+        lay = self.layout
+        pairs = lay.joint_voussoirs()
+        return {
+            "vertices": self.vertices.tolist(),
+            "voussoirs": [loop.tolist() for loop in lay.loops],
+            "keystones": lay.keystones.tolist(),
+            "names": list(self.names),
+            "courses": self.courses.tolist(),
+            "zones": self.zones.tolist(),
+            "areas": lay.areas(self.vertices).tolist(),
+            "faces": [lay.mesh.faces[f] for f in range(len(lay.mesh.faces))],
+            "face_voussoir": lay.group.tolist(),
+            "joints": [{"vertices": lay.edges.edges[e].tolist(), "voussoirs": sorted(p)}
+                       for e, p in zip(lay.joints.tolist(), pairs.tolist())],
+            "neighbours": _neighbours(pairs, lay.n_voussoirs),
+            "summary": self.summary,
+        }
+
+
+def _neighbours(pairs: np.ndarray, n: int) -> list[list[int]]:
+    """Per voussoir, the voussoirs it shares a joint with, sorted."""
+    out: list[set] = [set() for _ in range(n)]
+    for a, b in pairs.tolist():
+        out[a].add(b)
+        out[b].add(a)
+    return [sorted(s) for s in out]

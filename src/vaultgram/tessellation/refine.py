@@ -1,0 +1,144 @@
+"""Refining the strips of large faces before the bond (paper §5: "shape and size uniformity").
+
+The bond can join small faces into longer voussoirs, but not make a voussoir smaller than a face.
+Where faces are much larger than the typical one (in the corners of large patches, where the vault is
+steep), their strips are refined first: every quad of such a strip is cut in two between the
+midpoints of its rungs, so the strip becomes two. The mesh stays a conforming quad mesh (the
+midpoints of a strip's end rungs are added to the boundary or to the face beyond); a quad on two
+refined strips is cut in four. The strip chosen through a large quad is the one whose rungs are the
+quad's longer sides, so the halves are squarer than the quad. Passes repeat until no quad is more
+than :data:`LARGE` times the median quad of the unrefined mesh, or for :data:`PASSES` passes.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from vaultgram.geometry.halfedges import MeshEdges, mesh_edges
+from vaultgram.geometry.surfaces import area_vectors
+from vaultgram.tessellation.strips import Strip, quad_strips
+
+__all__ = ["refine_large_faces", "LARGE", "PASSES"]
+
+#: Quads more than this many times the median quad's area get their strip refined.
+LARGE = 2.0
+#: At most this many refinement passes.
+PASSES = 3
+
+
+def _face_areas(x: np.ndarray, faces) -> np.ndarray:
+    return np.linalg.norm(area_vectors(x, faces), axis=1)
+
+
+def _strips_to_refine(x: np.ndarray, faces, me: MeshEdges, strips: list[Strip], limit: float) -> set[int]:
+    """The strips through the longer sides of every quad larger than ``limit``."""
+    area = _face_areas(x, faces)
+    strip_of = {}
+    for k, s in enumerate(strips):
+        for q, rung in zip(s.quads.tolist(), s.rungs[:-1].tolist()):
+            d = 0 if rung in (me.corner_edge[me.face_start[q]], me.corner_edge[me.face_start[q] + 2]) else 1
+            strip_of[(q, d)] = k
+    chosen = set()
+    for q in np.flatnonzero(area > limit).tolist():
+        if len(faces[q]) != 4:
+            continue
+        p = x[list(faces[q])]
+        side = np.linalg.norm(np.roll(p, -1, axis=0) - p, axis=1)
+        d = 0 if side[0] + side[2] >= side[1] + side[3] else 1
+        if (q, d) in strip_of:
+            chosen.add(strip_of[(q, d)])
+    return chosen
+
+
+def _cut_directions(faces, me: MeshEdges, strips: list[Strip], chosen: set[int]) -> dict[int, set[int]]:
+    """Per quad, the directions (0: sides 0 and 2 halved, 1: sides 1 and 3) in which it is cut."""
+    cuts: dict[int, set[int]] = {}
+    for k in sorted(chosen):
+        s = strips[k]
+        for q, rung in zip(s.quads.tolist(), s.rungs[:-1].tolist()):
+            d = 0 if rung in (me.corner_edge[me.face_start[q]], me.corner_edge[me.face_start[q] + 2]) else 1
+            cuts.setdefault(q, set()).add(d)
+    return cuts
+
+
+def _cut_quad(q: list, directions: set[int], mid, centre: int) -> list[list[int]]:
+    """The quads of quad ``q`` cut in ``directions`` (midpoint ids from ``mid(a, b)``)."""
+    a, b, c, d = q
+    sides = {0, 2} if directions == {0} else {1, 3} if directions == {1} else {0, 1, 2, 3}
+    m = {k: mid(q[k], q[(k + 1) % 4]) for k in sorted(sides)}
+    if directions == {0}:
+        return [[a, m[0], m[2], d], [m[0], b, c, m[2]]]
+    if directions == {1}:
+        return [[a, b, m[1], m[3]], [m[3], m[1], c, d]]
+    return [[a, m[0], centre, m[3]], [m[0], b, m[1], centre], [centre, m[1], c, m[2]], [m[3], centre, m[2], d]]
+
+
+def _refined(x: np.ndarray, faces, cuts: dict[int, set[int]]) -> tuple[np.ndarray, list, list, list]:
+    """The mesh with the quads cut: vertices, faces, for each new vertex the vertices it is the mean
+    of, and for each face the face it was cut from."""
+    points, parents, index = [], [], {}
+
+    def mid(a: int, b: int) -> int:
+        key = (min(a, b), max(a, b))
+        if key not in index:
+            index[key] = len(x) + len(points)
+            points.append(0.5 * (x[a] + x[b]))
+            parents.append(key)
+        return index[key]
+
+    out, origin = [], []
+    for f, face in enumerate(faces):
+        directions = cuts.get(f)
+        if not directions:
+            out.append(list(face))
+            origin.append(f)
+            continue
+        centre = -1
+        if len(directions) == 2:
+            centre = len(x) + len(points)
+            points.append(x[list(face)].mean(axis=0))
+            parents.append(tuple(face))
+        pieces = _cut_quad(list(face), directions, mid, centre)
+        out.extend(pieces)
+        origin.extend([f] * len(pieces))
+    out = [_with_midpoints(f, index) for f in out]
+    return np.vstack([x, *points]) if points else x, out, parents, origin
+
+
+def _with_midpoints(face: list, index: dict) -> tuple:
+    """A face with the midpoints of its cut sides inserted (a face beyond a refined strip's end)."""
+    out = []
+    for a, b in zip(face, face[1:] + face[:1]):
+        out.append(a)
+        m = index.get((min(a, b), max(a, b)))
+        if m is not None and m not in face:
+            out.append(m)
+    return tuple(out)
+
+
+def refine_large_faces(x: np.ndarray, faces, large: float = LARGE, passes: int = PASSES
+                       ) -> tuple[np.ndarray, tuple, list, np.ndarray, int]:
+    """Refine the strips of the quads larger than ``large`` times the median quad (module docstring).
+
+    Returns the vertices, the faces, for every added vertex the vertices it is the mean of, for every
+    face the input face it comes from, and the number of strips refined.
+    """
+    area = _face_areas(x, faces)
+    quads = np.array([len(f) == 4 for f in faces], dtype=bool)
+    limit = large * float(np.median(area[quads])) if quads.any() else np.inf
+    parents: list = []
+    refined = 0
+    faces = tuple(tuple(f) for f in faces)
+    origin = np.arange(len(faces))
+    for _ in range(passes):
+        me = mesh_edges(faces, len(x))
+        strips = quad_strips(me, faces)
+        chosen = _strips_to_refine(x, faces, me, strips, limit)
+        if not chosen:
+            break
+        x, new_faces, new_parents, new_origin = _refined(x, faces, _cut_directions(faces, me, strips, chosen))
+        faces = tuple(new_faces)
+        parents += new_parents
+        origin = origin[new_origin]
+        refined += len(chosen)
+    return x, faces, parents, origin, refined

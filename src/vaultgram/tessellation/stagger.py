@@ -1,0 +1,294 @@
+"""The staggered bond (paper §5, Figure 11a): which edges of the thrust network stop being joints.
+
+"A staggered pattern along the unsupported boundaries can be achieved by removing every second edge
+in a preferential direction of the mesh [...]. The closest boundary serves as this locally
+preferential direction." (§5) The bond is laid in four steps:
+
+1. **Preferential directions.** At every edge, the direction of the closest unsupported boundary
+   edge (of the closest boundary edge if every boundary bears thrust).
+2. **Courses.** A strip of quads (:mod:`vaultgram.tessellation.strips`) whose rungs run along the
+   preferential direction is a *course*: its rungs are joints parallel to the force flow along the
+   free edges, which a bond may stagger, while the other strips' rungs, joints across that flow, stay
+   continuous. Every quad should lie on exactly one course (then it joins one voussoir): strips start
+   as courses when their rungs make less than 45 degrees with the preferential direction on average,
+   and a local search then turns strips into courses or back where that puts more quads on exactly
+   one course (:func:`choose_courses`, a max-cut of the strips' crossings weighed with the
+   alignment).
+3. **Joints along each course.** Each course is cut into voussoirs of consecutive quads, by
+   keeping some of its rungs: about ``rhythm`` quads each (every second or every fourth rung on a
+   mesh of even faces), more where the faces are small and fewer where they are large, so that
+   voussoirs have about ``rhythm`` times the median face's area -- "shape and size uniformity
+   between the voussoirs is preferred" (§5). A kept rung must not meet a kept rung of a course laid
+   before at the same vertex: that would be a point of four voussoirs, joints in line instead of
+   staggered. The cut of each course is the cheapest by dynamic programming over its rungs
+   (:func:`course_joints`); courses are laid one after the other, each next to one already laid,
+   so that the alternation runs consistently from course to course -- a two-colouring of the strips
+   for rhythm 2 on an even mesh. Where no staggered choice exists the joints line up; they are
+   counted.
+4. **One voussoir per quad.** A quad that a course crossing it has already joined to a voussoir
+   ends the runs of the next course there; those rungs are kept and counted.
+
+Concavities are checked afterwards, on the voussoirs (:mod:`vaultgram.tessellation.voussoirs`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from vaultgram.geometry.halfedges import MeshEdges
+from vaultgram.tessellation.strips import Strip
+
+__all__ = ["Bond", "staggered_bond", "preferential_directions", "course_scores", "choose_courses", "course_joints",
+           "COURSE_ALIGNMENT"]
+
+#: A strip starts as a course when its rungs make at most 45 degrees with the preferential direction.
+COURSE_ALIGNMENT = float(np.cos(np.radians(45.0)))
+#: Cost of a kept rung meeting a kept rung of a neighbouring course (a point of four voussoirs), in
+#: units of the size cost ``log(area / target) ** 2`` of one voussoir.
+ALIGNED_COST = 2.0
+#: Cost of a voussoir of one quad in a course (its two joints leave the neighbours no staggered choice).
+SINGLE_COST = 2.0
+
+
+@dataclass(frozen=True)
+class Bond:
+    """The rungs the bond removes, and what it could not do.
+
+    Attributes
+    ----------
+    removed : ndarray (m,) bool
+        Per edge of the mesh: no longer a joint.
+    courses : int
+        Strips laid as courses.
+    kept_taken : int
+        Rungs kept because a quad beside them already belongs to a voussoir of a crossing course.
+    aligned : int
+        Kept rungs meeting a kept rung of a neighbouring course (joints in line).
+    target : float
+        The voussoir area aimed at: ``rhythm`` times the median area of the quads.
+    """
+
+    removed: np.ndarray
+    courses: int
+    kept_taken: int
+    aligned: int
+    target: float
+
+
+def _unit(d: np.ndarray) -> np.ndarray:
+    return d / np.maximum(np.linalg.norm(d, axis=1), 1e-300)[:, None]
+
+
+def preferential_directions(x: np.ndarray, me: MeshEdges, supported: np.ndarray) -> np.ndarray:
+    """Per edge, the unit plan direction of the unsupported boundary edge closest to the edge's
+    midpoint (of the closest boundary edge when the whole boundary is supported)."""
+    edges = me.edges
+    boundary = np.flatnonzero(me.boundary)
+    free = boundary[~(supported[edges[boundary, 0]] & supported[edges[boundary, 1]])]
+    ref = free if len(free) else boundary
+    a, b = x[edges[ref, 0], :2], x[edges[ref, 1], :2]
+    _, nearest = cKDTree(0.5 * (a + b)).query(0.5 * (x[edges[:, 0], :2] + x[edges[:, 1], :2]))
+    return _unit(b - a)[nearest]
+
+
+def course_scores(strips: list[Strip], x: np.ndarray, me: MeshEdges, pref: np.ndarray) -> np.ndarray:
+    """Per strip, the mean |cos| in plan between its inner rungs and the preferential direction (0 for
+    a strip of one quad)."""
+    align = np.abs((_unit(x[me.edges[:, 1], :2] - x[me.edges[:, 0], :2]) * pref).sum(axis=1))
+    return np.array([float(align[s.rungs[1:-1]].mean()) if len(s) > 1 else 0.0 for s in strips])
+
+
+def _quad_strips(strips: list[Strip], n_faces: int) -> np.ndarray:
+    """Per face, the (up to two) strips crossing it, -1 where there is none."""
+    out = np.full((n_faces, 2), -1, dtype=np.int64)
+    for k, s in enumerate(strips):
+        for q in s.quads.tolist():
+            out[q, 0 if out[q, 0] < 0 else 1] = k
+    return out
+
+
+def choose_courses(strips: list[Strip], score: np.ndarray, n_faces: int) -> np.ndarray:
+    """Which strips are courses: start from the aligned ones, then flip the strip that gains most
+    (quads on exactly one course, plus the strip's alignment above 45 degrees per quad) while any
+    gains."""
+    crossing = _quad_strips(strips, n_faces)
+    pairs = crossing[(crossing >= 0).all(axis=1) & (crossing[:, 0] != crossing[:, 1])]
+    n = len(strips)
+    course = score >= COURSE_ALIGNMENT
+    if not n:
+        return course
+    bonus = (score - COURSE_ALIGNMENT) * np.array([len(s) for s in strips])
+    partner = np.concatenate([pairs[:, 1], pairs[:, 0]])
+    owner = np.concatenate([pairs[:, 0], pairs[:, 1]])
+    order = np.argsort(owner, kind="stable")
+    partner, start = partner[order], np.searchsorted(owner[order], np.arange(n + 1))
+
+    def gain(k: int) -> float:
+        """Flipping strip k: quads it shares with a strip of the same kind become once-covered, the
+        others stop being; the alignment bonus is won (turned on) or lost (turned off)."""
+        same = course[partner[start[k]:start[k + 1]]] == course[k]
+        return float(2 * same.sum() - len(same)) + (-bonus[k] if course[k] else bonus[k])
+
+    gains = np.array([gain(k) for k in range(n)])
+    for _ in range(4 * n):
+        best = int(np.argmax(gains))
+        if gains[best] <= 1e-9:
+            break
+        course[best] = ~course[best]
+        for k in {best, *partner[start[best]:start[best + 1]].tolist()}:
+            gains[k] = gain(k)
+    return course
+
+
+def course_joints(areas: np.ndarray, forced: np.ndarray, aligned: np.ndarray, target: float, longest: int
+                  ) -> np.ndarray:
+    """The rungs to keep inside one course, by dynamic programming.
+
+    Parameters
+    ----------
+    areas : ndarray (k,)
+        Areas of the course's quads, in order.
+    forced, aligned : ndarray (k + 1,) bool
+        Per rung (``0`` and ``k`` are the ends): must be kept; would line up with a kept rung of a
+        neighbouring course.
+    target : float
+        The voussoir area aimed at; a run of quads costs ``log(area / target) ** 2``.
+    longest : int
+        At most this many quads per voussoir.
+
+    Returns
+    -------
+    ndarray (k + 1,) bool
+        Kept rungs (the ends always).
+
+    Example
+    -------
+    >>> course_joints(np.ones(6), np.zeros(7, bool), np.zeros(7, bool), 2.0, 4).astype(int).tolist()
+    [1, 0, 1, 0, 1, 0, 1]
+    """
+    k = len(areas)
+    prefix = np.concatenate([[0.0], np.cumsum(areas)])
+    best = np.full(k + 1, np.inf)
+    back = np.zeros(k + 1, dtype=np.int64)
+    best[0] = 0.0
+    for b in range(1, k + 1):
+        lo = max(0, b - longest)
+        for a in range(b - 1, lo - 1, -1):  # a run of quads a..b-1, from the kept rung a
+            run = np.log(max(prefix[b] - prefix[a], 1e-300) / target) ** 2
+            lone = b - a == 1 and not (forced[a] and forced[b])  # a single quad breaks the bond
+            cost = best[a] + run + (ALIGNED_COST if aligned[b] and b < k else 0.0) + (SINGLE_COST if lone else 0.0)
+            if cost < best[b]:
+                best[b], back[b] = cost, a
+            if forced[a]:
+                break  # a run cannot pass a forced rung
+    keep = np.zeros(k + 1, dtype=bool)
+    b = k
+    while b > 0:
+        keep[b] = True
+        b = back[b]
+    keep[0] = True
+    return keep
+
+
+def _course_order(strips: list[Strip], course: np.ndarray, me: MeshEdges) -> list[int]:
+    """Courses in the order they are laid: the longest first, then always one beside a laid one."""
+    beside: dict[int, set] = {k: set() for k in np.flatnonzero(course).tolist()}
+    owner = np.full(len(me.face_start) - 1, -1, dtype=np.int64)
+    for k in beside:
+        owner[strips[k].quads] = k  # a quad on two courses: either will do for adjacency
+    pairs = me.faces_of[(me.faces_of >= 0).all(axis=1)]
+    for a, b in owner[pairs].tolist():
+        if a >= 0 and b >= 0 and a != b:
+            beside[a].add(b)
+            beside[b].add(a)
+    order, placed = [], set()
+    for seed in sorted(beside, key=lambda k: (-len(strips[k]), k)):
+        if seed in placed:
+            continue
+        queue = [seed]
+        placed.add(seed)
+        while queue:
+            k = queue.pop(0)
+            order.append(k)
+            for o in sorted(beside[k], key=lambda o: (-len(strips[o]), o)):
+                if o not in placed:
+                    placed.add(o)
+                    queue.append(o)
+    return order
+
+
+class _Laying:
+    """The bond being laid: who owns each quad, how many kept rungs meet at each vertex, what is removed.
+
+    A course can be taken up again (:meth:`lift`) and laid anew with all its neighbours known
+    (:meth:`lay`), which is how the sweeps after the first laying settle the joints."""
+
+    def __init__(self, me: MeshEdges, strips: list[Strip], areas: np.ndarray, joined: np.ndarray,
+                 target: float, longest: int):
+        self.me, self.strips, self.areas, self.target, self.longest = me, strips, areas, target, longest
+        self.removed = joined.copy()
+        self.owner = np.full(len(areas), -1, dtype=np.int64)
+        self.owner[me.faces_of[joined].ravel()] = len(strips)  # joined before the bond: nobody's course
+        self.joints = np.zeros(int(me.edges.max()) + 1 if len(me.edges) else 0, dtype=np.int64)
+        self.kept: dict[int, np.ndarray] = {}
+
+    def lift(self, k: int) -> None:
+        """Take course ``k`` up: its joints, its removed rungs and its quads are free again."""
+        s, keep = self.strips[k], self.kept.pop(k)
+        np.subtract.at(self.joints, self.me.edges[s.rungs[keep]].ravel(), 1)
+        inner = np.arange(1, len(s))
+        self.removed[s.rungs[inner[~keep[inner]]]] = False  # an inner rung is this course's alone
+        self.owner[s.quads[self.owner[s.quads] == k]] = -1
+
+    def lay(self, k: int) -> tuple[int, int]:
+        """Lay course ``k`` (:func:`course_joints`); returns rungs kept because a quad was taken, and
+        kept rungs lined up with a neighbour's."""
+        s, me = self.strips[k], self.me
+        ends = me.edges[s.rungs]
+        lined_up = (self.joints[ends] > 0).any(axis=1)
+        taken = (self.owner[s.quads] >= 0) & (self.owner[s.quads] != k)
+        forced = np.zeros(len(s.rungs), dtype=bool)
+        forced[[0, -1]] = True
+        forced[:-1] |= taken
+        forced[1:] |= taken
+        keep = course_joints(self.areas[s.quads], forced, lined_up, self.target, self.longest)
+        inner = np.arange(1, len(s))
+        self.removed[s.rungs[inner[~keep[inner]]]] = True
+        runs = np.cumsum(keep[:-1])  # quads between kept rungs form a voussoir
+        joined = np.bincount(runs, minlength=runs.max() + 1)[runs] > 1
+        self.owner[s.quads[joined]] = k
+        np.add.at(self.joints, ends[keep].ravel(), 1)
+        self.kept[k] = keep
+        return int((keep[inner] & forced[inner]).sum()), int((keep[inner] & lined_up[inner] & ~forced[inner]).sum())
+
+
+#: Sweeps over the courses after the first laying, each course laid again beside all its neighbours.
+SWEEPS = 2
+
+
+def staggered_bond(x: np.ndarray, me: MeshEdges, strips: list[Strip], supported: np.ndarray, areas: np.ndarray,
+                   rhythm: int = 2, joined: np.ndarray | None = None) -> Bond:
+    """The rungs a staggered bond of about ``rhythm`` quads per voussoir removes (module docstring),
+    besides the edges ``joined`` already (whose faces no course takes again)."""
+    pref = preferential_directions(x, me, supported)
+    course = choose_courses(strips, course_scores(strips, x, me, pref), len(me.face_start) - 1)
+    quads = np.concatenate([s.quads for s in strips]) if strips else np.zeros(0, dtype=np.int64)
+    target = rhythm * float(np.median(areas[quads])) if len(quads) else 1.0
+    joined = np.zeros(me.n_edges, dtype=bool) if joined is None else joined
+    laying = _Laying(me, strips, areas, joined, target, 2 * rhythm)
+    order = _course_order(strips, course, me)
+    for k in order:
+        laying.lay(k)
+    for _ in range(SWEEPS):
+        for k in order:
+            laying.lift(k)
+            laying.lay(k)
+    kept_taken = aligned = 0
+    for k in order:  # what the last laying could not do
+        laying.lift(k)
+        t, a = laying.lay(k)
+        kept_taken, aligned = kept_taken + t, aligned + a
+    return Bond(laying.removed, int(course.sum()), kept_taken, aligned, target)

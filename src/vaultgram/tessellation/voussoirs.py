@@ -1,0 +1,156 @@
+"""Voussoirs: faces of the thrust network merged across the removed edges, with their outlines.
+
+A voussoir is a set of faces joined by removed edges (:mod:`vaultgram.tessellation.stagger`); its
+outline is the loop of the edges it shares with no face of its own, counter-clockwise seen from
+above. "We do not remove edges when this would result in strong voussoir concavities. Indeed,
+L-shaped voussoirs would be more difficult to position correctly and the sharp corners would induce
+stress concentrations" (§5): :func:`without_concavities` puts back the removed edges at every
+corner above the threshold, measured in the voussoir's best-fit plane, until none is left.
+:func:`fill_meeting_points` then joins two single faces at the points where four voussoirs still
+meet (where the bond could not reach), so that joints meet three at a time, as the built vault's.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+
+from vaultgram.geometry.halfedges import MeshEdges
+from vaultgram.geometry.surfaces import area_vectors, loop_corner_angles, loop_planes
+
+__all__ = ["face_groups", "outlines", "max_corner_angles", "without_concavities", "fill_meeting_points",
+           "voussoirs_at_vertices", "MAX_CONCAVITY"]
+
+#: Default largest corner angle of a voussoir, in degrees (a straight joint through a corner is 180).
+MAX_CONCAVITY = 190.0
+
+
+def face_groups(me: MeshEdges, removed: np.ndarray) -> np.ndarray:
+    """Voussoir of each face: faces joined by removed edges, numbered by their smallest face."""
+    n = len(me.face_start) - 1
+    pairs = me.faces_of[removed & (me.faces_of >= 0).all(axis=1)]
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    _, label = connected_components(graph, directed=False)
+    first = np.full(label.max() + 1 if n else 0, n, dtype=np.int64)
+    np.minimum.at(first, label, np.arange(n))
+    rank = np.empty_like(first)
+    rank[np.argsort(first, kind="stable")] = np.arange(len(first))
+    return rank[label]
+
+
+def outlines(me: MeshEdges, group: np.ndarray) -> list[np.ndarray]:
+    """The outline of every voussoir, a counter-clockwise loop of vertices starting at the start of
+    its smallest boundary side.
+
+    >>> from vaultgram.geometry.halfedges import mesh_edges
+    >>> me = mesh_edges([(0, 1, 4, 3), (1, 2, 5, 4)])
+    >>> [loop.tolist() for loop in outlines(me, np.array([0, 0]))]
+    [[0, 1, 2, 5, 4, 3]]
+    """
+    twin = me.corner_twin
+    g = group[me.corner_face]
+    on_outline = np.flatnonzero((twin < 0) | (group[me.corner_face[np.maximum(twin, 0)]] != g))
+    n = int(me.edges.max()) + 1 if len(me.edges) else 0
+    key = g[on_outline] * n + me.corner_vertex[on_outline]
+    order = np.argsort(key, kind="stable")
+    sorted_key = key[order]
+    successor = order[np.searchsorted(sorted_key, g[on_outline] * n + me.corner_next[on_outline])]
+    loops: list[list[int]] = [[] for _ in range(int(group.max()) + 1 if len(group) else 0)]
+    seen = np.zeros(len(on_outline), dtype=bool)
+    for start in np.argsort(g[on_outline], kind="stable").tolist():
+        if seen[start] or loops[g[on_outline[start]]]:
+            continue
+        k = start
+        while not seen[k]:
+            seen[k] = True
+            loops[g[on_outline[k]]].append(int(me.corner_vertex[on_outline[k]]))
+            k = int(successor[k])
+    return [np.array(loop, dtype=np.int64) for loop in loops]
+
+
+def max_corner_angles(x: np.ndarray, loops: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """Per loop, its largest corner angle in its best-fit plane (degrees) and the vertex there."""
+    if not loops:
+        return np.zeros(0), np.zeros(0, dtype=np.int64)
+    _, normals = loop_planes(x, loops)
+    angles = loop_corner_angles(x, loops, normals)
+    lens = np.array([len(lp) for lp in loops])
+    start = np.concatenate([[0], np.cumsum(lens)[:-1]])
+    worst = np.array([start[k] + int(np.argmax(angles[start[k]:start[k] + lens[k]])) for k in range(len(loops))])
+    return angles[worst], np.concatenate(loops)[worst]
+
+
+def without_concavities(x: np.ndarray, me: MeshEdges, removed: np.ndarray, max_angle: float = MAX_CONCAVITY
+                        ) -> tuple[np.ndarray, int]:
+    """Put back removed edges at voussoir corners above ``max_angle`` until there are none; returns
+    the removed edges left and how many were put back."""
+    removed = removed.copy()
+    restored = 0
+    while True:
+        group = face_groups(me, removed)
+        sizes = np.bincount(group)
+        loops = outlines(me, group)
+        multi = np.flatnonzero(sizes > 1)
+        angle, vertex = max_corner_angles(x, [loops[k] for k in multi])
+        bad = angle > max_angle
+        if not bad.any():
+            return removed, restored
+        bad_group = np.zeros(len(sizes), dtype=bool)
+        bad_group[multi[bad]] = True
+        bad_vertex = np.zeros(len(x), dtype=bool)
+        bad_vertex[vertex[bad]] = True
+        inside = removed & bad_group[group[np.maximum(me.faces_of[:, 0], 0)]]
+        back = inside & (bad_vertex[me.edges[:, 0]] | bad_vertex[me.edges[:, 1]])
+        restored += int(back.sum())
+        removed &= ~back
+
+
+def voussoirs_at_vertices(me: MeshEdges, group: np.ndarray, n_vertices: int) -> np.ndarray:
+    """Per vertex, how many distinct voussoirs meet there."""
+    pairs = np.unique(group[me.corner_face] * n_vertices + me.corner_vertex)
+    return np.bincount(pairs % n_vertices, minlength=n_vertices)
+
+
+def _merged_loop(faces, me: MeshEdges, e: int) -> list[int]:
+    """The outline of the two faces on either side of edge ``e``, counter-clockwise."""
+    a, b = (int(v) for v in me.edges[e])
+    f1, f2 = (list(faces[int(f)]) for f in me.faces_of[e])  # f1 runs a -> b, f2 runs b -> a
+    i, j = f1.index(b), f2.index(a)
+    return (f1[i:] + f1[:i])[:-1] + (f2[j:] + f2[:j])[:-1]
+
+
+def fill_meeting_points(x: np.ndarray, faces, me: MeshEdges, removed: np.ndarray, interior: np.ndarray,
+                        largest: float, max_angle: float = MAX_CONCAVITY) -> tuple[np.ndarray, int]:
+    """Where four or more voussoirs still meet at an inner vertex, join two single faces across one
+    of its edges (the first, by vertex and edge order, whose outline stays within ``max_angle`` and
+    whose area within ``largest``). Returns the removed edges and the number of joins."""
+    group = face_groups(me, removed)
+    single = np.bincount(group)[group] == 1
+    crowded = interior & (voussoirs_at_vertices(me, group, len(x)) >= 4)
+    inner = (me.faces_of >= 0).all(axis=1) & ~removed
+    cand = np.flatnonzero(inner & (crowded[me.edges[:, 0]] | crowded[me.edges[:, 1]]))
+    cand = cand[single[me.faces_of[cand, 0]] & single[me.faces_of[cand, 1]]]
+    area = np.linalg.norm(area_vectors(x, faces), axis=1)
+    cand = cand[area[me.faces_of[cand]].sum(axis=1) <= largest]
+    if not len(cand):
+        return removed, 0
+    loops = [np.array(_merged_loop(faces, me, int(e))) for e in cand]
+    angle, _ = max_corner_angles(x, loops)
+    cand = cand[angle <= max_angle]
+    removed = removed.copy()
+    used = np.zeros(len(group), dtype=bool)
+    done = np.zeros(len(x), dtype=bool)
+    joins = 0
+    at = np.minimum(np.where(crowded[me.edges[cand, 0]], me.edges[cand, 0], len(x)),
+                    np.where(crowded[me.edges[cand, 1]], me.edges[cand, 1], len(x)))
+    for e, u in sorted(zip(cand.tolist(), at.tolist()), key=lambda t: (t[1], t[0])):
+        f1, f2 = me.faces_of[e]
+        ends = me.edges[e]
+        if used[f1] or used[f2] or (done[ends] | ~crowded[ends]).all():
+            continue
+        used[[f1, f2]] = True
+        done[ends] = True
+        removed[e] = True
+        joins += 1
+    return removed, joins
