@@ -38,6 +38,7 @@ def _path(name):
 
 @pytest.fixture(scope="module")
 def meshed():
+    # this module's own: default target length, (domain, mesh, stats); overrides tests/meshing/conftest.py's
     cache = {}
 
     def get(name):
@@ -88,7 +89,7 @@ def assert_feature_properties(domain, mesh, stats):
 @pytest.mark.parametrize("name", FEATURE_EXAMPLES + ["armadillo_vault_plan", "two_holes_five_points"])
 def test_feature_example(meshed, name):
     domain, mesh, stats = meshed(name)
-    if name == "two_holes_five_points":  # see test_geometry_mesh.FAILING: boundary singularities
+    if name == "two_holes_five_points":  # see FAILING in test_acceptance.py: boundary singularities
         stats = dict(stats, boundary_singular=0)
     assert_feature_properties(domain, mesh, stats)
     assert stats["inverted_faces"] == 0
@@ -250,7 +251,7 @@ def test_random_feature_domains(data):
     assert np.all(mesh.fixed[mesh.extremity])
     # no boundary singularity (benchmarks/quality_survey.py: none in 150 such domains since the
     # spread_boundary_pole rules), unless a boundary feature's Figure 4 diagonal has to end on the
-    # boundary (two_holes_five_points in test_geometry_mesh: no free boundary point beside it)
+    # boundary (two_holes_five_points in tests/meshing/test_acceptance.py: no free boundary point beside it)
     if not any(mesh.boundary[mesh.feature]):
         assert stats["boundary_singular"] == 0, stats["boundary_singular_vertices"]
     # the topology of §4: poles at point features (also on the boundary) and free curve ends, no
@@ -389,8 +390,9 @@ def test_quad_with_a_reflex_curve_bend_is_split_with_a_marked_pole():
     dec = decompose(domain)
     assert {str(r.step): r.applications for r in dec.reports}["split_quad_at_reflex_corner fixpoint"] == 1
     g = dec.graph
-    bend = min(g.nodes(), key=lambda n: np.hypot(*(np.asarray(g.get(n, "pos")) - [9.30837962003061, 1.4557709055970893]))
-                if "pos" in g.node_attrs(n) else np.inf)
+    bend = min(g.nodes(),
+               key=lambda n: np.hypot(*(np.asarray(g.get(n, "pos")) - [9.30837962003061, 1.4557709055970893]))
+               if "pos" in g.node_attrs(n) else np.inf)
     (diagonal,) = [e for e in g.incident(bend, ["Diagonal"])]
     apex = g.other(diagonal, bend)
     assert g.schema.is_subtype(g.node_type(apex), "SkeletonVertex")
