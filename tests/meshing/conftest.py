@@ -32,22 +32,40 @@ def _path(name):
     return p if p.is_file() else ARCHITECTURE / f"{name}.json"
 
 
-@pytest.fixture(scope="module")
-def meshed():
+def _cached(make):
+    """``get(name, *args)``: ``make(domain, *args)`` for the example or shared plan ``name``, computed
+    once (skipped when the shared data is not there)."""
     cache = {}
 
-    def get(name, factor=1.0):
-        if (name, factor) not in cache:
+    def get(name, *args):
+        if (name, *args) not in cache:
             path = _path(name)
             if not path.is_file():
                 pytest.skip(f"{path} not found")
-            domain = load_domain(path)
-            dec = decompose(domain)
-            layout = edge_groups(dec)
-            target = 0.025 * domain.diagonal * factor
-            counts = group_counts(layout, target_length=target)
-            mesh = mesh_domain(domain, target_length=target)
-            cache[name, factor] = (domain, layout, counts, mesh, mesh_stats(mesh, domain))
-        return cache[name, factor]
+            cache[(name, *args)] = make(load_domain(path), *args)
+        return cache[(name, *args)]
 
     return get
+
+
+@pytest.fixture(scope="session")
+def cached_examples():
+    """:func:`_cached`, for modules that mesh the examples their own way (test_features.py)."""
+    return _cached
+
+
+@pytest.fixture(scope="module")
+def meshed():
+    """``meshed(name, factor=1.0)``: domain, layout, counts, mesh and statistics at the target length
+    ``0.025 * diagonal * factor``."""
+
+    def make(domain, factor=1.0):
+        dec = decompose(domain)
+        layout = edge_groups(dec)
+        target = 0.025 * domain.diagonal * factor
+        counts = group_counts(layout, target_length=target)
+        mesh = mesh_domain(domain, target_length=target)
+        return (domain, layout, counts, mesh, mesh_stats(mesh, domain))
+
+    get = _cached(make)
+    return lambda name, factor=1.0: get(name, factor)

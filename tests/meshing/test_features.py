@@ -16,7 +16,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from vaultgram.domain import check_feature_spacing, domain_from_dict, load_domain
+from vaultgram.domain import check_feature_spacing, domain_from_dict
 from vaultgram.errors import DomainError, VaultgramError
 from vaultgram.geometry.polylines import polyline_hausdorff
 from vaultgram.io.meshfiles import mesh_from_json, mesh_to_json
@@ -24,34 +24,23 @@ from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import mesh_domain
 from vaultgram.topology.patches import half_edge_polyline
 
-from paths import ARCHITECTURE, EXAMPLES
+from paths import EXAMPLES
 
 FEATURE_EXAMPLES = ["fig5_boundary_points", "fig6_inner_points", "fig7_curves", "features_combined",
                     "square_point_loads"]
 HAUSDORFF = 1e-9  # of the bounding-box diagonal
 
 
-def _path(name):
-    p = EXAMPLES / f"{name}.json"
-    return p if p.is_file() else ARCHITECTURE / f"{name}.json"
-
-
 @pytest.fixture(scope="module")
-def meshed():
-    # this module's own: default target length, (domain, mesh, stats); overrides tests/meshing/conftest.py's
-    cache = {}
+def meshed(cached_examples):
+    """This module's own ``meshed(name)`` (overriding tests/meshing/conftest.py's): the mesh at the
+    default target length, as ``(domain, mesh, stats)``."""
 
-    def get(name):
-        if name not in cache:
-            path = _path(name)
-            if not path.is_file():
-                pytest.skip(f"{path} not found")
-            domain = load_domain(path)
-            mesh = mesh_domain(domain)
-            cache[name] = domain, mesh, mesh_stats(mesh, domain)
-        return cache[name]
+    def make(domain):
+        mesh = mesh_domain(domain)
+        return domain, mesh, mesh_stats(mesh, domain)
 
-    return get
+    return cached_examples(make)
 
 
 def assert_feature_properties(domain, mesh, stats):

@@ -69,13 +69,13 @@ def weld(layout: Layout, counts) -> QuadMesh:
     vertices, disc_point, node = table.arrays()
     labels = _vertex_labels(layout, sides, vid_of_node, disc_point)
     chains = _curve_chains(layout, sides)
-    constraints = _boundary_constraints(layout, sides, labels.fixed)
-    constraints += _curve_constraints(layout.decomposition.disc, chains, vertices, labels.fixed)
+    constraints = _boundary_constraints(layout, sides, labels["fixed"])
+    constraints += _curve_constraints(layout.decomposition.disc, chains, vertices, labels["fixed"])
     disc = layout.decomposition.disc
     curve_lines = tuple(np.asarray(disc.points[c], dtype=float) for c in disc.curves)
-    return QuadMesh(vertices, faces, face_patch, labels.boundary, labels.ring, labels.corner, labels.turning,
-                    labels.fixed, labels.pole, labels.feature, node, labels.singular, _group_summaries(layout, counts),
-                    constraints, {}, labels.curve, labels.extremity, chains, curve_lines)
+    return QuadMesh(vertices=vertices, faces=faces, face_patch=face_patch, node=node,
+                    groups=_group_summaries(layout, counts), constraints=constraints, info={}, curves=chains,
+                    curve_lines=curve_lines, **labels)
 
 
 def _checked_counts(layout: Layout, counts) -> np.ndarray:
@@ -233,25 +233,11 @@ def _mesh_patch(pat: PatchPattern, coons_sides: tuple, table: _VertexTable) -> t
 # --------------------------------------------------------------------------------------------
 
 
-class _Labels(NamedTuple):
-    """Per-vertex labels of the welded mesh (see :class:`QuadMesh` for each)."""
-
-    boundary: np.ndarray
-    ring: np.ndarray
-    corner: np.ndarray
-    turning: np.ndarray
-    fixed: np.ndarray
-    pole: np.ndarray
-    feature: np.ndarray
-    singular: np.ndarray
-    curve: np.ndarray
-    extremity: np.ndarray
-
-
 def _vertex_labels(layout: Layout, sides: list[_SideSamples], vid_of_node: dict[int, int],
-                   disc_point: np.ndarray) -> _Labels:
+                   disc_point: np.ndarray) -> dict[str, np.ndarray]:
     """Where each vertex lies (ring, curve), what it stands for (domain corner, feature, singular node,
-    pole) and whether smoothing keeps it fixed (§3.2, §4.1, §4.2)."""
+    pole) and whether smoothing keeps it fixed (§3.2, §4.1, §4.2): per-vertex arrays named as the
+    :class:`QuadMesh` fields they fill."""
     nv = len(disc_point)
     boundary, ring = _ring_labels(layout, sides, nv)
     curve = _curve_labels(layout, sides, nv)
@@ -263,7 +249,8 @@ def _vertex_labels(layout: Layout, sides: list[_SideSamples], vid_of_node: dict[
             pole[vid_of_node[pat.corners[pat.pole]]] = True
     fixed = _fixed_vertices(layout, sides, vid_of_node, disc_point, corner != 0, feature, curve)
     fixed |= extremity  # "point and curve constraints are added" (§4.2, Figure 7d)
-    return _Labels(boundary, ring, corner, turning, fixed, pole, feature, singular, curve, extremity)
+    return {"boundary": boundary, "ring": ring, "corner": corner, "turning": turning, "fixed": fixed, "pole": pole,
+            "feature": feature, "singular": singular, "curve": curve, "extremity": extremity}
 
 
 def _ring_labels(layout: Layout, sides: list[_SideSamples], nv: int) -> tuple[np.ndarray, np.ndarray]:
