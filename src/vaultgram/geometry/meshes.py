@@ -50,7 +50,11 @@ class NonManifoldVertexError(MeshError):
 
 
 def grid_index(i: int, j: int, nx: int) -> int:
-    """Index of grid vertex ``(i, j)`` (at ``x = i * spacing, y = j * spacing``) in :func:`grid_mesh`."""
+    """Index of grid vertex ``(i, j)`` (at ``x = i * spacing, y = j * spacing``) in :func:`grid_mesh`.
+
+    >>> grid_index(1, 2, nx=2), grid_mesh(2)[1][3]
+    (7, (4, 5, 8, 7))
+    """
     return j * (nx + 1) + i
 
 
@@ -96,6 +100,10 @@ def remove_faces(vertices: np.ndarray, faces: Sequence[Sequence[int]], drop: Ite
 
     Returns the new vertices, the re-indexed faces, and for each new vertex its old index.
     Used to punch holes (openings) into grids for tests and examples.
+
+    >>> v, f, old = remove_faces(*grid_mesh(2), drop=[0])  # vertex 0 goes with face 0
+    >>> len(v), f[0], old.tolist()
+    (8, (0, 1, 4, 3), [1, 2, 3, 4, 5, 6, 7, 8])
     """
     drop = set(int(f) for f in drop)
     kept = [tuple(int(v) for v in f) for k, f in enumerate(faces) if k not in drop]
@@ -115,6 +123,9 @@ def corner_arrays(faces: Sequence[Sequence[int]]) -> tuple[np.ndarray, np.ndarra
     Corner ``k`` of face ``f`` has vertex ``faces[f][k]``; the halfedge ``vertex -> next`` belongs to
     ``f`` (``f`` lies on its left for counter-clockwise faces). Vectorised stages use these instead
     of loops over faces.
+
+    >>> [a.tolist() for a in corner_arrays([(0, 1, 2), (2, 1, 3)])]
+    [[0, 0, 0, 1, 1, 1], [0, 1, 2, 2, 1, 3], [1, 2, 0, 1, 3, 2], [2, 0, 1, 3, 2, 1]]
     """
     if len(faces) == 0:
         e = np.zeros(0, dtype=np.int64)
@@ -204,13 +215,22 @@ def _walk_loops(nxt: dict[int, int]) -> list[list[int]]:
 
 
 def adjacency(n: int, faces) -> sp.csr_matrix:
-    """Symmetric 0/1 vertex adjacency (``n x n``) of the edges of ``faces``."""
+    """Symmetric 0/1 vertex adjacency (``n x n``) of the edges of ``faces``.
+
+    >>> adjacency(4, [(0, 1, 2, 3)]).toarray().astype(int).tolist()
+    [[0, 1, 0, 1], [1, 0, 1, 0], [0, 1, 0, 1], [1, 0, 1, 0]]
+    """
     _, u, v, _ = corner_arrays(faces)
     return _symmetric_adjacency(n, u, v)
 
 
 def boundary_adjacency(n: int, faces) -> sp.csr_matrix:
-    """Symmetric 0/1 adjacency of the boundary edges (half-edges without twin) of ``faces``."""
+    """Symmetric 0/1 adjacency of the boundary edges (half-edges without twin) of ``faces``.
+
+    >>> b = boundary_adjacency(4, [(0, 1, 2), (2, 1, 3)])  # two triangles sharing the edge 1-2
+    >>> b.nnz, float(b[0, 1]), float(b[1, 2])
+    (8, 1.0, 0.0)
+    """
     _, u, v, _ = corner_arrays(faces)
     free = ~has_twin(u, v, n)
     return _symmetric_adjacency(n, u[free], v[free])

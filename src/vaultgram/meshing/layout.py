@@ -351,7 +351,13 @@ def _edge_group(g: int, sides: list[Side], group_of: np.ndarray) -> EdgeGroup:
 
 def kept_points(disc) -> np.ndarray:
     """Domain points the mesh must keep (fixed vertices): corners, point features, and input vertices
-    of the rings turning by :data:`KEEP_ANGLE` or more."""
+    of the rings turning by :data:`KEEP_ANGLE` or more.
+
+    >>> from vaultgram.domain import load_domain
+    >>> from vaultgram.topology.discretise import discretise
+    >>> np.flatnonzero(kept_points(discretise(load_domain("examples/quad_with_hole.json")))).tolist()
+    [0, 36, 72, 108]
+    """
     keep = disc.is_corner | (disc.is_input_vertex & (np.abs(disc.turning) >= KEEP_ANGLE))
     keep[np.asarray(disc.feature_points, dtype=np.int64)] = True  # boundary point features (§4.1)
     return keep

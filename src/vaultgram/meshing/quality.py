@@ -62,6 +62,12 @@ def regular_boundary_faces(
     -------
     low, high : ndarray int
         Lowest and highest regular number of faces.
+
+    Example
+    -------
+    >>> low, high = regular_boundary_faces(np.array([90.0, 0.0, -90.0, 45.0]))  # convex, flat, reflex, 135 deg
+    >>> low.tolist(), high.tolist()
+    ([1, 2, 3, 1], [1, 2, 3, 2])
     """
     turning = np.asarray(turning, dtype=float)
     q = (180.0 - turning) / 90.0
@@ -366,7 +372,12 @@ def _curve_chains_fit(mesh: QuadMesh, x: np.ndarray, topo: _Topology, lines: lis
 
 
 def format_stats(stats: dict) -> str:
-    """A two-column text table of :func:`mesh_stats` (vertex lists summarised by their length)."""
+    """A two-column text table of :func:`mesh_stats` (vertex lists left out, floats to 6 digits).
+
+    >>> print(format_stats({"vertices": 9, "interior_singular_vertices": [], "min_angle": 90.0}))
+    vertices   9
+    min_angle  90
+    """
     rows = []
     for k, val in stats.items():
         if isinstance(val, list):
