@@ -71,11 +71,9 @@ def weld(layout: Layout, counts) -> QuadMesh:
     chains = _curve_chains(layout, sides)
     constraints = _boundary_constraints(layout, sides, labels["fixed"])
     constraints += _curve_constraints(layout.decomposition.disc, chains, vertices, labels["fixed"])
-    disc = layout.decomposition.disc
-    curve_lines = tuple(np.asarray(disc.points[c], dtype=float) for c in disc.curves)
     return QuadMesh(vertices=vertices, faces=faces, face_patch=face_patch, node=node,
                     groups=_group_summaries(layout, counts), constraints=constraints, info={}, curves=chains,
-                    curve_lines=curve_lines, **labels)
+                    curve_lines=_curve_lines(layout), **labels)
 
 
 def _checked_counts(layout: Layout, counts) -> np.ndarray:
@@ -84,6 +82,12 @@ def _checked_counts(layout: Layout, counts) -> np.ndarray:
     if counts.shape != (layout.n_groups,) or not np.issubdtype(counts.dtype, np.integer) or (counts < 1).any():
         raise VaultgramError(f"need one positive integer count per edge group ({layout.n_groups} groups)")
     return counts
+
+
+def _curve_lines(layout: Layout) -> tuple:
+    """The polyline of each curve feature (the discretised input curve, §4.2)."""
+    disc = layout.decomposition.disc
+    return tuple(np.asarray(disc.points[c], dtype=float) for c in disc.curves)
 
 
 def _group_summaries(layout: Layout, counts: np.ndarray) -> tuple:
