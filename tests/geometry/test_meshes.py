@@ -2,11 +2,15 @@
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
+from click.testing import CliRunner
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from vaultgram.cli import main
 from vaultgram.errors import VaultgramError
 from vaultgram.geometry.meshes import (
     MeshError,
@@ -79,6 +83,17 @@ def test_a_pinched_boundary_vertex_is_named():
     assert info.value.vertex == 2
     with pytest.raises(ValueError):  # what boundary_loops raised before: callers catching it still work
         boundary_loops(faces)
+
+
+def test_a_pinched_mesh_is_one_error_line_on_the_command_line(tmp_path):
+    """The supports of formfind walk the boundary loops: a pinched vertex is a user's mistake, reported
+    in one line with exit code 2 (it was a ValueError traceback)."""
+    path = tmp_path / "pinched.json"
+    path.write_text(json.dumps({"vertices": [[0, 0], [1, 0], [1, 1], [0, 1], [2, 1], [2, 2], [1, 2]],
+                                "faces": [[0, 1, 2, 3], [2, 4, 5, 6]]}))
+    result = CliRunner().invoke(main, ["formfind", str(path), "--out", str(tmp_path / "out")])
+    assert result.exit_code == 2 and "vertex 2 starts two boundary halfedges" in result.output
+    assert "Traceback" not in result.output
 
 
 def test_empty_meshes():
