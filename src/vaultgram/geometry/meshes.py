@@ -13,19 +13,48 @@ from typing import Iterable, Sequence
 import numpy as np
 import scipy.sparse as sp
 
+from vaultgram.errors import VaultgramError
+
 __all__ = [
+    "MeshError",
+    "NonManifoldVertexError",
     "grid_mesh",
     "grid_index",
     "remove_faces",
     "boundary_loops",
     "corner_arrays",
+    "corner_vectors",
+    "has_twin",
     "adjacency",
     "boundary_adjacency",
 ]
 
 
+class MeshError(VaultgramError, ValueError):
+    """A mesh, or a parameter of a mesh function, that the kernel cannot work with.
+
+    Also a ``ValueError``, which these functions raised before: callers that catch ``ValueError``
+    keep working.
+    """
+
+
+class NonManifoldVertexError(MeshError):
+    """A vertex where the boundary of a mesh pinches (it starts two boundary halfedges).
+
+    ``vertex`` is its index.
+    """
+
+    def __init__(self, message: str, vertex: int):
+        super().__init__(message)
+        self.vertex = vertex
+
+
 def grid_index(i: int, j: int, nx: int) -> int:
-    """Index of grid vertex ``(i, j)`` (at ``x = i * spacing, y = j * spacing``) in :func:`grid_mesh`."""
+    """Index of grid vertex ``(i, j)`` (at ``x = i * spacing, y = j * spacing``) in :func:`grid_mesh`.
+
+    >>> grid_index(1, 2, nx=2), grid_mesh(2)[1][3]
+    (7, (4, 5, 8, 7))
+    """
     return j * (nx + 1) + i
 
 
@@ -41,6 +70,11 @@ def grid_mesh(nx: int, ny: int | None = None, spacing: float = 1.0,
     vertices : ndarray (n, 3), z = 0
     faces : list of 4-tuples
 
+    Raises
+    ------
+    MeshError
+        if ``nx`` or ``ny`` is less than 1.
+
     Example
     -------
     >>> v, f = grid_mesh(2)
@@ -49,7 +83,7 @@ def grid_mesh(nx: int, ny: int | None = None, spacing: float = 1.0,
     """
     ny = nx if ny is None else ny
     if nx < 1 or ny < 1:
-        raise ValueError(f"grid needs at least one face in each direction, got {nx} x {ny}")
+        raise MeshError(f"grid needs at least one face in each direction, got {nx} x {ny}")
     i, j = np.meshgrid(np.arange(nx + 1), np.arange(ny + 1))
     vertices = np.zeros(((nx + 1) * (ny + 1), 3))
     vertices[:, 0] = origin[0] + spacing * i.ravel()
@@ -66,6 +100,10 @@ def remove_faces(vertices: np.ndarray, faces: Sequence[Sequence[int]], drop: Ite
 
     Returns the new vertices, the re-indexed faces, and for each new vertex its old index.
     Used to punch holes (openings) into grids for tests and examples.
+
+    >>> v, f, old = remove_faces(*grid_mesh(2), drop=[0])  # vertex 0 goes with face 0
+    >>> len(v), f[0], old.tolist()
+    (8, (0, 1, 4, 3), [1, 2, 3, 4, 5, 6, 7, 8])
     """
     drop = set(int(f) for f in drop)
     kept = [tuple(int(v) for v in f) for k, f in enumerate(faces) if k not in drop]
@@ -85,6 +123,9 @@ def corner_arrays(faces: Sequence[Sequence[int]]) -> tuple[np.ndarray, np.ndarra
     Corner ``k`` of face ``f`` has vertex ``faces[f][k]``; the halfedge ``vertex -> next`` belongs to
     ``f`` (``f`` lies on its left for counter-clockwise faces). Vectorised stages use these instead
     of loops over faces.
+
+    >>> [a.tolist() for a in corner_arrays([(0, 1, 2), (2, 1, 3)])]
+    [[0, 0, 0, 1, 1, 1], [0, 1, 2, 2, 1, 3], [1, 2, 0, 1, 3, 2], [2, 0, 1, 3, 2, 1]]
     """
     if len(faces) == 0:
         e = np.zeros(0, dtype=np.int64)
@@ -99,6 +140,30 @@ def corner_arrays(faces: Sequence[Sequence[int]]) -> tuple[np.ndarray, np.ndarra
     return face, vert, vert[nxt_pos], vert[prv_pos]
 
 
+def corner_vectors(x: np.ndarray, u: np.ndarray, v: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The edge vectors (in the plan) from each corner's vertex ``u`` to the next vertex ``v`` and to
+    the previous vertex ``p`` (the arrays of :func:`corner_arrays`): the two sides of the corner,
+    whose cross product is positive at a counter-clockwise corner.
+
+    >>> x = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
+    >>> [e.tolist() for e in corner_vectors(x, np.array([0]), np.array([1]), np.array([2]))]
+    [[[1.0, 0.0]], [[0.0, 1.0]]]
+    """
+    return x[v, :2] - x[u, :2], x[p, :2] - x[u, :2]
+
+
+def has_twin(u: np.ndarray, v: np.ndarray, n: int | None = None) -> np.ndarray:
+    """For each halfedge ``u[k] -> v[k]``, whether the mesh also has ``v[k] -> u[k]``: False on the
+    boundary. ``n`` is any number above the largest vertex index (default: that index plus one).
+
+    >>> has_twin(np.array([0, 1, 1]), np.array([1, 0, 2])).tolist()
+    [True, True, False]
+    """
+    if n is None:
+        n = int(max(u.max(), v.max())) + 1 if len(u) else 0
+    return np.isin(v * n + u, u * n + v)
+
+
 def boundary_loops(faces: Sequence[Sequence[int]]) -> list[list[int]]:
     """The boundary loops of a manifold, consistently oriented mesh.
 
@@ -107,22 +172,35 @@ def boundary_loops(faces: Sequence[Sequence[int]]) -> list[list[int]]:
 
     Raises
     ------
-    ValueError
+    NonManifoldVertexError
         if a vertex starts two boundary halfedges (a non-manifold "pinched" vertex).
+
+    Example
+    -------
+    >>> boundary_loops(grid_mesh(1)[1])
+    [[0, 1, 3, 2]]
     """
     _, u, v, _ = corner_arrays(faces)
-    n = int(max(u.max(), v.max())) + 1 if len(u) else 0
-    codes = u * n + v
-    twins = np.isin(v * n + u, codes)
-    bu, bv = u[~twins], v[~twins]
+    free = ~has_twin(u, v)
+    return _walk_loops(_next_boundary_vertex(u[free].tolist(), v[free].tolist()))
+
+
+def _next_boundary_vertex(starts: list[int], ends: list[int]) -> dict[int, int]:
+    """``{a: b}`` for every boundary halfedge ``a -> b``, in the order given."""
     nxt: dict[int, int] = {}
-    for a, b in zip(bu.tolist(), bv.tolist()):
+    for a, b in zip(starts, ends):
         if a in nxt:
-            raise ValueError(f"vertex {a} starts two boundary halfedges (non-manifold boundary vertex)")
+            raise NonManifoldVertexError(
+                f"vertex {a} starts two boundary halfedges (non-manifold boundary vertex)", vertex=a)
         nxt[a] = b
+    return nxt
+
+
+def _walk_loops(nxt: dict[int, int]) -> list[list[int]]:
+    """The cycles of the successor map ``nxt``, each from its first vertex in ``nxt``'s order."""
     loops: list[list[int]] = []
     seen: set[int] = set()
-    for a in bu.tolist():
+    for a in nxt:
         if a in seen:
             continue
         loop = [a]
@@ -137,20 +215,30 @@ def boundary_loops(faces: Sequence[Sequence[int]]) -> list[list[int]]:
 
 
 def adjacency(n: int, faces) -> sp.csr_matrix:
-    """Symmetric 0/1 vertex adjacency (``n x n``) of the edges of ``faces``."""
+    """Symmetric 0/1 vertex adjacency (``n x n``) of the edges of ``faces``.
+
+    >>> adjacency(4, [(0, 1, 2, 3)]).toarray().astype(int).tolist()
+    [[0, 1, 0, 1], [1, 0, 1, 0], [0, 1, 0, 1], [1, 0, 1, 0]]
+    """
     _, u, v, _ = corner_arrays(faces)
-    a = sp.coo_matrix((np.ones(len(u)), (u, v)), shape=(n, n)).tocsr()
-    a = a + a.T
-    a.data[:] = 1.0
-    return a
+    return _symmetric_adjacency(n, u, v)
 
 
 def boundary_adjacency(n: int, faces) -> sp.csr_matrix:
-    """Symmetric 0/1 adjacency of the boundary edges (half-edges without twin) of ``faces``."""
+    """Symmetric 0/1 adjacency of the boundary edges (half-edges without twin) of ``faces``.
+
+    >>> b = boundary_adjacency(4, [(0, 1, 2), (2, 1, 3)])  # two triangles sharing the edge 1-2
+    >>> b.nnz, float(b[0, 1]), float(b[1, 2])
+    (8, 1.0, 0.0)
+    """
     _, u, v, _ = corner_arrays(faces)
-    code = u * n + v
-    free = ~np.isin(v * n + u, code)
-    a = sp.coo_matrix((np.ones(int(free.sum())), (u[free], v[free])), shape=(n, n)).tocsr()
+    free = ~has_twin(u, v, n)
+    return _symmetric_adjacency(n, u[free], v[free])
+
+
+def _symmetric_adjacency(n: int, u: np.ndarray, v: np.ndarray) -> sp.csr_matrix:
+    """The ``n x n`` 0/1 matrix with ones at ``(u, v)`` and ``(v, u)``."""
+    a = sp.coo_matrix((np.ones(len(u)), (u, v)), shape=(n, n)).tocsr()
     a = a + a.T
     a.data[:] = 1.0
     return a

@@ -1,4 +1,4 @@
-"""Polygons: signed area, bounding boxes, corner angles.
+"""Polygons: signed area, bounding boxes, corner angles and orientation.
 
 A polygon is an ``(n, 2)`` array of its vertices without the closing one; counter-clockwise
 polygons have positive area (the domain lies to the left of every ring, §3.1).
@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-__all__ = ["signed_area", "bbox_diagonal", "interior_angle"]
+__all__ = ["signed_area", "bbox_diagonal", "interior_angle", "cross_z"]
 
 
 def signed_area(poly: np.ndarray) -> float:
@@ -44,3 +44,14 @@ def interior_angle(before, corner, after) -> float:
     a = math.atan2(after[1] - corner[1], after[0] - corner[0])
     b = math.atan2(before[1] - corner[1], before[0] - corner[0])
     return math.degrees((b - a) % (2 * math.pi))
+
+
+def cross_z(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Row-wise z component of the cross product of 2D vectors ``a`` and ``b`` (``(k, 2)`` arrays):
+    positive where ``b`` lies counter-clockwise of ``a``, as at every corner of a counter-clockwise
+    polygon or face.
+
+    >>> cross_z(np.array([[1.0, 0.0], [1.0, 0.0]]), np.array([[0.0, 1.0], [0.0, -2.0]])).tolist()
+    [1.0, -2.0]
+    """
+    return a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]

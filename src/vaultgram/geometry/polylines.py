@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from vaultgram.geometry.polygons import cross_z
+
 __all__ = [
     "segment_lengths",
     "arc_lengths",
@@ -29,7 +31,11 @@ _CHUNK = 2_000_000  # points x segments per block when projecting many points at
 
 
 def segment_lengths(poly: np.ndarray) -> np.ndarray:
-    """Length of each segment ``poly[i] -> poly[i + 1]`` of an open polyline (in the plan)."""
+    """Length of each segment ``poly[i] -> poly[i + 1]`` of an open polyline (in the plan).
+
+    >>> segment_lengths(np.array([[0.0, 0.0], [3.0, 4.0], [3.0, 5.0]])).tolist()
+    [5.0, 1.0]
+    """
     return np.hypot(*np.diff(np.asarray(poly, dtype=float)[:, :2], axis=0).T)
 
 
@@ -43,12 +49,20 @@ def arc_lengths(poly: np.ndarray) -> np.ndarray:
 
 
 def polyline_length(poly: np.ndarray) -> float:
-    """Total length of an open polyline (0 for fewer than two points)."""
+    """Total length of an open polyline (0 for fewer than two points).
+
+    >>> polyline_length(np.array([[0.0, 0.0], [3.0, 4.0], [3.0, 5.0]]))
+    6.0
+    """
     return float(segment_lengths(poly).sum()) if len(poly) > 1 else 0.0
 
 
 def arc_parameters(poly: np.ndarray) -> np.ndarray:
-    """Normalised arc length of each point of a polyline, from 0 to 1 (uniform if it has no length)."""
+    """Normalised arc length of each point of a polyline, from 0 to 1 (uniform if it has no length).
+
+    >>> arc_parameters(np.array([[0.0, 0.0], [3.0, 4.0], [3.0, 5.0]])).tolist()
+    [0.0, 0.8333333333333334, 1.0]
+    """
     s = arc_lengths(poly)
     if s[-1] <= 0:
         return np.linspace(0.0, 1.0, len(poly))
@@ -90,9 +104,7 @@ def turning_angles(poly: np.ndarray, closed: bool = True) -> np.ndarray:
         d_out = np.zeros_like(poly)
         d_in[1:-1] = poly[1:-1] - poly[:-2]
         d_out[1:-1] = poly[2:] - poly[1:-1]
-    cross = d_in[:, 0] * d_out[:, 1] - d_in[:, 1] * d_out[:, 0]
-    dot = (d_in * d_out).sum(axis=1)
-    ang = np.degrees(np.arctan2(cross, dot))
+    ang = np.degrees(np.arctan2(cross_z(d_in, d_out), (d_in * d_out).sum(axis=1)))
     if not closed and len(poly):
         ang[[0, -1]] = 0.0
     return ang
@@ -149,7 +161,11 @@ def project_to_polyline(points: np.ndarray, poly: np.ndarray, closed: bool = Fal
 
 def chord_deviation(poly: np.ndarray, samples: np.ndarray) -> float:
     """Largest distance from a point of ``poly`` to the polyline through ``samples`` (both ordered
-    along the same curve): how far a side resampled into ``samples`` strays from the curve."""
+    along the same curve): how far a side resampled into ``samples`` strays from the curve.
+
+    >>> chord_deviation(np.array([[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]]), np.array([[0.0, 0.0], [2.0, 0.0]]))
+    1.0
+    """
     poly = np.asarray(poly, dtype=float)
     if not len(poly):
         return 0.0

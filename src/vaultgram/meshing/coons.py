@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from vaultgram.geometry.meshes import MeshError
 from vaultgram.geometry.polylines import arc_parameters
 
 __all__ = ["coons_grid", "grid_faces"]
@@ -42,6 +43,11 @@ def coons_grid(bottom: np.ndarray, right: np.ndarray, top: np.ndarray, left: np.
     ndarray (m + 1, n + 1, d)
         ``grid[i, j]``; the boundary rows and columns equal the inputs exactly.
 
+    Raises
+    ------
+    MeshError
+        if opposite sides have different numbers of samples.
+
     Example
     -------
     >>> import numpy as np
@@ -52,7 +58,7 @@ def coons_grid(bottom: np.ndarray, right: np.ndarray, top: np.ndarray, left: np.
     """
     bottom, right, top, left = (np.asarray(a, dtype=float) for a in (bottom, right, top, left))
     if len(bottom) != len(top) or len(left) != len(right):
-        raise ValueError(
+        raise MeshError(
             f"opposite sides need equal sample counts: {len(bottom)} vs {len(top)}, {len(left)} vs {len(right)}"
         )
     u = 0.5 * (arc_parameters(bottom) + arc_parameters(top))[:, None, None]
@@ -81,6 +87,12 @@ def grid_faces(ids: np.ndarray, pole: bool = False) -> tuple[np.ndarray, np.ndar
     -------
     quads : ndarray (q, 4)
     triangles : ndarray (t, 3)
+
+    Example
+    -------
+    >>> ids = np.array([[0, 0], [1, 2], [3, 4]])  # column i = 0 is the pole 0
+    >>> [f.tolist() for f in grid_faces(ids, pole=True)]
+    [[[1, 3, 4, 2]], [[0, 1, 2]]]
     """
     a, b = ids[:-1, :-1], ids[1:, :-1]
     c, d = ids[1:, 1:], ids[:-1, 1:]

@@ -85,9 +85,35 @@ def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length:
     ------
     VaultgramError
         For a bad target length, count, length mode or group id.
+
+    Example
+    -------
+    >>> from vaultgram.domain import load_domain
+    >>> from vaultgram.meshing.layout import edge_groups
+    >>> from vaultgram.pipeline import decompose
+    >>> layout = edge_groups(decompose(load_domain("examples/quad_with_hole.json")))
+    >>> counts = group_counts(layout, DensitySpec(groups={0: 7}))
+    >>> len(counts) == layout.n_groups, int(counts[0])
+    (True, 7)
     """
     spec = spec or DensitySpec()
     diag = layout.decomposition.disc.domain.diagonal
+    target = _checked_target(spec, target_length, diag)
+    local = _local_values(layout, spec)
+    counts = np.empty(layout.n_groups, dtype=np.int64)
+    for g in layout.groups:
+        kind, v = local[g.id] or ("length", target)
+        if kind == "count":
+            counts[g.id] = v
+        else:
+            counts[g.id] = max(int(spec.min_count), int(round(g.length(spec.length_mode) / v)))
+            counts[g.id] = max(counts[g.id], _chord_count(layout, g, counts[g.id], CHORD_TOLERANCE * diag))
+    return np.maximum(counts, curve_min_counts(layout))
+
+
+def _checked_target(spec: DensitySpec, target_length: float | None, diag: float) -> float:
+    """The global target length (the argument, else the spec's, else :data:`TARGET_FRACTION` of the
+    diagonal), after checking it and the spec's length mode and minimum count."""
     target = target_length if target_length is not None else spec.target_length
     if target is None:
         target = TARGET_FRACTION * diag
@@ -97,8 +123,14 @@ def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length:
         raise VaultgramError(f"length mode must be 'average' or 'max', got {spec.length_mode!r}")
     if int(spec.min_count) < 1:
         raise VaultgramError(f"minimum count must be at least 1, got {spec.min_count!r}")
+    return target
+
+
+def _local_values(layout: Layout, spec: DensitySpec) -> list:
+    """Per group, the designer's ``("count", n)`` or ``("length", L)``, or None: from the regions
+    containing a midpoint of one of its sides (a later region wins), then from the group ids."""
     n = layout.n_groups
-    local = [None] * n  # ("count", n) or ("length", L)
+    local = [None] * n
     if spec.regions:
         import shapely
 
@@ -115,15 +147,7 @@ def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length:
         if not 0 <= g < n:
             raise VaultgramError(f"density for group {g}: the layout has groups 0 to {n - 1}")
         local[g] = _value(value, f"group {g}")
-    counts = np.empty(n, dtype=np.int64)
-    for g in layout.groups:
-        kind, v = local[g.id] or ("length", target)
-        if kind == "count":
-            counts[g.id] = v
-        else:
-            counts[g.id] = max(int(spec.min_count), int(round(g.length(spec.length_mode) / v)))
-            counts[g.id] = max(counts[g.id], _chord_count(layout, g, counts[g.id], CHORD_TOLERANCE * diag))
-    return np.maximum(counts, curve_min_counts(layout))
+    return local
 
 
 def curve_min_counts(layout: Layout) -> np.ndarray:
@@ -162,7 +186,8 @@ def _chord_count(layout: Layout, group: EdgeGroup, count: int, tol: float) -> in
     return best
 
 
-def _value(value, where: str):
+def _value(value, where: str) -> tuple[str, float]:
+    """A density value, checked: ``("count", n)`` or ``("length", L)`` (a bare integer is a count)."""
     if isinstance(value, (int, np.integer)) and not isinstance(value, bool):
         value = {"count": int(value)}
     if not isinstance(value, dict) or len(set(value) & {"count", "length"}) != 1:
@@ -184,6 +209,9 @@ def densities_from_dict(data: dict, where: str = "densities") -> DensitySpec:
     ``{"target_length": L, "length_mode": "average" | "max", "min_count": n,
     "groups": {"3": 8, "5": {"length": 0.2}}, "regions": [{"polygon": [[x, y], ...], "count": 4}]}``,
     every key optional.
+
+    >>> densities_from_dict({"min_count": 2, "groups": {"3": 8}})
+    DensitySpec(target_length=None, length_mode='average', min_count=2, groups={'3': 8}, regions=())
     """
     if not isinstance(data, dict):
         raise VaultgramError(f"{where}: a density file is a JSON object")

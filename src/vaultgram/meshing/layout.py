@@ -172,11 +172,14 @@ def is_feature_node(decomposition: Decomposition, n: int) -> bool:
     return 0 <= n < disc.n_points and bool(np.isin(n, disc.feature_points))
 
 
-def _corner_angle(poly_in: np.ndarray, poly_out: np.ndarray) -> float:
-    """Interior angle (degrees, in (0, 360)) at the corner between an arriving and a leaving side."""
+def _outside_angle(poly_in: np.ndarray, poly_out: np.ndarray) -> float:
+    """The angle (degrees, in (0, 360]) turning counter-clockwise from the direction back along the
+    arriving side to the direction along the leaving side: at a corner of a counter-clockwise patch,
+    360 minus its interior angle (:func:`vaultgram.geometry.polygons.interior_angle`), the angle
+    outside the patch."""
     a = poly_in[-2] - poly_in[-1]
     b = poly_out[1] - poly_out[0]
-    ang = math.degrees(math.atan2(a[0] * b[1] - a[1] * b[0], a @ b))  # from b to a, ccw
+    ang = math.degrees(math.atan2(a[0] * b[1] - a[1] * b[0], a @ b))
     return ang % 360.0 if ang % 360.0 > 0 else 360.0
 
 
@@ -209,7 +212,9 @@ def choose_pole(decomposition: Decomposition, patch) -> int:
     inner = [k for k, c in enumerate(corners) if not _is_boundary_node(graph, c) and not on_cut[k]]
     if len(inner) == 1:
         return inner[0]
-    angles = [_corner_angle(patch.sides[k - 1], patch.sides[k]) for k in range(3)]
+    # NB: _outside_angle is 360 degrees minus the interior angle, so this takes the corner with the
+    # *widest* interior angle, not the smallest as said above; kept so, meshes depend on it
+    angles = [_outside_angle(patch.sides[k - 1], patch.sides[k]) for k in range(3)]
     candidates = inner or [0, 1, 2]
     return min(candidates, key=lambda k: angles[k])
 
@@ -220,6 +225,8 @@ def _curve_of_segment(disc) -> dict:
 
 
 class _UnionFind:
+    """Disjoint sets of ``0 .. n - 1`` (path halving; a union keeps the smaller root)."""
+
     def __init__(self, n: int):
         self.parent = list(range(n))
 
@@ -238,69 +245,103 @@ class _UnionFind:
 def edge_groups(decomposition: Decomposition) -> Layout:
     """Atomic sides, patch patterns and edge groups of a decomposition (§3.2).
 
+    Each patch side is stored once as an atomic :class:`Side`; each patch gets its pattern
+    (:class:`PatchPattern`, with :func:`choose_pole` for a triangle); sides that must have equal
+    counts (opposite sides of a quad, the two sides at a triangle's pole) form one :class:`EdgeGroup`.
+
     Returns
     -------
     Layout
+
+    Raises
+    ------
+    DomainError
+        If two patches traverse a side in the same direction (they overlap).
 
     Example
     -------
     >>> from vaultgram.domain import load_domain
     >>> from vaultgram.pipeline import decompose
     >>> layout = edge_groups(decompose(load_domain("examples/quad_with_hole.json")))
-    >>> len(layout.patterns), layout.n_groups  # doctest: +SKIP
-    (12, 6)
+    >>> len(layout.patterns), all(p.pole is None for p in layout.patterns)
+    (12, True)
     """
-    graph = decomposition.graph
-    curve_of = _curve_of_segment(decomposition.disc)
-    side_of_key: dict[frozenset, int] = {}
-    sides: list[Side] = []
-    patterns: list[PatchPattern] = []
-    for patch in decomposition.patches:
-        refs = []
-        k = patch.n_sides
-        for i in range(k):
-            half_edges = patch.side_edges[i]
-            key = frozenset(e for e, _ in half_edges)
-            start, end = patch.corners[i], patch.corners[(i + 1) % k]
-            if key not in side_of_key:
-                types = {graph.edge_type(e) for e, _ in half_edges}
-                nodes = tuple(u for _, u in half_edges) + (end,)
-                boundary = types == {"Boundary"}
-                ring = int(graph.get(start, "ring")) if boundary else -1
-                poly = np.asarray(patch.sides[i], dtype=float)
-                curve = curve_of.get(frozenset(nodes[:2]), -1) if types == {"Curve"} else -1
-                side_of_key[key] = len(sides)
-                sides.append(Side(len(sides), start, end, poly, nodes, boundary, ring, polyline_length(poly), curve))
-                refs.append((side_of_key[key], False))
-            else:
-                s = sides[side_of_key[key]]
-                if s.start == start and s.end == end and s.start != s.end:
-                    raise DomainError(
-                        f"side from {fmt_point(graph.get(start, 'pos'))} to {fmt_point(graph.get(end, 'pos'))} is "
-                        "traversed twice in the same direction: the patches overlap"
-                    )
-                refs.append((side_of_key[key], True))
-        pole = choose_pole(decomposition, patch) if k == 3 else None
-        patterns.append(PatchPattern(patch.id, tuple(patch.corners), tuple(refs), pole))
+    sides = _AtomicSides(decomposition)
+    patterns = tuple(_pattern(decomposition, patch, sides) for patch in decomposition.patches)
+    group_of, n_groups = _group_of_sides(len(sides.sides), patterns)
+    groups = tuple(_edge_group(g, sides.sides, group_of) for g in range(n_groups))
+    return Layout(decomposition, tuple(sides.sides), patterns, groups, group_of)
 
-    uf = _UnionFind(len(sides))
+
+class _AtomicSides:
+    """The atomic sides met so far, each stored once, in the direction of its first traversal: a side
+    is identified by the set of its edge ids."""
+
+    def __init__(self, decomposition: Decomposition):
+        self.graph = decomposition.graph
+        self.curve_of = _curve_of_segment(decomposition.disc)
+        self.sides: list[Side] = []
+        self.index: dict[frozenset, int] = {}
+
+    def ref(self, patch, i: int) -> tuple[int, bool]:
+        """``(side id, reversed)`` of side ``i`` of ``patch``, storing the side if it is new."""
+        key = frozenset(e for e, _ in patch.side_edges[i])
+        start, end = patch.corners[i], patch.corners[(i + 1) % patch.n_sides]
+        if key not in self.index:
+            self.index[key] = len(self.sides)
+            self.sides.append(self._side(len(self.sides), patch, i, start, end))
+            return self.index[key], False
+        s = self.sides[self.index[key]]
+        if s.start == start and s.end == end and s.start != s.end:
+            raise DomainError(
+                f"side from {fmt_point(self.graph.get(start, 'pos'))} to {fmt_point(self.graph.get(end, 'pos'))} is "
+                "traversed twice in the same direction: the patches overlap"
+            )
+        return self.index[key], True
+
+    def _side(self, sid: int, patch, i: int, start: int, end: int) -> Side:
+        """Side ``i`` of ``patch`` as a :class:`Side`: on a ring if made of ``Boundary`` edges, on a
+        curve feature if made of ``Curve`` edges."""
+        half_edges = patch.side_edges[i]
+        types = {self.graph.edge_type(e) for e, _ in half_edges}
+        nodes = tuple(u for _, u in half_edges) + (end,)
+        boundary = types == {"Boundary"}
+        ring = int(self.graph.get(start, "ring")) if boundary else -1
+        poly = np.asarray(patch.sides[i], dtype=float)
+        curve = self.curve_of.get(frozenset(nodes[:2]), -1) if types == {"Curve"} else -1
+        return Side(sid, start, end, poly, nodes, boundary, ring, polyline_length(poly), curve)
+
+
+def _pattern(decomposition: Decomposition, patch, sides: _AtomicSides) -> PatchPattern:
+    """The pattern of a patch (Figure 3): its sides as atomic sides, and the pole of a triangle."""
+    refs = tuple(sides.ref(patch, i) for i in range(patch.n_sides))
+    pole = choose_pole(decomposition, patch) if patch.n_sides == 3 else None
+    return PatchPattern(patch.id, tuple(patch.corners), refs, pole)
+
+
+def _group_of_sides(n_sides: int, patterns) -> tuple[np.ndarray, int]:
+    """The edge group of each side, numbered by the smallest side id in it, and the number of groups:
+    opposite sides of a quad share a count, and so do the two sides adjacent to a triangle's pole (the
+    pole is a collapsed fourth side opposite the third, which stays free)."""
+    uf = _UnionFind(n_sides)
     for pat in patterns:
         ids = [s for s, _ in pat.sides]
         if pat.pole is None:
             uf.union(ids[0], ids[2])
             uf.union(ids[1], ids[3])
-        else:  # the two sides adjacent to the pole
+        else:
             uf.union(ids[pat.pole - 1], ids[pat.pole])
-    roots = sorted({uf.find(s) for s in range(len(sides))})
+    roots = sorted({uf.find(s) for s in range(n_sides)})
     gid = {r: g for g, r in enumerate(roots)}
-    group_of = np.array([gid[uf.find(s)] for s in range(len(sides))], dtype=np.int64)
-    groups = []
-    for g in range(len(roots)):
-        members = tuple(int(s) for s in np.flatnonzero(group_of == g))
-        lengths = np.array([sides[s].length for s in members])
-        mids = np.array([halfway_point(sides[s].polyline) for s in members])
-        groups.append(EdgeGroup(g, members, float(lengths.mean()), float(lengths.max()), mids))
-    return Layout(decomposition, tuple(sides), tuple(patterns), tuple(groups), group_of)
+    return np.array([gid[uf.find(s)] for s in range(n_sides)], dtype=np.int64), len(roots)
+
+
+def _edge_group(g: int, sides: list[Side], group_of: np.ndarray) -> EdgeGroup:
+    """Edge group ``g`` with the mean and maximum length and the midpoints of its sides."""
+    members = tuple(int(s) for s in np.flatnonzero(group_of == g))
+    lengths = np.array([sides[s].length for s in members])
+    mids = np.array([halfway_point(sides[s].polyline) for s in members])
+    return EdgeGroup(g, members, float(lengths.mean()), float(lengths.max()), mids)
 
 
 # --------------------------------------------------------------------------------------------
@@ -310,7 +351,13 @@ def edge_groups(decomposition: Decomposition) -> Layout:
 
 def kept_points(disc) -> np.ndarray:
     """Domain points the mesh must keep (fixed vertices): corners, point features, and input vertices
-    of the rings turning by :data:`KEEP_ANGLE` or more."""
+    of the rings turning by :data:`KEEP_ANGLE` or more.
+
+    >>> from vaultgram.domain import load_domain
+    >>> from vaultgram.topology.discretise import discretise
+    >>> np.flatnonzero(kept_points(discretise(load_domain("examples/quad_with_hole.json")))).tolist()
+    [0, 36, 72, 108]
+    """
     keep = disc.is_corner | (disc.is_input_vertex & (np.abs(disc.turning) >= KEEP_ANGLE))
     keep[np.asarray(disc.feature_points, dtype=np.int64)] = True  # boundary point features (§4.1)
     return keep

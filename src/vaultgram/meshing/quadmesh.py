@@ -96,16 +96,16 @@ class QuadMesh:
     def n_vertices(self) -> int:
         return len(self.vertices)
 
+    @property
+    def n_faces(self) -> int:
+        return len(self.faces)
+
     def curve_labels(self) -> tuple[np.ndarray, np.ndarray]:
         """``(curve, extremity)`` as full per-vertex arrays (-1 / False where the mesh has no labels)."""
         n = len(self.vertices)
         curve = np.asarray(self.curve, dtype=np.int64) if len(self.curve) == n else np.full(n, -1, dtype=np.int64)
         ext = np.asarray(self.extremity, dtype=bool) if len(self.extremity) == n else np.zeros(n, dtype=bool)
         return curve, ext
-
-    @property
-    def n_faces(self) -> int:
-        return len(self.faces)
 
     def labels_json(self) -> dict:
         """Per-vertex labels as JSON lists of vertex indices."""
@@ -124,7 +124,12 @@ class QuadMesh:
 
 def slide(x: np.ndarray, constraints) -> np.ndarray:
     """Project the vertices of every constraint back onto its polyline, in place (§3.2: "other
-    vertices lying on the boundaries are projected back on it after each iteration")."""
+    vertices lying on the boundaries are projected back on it after each iteration").
+
+    >>> x = np.array([[0.5, 0.2], [1.0, 1.0]])
+    >>> slide(x, [SlideConstraint(np.array([0]), np.array([[0.0, 0.0], [2.0, 0.0]]))])[0].tolist()
+    [0.5, 0.0]
+    """
     for c in constraints:
         x[c.vertices, :2] = project_to_polyline(x[c.vertices, :2], c.polyline, c.closed)
     return x

@@ -16,10 +16,13 @@ over vertices. Faces that smoothing leaves folded are repaired by :mod:`vaultgra
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 import scipy.sparse as sp
 
-from vaultgram.geometry.meshes import adjacency, boundary_adjacency, corner_arrays
+from vaultgram.geometry.meshes import MeshError, adjacency, boundary_adjacency, corner_arrays, corner_vectors
+from vaultgram.geometry.polygons import cross_z
 from vaultgram.meshing.quadmesh import slide
 
 __all__ = ["laplacian_smooth", "DEFAULT_ITERATIONS"]
@@ -47,6 +50,7 @@ def laplacian_smooth(
     vertices : ndarray (n, 2) or (n, 3)
     faces : list of index sequences
     iterations : int
+        At least 0 (a negative number raises :class:`~vaultgram.geometry.meshes.MeshError`).
     fixed : ndarray (n,) bool, optional
         Vertices that never move (domain corners, feature points).
     constraints : sequence of SlideConstraint
@@ -76,50 +80,70 @@ def laplacian_smooth(
     """
     x = np.array(vertices, dtype=float)
     if iterations < 0:
-        raise ValueError(f"iterations must be >= 0, got {iterations}")
+        raise MeshError(f"iterations must be >= 0, got {iterations}")
     if iterations == 0 or len(faces) == 0:
         return x
-    n = len(x)
+    w, deg = _barycentre_operator(len(x), faces, tangential)
+    keep = (np.zeros(len(x), dtype=bool) if fixed is None else np.asarray(fixed, dtype=bool)) | (deg == 0)
+    anchor = x[keep]
+    corners = _FaceCorners(*corner_arrays(faces), len(faces))
+    valid = _valid_faces(x, corners)
+    for _ in range(iterations):
+        old, x = x, _laplacian_step(x, w, keep, anchor, constraints)
+        if safe:
+            valid = _undo_inversions(x, old, valid, corners)
+    return x
+
+
+def _laplacian_step(x: np.ndarray, w: sp.csr_matrix, keep: np.ndarray, anchor: np.ndarray, constraints) -> np.ndarray:
+    """One iteration (§3.2): every vertex to the barycentre of its neighbours, the ``keep`` vertices
+    back at ``anchor``, the sliding ones projected back onto their polylines."""
+    y = w @ x
+    y[keep] = anchor
+    return slide(y, constraints)
+
+
+def _barycentre_operator(n: int, faces, tangential: bool) -> tuple[sp.csr_matrix, np.ndarray]:
+    """The sparse matrix ``D^-1 A`` that moves every vertex to the barycentre of its neighbours, and
+    the degrees ``D``. With ``tangential``, a vertex on the mesh boundary averages its two boundary
+    neighbours only: it moves along the boundary, so it cannot be dragged onto a corner or across a
+    narrow part."""
     a = adjacency(n, faces)
     if tangential:
-        # a vertex on the mesh boundary averages its two boundary neighbours only: it moves along
-        # the boundary, so it cannot be dragged onto a corner or across a narrow part
         b = boundary_adjacency(n, faces)
         on_b = np.asarray(b.sum(axis=1)).ravel() > 0
         a = sp.diags((~on_b).astype(float)) @ a + sp.diags(on_b.astype(float)) @ b
     deg = np.asarray(a.sum(axis=1)).ravel()
-    w = sp.diags(1.0 / np.maximum(deg, 1)) @ a
-    keep = np.asarray(fixed, dtype=bool) if fixed is not None else np.zeros(n, dtype=bool)
-    keep = keep | (deg == 0)
-    anchor = x[keep]
-    face_of, u, v, p = corner_arrays(faces)
-    valid = _valid_faces(x, face_of, u, v, p, len(faces))
-    for _ in range(iterations):
-        old = x
-        x = w @ old
-        x[keep] = anchor
-        slide(x, constraints)
-        if safe:
-            # a face valid before the step and inverted after it: its vertices keep their old
-            # positions (repeated, since reverting may invert a neighbour)
-            for _ in range(_MAX_REVERTS):
-                now = _valid_faces(x, face_of, u, v, p, len(faces))
-                broken = valid & ~now
-                if not broken.any():
-                    break
-                back = np.unique(u[broken[face_of]])
-                x[back] = old[back]
-            valid = _valid_faces(x, face_of, u, v, p, len(faces))
-    return x
+    return sp.diags(1.0 / np.maximum(deg, 1)) @ a, deg
 
 
-def _valid_faces(x, face_of, u, v, p, n_faces) -> np.ndarray:
-    """Faces whose every corner turns counter-clockwise (positive cross product)."""
-    e1, e2 = x[v, :2] - x[u, :2], x[p, :2] - x[u, :2]
-    cross = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
+class _FaceCorners(NamedTuple):
+    """The corner arrays of the faces (:func:`vaultgram.geometry.meshes.corner_arrays`) and their number."""
+
+    face_of: np.ndarray
+    u: np.ndarray
+    v: np.ndarray
+    p: np.ndarray
+    n_faces: int
+
+
+def _undo_inversions(x: np.ndarray, old: np.ndarray, valid: np.ndarray, corners: _FaceCorners) -> np.ndarray:
+    """Give the vertices of every face valid before the step and inverted after it their ``old``
+    positions, in place (repeated, since reverting may invert a neighbour); the faces now valid."""
+    for _ in range(_MAX_REVERTS):
+        broken = valid & ~_valid_faces(x, corners)
+        if not broken.any():
+            break
+        back = np.unique(corners.u[broken[corners.face_of]])
+        x[back] = old[back]
+    return _valid_faces(x, corners)
+
+
+def _valid_faces(x: np.ndarray, corners: _FaceCorners) -> np.ndarray:
+    """Faces whose every corner turns counter-clockwise (positive cross product, above a relative
+    1e-9 of the squared edge lengths)."""
+    e1, e2 = corner_vectors(x, corners.u, corners.v, corners.p)
     scale = (e1 * e1).sum(1) + (e2 * e2).sum(1)
-    bad = np.zeros(n_faces, dtype=bool)
-    bad[face_of[cross <= 1e-9 * scale]] = True
+    bad = np.zeros(corners.n_faces, dtype=bool)
+    bad[corners.face_of[cross_z(e1, e2) <= 1e-9 * scale]] = True
     return ~bad
-
-

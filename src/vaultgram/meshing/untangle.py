@@ -8,9 +8,12 @@ paper's meshes are coarser.
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
-from vaultgram.geometry.meshes import corner_arrays
+from vaultgram.geometry.meshes import corner_arrays, corner_vectors
+from vaultgram.geometry.polygons import cross_z
 from vaultgram.meshing.quadmesh import slide
 
 __all__ = ["untangle", "UNTANGLE_TARGET"]
@@ -44,87 +47,156 @@ def untangle(
     It stops when no corner is below its target, the step has shrunk to nothing, or after ``steps``
     steps, and returns the input unchanged when nothing is below target (good meshes are not
     touched). Vectorised over corners.
+
+    Example
+    -------
+    >>> from vaultgram.geometry.meshes import grid_mesh
+    >>> from vaultgram.meshing.quality import face_scaled_jacobians
+    >>> v, f = grid_mesh(2)
+    >>> v[4, :2] = [1.9, 1.9]  # the centre of a 2 x 2 grid dragged near the corner (2, 2)
+    >>> fixed = np.ones(9, bool); fixed[4] = False
+    >>> x = untangle(v, f, fixed)
+    >>> bool(face_scaled_jacobians(v, f).min() < 0 < face_scaled_jacobians(x, f).min())
+    True
+    >>> np.array_equal(x[fixed], v[fixed])
+    True
     """
     x = np.array(vertices, dtype=float)
     if len(faces) == 0:
         return x
-    n = len(x)
     face_of, u, v, p = corner_arrays(faces)
-    goal = _corner_targets(x, u, v, p, n, target)
+    goal = _corner_targets(x, u, v, p, len(x), target)
     bad = np.zeros(len(faces), dtype=bool)
-    bad[face_of[_corners(x, u, v, p)[-1] < goal]] = True
+    bad[face_of[_corners(x, u, v, p).sj < goal]] = True
     if not bad.any():
         return x
-    keep = np.asarray(fixed, dtype=bool).copy() if fixed is not None else np.zeros(n, dtype=bool)
-    # the region: vertices of the bad faces and of the faces around them
-    near = np.zeros(n, dtype=bool)
-    near[u[bad[face_of]]] = True
-    around = np.zeros(len(faces), dtype=bool)
-    around[face_of[near[u]]] = True
-    free = np.zeros(n, dtype=bool)
-    free[u[around[face_of]]] = True
-    free &= ~keep
-    work = around[face_of]  # corners of the faces in the region
-    fu, fv, fp, goal = u[work], v[work], p[work], goal[work]
-
-    def deficits(y):
-        e1, e2, l1, l2, sj = _corners(y, fu, fv, fp)
-        scale = np.maximum(l1 * l2, 1e-300)
-        return np.maximum(goal - sj, 0.0), e1, e2, l1, l2, scale, int((sj <= 0).sum())
-
-    def settle(y):
-        slide(y, constraints)
-        y[keep] = vertices[keep]
-        return y
-
-    rate = 1.0
-    for _ in range(steps):
-        deficit, e1, e2, l1, l2, scale, inverted = deficits(x)
-        total = deficit.sum()
-        if total == 0 or rate < 1e-3:
-            break
-        w = ((deficit > 0) / scale)[:, None]
-        gv = np.column_stack([e2[:, 1], -e2[:, 0]]) * w
-        gp = np.column_stack([-e1[:, 1], e1[:, 0]]) * w
-        grad = np.zeros((n, 2))
-        np.add.at(grad, fv, gv)
-        np.add.at(grad, fp, gp)
-        np.add.at(grad, fu, -(gv + gp))
-        shortest = np.full(n, np.inf)
-        np.minimum.at(shortest, fu, np.minimum(l1, l2))
-        shortest[~np.isfinite(shortest)] = 0.0  # vertices without a corner in the region
-        step = grad * (rate * shortest * shortest)[:, None]
-        length = np.hypot(*step.T)
-        limit = UNTANGLE_STEP * shortest
-        step *= np.where(length > limit, limit / np.maximum(length, 1e-300), 1.0)[:, None]
-        step[~free] = 0.0
-        trial = x.copy()
-        trial[:, :2] += step
-        trial = settle(trial)
-        after = deficits(trial)
-        # accept a step with fewer inverted corners, or as many and less deficit; then try longer
-        if after[-1] < inverted or after[-1] == inverted and after[0].sum() < total:
-            x, rate = trial, min(rate * 1.5, 1.0)
-        else:
-            rate *= 0.5
-    return x
+    keep = np.asarray(fixed, dtype=bool).copy() if fixed is not None else np.zeros(len(x), dtype=bool)
+    region = _region(face_of, u, v, p, bad, keep, goal)
+    return _descend(x, region, _Settle(keep, x[keep].copy(), constraints), steps)
 
 
-def _corners(x, u, v, p):
-    """Per corner (vertex ``u``, next ``v``, previous ``p``): the two edge vectors, their lengths and
-    the scaled Jacobian ``(e1 x e2) / (|e1| |e2|)``."""
-    e1, e2 = x[v, :2] - x[u, :2], x[p, :2] - x[u, :2]
+class _Corners(NamedTuple):
+    """Per corner (vertex ``u``, next ``v``, previous ``p``): the edge vectors ``e1 = v - u`` and
+    ``e2 = p - u``, their lengths and the scaled Jacobian ``(e1 x e2) / (|e1| |e2|)``."""
+
+    e1: np.ndarray
+    e2: np.ndarray
+    l1: np.ndarray
+    l2: np.ndarray
+    sj: np.ndarray
+
+
+def _corners(x, u, v, p) -> _Corners:
+    """The corner geometry of :class:`_Corners`."""
+    e1, e2 = corner_vectors(x, u, v, p)
     l1, l2 = np.hypot(*e1.T), np.hypot(*e2.T)
-    sj = (e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]) / np.maximum(l1 * l2, 1e-300)
-    return e1, e2, l1, l2, sj
+    return _Corners(e1, e2, l1, l2, cross_z(e1, e2) / np.maximum(l1 * l2, 1e-300))
 
 
 def _corner_targets(x, u, v, p, n, target: float) -> np.ndarray:
     """Per corner, the scaled Jacobian to aim at: ``target``, or half the sine of the mean corner
     angle at its vertex where that is smaller (the corners of a pole's fan of many triangles, or at
     a sharp domain corner, cannot all be wide)."""
-    e1, e2 = x[v, :2] - x[u, :2], x[p, :2] - x[u, :2]
-    angle = np.abs(np.arctan2(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0], (e1 * e2).sum(1)))
+    e1, e2 = corner_vectors(x, u, v, p)
+    angle = np.abs(np.arctan2(cross_z(e1, e2), (e1 * e2).sum(1)))
     total = np.bincount(u, weights=angle, minlength=n)
     mean = total[u] / np.bincount(u, minlength=n)[u]
     return np.minimum(target, 0.5 * np.sin(np.minimum(mean, np.pi / 2)))
+
+
+class _Region(NamedTuple):
+    """What untangling works on: the corners ``(u, v, p)`` of the faces around the bad ones with their
+    target scaled Jacobians ``goal``, and the ``free`` vertices it may move (n,)."""
+
+    u: np.ndarray
+    v: np.ndarray
+    p: np.ndarray
+    goal: np.ndarray
+    free: np.ndarray
+
+
+def _region(face_of, u, v, p, bad: np.ndarray, keep: np.ndarray, goal: np.ndarray) -> _Region:
+    """The bad faces and the faces around them (sharing a vertex); their vertices move unless kept."""
+    n = len(keep)
+    near = np.zeros(n, dtype=bool)
+    near[u[bad[face_of]]] = True
+    around = np.zeros(len(bad), dtype=bool)
+    around[face_of[near[u]]] = True
+    free = np.zeros(n, dtype=bool)
+    free[u[around[face_of]]] = True
+    free &= ~keep
+    work = around[face_of]  # corners of the faces in the region
+    return _Region(u[work], v[work], p[work], goal[work], free)
+
+
+class _Settle(NamedTuple):
+    """After each trial step: fixed vertices back to their ``anchor`` positions, sliding ones
+    projected onto their polylines."""
+
+    keep: np.ndarray
+    anchor: np.ndarray
+    constraints: tuple
+
+    def __call__(self, y: np.ndarray) -> np.ndarray:
+        slide(y, self.constraints)
+        y[self.keep] = self.anchor
+        return y
+
+
+class _Deficits(NamedTuple):
+    """The region's corners at one position: their geometry, how far each is below its target
+    (``deficit``), ``|e1| |e2|`` (``scale``) and the number of inverted corners."""
+
+    corners: _Corners
+    deficit: np.ndarray
+    scale: np.ndarray
+    inverted: int
+
+
+def _deficits(y: np.ndarray, region: _Region) -> _Deficits:
+    """The :class:`_Deficits` of the region's corners at positions ``y``."""
+    c = _corners(y, region.u, region.v, region.p)
+    scale = np.maximum(c.l1 * c.l2, 1e-300)
+    return _Deficits(c, np.maximum(region.goal - c.sj, 0.0), scale, int((c.sj <= 0).sum()))
+
+
+def _descend(x: np.ndarray, region: _Region, settle: _Settle, steps: int) -> np.ndarray:
+    """Gradient steps with an adaptive rate: a step that leaves fewer inverted corners, or as many
+    and less total deficit, is taken (and the next tried longer); any other is halved."""
+    rate = 1.0
+    for _ in range(steps):
+        now = _deficits(x, region)
+        total = now.deficit.sum()
+        if total == 0 or rate < 1e-3:
+            break
+        trial = x.copy()
+        trial[:, :2] += _step(len(x), now, region, rate)
+        trial = settle(trial)
+        after = _deficits(trial, region)
+        if after.inverted < now.inverted or after.inverted == now.inverted and after.deficit.sum() < total:
+            x, rate = trial, min(rate * 1.5, 1.0)
+        else:
+            rate *= 0.5
+    return x
+
+
+def _step(n: int, d: _Deficits, region: _Region, rate: float) -> np.ndarray:
+    """The move (n, 2) of each free vertex down the gradient of the total deficit, scaled by ``rate``
+    times its shortest edge squared and capped at :data:`UNTANGLE_STEP` of that edge."""
+    c = d.corners
+    w = ((d.deficit > 0) / d.scale)[:, None]
+    gv = np.column_stack([c.e2[:, 1], -c.e2[:, 0]]) * w
+    gp = np.column_stack([-c.e1[:, 1], c.e1[:, 0]]) * w
+    grad = np.zeros((n, 2))
+    np.add.at(grad, region.v, gv)
+    np.add.at(grad, region.p, gp)
+    np.add.at(grad, region.u, -(gv + gp))
+    shortest = np.full(n, np.inf)
+    np.minimum.at(shortest, region.u, np.minimum(c.l1, c.l2))
+    shortest[~np.isfinite(shortest)] = 0.0  # vertices without a corner in the region
+    step = grad * (rate * shortest * shortest)[:, None]
+    length = np.hypot(*step.T)
+    limit = UNTANGLE_STEP * shortest
+    step *= np.where(length > limit, limit / np.maximum(length, 1e-300), 1.0)[:, None]
+    step[~region.free] = 0.0
+    return step

@@ -14,16 +14,22 @@ counter-clockwise because patches are and the grid's ``(i, j)`` axes follow the 
 Resampling is uniform in arc length; on a boundary side, the domain's corners lying inside the side
 (ring points whose turning angle makes them corners) are made samples when the count allows, so the
 mesh keeps the domain's corners (they stay fixed in smoothing).
+
+:func:`weld` runs the phases in order: corner vertices, side samples, patch grids and faces, vertex
+labels, then the sliding constraints of smoothing along the boundary and the curve features.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
 from vaultgram.errors import VaultgramError
 from vaultgram.geometry.polylines import resample_polyline
 from vaultgram.meshing.coons import coons_grid, grid_faces
-from vaultgram.meshing.layout import Layout, is_feature_node, kept_points, side_anchors
+from vaultgram.meshing.layout import Layout, PatchPattern, is_feature_node, kept_points, side_anchors
 from vaultgram.meshing.quadmesh import QuadMesh, SlideConstraint
 
 __all__ = ["weld"]
@@ -43,30 +49,122 @@ def weld(layout: Layout, counts) -> QuadMesh:
     ------
     VaultgramError
         If a count is not a positive integer or the number of counts is not the number of groups.
+
+    Example
+    -------
+    >>> from vaultgram.domain import load_domain
+    >>> from vaultgram.meshing.densities import group_counts
+    >>> from vaultgram.meshing.layout import edge_groups
+    >>> from vaultgram.pipeline import decompose
+    >>> layout = edge_groups(decompose(load_domain("examples/quad_with_hole.json")))
+    >>> mesh = weld(layout, group_counts(layout))
+    >>> {len(f) for f in mesh.faces}, int(mesh.boundary.sum()) > 0
+    ({4}, True)
     """
+    counts = _checked_counts(layout, counts)
+    table = _VertexTable()
+    vid_of_node = _corner_vertices(layout, table)
+    sides = _side_samples(layout, counts[layout.group_of], table, vid_of_node)
+    faces, face_patch = _patch_faces(layout, sides, table)
+    vertices, disc_point, node = table.arrays()
+    labels = _vertex_labels(layout, sides, vid_of_node, disc_point)
+    chains = _curve_chains(layout, sides)
+    constraints = _boundary_constraints(layout, sides, labels["fixed"])
+    constraints += _curve_constraints(layout.decomposition.disc, chains, vertices, labels["fixed"])
+    return QuadMesh(vertices=vertices, faces=faces, face_patch=face_patch, node=node,
+                    groups=_group_summaries(layout, counts), constraints=constraints, info={}, curves=chains,
+                    curve_lines=_curve_lines(layout), **labels)
+
+
+def _checked_counts(layout: Layout, counts) -> np.ndarray:
+    """The counts as an array, one positive integer per edge group, or a :class:`VaultgramError`."""
     counts = np.asarray(counts)
     if counts.shape != (layout.n_groups,) or not np.issubdtype(counts.dtype, np.integer) or (counts < 1).any():
         raise VaultgramError(f"need one positive integer count per edge group ({layout.n_groups} groups)")
-    dec = layout.decomposition
-    graph, disc = dec.graph, dec.disc
-    side_count = counts[layout.group_of]
-    keep_point = kept_points(disc)
+    return counts
 
-    # 1. patch corners: one vertex per decomposition node
+
+def _curve_lines(layout: Layout) -> tuple:
+    """The polyline of each curve feature (the discretised input curve, §4.2)."""
+    disc = layout.decomposition.disc
+    return tuple(np.asarray(disc.points[c], dtype=float) for c in disc.curves)
+
+
+def _group_summaries(layout: Layout, counts: np.ndarray) -> tuple:
+    """What ``mesh.json`` records of each edge group."""
+    return tuple(
+        {"id": g.id, "count": int(counts[g.id]), "sides": len(g.sides),
+         "mean_length": g.mean_length, "max_length": g.max_length}
+        for g in layout.groups
+    )
+
+
+# --------------------------------------------------------------------------------------------
+# Vertices: corners, side samples, patch interiors
+# --------------------------------------------------------------------------------------------
+
+
+@dataclass
+class _VertexTable:
+    """The welded mesh's vertices in the order they are made, block by block: positions, the point of
+    the discretisation each stands for (a ring point, or -1) and the decomposition node (or -1)."""
+
+    points: list = field(default_factory=list)
+    disc_point: list = field(default_factory=list)
+    node: list = field(default_factory=list)
+    count: int = 0
+
+    def add(self, points: np.ndarray, disc_point: np.ndarray | None = None,
+            node: np.ndarray | None = None) -> np.ndarray:
+        """Append a block of vertices; returns their ids."""
+        k = len(points)
+        none = np.full(k, -1, dtype=np.int64)
+        self.points.append(points)
+        self.disc_point.append(none if disc_point is None else disc_point)
+        self.node.append(none if node is None else node)
+        self.count += k
+        return np.arange(self.count - k, self.count)
+
+    def arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(vertices (n, 2), disc point (n,), node (n,))``."""
+        return np.vstack(self.points), np.concatenate(self.disc_point), np.concatenate(self.node)
+
+
+def _corner_vertices(layout: Layout, table: _VertexTable) -> dict[int, int]:
+    """One vertex per patch corner (a decomposition node), in node order: ``{node: vertex id}``."""
+    graph, disc = layout.decomposition.graph, layout.decomposition.disc
     corner_nodes = sorted({c for p in layout.patterns for c in p.corners})
-    vid_of_node = {n: k for k, n in enumerate(corner_nodes)}
-    pos = [np.array([graph.get(n, "pos") for n in corner_nodes], dtype=float).reshape(-1, 2)]
-    n_vert = len(corner_nodes)
-    disc_point = [n if 0 <= n < disc.n_points and graph.schema.is_subtype(graph.node_type(n), "BoundaryVertex") else -1
-                  for n in corner_nodes]
-    vert_disc = [np.array(disc_point, dtype=np.int64)]  # disc point index of each vertex, or -1
-    node_arr = [np.array(corner_nodes, dtype=np.int64)]
+    pos = np.array([graph.get(n, "pos") for n in corner_nodes], dtype=float).reshape(-1, 2)
+    disc_point = [n if 0 <= n < disc.n_points and graph.schema.is_subtype(graph.node_type(n), "BoundaryVertex")
+                  else -1 for n in corner_nodes]
+    ids = table.add(pos, np.array(disc_point, dtype=np.int64), np.array(corner_nodes, dtype=np.int64))
+    return {n: int(v) for n, v in zip(corner_nodes, ids)}
 
-    # 2. atomic sides: shared samples, stored direction
-    side_ids: list[np.ndarray] = []
-    side_pts: list[np.ndarray] = []
-    side_anchor: list[tuple] = []  # (dense index, sample index) of honoured anchors
-    curve_anchor: list[int] = []  # vertices at input vertices of curve features
+
+class _SideSamples(NamedTuple):
+    """An atomic side resampled at its group's count, in its stored direction.
+
+    ``ids`` are the vertex ids from its start corner to its end corner, ``points`` their positions;
+    ``anchors`` lists ``(polyline index, sample index)`` for each anchor the samples hit
+    (:func:`vaultgram.meshing.layout.side_anchors`).
+    """
+
+    ids: np.ndarray
+    points: np.ndarray
+    anchors: tuple
+
+    def oriented(self, reverse: bool) -> tuple[np.ndarray, np.ndarray]:
+        """``(ids, points)``, from the end corner to the start corner if ``reverse``."""
+        return (self.ids[::-1], self.points[::-1]) if reverse else (self.ids, self.points)
+
+
+def _side_samples(layout: Layout, side_count: np.ndarray, table: _VertexTable,
+                  vid_of_node: dict[int, int]) -> list[_SideSamples]:
+    """Resample every atomic side once (§3.2), adding its inner samples as vertices; the samples at
+    boundary anchors stand for their ring points (so they get the ring's corner labels)."""
+    disc = layout.decomposition.disc
+    keep_point = kept_points(disc)
+    out = []
     for side in layout.sides:
         n = int(side_count[side.id])
         anchors = side_anchors(side, keep_point, disc)
@@ -76,118 +174,168 @@ def weld(layout: Layout, counts) -> QuadMesh:
                 f"curve feature {side.curve}: a side with {len(anchors)} input vertices inside needs at least "
                 f"{len(anchors) + 1} subdivisions, got {n} (see edge_groups.curve_min_counts)"
             )
-        ids = np.arange(n_vert, n_vert + n - 1)
-        n_vert += n - 1
-        pos.append(pts[1:-1])
-        d = np.full(n - 1, -1, dtype=np.int64)
-        for a, h in zip(anchors if hit else (), hit):
-            if side.curve >= 0:
-                curve_anchor.append(ids[h - 1])
-            else:
-                d[h - 1] = side.nodes[a]
-        vert_disc.append(d)
-        node_arr.append(np.full(n - 1, -1, dtype=np.int64))
-        side_ids.append(np.concatenate([[vid_of_node[side.start]], ids, [vid_of_node[side.end]]]))
-        side_pts.append(pts)
-        side_anchor.append(tuple(zip(anchors if hit else (), hit)))
+        honoured = tuple(zip(anchors if hit else (), hit))
+        disc_point = np.full(n - 1, -1, dtype=np.int64)
+        if side.curve < 0:
+            for a, h in honoured:
+                disc_point[h - 1] = side.nodes[a]
+        ids = table.add(pts[1:-1], disc_point)
+        out.append(_SideSamples(np.concatenate([[vid_of_node[side.start]], ids, [vid_of_node[side.end]]]), pts,
+                                honoured))
+    return out
 
-    def oriented(ref):
-        s, rev = ref
-        return (side_ids[s][::-1], side_pts[s][::-1]) if rev else (side_ids[s], side_pts[s])
 
-    # 3. patches: Coons grids, interior vertices, faces
+def _patch_faces(layout: Layout, sides: list[_SideSamples], table: _VertexTable) -> tuple[list, np.ndarray]:
+    """Mesh every patch with its Coons grid (adding the interior grid points as vertices): the faces,
+    quads first then triangles, and the patch of each face."""
     quads, tris, quad_patch, tri_patch = [], [], [], []
     for pat in layout.patterns:
-        if pat.pole is None:
-            (bi, bp), (ri, rp), (ti, tp), (li, lp) = (oriented(r) for r in pat.sides)
-            ti, tp, li, lp = ti[::-1], tp[::-1], li[::-1], lp[::-1]
-        else:
-            k = pat.pole
-            (bi, bp), (ri, rp), (ti, tp) = (oriented(pat.sides[(k + j) % 3]) for j in range(3))
-            ti, tp = ti[::-1], tp[::-1]
-            li = np.full(len(ri), bi[0])
-            lp = np.repeat(bp[:1], len(ri), axis=0)
-        if len(bi) != len(ti) or len(li) != len(ri):
-            raise VaultgramError(f"patch {pat.patch}: opposite sides have different counts (internal error)")
-        grid = coons_grid(bp, rp, tp, lp)
-        m, n = len(bi) - 1, len(li) - 1
-        ids = np.empty((m + 1, n + 1), dtype=np.int64)
-        ids[1:-1, 1:-1] = np.arange(n_vert, n_vert + (m - 1) * (n - 1)).reshape(m - 1, n - 1)
-        n_vert += (m - 1) * (n - 1)
-        pos.append(grid[1:-1, 1:-1].reshape(-1, 2))
-        vert_disc.append(np.full((m - 1) * (n - 1), -1, dtype=np.int64))
-        node_arr.append(np.full((m - 1) * (n - 1), -1, dtype=np.int64))
-        ids[:, 0], ids[:, -1], ids[0, :], ids[-1, :] = bi, ti, li, ri
-        q, t = grid_faces(ids, pole=pat.pole is not None)
+        q, t = _mesh_patch(pat, _coons_sides(pat, sides), table)
         quads.append(q)
         tris.append(t)
         quad_patch.append(np.full(len(q), pat.patch))
         tri_patch.append(np.full(len(t), pat.patch))
-
-    vertices = np.vstack(pos)
-    vdisc = np.concatenate(vert_disc)
-    node = np.concatenate(node_arr)
     q = np.vstack(quads) if quads else np.zeros((0, 4), dtype=np.int64)
     t = np.vstack(tris) if tris else np.zeros((0, 3), dtype=np.int64)
     faces = [tuple(f) for f in q.tolist()] + [tuple(f) for f in t.tolist()]
-    face_patch = np.concatenate(quad_patch + tri_patch).astype(np.int64)
+    return faces, np.concatenate(quad_patch + tri_patch).astype(np.int64)
 
-    # 4. labels
-    nv = len(vertices)
-    boundary = np.zeros(nv, dtype=bool)
-    ring = np.full(nv, -1, dtype=np.int64)
-    for side in layout.sides:
-        if side.boundary:
-            boundary[side_ids[side.id]] = True
-            ring[side_ids[side.id]] = side.ring
-    on_disc = vdisc >= 0
-    corner = np.zeros(nv, dtype=np.int8)
-    turning = np.zeros(nv)
-    corner[on_disc] = disc.corner_kind[vdisc[on_disc]]
-    turning[on_disc] = disc.turning[vdisc[on_disc]]
-    feature = np.zeros(nv, dtype=bool)
-    singular = np.zeros(nv, dtype=bool)
-    for n, v in vid_of_node.items():
-        feature[v] = is_feature_node(dec, n) and graph.node_type(n) != "CurveExtremity"
-        singular[v] = graph.node_type(n) in ("Singularity", "LoopVertex")
-        if graph.node_type(n) == "Corner" and corner[v] == 0:
-            corner[v] = 1
-    is_fp = np.zeros(disc.n_points, dtype=bool)
-    is_fp[np.asarray(disc.feature_points, dtype=np.int64)] = True
-    feature[on_disc] |= is_fp[vdisc[on_disc]]  # a boundary point feature inside a side (not a corner)
-    fixed = (corner != 0) | feature
-    fixed[on_disc] |= keep_point[vdisc[on_disc]]
+
+def _coons_sides(pat: PatchPattern, sides: list[_SideSamples]) -> tuple:
+    """The ``(ids, points)`` of a patch's sides as :func:`coons_grid` takes them: bottom, right, top,
+    left, with top and left running away from the first corner. A triangle starts at its pole and
+    gets a left side collapsed to it (the zero-length edge of §3.2)."""
+    if pat.pole is None:
+        (bi, bp), (ri, rp), (ti, tp), (li, lp) = (_oriented(sides, ref) for ref in pat.sides)
+        return (bi, bp), (ri, rp), (ti[::-1], tp[::-1]), (li[::-1], lp[::-1])
+    k = pat.pole
+    (bi, bp), (ri, rp), (ti, tp) = (_oriented(sides, pat.sides[(k + j) % 3]) for j in range(3))
+    return (bi, bp), (ri, rp), (ti[::-1], tp[::-1]), (np.full(len(ri), bi[0]), np.repeat(bp[:1], len(ri), axis=0))
+
+
+def _oriented(sides: list[_SideSamples], ref: tuple) -> tuple[np.ndarray, np.ndarray]:
+    """The samples of a patch side ``(side id, reversed)`` from the patch's corner ``i`` to ``i + 1``."""
+    s, reverse = ref
+    return sides[s].oriented(reverse)
+
+
+def _mesh_patch(pat: PatchPattern, coons_sides: tuple, table: _VertexTable) -> tuple[np.ndarray, np.ndarray]:
+    """The quads and triangles of one patch's Coons grid, whose boundary is its sides' vertices."""
+    (bi, bp), (ri, rp), (ti, tp), (li, lp) = coons_sides
+    if len(bi) != len(ti) or len(li) != len(ri):
+        raise VaultgramError(f"patch {pat.patch}: opposite sides have different counts (internal error)")
+    grid = coons_grid(bp, rp, tp, lp)
+    m, n = len(bi) - 1, len(li) - 1
+    ids = np.empty((m + 1, n + 1), dtype=np.int64)
+    ids[1:-1, 1:-1] = table.add(grid[1:-1, 1:-1].reshape(-1, 2)).reshape(m - 1, n - 1)
+    ids[:, 0], ids[:, -1], ids[0, :], ids[-1, :] = bi, ti, li, ri
+    return grid_faces(ids, pole=pat.pole is not None)
+
+
+# --------------------------------------------------------------------------------------------
+# Labels
+# --------------------------------------------------------------------------------------------
+
+
+def _vertex_labels(layout: Layout, sides: list[_SideSamples], vid_of_node: dict[int, int],
+                   disc_point: np.ndarray) -> dict[str, np.ndarray]:
+    """Where each vertex lies (ring, curve), what it stands for (domain corner, feature, singular node,
+    pole) and whether smoothing keeps it fixed (§3.2, §4.1, §4.2): per-vertex arrays named as the
+    :class:`QuadMesh` fields they fill."""
+    nv = len(disc_point)
+    boundary, ring = _ring_labels(layout, sides, nv)
+    curve = _curve_labels(layout, sides, nv)
+    corner, turning = _corner_labels(layout, vid_of_node, disc_point)
+    feature, singular, extremity = _node_labels(layout, vid_of_node, disc_point)
     pole = np.zeros(nv, dtype=bool)
     for pat in layout.patterns:
         if pat.pole is not None:
             pole[vid_of_node[pat.corners[pat.pole]]] = True
+    fixed = _fixed_vertices(layout, sides, vid_of_node, disc_point, corner != 0, feature, curve)
+    fixed |= extremity  # "point and curve constraints are added" (§4.2, Figure 7d)
+    return {"boundary": boundary, "ring": ring, "corner": corner, "turning": turning, "fixed": fixed, "pole": pole,
+            "feature": feature, "singular": singular, "curve": curve, "extremity": extremity}
+
+
+def _ring_labels(layout: Layout, sides: list[_SideSamples], nv: int) -> tuple[np.ndarray, np.ndarray]:
+    """Which vertices lie on a ring of the domain, and on which (0 outer, ``1 + k`` hole ``k``, else -1)."""
+    boundary = np.zeros(nv, dtype=bool)
+    ring = np.full(nv, -1, dtype=np.int64)
+    for side in layout.sides:
+        if side.boundary:
+            boundary[sides[side.id].ids] = True
+            ring[sides[side.id].ids] = side.ring
+    return boundary, ring
+
+
+def _curve_labels(layout: Layout, sides: list[_SideSamples], nv: int) -> np.ndarray:
+    """The curve feature each vertex lies on (§4.2), else -1."""
     curve = np.full(nv, -1, dtype=np.int64)
     for side in layout.sides:
         if side.curve >= 0:
-            curve[side_ids[side.id]] = side.curve
-    extremity = np.zeros(nv, dtype=bool)
+            curve[sides[side.id].ids] = side.curve
+    return curve
+
+
+def _corner_labels(layout: Layout, vid_of_node: dict[int, int],
+                   disc_point: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The domain's corner kind (1 convex, -1 reflex) and turning angle at vertices standing for ring
+    points; patch corners of type ``Corner`` count as convex corners."""
+    graph, disc = layout.decomposition.graph, layout.decomposition.disc
+    on_disc = disc_point >= 0
+    corner = np.zeros(len(disc_point), dtype=np.int8)
+    turning = np.zeros(len(disc_point))
+    corner[on_disc] = disc.corner_kind[disc_point[on_disc]]
+    turning[on_disc] = disc.turning[disc_point[on_disc]]
     for n, v in vid_of_node.items():
-        extremity[v] = graph.node_type(n) == "CurveExtremity"
-    fixed[np.asarray(curve_anchor, dtype=np.int64)] = True
-    for n, v in vid_of_node.items():  # patch corners at input vertices of a curve (its bends)
+        if graph.node_type(n) == "Corner" and corner[v] == 0:
+            corner[v] = 1
+    return corner, turning
+
+
+def _node_labels(layout: Layout, vid_of_node: dict[int, int], disc_point: np.ndarray) -> tuple:
+    """``(feature, singular, extremity)``: point features (§4.1, at patch corners and at boundary
+    samples), vertices at singular nodes of the decomposition, and curve extremities (§4.2)."""
+    dec = layout.decomposition
+    graph, disc = dec.graph, dec.disc
+    nv = len(disc_point)
+    feature, singular, extremity = (np.zeros(nv, dtype=bool) for _ in range(3))
+    for n, v in vid_of_node.items():
+        kind = graph.node_type(n)
+        feature[v] = is_feature_node(dec, n) and kind != "CurveExtremity"
+        singular[v] = kind in ("Singularity", "LoopVertex")
+        extremity[v] = kind == "CurveExtremity"
+    on_disc = disc_point >= 0
+    is_fp = np.zeros(disc.n_points, dtype=bool)
+    is_fp[np.asarray(disc.feature_points, dtype=np.int64)] = True
+    feature[on_disc] |= is_fp[disc_point[on_disc]]  # a boundary point feature inside a side (not a corner)
+    return feature, singular, extremity
+
+
+def _fixed_vertices(layout: Layout, sides: list[_SideSamples], vid_of_node: dict[int, int], disc_point: np.ndarray,
+                    corner: np.ndarray, feature: np.ndarray, curve: np.ndarray) -> np.ndarray:
+    """Vertices smoothing does not move (§3.2, §4): domain corners, features, the points the mesh
+    must keep (:func:`vaultgram.meshing.layout.kept_points`) and the input vertices of curve features
+    (the curve's bends), as side samples or as patch corners."""
+    disc = layout.decomposition.disc
+    on_disc = disc_point >= 0
+    fixed = corner | feature
+    fixed[on_disc] |= kept_points(disc)[disc_point[on_disc]]
+    for side in layout.sides:
+        if side.curve >= 0:
+            fixed[[sides[side.id].ids[h] for _, h in sides[side.id].anchors]] = True
+    for n, v in vid_of_node.items():
         if 0 <= n < disc.n_points and curve[v] >= 0 and disc.is_input_vertex[n]:
             fixed[v] = True
-    fixed |= extremity  # "point and curve constraints are added" (§4.2, Figure 7d)
-    chains = _curve_chains(layout, side_ids, vid_of_node)
-
-    constraints = _boundary_constraints(layout, side_ids, side_anchor, fixed)
-    constraints += _curve_constraints(disc, chains, node, vertices, fixed)
-    groups = tuple(
-        {"id": g.id, "count": int(counts[g.id]), "sides": len(g.sides),
-         "mean_length": g.mean_length, "max_length": g.max_length}
-        for g in layout.groups
-    )
-    curve_lines = tuple(np.asarray(disc.points[c], dtype=float) for c in disc.curves)
-    return QuadMesh(vertices, faces, face_patch, boundary, ring, corner, turning, fixed, pole, feature,
-                    node, singular, groups, constraints, {}, curve, extremity, chains, curve_lines)
+    return fixed
 
 
-def _curve_chains(layout: Layout, side_ids, vid_of_node) -> tuple:
+# --------------------------------------------------------------------------------------------
+# Sliding constraints
+# --------------------------------------------------------------------------------------------
+
+
+def _curve_chains(layout: Layout, sides: list[_SideSamples]) -> tuple:
     """For each curve feature, its mesh vertices in order along the curve (the curve sides, joined)."""
     disc = layout.decomposition.disc
     out = []
@@ -200,22 +348,25 @@ def _curve_chains(layout: Layout, side_ids, vid_of_node) -> tuple:
             a, b = where.get(side.start), where.get(side.end)
             if a is None or b is None:
                 raise VaultgramError(f"curve feature {c}: a side ends off the curve (internal error)")
-            ids = side_ids[side.id]
+            ids = sides[side.id].ids
             pieces.append((min(a, b), ids if a < b else ids[::-1]))
-        pieces.sort(key=lambda t: t[0])
-        if not pieces:
-            out.append(np.zeros(0, dtype=np.int64))
-            continue
-        chain = [pieces[0][1]]
-        for _, ids in pieces[1:]:
-            if ids[0] != chain[-1][-1]:
-                raise VaultgramError(f"curve feature {c}: its sides do not join into one chain (internal error)")
-            chain.append(ids[1:])
-        out.append(np.concatenate(chain))
+        out.append(_joined(c, sorted(pieces, key=lambda t: t[0])))
     return tuple(out)
 
 
-def _curve_constraints(disc, chains, node, vertices, fixed) -> tuple:
+def _joined(c: int, pieces: list) -> np.ndarray:
+    """The vertex ids of curve ``c``'s sides, sorted along it, as one chain."""
+    if not pieces:
+        return np.zeros(0, dtype=np.int64)
+    chain = [pieces[0][1]]
+    for _, ids in pieces[1:]:
+        if ids[0] != chain[-1][-1]:
+            raise VaultgramError(f"curve feature {c}: its sides do not join into one chain (internal error)")
+        chain.append(ids[1:])
+    return np.concatenate(chain)
+
+
+def _curve_constraints(disc, chains, vertices, fixed) -> tuple:
     """Split each curve chain at its fixed vertices (extremities, input vertices of the curve, boundary
     ends) into stretches that slide on the piece of the curve between them (§4.2, Figure 7d)."""
     out = []
@@ -237,14 +388,20 @@ def _curve_index(line: np.ndarray, p: np.ndarray) -> int:
     return int(np.argmin(np.hypot(*(line - p).T)))
 
 
-def _boundary_constraints(layout: Layout, side_ids, side_anchor, fixed) -> tuple:
-    """Split every ring's chain of boundary sides at fixed vertices into sliding stretches."""
-    by_start = {}
-    for side in layout.sides:
-        if side.boundary:
-            by_start[side.start] = side
-    seen: set[int] = set()
+def _boundary_constraints(layout: Layout, sides: list[_SideSamples], fixed: np.ndarray) -> tuple:
+    """Split every ring's chain of boundary sides at fixed vertices into sliding stretches (§3.2:
+    boundary vertices "are projected back on it after each iteration, to allow them to slide")."""
     out = []
+    for chain in _ring_chains(layout):
+        out.extend(_ring_stretches(*_ring_walk(chain, sides, fixed)))
+    return tuple(out)
+
+
+def _ring_chains(layout: Layout) -> list[list]:
+    """The boundary sides of each ring, in order along it (one chain per ring)."""
+    by_start = {side.start: side for side in layout.sides if side.boundary}
+    seen: set[int] = set()
+    chains = []
     for side in layout.sides:
         if not side.boundary or side.id in seen:
             continue
@@ -256,32 +413,42 @@ def _boundary_constraints(layout: Layout, side_ids, side_anchor, fixed) -> tuple
             s = by_start.get(s.end)
             if s is None:
                 raise VaultgramError(f"boundary ring {side.ring} is not closed by patch sides (internal error)")
-        verts, dense, fixed_at = [], [], []  # vertex ids; dense polyline; (position in verts, dense index)
-        for s in chain:
-            off = len(dense)
-            ids = side_ids[s.id][:-1]
-            anchor_of_sample = {h: a for a, h in side_anchor[s.id]}
-            for k, v in enumerate(ids):
-                if fixed[v]:
-                    if k == 0:
-                        fixed_at.append((len(verts), off))
-                    elif k in anchor_of_sample:
-                        fixed_at.append((len(verts), off + anchor_of_sample[k]))
-                verts.append(v)
-            dense.extend(s.polyline[:-1])
-        verts = np.asarray(verts, dtype=np.int64)
-        dense = np.asarray(dense, dtype=float)
-        if not fixed_at:
-            out.append(SlideConstraint(verts, dense, closed=True))
+        chains.append(chain)
+    return chains
+
+
+def _ring_walk(chain: list, sides: list[_SideSamples], fixed: np.ndarray) -> tuple:
+    """Along one ring: its vertex ids, its dense polyline (the sides' polylines joined), and
+    ``(position in the vertex ids, index in the dense polyline)`` of each fixed vertex that stands
+    for a point of the polyline (a side's start corner or one of its honoured anchors)."""
+    verts, dense, fixed_at = [], [], []
+    for s in chain:
+        off = len(dense)
+        anchor_of_sample = {h: a for a, h in sides[s.id].anchors}
+        for k, v in enumerate(sides[s.id].ids[:-1]):
+            if fixed[v]:
+                if k == 0:
+                    fixed_at.append((len(verts), off))
+                elif k in anchor_of_sample:
+                    fixed_at.append((len(verts), off + anchor_of_sample[k]))
+            verts.append(v)
+        dense.extend(s.polyline[:-1])
+    return np.asarray(verts, dtype=np.int64), np.asarray(dense, dtype=float), fixed_at
+
+
+def _ring_stretches(verts: np.ndarray, dense: np.ndarray, fixed_at: list) -> list[SlideConstraint]:
+    """The stretches of a ring between consecutive fixed vertices (the whole ring, closed, if none)."""
+    if not fixed_at:
+        return [SlideConstraint(verts, dense, closed=True)]
+    out = []
+    for (i, a), (j, b) in zip(fixed_at, fixed_at[1:] + fixed_at[:1]):
+        if j <= i:
+            j += len(verts)
+        if b <= a:
+            b += len(dense)
+        inner = np.take(verts, np.arange(i + 1, j), mode="wrap")
+        if len(inner) == 0:
             continue
-        for (i, a), (j, b) in zip(fixed_at, fixed_at[1:] + fixed_at[:1]):
-            if j <= i:
-                j += len(verts)
-            if b <= a:
-                b += len(dense)
-            inner = np.take(verts, np.arange(i + 1, j), mode="wrap")
-            if len(inner) == 0:
-                continue
-            poly = np.take(dense, np.arange(a, b + 1), axis=0, mode="wrap")
-            out.append(SlideConstraint(inner, poly, closed=False))
-    return tuple(out)
+        poly = np.take(dense, np.arange(a, b + 1), axis=0, mode="wrap")
+        out.append(SlideConstraint(inner, poly, closed=False))
+    return out

@@ -1,27 +1,21 @@
-"""The meshing pipeline (paper §3.2) against the acceptance properties, the files and the CLI."""
+"""The meshing pipeline (paper §3.2) against the acceptance properties, on the examples, the shared
+plans and random domains."""
 
 from __future__ import annotations
 
-import json
 import math
 
 import numpy as np
 import pytest
-from click.testing import CliRunner
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from vaultgram.cli import main
-from vaultgram.domain import domain_from_dict, load_domain
+from vaultgram.domain import domain_from_dict
 from vaultgram.errors import VaultgramError
 from vaultgram.geometry.meshes import corner_arrays
-from vaultgram.io.meshfiles import mesh_from_json, mesh_to_json, read_mesh, write_mesh
-from vaultgram.meshing.densities import group_counts
-from vaultgram.meshing.layout import edge_groups, is_feature_node
+from vaultgram.meshing.layout import is_feature_node
 from vaultgram.meshing.quality import mesh_stats, regular_boundary_faces
-from vaultgram.pipeline import decompose, mesh_domain
-
-from paths import ARCHITECTURE, EXAMPLES
+from vaultgram.pipeline import mesh_domain
 
 # Examples that meet every acceptance property, and for the others the property that fails (kept as
 # strict xfails so that a fix shows up). "Boundary singularities" are compared with the number the
@@ -38,13 +32,9 @@ FAILING = {
                        "corners take 3 faces: 2 boundary singularities where none are forced",
 }
 
+
 #: A face whose minimum scaled Jacobian is at most this is counted as degenerate.
 DEGENERATE = 1e-3
-
-
-def _path(name):
-    p = EXAMPLES / f"{name}.json"
-    return p if p.is_file() else ARCHITECTURE / f"{name}.json"
 
 
 def expected_interior_singular(layout, counts, mesh) -> set:
@@ -125,27 +115,6 @@ def acceptance_failures(mesh, stats, domain, forced: int = 0) -> list[str]:
     return out
 
 
-@pytest.fixture(scope="module")
-def meshed():
-    cache = {}
-
-    def get(name, factor=1.0):
-        if (name, factor) not in cache:
-            path = _path(name)
-            if not path.is_file():
-                pytest.skip(f"{path} not found")
-            domain = load_domain(path)
-            dec = decompose(domain)
-            layout = edge_groups(dec)
-            target = 0.025 * domain.diagonal * factor
-            counts = group_counts(layout, target_length=target)
-            mesh = mesh_domain(domain, target_length=target)
-            cache[name, factor] = (domain, layout, counts, mesh, mesh_stats(mesh, domain))
-        return cache[name, factor]
-
-    return get
-
-
 @pytest.mark.parametrize("name", PASSING + sorted(FAILING))
 def test_index_theorem(meshed, name):
     """The meshes obey the index theorem, and have at least the forced boundary singularities."""
@@ -198,86 +167,6 @@ def test_halved_target_length(meshed, name):
     assert singular_nodes(fine, fine_stats) == singular_nodes(mesh, stats)
 
 
-def test_welding_is_exact(meshed):
-    _, _, _, mesh, _ = meshed("quad_with_hole")
-    used = np.zeros(mesh.n_vertices, dtype=bool)
-    used[np.concatenate([np.asarray(f) for f in mesh.faces])] = True
-    assert used.all()  # no duplicate or stray vertex
-    x = mesh.vertices
-    d = np.hypot(*(x[:, None] - x[None]).transpose(2, 0, 1))
-    np.fill_diagonal(d, np.inf)
-    assert d.min() > 1e-3 * mesh.info["diagonal"]  # no two vertices at one place
-
-
-def test_labels(meshed):
-    domain, _, _, mesh, _ = meshed("two_holes_five_points")
-    assert mesh.boundary[mesh.fixed & ~mesh.feature].all()
-    assert mesh.feature.sum() >= 1 and mesh.pole.sum() >= 1
-    assert set(np.unique(mesh.ring[mesh.boundary])) == {0, 1, 2}
-    assert (mesh.ring[~mesh.boundary] == -1).all()
-    assert len(mesh.groups) == mesh.info["edge_groups"] > 0
-
-
-def test_json_and_obj_round_trip(tmp_path, meshed):
-    domain, _, _, mesh, stats = meshed("rv_lips_pattern")
-    json_path, obj_path = write_mesh(mesh, tmp_path / "out")
-    data = json.loads(json_path.read_text())
-    assert len(data["vertices"][0]) == 3 and len(data["faces"]) == mesh.n_faces
-    assert {"labels", "edge_groups"} <= set(data)
-    back = read_mesh(json_path)
-    assert np.allclose(back.vertices, mesh.vertices) and back.faces == mesh.faces
-    assert (back.pole == mesh.pole).all() and (back.fixed == mesh.fixed).all()
-    assert mesh_stats(back) == {k: v for k, v in stats.items() if not k.startswith("boundary_distance")}
-    obj = obj_path.read_text().splitlines()
-    assert sum(line.startswith("v ") for line in obj) == mesh.n_vertices
-    assert sum(line.startswith("f ") for line in obj) == mesh.n_faces
-    assert not list((tmp_path / "out").glob(".*tmp"))
-    assert mesh_from_json(mesh_to_json(mesh)).n_faces == mesh.n_faces
-
-
-def test_stats_without_labels_use_mesh_topology():
-    v = [[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0], [1, 1, 0], [2, 1, 0]]
-    stats = mesh_stats(mesh_from_json({"vertices": v, "faces": [[0, 1, 4, 3], [1, 2, 5, 4]]}))
-    assert stats["quads"] == 2 and stats["interior_singular"] == 0
-    assert stats["boundary_singular"] == 4  # no corner labels: the four corners count as singular
-    assert stats["min_scaled_jacobian"] == pytest.approx(1.0)
-    assert stats["min_angle"] == pytest.approx(90.0) and stats["max_angle"] == pytest.approx(90.0)
-    flipped = mesh_stats(mesh_from_json({"vertices": v, "faces": [[0, 3, 4, 1], [1, 2, 5, 4]]}))
-    assert flipped["inverted_faces"] == 1 and not flipped["oriented"]
-
-
-def test_cli_mesh_and_stats(tmp_path):
-    runner = CliRunner()
-    domain = str(EXAMPLES / "quad_with_hole.json")
-    out = tmp_path / "m"
-    res = runner.invoke(main, ["mesh", domain, "--out", str(out), "--target-length", "0.6", "--smooth", "5"])
-    assert res.exit_code == 0, res.output
-    assert (out / "mesh.json").is_file() and (out / "mesh.obj").is_file()
-    res = runner.invoke(main, ["stats", str(out / "mesh.json"), "--domain", domain, "--json"])
-    assert res.exit_code == 0, res.output
-    stats = json.loads(res.output)
-    assert stats["boundary_singular"] == 0 and stats["interior_singular"] == 4 and stats["triangles"] == 0
-    res = runner.invoke(main, ["stats", str(out / "mesh.json")])
-    assert res.exit_code == 0 and "min_scaled_jacobian" in res.output
-    dens = tmp_path / "d.json"
-    dens.write_text(json.dumps({"groups": {"0": 3, "1": 4}}))
-    res = runner.invoke(main, ["mesh", domain, "--out", str(out), "--densities", str(dens)])
-    assert res.exit_code == 0, res.output
-    assert [g["count"] for g in json.loads((out / "mesh.json").read_text())["edge_groups"]][:2] == [3, 4]
-
-
-def test_cli_errors_are_one_line(tmp_path):
-    runner = CliRunner()
-    dens = tmp_path / "d.json"
-    dens.write_text('{"groups": {"0": -2}}')
-    res = runner.invoke(main, ["mesh", str(EXAMPLES / "l_shape.json"), "--out", str(tmp_path), "--densities", str(dens)])
-    assert res.exit_code == 2 and "positive integer" in res.output and "Traceback" not in res.output
-    bad = tmp_path / "bad.json"
-    bad.write_text('{"vertices": [[0, 0]], "faces": [[0, 1, 2]]}')
-    res = runner.invoke(main, ["stats", str(bad)])
-    assert res.exit_code == 2 and "faces" in res.output
-
-
 # ---------------------------------------------------------------------------------------------
 # Random domains
 # ---------------------------------------------------------------------------------------------
@@ -328,33 +217,3 @@ def test_near_symmetric_kite():
     stats = mesh_stats(mesh_domain(domain, target_length=0.03 * domain.diagonal), domain)
     assert stats["min_scaled_jacobian"] > 0
     assert stats["boundary_singular"] == 0
-
-
-# A rectangle with a curve feature 0.9 from its bottom side and a boundary point: the patch between
-# that curve and the boundary folds (10 inverted faces) whatever smoothing and untangling do.
-FOLDING = {"outer": [[0, 0], [8.969219944792723, 0], [8.969219944792723, 9.230049115216001], [0, 9.230049115216001]],
-           "points": [[8.969219944792723, 6.564436888431961]],
-           "curves": [[[1.3319402748322131, 3.237878824185768], [2.6869734415206787, 4.09028434005551]],
-                      [[5.04737783905793, 1.5446644739170763], [3.2519501197955387, 0.8942200737782218]]]}
-
-
-def test_a_folded_mesh_is_an_error_naming_where(tmp_path):
-    """A mesh with inverted faces after smoothing and untangling is not returned: MeshFoldError says
-    where (the worst face and its patch's corners); with allow_folds the mesh comes back, folded.
-    The CLI fails with one line and exit code 2, writing nothing, unless --allow-folds."""
-    from vaultgram.errors import MeshFoldError
-
-    domain = domain_from_dict(FOLDING)
-    with pytest.raises(MeshFoldError, match=r"the mesh folds: \d+ inverted face\(s\), the worst near \(3\.") as info:
-        mesh_domain(domain)
-    assert "patch with corners" in str(info.value)
-    folded = mesh_domain(domain, allow_folds=True)
-    assert mesh_stats(folded, domain)["inverted_faces"] > 0
-    path = tmp_path / "folding.json"
-    path.write_text(json.dumps(FOLDING))
-    out = tmp_path / "out"
-    result = CliRunner().invoke(main, ["mesh", str(path), "--out", str(out)])
-    assert result.exit_code == 2 and "the mesh folds" in result.output and "Traceback" not in result.output
-    assert not out.exists() or not any(out.iterdir())
-    result = CliRunner().invoke(main, ["mesh", str(path), "--out", str(out), "--allow-folds"])
-    assert result.exit_code == 0 and "warning:" in result.output and (out / "mesh.json").is_file()

@@ -16,7 +16,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from vaultgram.domain import check_feature_spacing, domain_from_dict, load_domain
+from vaultgram.domain import check_feature_spacing, domain_from_dict
 from vaultgram.errors import DomainError, VaultgramError
 from vaultgram.geometry.polylines import polyline_hausdorff
 from vaultgram.io.meshfiles import mesh_from_json, mesh_to_json
@@ -24,33 +24,23 @@ from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import mesh_domain
 from vaultgram.topology.patches import half_edge_polyline
 
-from paths import ARCHITECTURE, EXAMPLES
+from paths import EXAMPLES
 
 FEATURE_EXAMPLES = ["fig5_boundary_points", "fig6_inner_points", "fig7_curves", "features_combined",
                     "square_point_loads"]
 HAUSDORFF = 1e-9  # of the bounding-box diagonal
 
 
-def _path(name):
-    p = EXAMPLES / f"{name}.json"
-    return p if p.is_file() else ARCHITECTURE / f"{name}.json"
-
-
 @pytest.fixture(scope="module")
-def meshed():
-    cache = {}
+def meshed(cached_examples):
+    """This module's own ``meshed(name)`` (overriding tests/meshing/conftest.py's): the mesh at the
+    default target length, as ``(domain, mesh, stats)``."""
 
-    def get(name):
-        if name not in cache:
-            path = _path(name)
-            if not path.is_file():
-                pytest.skip(f"{path} not found")
-            domain = load_domain(path)
-            mesh = mesh_domain(domain)
-            cache[name] = domain, mesh, mesh_stats(mesh, domain)
-        return cache[name]
+    def make(domain):
+        mesh = mesh_domain(domain)
+        return domain, mesh, mesh_stats(mesh, domain)
 
-    return get
+    return cached_examples(make)
 
 
 def assert_feature_properties(domain, mesh, stats):
@@ -88,7 +78,7 @@ def assert_feature_properties(domain, mesh, stats):
 @pytest.mark.parametrize("name", FEATURE_EXAMPLES + ["armadillo_vault_plan", "two_holes_five_points"])
 def test_feature_example(meshed, name):
     domain, mesh, stats = meshed(name)
-    if name == "two_holes_five_points":  # see test_geometry_mesh.FAILING: boundary singularities
+    if name == "two_holes_five_points":  # see FAILING in test_acceptance.py: boundary singularities
         stats = dict(stats, boundary_singular=0)
     assert_feature_properties(domain, mesh, stats)
     assert stats["inverted_faces"] == 0
@@ -250,7 +240,7 @@ def test_random_feature_domains(data):
     assert np.all(mesh.fixed[mesh.extremity])
     # no boundary singularity (benchmarks/quality_survey.py: none in 150 such domains since the
     # spread_boundary_pole rules), unless a boundary feature's Figure 4 diagonal has to end on the
-    # boundary (two_holes_five_points in test_geometry_mesh: no free boundary point beside it)
+    # boundary (two_holes_five_points in tests/meshing/test_acceptance.py: no free boundary point beside it)
     if not any(mesh.boundary[mesh.feature]):
         assert stats["boundary_singular"] == 0, stats["boundary_singular_vertices"]
     # the topology of §4: poles at point features (also on the boundary) and free curve ends, no
@@ -389,8 +379,9 @@ def test_quad_with_a_reflex_curve_bend_is_split_with_a_marked_pole():
     dec = decompose(domain)
     assert {str(r.step): r.applications for r in dec.reports}["split_quad_at_reflex_corner fixpoint"] == 1
     g = dec.graph
-    bend = min(g.nodes(), key=lambda n: np.hypot(*(np.asarray(g.get(n, "pos")) - [9.30837962003061, 1.4557709055970893]))
-                if "pos" in g.node_attrs(n) else np.inf)
+    bend = min(g.nodes(),
+               key=lambda n: np.hypot(*(np.asarray(g.get(n, "pos")) - [9.30837962003061, 1.4557709055970893]))
+               if "pos" in g.node_attrs(n) else np.inf)
     (diagonal,) = [e for e in g.incident(bend, ["Diagonal"])]
     apex = g.other(diagonal, bend)
     assert g.schema.is_subtype(g.node_type(apex), "SkeletonVertex")

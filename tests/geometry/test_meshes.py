@@ -1,0 +1,102 @@
+"""The mesh kernel (vaultgram.geometry.meshes): grids, boundary loops, corner arrays, adjacency, errors."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from vaultgram.cli import main
+from vaultgram.errors import VaultgramError
+from vaultgram.geometry.meshes import (
+    MeshError,
+    NonManifoldVertexError,
+    adjacency,
+    boundary_adjacency,
+    boundary_loops,
+    corner_arrays,
+    corner_vectors,
+    grid_index,
+    grid_mesh,
+    has_twin,
+    remove_faces,
+)
+from vaultgram.geometry.polygons import cross_z, signed_area
+
+SETTINGS = settings(max_examples=30, deadline=None)
+
+
+@SETTINGS
+@given(st.integers(1, 12))
+def test_boundary_of_a_grid_is_one_counter_clockwise_loop_of_4n_vertices(n):
+    v, f = grid_mesh(n)
+    (loop,) = boundary_loops(f)
+    assert len(loop) == 4 * n == len(set(loop))
+    assert signed_area(v[loop, :2]) == pytest.approx(n * n)
+    inside = {grid_index(i, j, n) for i in range(1, n) for j in range(1, n)}
+    assert not inside & set(loop)
+
+
+@SETTINGS
+@given(st.integers(3, 10), st.integers(3, 10), st.data())
+def test_a_hole_punched_into_a_grid_is_a_second_clockwise_loop(nx, ny, data):
+    i = data.draw(st.integers(1, nx - 2))
+    j = data.draw(st.integers(1, ny - 2))
+    v, f = grid_mesh(nx, ny)
+    v2, f2, old = remove_faces(v, f, [j * nx + i])
+    assert len(f2) == len(f) - 1 and len(v2) == len(v) and np.array_equal(v2, v[old])
+    loops = sorted(boundary_loops(f2), key=len)
+    assert [len(lp) for lp in loops] == [4, 2 * (nx + ny)]
+    assert signed_area(v2[loops[0], :2]) == pytest.approx(-1.0)
+
+
+@SETTINGS
+@given(st.integers(1, 8), st.integers(1, 8))
+def test_corner_arrays_adjacency_and_twins_of_a_grid(nx, ny):
+    v, f = grid_mesh(nx, ny)
+    face, u, nxt, prv = corner_arrays(f)
+    assert len(u) == 4 * nx * ny and (np.bincount(face) == 4).all()
+    e1, e2 = corner_vectors(v, u, nxt, prv)
+    assert (cross_z(e1, e2) > 0).all()  # every corner of a counter-clockwise grid turns left
+    a = adjacency(len(v), f)
+    assert (a != a.T).nnz == 0 and a.nnz == 2 * ((nx + 1) * ny + (ny + 1) * nx)
+    b = boundary_adjacency(len(v), f)
+    assert b.nnz == 2 * 2 * (nx + ny)
+    assert (~has_twin(u, nxt)).sum() == 2 * (nx + ny)
+
+
+def test_grid_sizes_below_one_are_mesh_errors():
+    with pytest.raises(MeshError, match="at least one face"):
+        grid_mesh(0, 3)
+    assert issubclass(MeshError, VaultgramError) and issubclass(MeshError, ValueError)
+
+
+def test_a_pinched_boundary_vertex_is_named():
+    """Two squares sharing only vertex 2: it starts two boundary halfedges."""
+    faces = [(0, 1, 2, 3), (2, 4, 5, 6)]
+    with pytest.raises(NonManifoldVertexError, match="vertex 2 starts two boundary halfedges") as info:
+        boundary_loops(faces)
+    assert info.value.vertex == 2
+    with pytest.raises(ValueError):  # what boundary_loops raised before: callers catching it still work
+        boundary_loops(faces)
+
+
+def test_a_pinched_mesh_is_one_error_line_on_the_command_line(tmp_path):
+    """The supports of formfind walk the boundary loops: a pinched vertex is a user's mistake, reported
+    in one line with exit code 2 (it was a ValueError traceback)."""
+    path = tmp_path / "pinched.json"
+    path.write_text(json.dumps({"vertices": [[0, 0], [1, 0], [1, 1], [0, 1], [2, 1], [2, 2], [1, 2]],
+                                "faces": [[0, 1, 2, 3], [2, 4, 5, 6]]}))
+    result = CliRunner().invoke(main, ["formfind", str(path), "--out", str(tmp_path / "out")])
+    assert result.exit_code == 2 and "vertex 2 starts two boundary halfedges" in result.output
+    assert "Traceback" not in result.output
+
+
+def test_empty_meshes():
+    assert boundary_loops([]) == []
+    assert all(len(a) == 0 for a in corner_arrays([]))
+    assert adjacency(3, []).nnz == 0

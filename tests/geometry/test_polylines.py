@@ -1,0 +1,144 @@
+"""The polyline kernel (vaultgram.geometry.polylines): resampling, projection, lengths, angles, distances."""
+
+from __future__ import annotations
+
+import numpy as np
+import shapely
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from vaultgram.geometry.polylines import (
+    arc_lengths,
+    arc_parameters,
+    chord_deviation,
+    halfway_point,
+    locate_on_polyline,
+    point_at_length,
+    polyline_hausdorff,
+    polyline_length,
+    project_to_polyline,
+    resample_polyline,
+    turning_angles,
+)
+
+
+def test_resample_hits_anchors_and_ends():
+    poly = np.array([[0, 0], [1, 0], [2, 0], [2, 1], [2, 2.0]])
+    pts, hit = resample_polyline(poly, 6, anchors=[2])
+    assert len(pts) == 7 and hit == [3]
+    assert np.allclose(pts[3], [2, 0]) and np.allclose(pts[0], poly[0]) and np.allclose(pts[-1], poly[-1])
+    pts, hit = resample_polyline(poly, 1, anchors=[2])  # not enough subdivisions: anchors ignored
+    assert hit == [] and len(pts) == 2
+    pts, _ = resample_polyline(poly, 4)
+    assert np.allclose(np.hypot(*np.diff(pts, axis=0).T), 1.0)
+
+
+def test_projection_onto_polyline():
+    poly = np.array([[0, 0], [2, 0], [2, 2.0]])
+    p = np.array([[1, 0.5], [3, 1], [-1, -1], [2.5, 3]])
+    assert np.allclose(project_to_polyline(p, poly), [[1, 0], [2, 1], [0, 0], [2, 2]])
+    square = np.array([[0, 0], [1, 0], [1, 1], [0, 1.0]])
+    assert np.allclose(project_to_polyline(np.array([[-0.2, 0.5]]), square, closed=True), [[0, 0.5]])
+
+
+# ---------------------------------------------------------------------------------------------
+# Properties
+# ---------------------------------------------------------------------------------------------
+
+coordinates = st.floats(-100, 100, allow_nan=False, allow_infinity=False)
+points = st.tuples(coordinates, coordinates)
+
+
+@st.composite
+def polylines(draw, min_size: int = 2, max_size: int = 8):
+    """Open polylines of ``min_size`` to ``max_size`` points, consecutive points at least 1e-3 apart."""
+    pts = np.array(draw(st.lists(points, min_size=min_size, max_size=max_size)), dtype=float)
+    keep = np.concatenate([[True], np.hypot(*np.diff(pts, axis=0).T) > 1e-3])
+    pts = pts[keep]
+    if len(pts) < 2:
+        pts = np.vstack([pts[:1], pts[:1] + [1.0, 0.0]])
+    return pts
+
+
+SETTINGS = settings(max_examples=60, deadline=None)
+
+
+@SETTINGS
+@given(polylines(), st.lists(points, min_size=1, max_size=10), st.booleans())
+def test_projection_lies_on_the_polyline_and_is_nearest(poly, pts, closed):
+    """Every projected point lies on the polyline, and no farther from its point than the nearest
+    vertex (nor than any point of the polyline, measured by shapely)."""
+    p = np.array(pts, dtype=float)
+    q = project_to_polyline(p, poly, closed=closed)
+    line = shapely.LineString(np.vstack([poly, poly[:1]]) if closed else poly)
+    scale = 1e-9 * (1.0 + np.abs(poly).max() + np.abs(p).max())
+    assert shapely.distance(shapely.points(q), line).max() <= scale
+    d = np.hypot(*(q - p).T)
+    nearest_vertex = np.hypot(*(p[:, None, :] - poly[None, :, :]).transpose(2, 0, 1)).min(axis=1)
+    assert (d <= nearest_vertex + scale).all()
+    assert np.allclose(d, shapely.distance(shapely.points(p), line), atol=scale)
+
+
+@SETTINGS
+@given(polylines(), points, st.booleans())
+def test_locate_agrees_with_projection(poly, p, closed):
+    """locate_on_polyline's distance is the distance to the projected point."""
+    p = np.array(p, dtype=float)
+    d, i, t = locate_on_polyline(poly, p, closed=closed)
+    q = project_to_polyline(p[None, :], poly, closed=closed)[0]
+    assert 0.0 <= t <= 1.0 and 0 <= i < (len(poly) if closed else len(poly) - 1)
+    assert abs(d - np.hypot(*(q - p))) <= 1e-9 * (1.0 + np.abs(poly).max() + np.abs(p).max())
+
+
+@SETTINGS
+@given(polylines(), st.integers(1, 40), st.data())
+def test_resample_keeps_its_ends_and_has_n_plus_one_samples(poly, n, data):
+    """resample_polyline gives n + 1 points, the first and last exactly the polyline's ends; the anchors
+    it reports as hit are samples at the anchor points, and the samples stay on the polyline."""
+    anchors = data.draw(st.lists(st.integers(1, max(1, len(poly) - 2)), max_size=3)) if len(poly) > 2 else []
+    pts, hit = resample_polyline(poly, n, anchors)
+    assert pts.shape == (n + 1, 2)
+    assert np.array_equal(pts[0], poly[0]) and np.array_equal(pts[-1], poly[-1])
+    for a, h in zip(sorted(set(anchors)), hit):
+        assert np.array_equal(pts[h], poly[a])
+    assert hit == [] or len(hit) == len(set(anchors))
+    assert chord_deviation(pts, poly) <= 1e-9 * (1.0 + np.abs(poly).max())
+
+
+@SETTINGS
+@given(polylines())
+def test_lengths_and_parameters(poly):
+    """Arc lengths increase from 0 to the polyline's length; parameters run from 0 to 1; the ends are
+    at lengths 0 and the total; the halfway point lies on the polyline, at the middle of a segment."""
+    s = arc_lengths(poly)
+    assert s[0] == 0.0 and (np.diff(s) > 0).all()
+    assert np.isclose(s[-1], polyline_length(poly))
+    t = arc_parameters(poly)
+    assert t[0] == 0.0 and t[-1] == 1.0
+    assert np.allclose(point_at_length(poly, 0.0), poly[0]) and np.allclose(point_at_length(poly, s[-1]), poly[-1])
+    d, _, _ = locate_on_polyline(poly, halfway_point(poly))
+    assert d <= 1e-9 * (1.0 + np.abs(poly).max())
+    assert np.allclose(halfway_point(poly[:2]), 0.5 * (poly[0] + poly[1]))
+
+
+@SETTINGS
+@given(st.integers(3, 12), st.floats(0.1, 10.0), st.floats(0.0, 6.3))
+def test_turning_angles_of_a_convex_polygon_add_up_to_a_full_turn(n, r, phase):
+    t = phase + 2 * np.pi * np.arange(n) / n
+    ring = np.column_stack([r * np.cos(t), r * np.sin(t)])
+    assert np.isclose(turning_angles(ring).sum(), 360.0)
+    assert np.isclose(turning_angles(ring[::-1]).sum(), -360.0)
+    open_angles = turning_angles(ring, closed=False)
+    assert open_angles[0] == open_angles[-1] == 0.0
+
+
+@SETTINGS
+@given(polylines(), polylines())
+def test_hausdorff_is_symmetric_and_zero_on_itself(a, b):
+    """The Hausdorff distance is symmetric, at least the distance between the first points' nearest
+    counterparts, and (up to rounding) zero from a polyline to itself; so is the chord deviation."""
+    scale = 1e-9 * (1.0 + np.abs(a).max())
+    assert 0.0 <= polyline_hausdorff(a, a) <= scale
+    assert polyline_hausdorff(a, b) == polyline_hausdorff(b, a)
+    assert polyline_hausdorff(a, b) >= shapely.distance(shapely.points(a[0]), shapely.LineString(b)) - scale
+    assert 0.0 <= chord_deviation(a, a) <= scale

@@ -1,0 +1,55 @@
+"""Mesh quality: statistics without labels, and a folded mesh as an error naming where."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from click.testing import CliRunner
+
+from vaultgram.cli import main
+from vaultgram.domain import domain_from_dict
+from vaultgram.io.meshfiles import mesh_from_json
+from vaultgram.meshing.quality import mesh_stats
+from vaultgram.pipeline import mesh_domain
+
+
+def test_stats_without_labels_use_mesh_topology():
+    v = [[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0], [1, 1, 0], [2, 1, 0]]
+    stats = mesh_stats(mesh_from_json({"vertices": v, "faces": [[0, 1, 4, 3], [1, 2, 5, 4]]}))
+    assert stats["quads"] == 2 and stats["interior_singular"] == 0
+    assert stats["boundary_singular"] == 4  # no corner labels: the four corners count as singular
+    assert stats["min_scaled_jacobian"] == pytest.approx(1.0)
+    assert stats["min_angle"] == pytest.approx(90.0) and stats["max_angle"] == pytest.approx(90.0)
+    flipped = mesh_stats(mesh_from_json({"vertices": v, "faces": [[0, 3, 4, 1], [1, 2, 5, 4]]}))
+    assert flipped["inverted_faces"] == 1 and not flipped["oriented"]
+
+
+# A rectangle with a curve feature 0.9 from its bottom side and a boundary point: the patch between
+# that curve and the boundary folds (10 inverted faces) whatever smoothing and untangling do.
+FOLDING = {"outer": [[0, 0], [8.969219944792723, 0], [8.969219944792723, 9.230049115216001], [0, 9.230049115216001]],
+           "points": [[8.969219944792723, 6.564436888431961]],
+           "curves": [[[1.3319402748322131, 3.237878824185768], [2.6869734415206787, 4.09028434005551]],
+                      [[5.04737783905793, 1.5446644739170763], [3.2519501197955387, 0.8942200737782218]]]}
+
+
+def test_a_folded_mesh_is_an_error_naming_where(tmp_path):
+    """A mesh with inverted faces after smoothing and untangling is not returned: MeshFoldError says
+    where (the worst face and its patch's corners); with allow_folds the mesh comes back, folded.
+    The CLI fails with one line and exit code 2, writing nothing, unless --allow-folds."""
+    from vaultgram.errors import MeshFoldError
+
+    domain = domain_from_dict(FOLDING)
+    with pytest.raises(MeshFoldError, match=r"the mesh folds: \d+ inverted face\(s\), the worst near \(3\.") as info:
+        mesh_domain(domain)
+    assert "patch with corners" in str(info.value)
+    folded = mesh_domain(domain, allow_folds=True)
+    assert mesh_stats(folded, domain)["inverted_faces"] > 0
+    path = tmp_path / "folding.json"
+    path.write_text(json.dumps(FOLDING))
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["mesh", str(path), "--out", str(out)])
+    assert result.exit_code == 2 and "the mesh folds" in result.output and "Traceback" not in result.output
+    assert not out.exists() or not any(out.iterdir())
+    result = CliRunner().invoke(main, ["mesh", str(path), "--out", str(out), "--allow-folds"])
+    assert result.exit_code == 0 and "warning:" in result.output and (out / "mesh.json").is_file()
