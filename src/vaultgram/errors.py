@@ -99,6 +99,20 @@ class TessellationError(VaultgramError):
     mesh, bad options. The message names the element (face, edge, vertex) and its index."""
 
 
-class MeshTopologyError(VaultgramError):
-    """A mesh is not a manifold, consistently oriented polygon mesh; the message names the edge or
-    vertex and the faces."""
+class MeshError(VaultgramError, ValueError):
+    """A mesh, or a parameter of a mesh function, that the kernel cannot work with.
+
+    Also a ``ValueError``, which these functions raised before: callers that catch ``ValueError``
+    keep working.
+    """
+
+
+class NonManifoldVertexError(MeshError):
+    """A vertex where the boundary of a mesh pinches (it starts two boundary halfedges).
+
+    ``vertex`` is its index.
+    """
+
+    def __init__(self, message: str, vertex: int):
+        super().__init__(message)
+        self.vertex = vertex

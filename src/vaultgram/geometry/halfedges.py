@@ -15,7 +15,7 @@ from functools import cached_property
 
 import numpy as np
 
-from vaultgram.errors import MeshTopologyError
+from vaultgram.errors import MeshError
 from vaultgram.geometry.meshes import corner_arrays
 
 __all__ = ["MeshEdges", "mesh_edges"]
@@ -83,7 +83,7 @@ class MeshEdges:
 def mesh_edges(faces, n_vertices: int | None = None) -> MeshEdges:
     """The edges of ``faces`` and the faces on either side of them.
 
-    Raises :class:`~vaultgram.errors.MeshTopologyError` naming the edge and the faces if a half-edge
+    Raises :class:`~vaultgram.errors.MeshError` naming the edge and the faces if a half-edge
     is used by two faces (a non-manifold or inconsistently oriented mesh).
 
     Example
@@ -105,7 +105,7 @@ def mesh_edges(faces, n_vertices: int | None = None) -> MeshEdges:
     repeated = np.flatnonzero(np.diff(half[order]) == 0)
     if len(repeated):
         c = order[repeated[0]]
-        raise MeshTopologyError(f"edge {int(u[c])}-{int(v[c])} is traversed in the same direction by faces "
+        raise MeshError(f"edge {int(u[c])}-{int(v[c])} is traversed in the same direction by faces "
                          f"{int(face[order[repeated[0]]])} and {int(face[order[repeated[0] + 1]])}")
     corners_of = np.full((len(keys), 2), -1, dtype=np.int64)
     corners_of[corner_edge, (~forward).astype(np.int64)] = np.arange(len(face))

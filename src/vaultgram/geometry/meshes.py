@@ -13,7 +13,7 @@ from typing import Iterable, Sequence
 import numpy as np
 import scipy.sparse as sp
 
-from vaultgram.errors import VaultgramError
+from vaultgram.errors import MeshError, NonManifoldVertexError
 
 __all__ = [
     "MeshError",
@@ -28,25 +28,6 @@ __all__ = [
     "adjacency",
     "boundary_adjacency",
 ]
-
-
-class MeshError(VaultgramError, ValueError):
-    """A mesh, or a parameter of a mesh function, that the kernel cannot work with.
-
-    Also a ``ValueError``, which these functions raised before: callers that catch ``ValueError``
-    keep working.
-    """
-
-
-class NonManifoldVertexError(MeshError):
-    """A vertex where the boundary of a mesh pinches (it starts two boundary halfedges).
-
-    ``vertex`` is its index.
-    """
-
-    def __init__(self, message: str, vertex: int):
-        super().__init__(message)
-        self.vertex = vertex
 
 
 def grid_index(i: int, j: int, nx: int) -> int:

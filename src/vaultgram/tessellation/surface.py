@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from vaultgram.errors import MeshTopologyError, TessellationError
+from vaultgram.errors import MeshError, TessellationError
 from vaultgram.geometry.halfedges import MeshEdges, mesh_edges
 from vaultgram.geometry.meshes import boundary_loops
 
@@ -84,11 +84,11 @@ def _checked_faces(faces, n: int, where: str) -> tuple:
 def _checked_edges(faces: tuple, n: int, where: str) -> MeshEdges:
     try:
         me = mesh_edges(faces, n)
-    except MeshTopologyError as exc:
+    except MeshError as exc:
         raise TessellationError(f"{where}: not a consistently oriented manifold mesh: {exc}") from None
     try:
         boundary_loops(faces)
-    except (MeshTopologyError, ValueError) as exc:
+    except MeshError as exc:
         raise TessellationError(f"{where}: not a manifold mesh: {exc}") from None
     return me
 
