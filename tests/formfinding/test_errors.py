@@ -4,19 +4,20 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from formfinding.cases import holed_grid
 
 from vaultgram.errors import ConvergenceError, FormFindingError, HorizontalEquilibriumError, VaultgramError
 from vaultgram.formfinding.formdiagram import form_diagram
-from vaultgram.formfinding.horizontal import horizontal, relax_openings
+from vaultgram.formfinding.horizontal import horizontal
+from vaultgram.formfinding.relaxation import relax_openings
 from vaultgram.formfinding.vertical import vertical
-from vaultgram.geometry.meshes import boundary_loops, grid_index, grid_mesh, remove_faces
+from vaultgram.geometry.meshes import grid_index, grid_mesh
 from vaultgram.pipeline import form_find
 
 
-def holed(n=12, lo=4, hi=8):
-    v, f = grid_mesh(n)
-    v2, f2, _ = remove_faces(v, f, [j * n + i for i in range(lo, hi) for j in range(lo, hi)])
-    return v2, f2, max(boundary_loops(f2), key=len)
+def holed():
+    """A 12 x 12 grid with a 4 x 4 hole; the outer loop supported."""
+    return holed_grid(12, 4, 8)
 
 
 def test_errors_are_vaultgram_errors():
@@ -185,3 +186,4 @@ def test_no_compression_only_names_flipped_edges_with_default_solver():
     with pytest.raises((HorizontalEquilibriumError, ConvergenceError)) as info:
         horizontal(form, lp_max_edges=0)
     assert "not checked exactly" in str(info.value) or "did not converge" in str(info.value)
+
