@@ -32,8 +32,9 @@ from vaultgram.domain import Domain, check_feature_spacing
 from vaultgram.errors import TessellationError, VaultgramError
 from vaultgram.formfinding.forcediagram import force_diagram
 from vaultgram.formfinding.formdiagram import form_diagram
-from vaultgram.formfinding.horizontal import horizontal, relax_openings
+from vaultgram.formfinding.horizontal import horizontal
 from vaultgram.formfinding.loads import mesh_point_loads
+from vaultgram.formfinding.relaxation import relax_openings
 from vaultgram.formfinding.supports import support_vertices
 from vaultgram.formfinding.thrust import ThrustNetwork, thrust_network
 from vaultgram.formfinding.vertical import vertical

@@ -19,18 +19,35 @@ around a free vertex telescope), so equilibrium is exactly "every edge parallel"
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.sparse.csgraph import connected_components
 from scipy.sparse.linalg import splu
 
 from vaultgram.errors import FormFindingError
-from vaultgram.formfinding.formdiagram import FormDiagram, connectivity_matrix
+from vaultgram.formfinding.diagrams import Diagram, connectivity_matrix
+from vaultgram.formfinding.formdiagram import FormDiagram
 
 __all__ = ["ForceDiagram", "force_diagram", "PinnedLaplacian", "WeightedFit"]
+
+_DISCONNECTED = "; a part of the diagram is not connected to a fixed vertex"
+
+
+def _factorised(A: sp.spmatrix, what: str, hint: str = "", **options):
+    """Sparse LU of ``A``; a singular system is a :class:`FormFindingError` naming ``what`` it was."""
+    try:
+        return splu(A, **options)
+    except RuntimeError as exc:  # pragma: no cover - guarded by connectivity checks
+        raise FormFindingError(f"singular {what} ({exc}){hint}") from None
+
+
+def _split_columns(C: sp.csr_matrix, pinned: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Sorted pinned and unpinned column indices of ``C`` (the vertices held fixed and the moving ones)."""
+    mask = np.zeros(C.shape[1], dtype=bool)
+    mask[pinned] = True
+    return np.flatnonzero(mask), np.flatnonzero(~mask)
 
 
 class PinnedLaplacian:
@@ -39,23 +56,22 @@ class PinnedLaplacian:
     Solves ``min |C x - t|^2`` over the unpinned vertices for many right-hand sides ``t`` with one
     sparse LU factorisation (the pattern and values of ``C^T C`` never change during the
     parallelisation iterations).
+
+    Example
+    -------
+    >>> C = connectivity_matrix(np.array([[0, 1], [1, 2]]), 3)           # a path 0 - 1 - 2, 0 fixed
+    >>> PinnedLaplacian(C, np.array([0])).solve(np.array([[1.0, 0.0], [0.0, 2.0]]), np.zeros((3, 2))).tolist()
+    [[0.0, 0.0], [1.0, 0.0], [1.0, 2.0]]
     """
 
     def __init__(self, C: sp.csr_matrix, pinned: np.ndarray):
-        n = C.shape[1]
-        mask = np.zeros(n, dtype=bool)
-        mask[pinned] = True
-        self.n = n
-        self.pinned = np.flatnonzero(mask)
-        self.unpinned = np.flatnonzero(~mask)
+        self.n = C.shape[1]
+        self.pinned, self.unpinned = _split_columns(C, pinned)
         self.Cu = C[:, self.unpinned].tocsc()
         self.Cp = C[:, self.pinned].tocsc()
         self.CuT = self.Cu.T.tocsr()
-        A = (self.CuT @ self.Cu).tocsc()
-        try:
-            self.lu = splu(A, permc_spec="MMD_AT_PLUS_A")
-        except RuntimeError as exc:  # pragma: no cover - guarded by connectivity checks
-            raise FormFindingError(f"singular least-squares system ({exc}); a part of the diagram is not connected to a fixed vertex") from None
+        self.lu = _factorised((self.CuT @ self.Cu).tocsc(), "least-squares system", _DISCONNECTED,
+                              permc_spec="MMD_AT_PLUS_A")
 
     def solve(self, t: np.ndarray, x: np.ndarray) -> np.ndarray:
         """New positions: pinned rows of ``x`` kept, others solving the least-squares problem."""
@@ -79,11 +95,7 @@ class WeightedFit:
     """
 
     def __init__(self, C: sp.csr_matrix, pinned: np.ndarray, frame: np.ndarray, mu: float):
-        n = C.shape[1]
-        mask = np.zeros(n, dtype=bool)
-        mask[pinned] = True
-        self.pinned = np.flatnonzero(mask)
-        self.unpinned = np.flatnonzero(~mask)
+        self.pinned, self.unpinned = _split_columns(C, pinned)
         Cu = C[:, self.unpinned].tocsc()
         self.Cp = C[:, self.pinned].tocsc()
         fx, fy = frame[:, 0], frame[:, 1]
@@ -91,23 +103,20 @@ class WeightedFit:
         self.w = (fy * fy + mu * fx * fx, -fx * fy + mu * fx * fy, fx * fx + mu * fy * fy)
         wxx, wxy, wyy = (sp.diags(w) for w in self.w)
         A = sp.bmat([[Cu.T @ wxx @ Cu, Cu.T @ wxy @ Cu], [Cu.T @ wxy @ Cu, Cu.T @ wyy @ Cu]]).tocsr()
-        N = len(self.unpinned)
-        try:
-            lap = splu((Cu.T @ Cu).tocsc(), permc_spec="MMD_AT_PLUS_A")
-        except RuntimeError as exc:  # pragma: no cover - guarded by connectivity checks
-            raise FormFindingError(f"singular least-squares system ({exc}); a part of the diagram is not connected to a fixed vertex") from None
-        order = np.argsort(lap.perm_c)
-        P = np.empty(2 * N, dtype=np.int64)
-        P[0::2] = order
-        P[1::2] = order + N
-        self.P = P
-        try:
-            self.lu = splu(A[P][:, P].tocsc(), permc_spec="NATURAL", diag_pivot_thresh=0.0,
-                           options=dict(SymmetricMode=True))
-        except RuntimeError as exc:  # pragma: no cover
-            raise FormFindingError(f"singular weighted least-squares system ({exc})") from None
+        self.N = len(self.unpinned)
+        self.P = self._interleaved_order(Cu)
+        self.lu = _factorised(A[self.P][:, self.P].tocsc(), "weighted least-squares system", permc_spec="NATURAL",
+                              diag_pivot_thresh=0.0, options=dict(SymmetricMode=True))
         self.CuT = Cu.T.tocsr()
-        self.N = N
+
+    def _interleaved_order(self, Cu: sp.csc_matrix) -> np.ndarray:
+        """The minimum-degree order of ``Cu^T Cu``, each vertex's x and y unknowns side by side."""
+        lap = _factorised((Cu.T @ Cu).tocsc(), "least-squares system", _DISCONNECTED, permc_spec="MMD_AT_PLUS_A")
+        order = np.argsort(lap.perm_c)
+        P = np.empty(2 * self.N, dtype=np.int64)
+        P[0::2] = order
+        P[1::2] = order + self.N
+        return P
 
     def solve(self, t: np.ndarray, x: np.ndarray) -> np.ndarray:
         """New positions: pinned rows of ``x`` kept, others solving the weighted least-squares fit."""
@@ -125,7 +134,7 @@ class WeightedFit:
 
 
 @dataclass(frozen=True, eq=False)
-class ForceDiagram:
+class ForceDiagram(Diagram):
     """A force diagram (stored turned by -90 degrees: parallel to the form diagram).
 
     Attributes
@@ -138,6 +147,9 @@ class ForceDiagram:
         Index of the corresponding form edge (the form's edges with at least one free end, in order).
     C : scipy.sparse.csr_matrix (k, F)
         Connectivity matrix: ``C @ xy`` are the force vectors, parallel to ``form.C @ form.xy``.
+
+    Sizes, edge vectors and lengths, :attr:`components` and :meth:`with_xy` come from
+    :class:`vaultgram.formfinding.diagrams.Diagram`.
     """
 
     xy: np.ndarray
@@ -145,38 +157,12 @@ class ForceDiagram:
     form_edge: np.ndarray
     C: sp.csr_matrix = field(repr=False)
 
-    @property
-    def n_vertices(self) -> int:
-        return len(self.xy)
-
-    @property
-    def n_edges(self) -> int:
-        return len(self.edges)
-
-    def edge_vectors(self) -> np.ndarray:
-        return self.C @ self.xy
-
-    def edge_lengths(self) -> np.ndarray:
-        return np.hypot(*self.edge_vectors().T)
-
-    @cached_property
-    def components(self) -> tuple[int, np.ndarray]:
-        """Connected components of the force graph (number, label per vertex)."""
-        n = self.n_vertices
-        adj = sp.csr_matrix((np.ones(len(self.edges)), (self.edges[:, 0], self.edges[:, 1])), shape=(n, n))
-        return connected_components(adj, directed=False)
-
     @cached_property
     def pins(self) -> np.ndarray:
         """One vertex per connected component, held fixed (the diagram floats otherwise)."""
         ncomp, labels = self.components
         _, first = np.unique(labels, return_index=True)
         return np.sort(first)
-
-    def with_xy(self, xy: np.ndarray) -> "ForceDiagram":
-        xy = np.array(xy, dtype=float, copy=True)
-        xy.setflags(write=False)
-        return replace(self, xy=xy)
 
     def to_json(self) -> dict:
         """JSON-serialisable description (for ``force.json``)."""
@@ -188,42 +174,29 @@ class ForceDiagram:
         }
 
 
-def force_diagram(form: FormDiagram, init: str = "lsq") -> ForceDiagram:
-    """The reciprocal force diagram of ``form`` with initial positions.
+def force_diagram(form: FormDiagram) -> ForceDiagram:
+    """The reciprocal force diagram of ``form`` (Block & Ochsendorf 2007), positioned by least squares.
 
-    Parameters
-    ----------
-    form : FormDiagram
-    init : {"lsq", "centroid"}
-        ``"lsq"`` (default): least-squares reciprocal with unit force densities, i.e. positions
-        minimising ``sum |force_e - (form_e)|^2`` -- exact when the form is in equilibrium with equal
-        force densities (a regular grid). ``"centroid"``: loaded faces at their centroids (turned),
-        opening vertices by least squares.
+    Every face of the form (openings included) becomes a vertex, every form edge with a free end an
+    edge from its right face to its left face. The positions minimise ``sum |force_e - form_e|^2``
+    (unit force densities), one vertex per component held at the origin: exact when the form is in
+    equilibrium with equal force densities (a regular grid), otherwise the start of
+    :func:`vaultgram.formfinding.horizontal.horizontal`.
 
-    Returns
+    Example
     -------
-    ForceDiagram
+    >>> from vaultgram.formfinding.formdiagram import form_diagram
+    >>> from vaultgram.geometry.meshes import grid_mesh
+    >>> form = form_diagram(*grid_mesh(4))
+    >>> force = force_diagram(form)
+    >>> force.n_vertices, force.n_edges, bool(np.allclose(force.edge_vectors(), form.edge_vectors()))
+    (16, 24, True)
     """
     active = np.flatnonzero(form.active)
-    left, right = form.edge_faces[active, 0], form.edge_faces[active, 1]
-    edges = np.stack([right, left], axis=1)
-    F = form.n_faces
-    C = connectivity_matrix(edges, F)
+    edges = np.stack([form.edge_faces[active, 1], form.edge_faces[active, 0]], axis=1)
+    C = connectivity_matrix(edges, form.n_faces)
     for a in (edges, active):
         a.setflags(write=False)
-    force = ForceDiagram(xy=np.zeros((F, 2)), edges=edges, form_edge=active, C=C)
+    force = ForceDiagram(xy=np.zeros((form.n_faces, 2)), edges=edges, form_edge=active, C=C)
     target = (form.C @ form.xy)[active]
-    if init == "lsq":
-        xy = PinnedLaplacian(C, force.pins).solve(target, np.zeros((F, 2)))
-    elif init == "centroid":
-        xy = np.zeros((F, 2))
-        for k, f in enumerate(form.faces):
-            if form.loaded[k]:
-                c = form.xy[list(f)].mean(axis=0)
-                xy[k] = (c[1], -c[0])          # turned by -90 degrees
-        loaded = np.flatnonzero(form.loaded)
-        pinned = np.union1d(loaded, force.pins) if len(loaded) else force.pins
-        xy = PinnedLaplacian(C, pinned).solve(target, xy)
-    else:
-        raise ValueError(f"unknown init {init!r}; use 'lsq' or 'centroid'")
-    return force.with_xy(xy)
+    return force.with_xy(PinnedLaplacian(C, force.pins).solve(target, np.zeros((form.n_faces, 2))))

@@ -18,40 +18,30 @@ Block 2012, RhinoVAULT):
 
 The result is an immutable :class:`FormDiagram` of plain arrays plus the sparse branch-node
 connectivity matrix ``C`` (m x n, -1 at the edge's first vertex and +1 at its second).
+:func:`form_diagram` runs these steps as named phases, in this order: check the mesh, check its
+orientation, mark the supports, drop the fully supported edges, renumber, add the opening faces, find
+the faces on either side of every edge, and check the network.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Iterable, Sequence
+from typing import Iterable, NamedTuple, Sequence
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.sparse.csgraph import connected_components
 
 from vaultgram.errors import FormFindingError
+from vaultgram.formfinding.diagrams import Diagram, connectivity_matrix
 from vaultgram.formfinding.supports import outer_loop
-from vaultgram.geometry.meshes import corner_arrays
+from vaultgram.geometry.meshes import boundary_halfedges, boundary_loops, corner_arrays, face_areas
 
 __all__ = ["FormDiagram", "form_diagram", "connectivity_matrix"]
 
 
-def connectivity_matrix(edges: np.ndarray, n: int) -> sp.csr_matrix:
-    """Branch-node matrix ``C`` (m x n): row ``e = (u, v)`` has -1 at ``u`` and +1 at ``v``.
-
-    ``C @ x`` gives the edge vectors ``x[v] - x[u]``; ``C.T @ diag(q) @ C`` is the force-density
-    stiffness of Schek's force density method used for vertical equilibrium.
-    """
-    edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
-    m = len(edges)
-    rows = np.repeat(np.arange(m), 2)
-    data = np.tile([-1.0, 1.0], m)
-    return sp.csr_matrix((data, (rows, edges.ravel())), shape=(m, n))
-
-
 @dataclass(frozen=True, eq=False)
-class FormDiagram:
+class FormDiagram(Diagram):
     """A TNA form diagram: the horizontal projection of the thrust network.
 
     Attributes
@@ -76,6 +66,9 @@ class FormDiagram:
         ``update_boundaries=False``).
     C : scipy.sparse.csr_matrix (m, n)
         Branch-node connectivity matrix (see :func:`connectivity_matrix`).
+
+    Sizes, edge vectors and lengths, components and :meth:`with_xy` come from
+    :class:`vaultgram.formfinding.diagrams.Diagram`.
     """
 
     xy: np.ndarray
@@ -86,15 +79,6 @@ class FormDiagram:
     vertex_ids: np.ndarray
     edge_faces: np.ndarray
     C: sp.csr_matrix = field(repr=False)
-
-    # ---- sizes and index sets ------------------------------------------------------------
-    @property
-    def n_vertices(self) -> int:
-        return len(self.xy)
-
-    @property
-    def n_edges(self) -> int:
-        return len(self.edges)
 
     @property
     def n_faces(self) -> int:
@@ -123,21 +107,6 @@ class FormDiagram:
     def opening_faces(self) -> tuple[tuple[int, ...], ...]:
         return tuple(f for f, ld in zip(self.faces, self.loaded) if not ld)
 
-    def edge_vectors(self) -> np.ndarray:
-        """``xy[v] - xy[u]`` per edge, shape (m, 2)."""
-        return self.C @ self.xy
-
-    def edge_lengths(self) -> np.ndarray:
-        return np.hypot(*self.edge_vectors().T)
-
-    def with_xy(self, xy: np.ndarray) -> "FormDiagram":
-        """The same diagram with new plan positions (topology unchanged)."""
-        xy = np.array(xy, dtype=float, copy=True)
-        if xy.shape != self.xy.shape:
-            raise ValueError(f"xy has shape {xy.shape}, expected {self.xy.shape}")
-        xy.setflags(write=False)
-        return replace(self, xy=xy)
-
     def edge_name(self, e: int) -> str:
         """An edge named by its input-mesh vertex indices, e.g. ``'edge 12 (mesh vertices 3-4)'``."""
         u, v = self.edges[e]
@@ -155,25 +124,6 @@ class FormDiagram:
         }
 
 
-def _supports_array(supports, n: int, vertices, faces) -> np.ndarray:
-    anchors = np.zeros(n, dtype=bool)
-    if supports is None:  # the outer boundary bears thrust, holes are open
-        anchors[outer_loop(vertices, faces)] = True
-    else:
-        idx = np.asarray(list(supports) if not isinstance(supports, np.ndarray) else supports)
-        if idx.dtype == bool:
-            if idx.shape != (n,):
-                raise FormFindingError(f"a boolean support mask must have one entry per vertex ({n}), got {idx.shape}")
-            anchors = idx.copy()
-        else:
-            idx = idx.astype(np.int64).ravel()
-            bad = idx[(idx < 0) | (idx >= n)]
-            if len(bad):
-                raise FormFindingError(f"support vertex {int(bad[0])} does not exist (the mesh has {n} vertices)")
-            anchors[idx] = True
-    return anchors
-
-
 def form_diagram(vertices, faces: Sequence[Sequence[int]], supports: Iterable[int] | np.ndarray | None = None,
                  update_boundaries: bool = True) -> FormDiagram:
     """Build the form diagram of a planar mesh (§5; Block & Ochsendorf 2007).
@@ -188,8 +138,8 @@ def form_diagram(vertices, faces: Sequence[Sequence[int]], supports: Iterable[in
         Supported vertices; default: the vertices of the outer boundary loop (holes are open).
     update_boundaries : bool
         True (default, as in the paper): remove edges with both ends supported, delete vertices left
-        without edges and drop them from their faces (faces left with fewer than 3 vertices go). False keeps them (anchor-anchor edges then carry a
-        force density but have no force-diagram edge).
+        without edges and drop them from their faces (faces left with fewer than 3 vertices go). False
+        keeps them (anchor-anchor edges then carry a force density but have no force-diagram edge).
 
     Returns
     -------
@@ -210,35 +160,62 @@ def form_diagram(vertices, faces: Sequence[Sequence[int]], supports: Iterable[in
     >>> form.n_vertices, form.n_edges, int(form.loaded.sum()), int((~form.loaded).sum())
     (21, 24, 16, 0)
     """
+    xy0, faces = _checked_mesh(vertices, faces)
+    scale = max(float(np.ptp(xy0, axis=0).max()), 1e-300)
+    _check_orientation(xy0, faces, scale)
+    anchors0 = _anchor_mask(supports, xy0, faces)
+    kept_faces, kept_edges = _drop_supported_edges(xy0, faces, anchors0, update_boundaries, scale)
+    net = _renumbered(xy0, anchors0, kept_faces, kept_edges)
+    openings = _opening_faces(net.faces, net.anchors, net.vertex_ids)
+    form = _assembled(net, openings)
+    _check_network(form, scale)
+    return form
+
+
+# ---- phase 1: the mesh as given ------------------------------------------------------------------
+
+
+def _checked_mesh(vertices, faces) -> tuple[np.ndarray, list[tuple[int, ...]]]:
+    """Plan positions (n, 2) and faces as tuples of ints, after checking shapes and indices."""
     V = np.asarray(vertices, dtype=float)
     if V.ndim != 2 or V.shape[1] not in (2, 3):
         raise FormFindingError(f"vertices must have shape (n, 2) or (n, 3), got {V.shape}")
-    n0 = len(V)
     faces = [tuple(int(i) for i in f) for f in faces]
     if not faces:
         raise FormFindingError("the mesh has no faces")
     for k, f in enumerate(faces):
-        if len(f) < 3:
-            raise FormFindingError(f"face {k} has {len(f)} vertices; faces need at least 3")
-        if min(f) < 0 or max(f) >= n0:
-            raise FormFindingError(f"face {k} refers to vertex {max(f) if max(f) >= n0 else min(f)}, "
-                                   f"but the mesh has {n0} vertices")
-        if len(set(f)) != len(f):
-            raise FormFindingError(f"face {k} repeats a vertex: {list(f)}")
-    xy0 = V[:, :2]
-    fid, u, v, _ = corner_arrays(faces)
-    # orientation: signed areas by the shoelace formula
-    cross = xy0[u, 0] * xy0[v, 1] - xy0[v, 0] * xy0[u, 1]
-    area = 0.5 * np.bincount(fid, weights=cross, minlength=len(faces))
-    scale = max(float(np.ptp(xy0, axis=0).max()), 1e-300)
-    bad = np.flatnonzero(area <= 1e-14 * scale * scale)
+        _check_face(k, f, len(V))
+    return V[:, :2], faces
+
+
+def _check_face(k: int, f: tuple[int, ...], n: int) -> None:
+    """Face ``k`` has at least 3 distinct vertices of the mesh."""
+    if len(f) < 3:
+        raise FormFindingError(f"face {k} has {len(f)} vertices; faces need at least 3")
+    if min(f) < 0 or max(f) >= n:
+        raise FormFindingError(f"face {k} refers to vertex {max(f) if max(f) >= n else min(f)}, "
+                               f"but the mesh has {n} vertices")
+    if len(set(f)) != len(f):
+        raise FormFindingError(f"face {k} repeats a vertex: {list(f)}")
+
+
+def _not_counter_clockwise(xy: np.ndarray, faces, scale: float) -> tuple[np.ndarray, np.ndarray]:
+    """Signed face areas and the indices of faces that are clockwise or (relative to ``scale``) flat."""
+    area = face_areas(xy, faces)
+    return area, np.flatnonzero(area <= 1e-14 * scale * scale)
+
+
+def _check_orientation(xy: np.ndarray, faces, scale: float) -> None:
+    """Every face is counter-clockwise seen from +z and every halfedge belongs to one face only."""
+    area, bad = _not_counter_clockwise(xy, faces, scale)
     if len(bad):
         k = int(bad[0])
         kind = "clockwise" if area[k] < 0 else "degenerate (zero area)"
         raise FormFindingError(
             f"face {k} {list(faces[k])} is {kind} (signed area {area[k]:.6g}); faces must be counter-clockwise "
             f"seen from +z" + (f" ({len(bad)} such faces)" if len(bad) > 1 else ""))
-    codes = u * n0 + v
+    fid, u, v, _ = corner_arrays(faces)
+    codes = u * len(xy) + v
     order = np.argsort(codes, kind="stable")
     dup = np.flatnonzero(np.diff(codes[order]) == 0)
     if len(dup):
@@ -247,163 +224,235 @@ def form_diagram(vertices, faces: Sequence[Sequence[int]], supports: Iterable[in
             f"halfedge {u[a]}->{v[a]} is used by faces {fid[a]} and {fid[b]}: inconsistent face orientation "
             f"or non-manifold edge")
 
-    anchors0 = _supports_array(supports, n0, vertices, faces)
-    if not anchors0.any():
-        raise FormFindingError("no supports: a thrust network needs at least one supported vertex")
 
-    # ---- remove anchor-anchor edges; delete vertices left without edges (drop them from their faces,
-    # e.g. a supported corner quad becomes a triangle, and faces left with < 3 vertices) -------------
-    cur = faces
-    face_index = list(range(len(faces)))
+def _anchor_mask(supports, xy: np.ndarray, faces) -> np.ndarray:
+    """The supported vertices as a boolean mask (default: the outer boundary loop; holes are open)."""
+    n = len(xy)
+    anchors = np.zeros(n, dtype=bool)
+    if supports is None:
+        anchors[outer_loop(xy, faces)] = True
+    else:
+        idx = np.asarray(list(supports) if not isinstance(supports, np.ndarray) else supports)
+        if idx.dtype == bool:
+            if idx.shape != (n,):
+                raise FormFindingError(f"a boolean support mask must have one entry per vertex ({n}), got {idx.shape}")
+            anchors = idx.copy()
+        else:
+            idx = idx.astype(np.int64).ravel()
+            bad = idx[(idx < 0) | (idx >= n)]
+            if len(bad):
+                raise FormFindingError(f"support vertex {int(bad[0])} does not exist (the mesh has {n} vertices)")
+            anchors[idx] = True
+    if not anchors.any():
+        raise FormFindingError("no supports: a thrust network needs at least one supported vertex")
+    return anchors
+
+
+# ---- phase 2: remove what is fully supported (§5) -------------------------------------------------
+
+
+class _Edges(NamedTuple):
+    """The undirected edges ``u < v`` of some faces (input-mesh numbering)."""
+
+    u: np.ndarray
+    v: np.ndarray
+    degree: np.ndarray      # edges per vertex
+    in_faces: np.ndarray    # bool per vertex: used by a face
+
+
+def _undirected_edges(faces, anchors: np.ndarray, drop_supported: bool) -> _Edges:
+    """The edges of ``faces``, without those joining two anchors when ``drop_supported``."""
+    n = len(anchors)
+    _, u, v, _ = corner_arrays(faces)
+    codes = np.unique(np.minimum(u, v) * n + np.maximum(u, v))
+    eu, ev = codes // n, codes % n
+    if drop_supported:
+        keep = ~(anchors[eu] & anchors[ev])
+        eu, ev = eu[keep], ev[keep]
+    in_faces = np.zeros(n, dtype=bool)
+    in_faces[u] = True
+    return _Edges(eu, ev, np.bincount(np.concatenate([eu, ev]), minlength=n), in_faces)
+
+
+def _drop_supported_edges(xy: np.ndarray, faces, anchors: np.ndarray, drop: bool, scale: float
+                          ) -> tuple[list[tuple[int, ...]], _Edges]:
+    """Remove the edges with both ends supported (when ``drop``), then delete the vertices left without
+    edges from their faces (a supported corner quad becomes a triangle; faces left with fewer than 3
+    vertices go), until every vertex of a face has an edge: compas_tna's ``update_boundaries``."""
+    current, index = faces, list(range(len(faces)))
     while True:
-        fid, u, v, _ = corner_arrays(cur)
-        a, b = np.minimum(u, v), np.maximum(u, v)
-        und = np.unique(a * n0 + b)
-        eu, ev = und // n0, und % n0
-        if update_boundaries:
-            keep = ~(anchors0[eu] & anchors0[ev])
-            eu, ev = eu[keep], ev[keep]
-        deg = np.bincount(np.concatenate([eu, ev]), minlength=n0)
-        used = np.zeros(n0, dtype=bool)
-        used[u] = True
-        dead = used & (deg == 0)
+        edges = _undirected_edges(current, anchors, drop)
+        dead = edges.in_faces & (edges.degree == 0)
         if not dead.any():
-            break
-        shrunk = [(k, tuple(i for i in f if not dead[i])) for k, f in zip(face_index, cur)]
-        shrunk = [(k, f) for k, f in shrunk if len(f) >= 3]
-        if not shrunk:
-            raise FormFindingError("every edge joins two supports: nothing is left to form-find")
-        face_index = [k for k, _ in shrunk]
-        cur = [f for _, f in shrunk]
-        fid, u, v, _ = corner_arrays(cur)
-        cross = xy0[u, 0] * xy0[v, 1] - xy0[v, 0] * xy0[u, 1]
-        area = 0.5 * np.bincount(fid, weights=cross, minlength=len(cur))
-        bad = np.flatnonzero(area <= 1e-14 * scale * scale)
+            return current, edges
+        index, current = _without_vertices(index, current, dead)
+        _, bad = _not_counter_clockwise(xy, current, scale)
         if len(bad):
-            k = face_index[int(bad[0])]
+            k = index[int(bad[0])]
             raise FormFindingError(
-                f"face {k} {list(faces[k])} becomes {list(cur[int(bad[0])])}, which is not counter-clockwise, "
+                f"face {k} {list(faces[k])} becomes {list(current[int(bad[0])])}, which is not counter-clockwise, "
                 f"once its supported vertices without edges are removed; support fewer vertices or "
                 f"use update_boundaries=False")
 
-    keepv = deg > 0
-    new = np.full(n0, -1, dtype=np.int64)
-    new[keepv] = np.arange(int(keepv.sum()))
-    vertex_ids = np.flatnonzero(keepv)
-    n = len(vertex_ids)
-    xy = xy0[vertex_ids].copy()
+
+def _without_vertices(index: list[int], faces, dead: np.ndarray) -> tuple[list[int], list[tuple[int, ...]]]:
+    """The faces (and their input indices) with the ``dead`` vertices dropped; faces left with < 3 go."""
+    shrunk = [(k, tuple(i for i in f if not dead[i])) for k, f in zip(index, faces)]
+    shrunk = [(k, f) for k, f in shrunk if len(f) >= 3]
+    if not shrunk:
+        raise FormFindingError("every edge joins two supports: nothing is left to form-find")
+    return [k for k, _ in shrunk], [f for _, f in shrunk]
+
+
+class _Network(NamedTuple):
+    """The kept vertices and edges, renumbered (``vertex_ids`` maps back to the input mesh)."""
+
+    xy: np.ndarray
+    anchors: np.ndarray
+    vertex_ids: np.ndarray
+    edges: np.ndarray       # (m, 2), u < v, sorted
+    faces: list             # the loaded faces
+
+
+def _renumbered(xy0: np.ndarray, anchors0: np.ndarray, faces, edges: _Edges) -> _Network:
+    """Keep the vertices that have an edge and number them consecutively."""
+    keep = edges.degree > 0
+    new = np.full(len(xy0), -1, dtype=np.int64)
+    new[keep] = np.arange(int(keep.sum()))
+    vertex_ids = np.flatnonzero(keep)
     anchors = anchors0[vertex_ids].copy()
     if not anchors.any():
         raise FormFindingError("no supports left after removing fully supported edges")
-    edges = np.stack([new[eu], new[ev]], axis=1)
-    edges = edges[np.lexsort((edges[:, 1], edges[:, 0]))]
-    loaded_faces = [tuple(int(new[i]) for i in f) for f in cur]
+    renumbered = np.stack([new[edges.u], new[edges.v]], axis=1)
+    renumbered = renumbered[np.lexsort((renumbered[:, 1], renumbered[:, 0]))]
+    loaded = [tuple(int(new[i]) for i in f) for f in faces]
+    return _Network(xy0[vertex_ids].copy(), anchors, vertex_ids, renumbered, loaded)
 
-    # ---- opening faces: twins of boundary halfedges, split at anchors -----------------------------
-    lf, lu, lv, _ = corner_arrays(loaded_faces)
-    hcode = lu * n + lv
-    has_twin = np.isin(lv * n + lu, hcode)
-    bu, bv = lv[~has_twin], lu[~has_twin]          # twin halfedges, traversing the opening
-    nxt: dict[int, int] = {}
-    for a_, b_ in zip(bu.tolist(), bv.tolist()):
-        if a_ in nxt:
-            raise FormFindingError(
-                f"mesh vertex {vertex_ids[a_]} is a pinched boundary vertex (two boundary loops touch there); "
-                f"split it or support it")
-        nxt[a_] = b_
-    opening_faces: list[tuple[int, ...]] = []
-    opening_open: list[bool] = []
-    seen: set[int] = set()
-    for start in bu.tolist():
-        if start in seen:
-            continue
-        loop = [start]
-        seen.add(start)
-        w = nxt[start]
-        while w != start:
-            loop.append(w)
-            seen.add(w)
-            w = nxt[w]
-        anchor_pos = [k for k in range(len(loop)) if anchors[loop[k]]]
-        if len(anchor_pos) <= 1:
-            # a hole (or an opening touching one support): one closed opening face
-            if anchor_pos:
-                s = anchor_pos[0]
-                loop = loop[s:] + loop[:s]
-            opening_faces.append(tuple(loop))
-            opening_open.append(False)
-            continue
-        # rotate so that the loop starts at an anchor, then cut it at every anchor into runs; a run of
-        # one edge joins two anchors and is not part of the network
-        s = anchor_pos[0]
-        loop = loop[s:] + loop[:s] + [loop[s]]
-        run = [loop[0]]
-        for w in loop[1:]:
-            run.append(w)
-            if anchors[w]:
-                if len(run) >= 3:
-                    opening_faces.append(tuple(run))
-                    opening_open.append(True)
-                run = [w]
-    all_faces = tuple(loaded_faces) + tuple(opening_faces)
-    loaded = np.zeros(len(all_faces), dtype=bool)
-    loaded[: len(loaded_faces)] = True
 
-    # ---- edge -> (left, right) face --------------------------------------------------------------
-    af, au, av, _ = corner_arrays(all_faces)
-    # an open opening face has no halfedge on its closing chord
-    is_open = np.concatenate([np.zeros(len(loaded_faces), dtype=bool), np.array(opening_open, dtype=bool)])
-    ends = np.concatenate([[0], np.cumsum([len(f) for f in all_faces])])
-    last_corner = ends[1:] - 1
+# ---- phase 3: opening faces, so that the reciprocal diagram exists -------------------------------
+
+
+class _Opening(NamedTuple):
+    """An unloaded face along an opening: a hole, or a boundary run between two supports (``open``:
+    listed from one support to the other, its closing chord is not an edge)."""
+
+    vertices: tuple[int, ...]
+    open: bool
+
+
+def _opening_faces(faces, anchors: np.ndarray, vertex_ids: np.ndarray) -> list[_Opening]:
+    """One opening face per unsupported hole and per boundary run between supports.
+
+    An opening lies beyond the boundary: it is traversed along the twins of the boundary halfedges,
+    i.e. each boundary loop reversed (from the end of its first halfedge), then cut at its anchors.
+    """
+    _check_not_pinched(faces, vertex_ids)
+    openings: list[_Opening] = []
+    for loop in boundary_loops(faces):
+        openings += _cut_at_anchors([loop[1], loop[0], *loop[:1:-1]], anchors)
+    return openings
+
+
+def _check_not_pinched(faces, vertex_ids: np.ndarray) -> None:
+    """No vertex ends two boundary halfedges (two boundary loops touching there)."""
+    _, ends = boundary_halfedges(faces)
+    again = np.ones(len(ends), dtype=bool)
+    again[np.unique(ends, return_index=True)[1]] = False
+    if again.any():
+        raise FormFindingError(
+            f"mesh vertex {vertex_ids[ends[np.argmax(again)]]} is a pinched boundary vertex (two boundary loops "
+            f"touch there); split it or support it")
+
+
+def _cut_at_anchors(loop: list[int], anchors: np.ndarray) -> list[_Opening]:
+    """A loop with at most one anchor is one closed opening (starting at its anchor); otherwise each run
+    between consecutive anchors is an open one (a run of one edge joins two anchors: not an opening)."""
+    at = [k for k in range(len(loop)) if anchors[loop[k]]]
+    if len(at) <= 1:
+        s = at[0] if at else 0
+        return [_Opening(tuple(loop[s:] + loop[:s]), False)]
+    s = at[0]
+    loop = loop[s:] + loop[:s] + [loop[s]]
+    runs, run = [], [loop[0]]
+    for w in loop[1:]:
+        run.append(w)
+        if anchors[w]:
+            if len(run) >= 3:
+                runs.append(_Opening(tuple(run), True))
+            run = [w]
+    return runs
+
+
+# ---- phase 4: the diagram -------------------------------------------------------------------------
+
+
+def _edge_faces(edges: np.ndarray, faces, is_open: np.ndarray, n: int) -> np.ndarray:
+    """``(left, right)`` face of every edge ``(u, v)``: the faces with the halfedges ``u -> v`` and
+    ``v -> u`` (-1 where there is none). An open opening face has no halfedge on its closing chord."""
+    af, au, av, _ = corner_arrays(faces)
+    ends = np.concatenate([[0], np.cumsum([len(f) for f in faces])])
     real = np.ones(len(af), dtype=bool)
-    real[last_corner[is_open]] = False
+    real[(ends[1:] - 1)[is_open]] = False
     af, au, av = af[real], au[real], av[real]
-    hc = au * n + av
-    srt = np.argsort(hc)
-    hc_sorted, hf_sorted = hc[srt], af[srt]
+    codes = au * n + av
+    order = np.argsort(codes)
+    codes, owner = codes[order], af[order]
 
-    def lookup(codes_: np.ndarray) -> np.ndarray:
-        pos = np.searchsorted(hc_sorted, codes_)
-        pos = np.minimum(pos, len(hc_sorted) - 1)
-        found = hc_sorted[pos] == codes_
-        return np.where(found, hf_sorted[pos], -1)
+    def lookup(wanted: np.ndarray) -> np.ndarray:
+        pos = np.minimum(np.searchsorted(codes, wanted), len(codes) - 1)
+        return np.where(codes[pos] == wanted, owner[pos], -1)
 
     left = lookup(edges[:, 0] * n + edges[:, 1])
     right = lookup(edges[:, 1] * n + edges[:, 0])
-    edge_faces = np.stack([left, right], axis=1)
+    return np.stack([left, right], axis=1)
 
-    # ---- validation -------------------------------------------------------------------------------
-    C = connectivity_matrix(edges, n)
-    adj = sp.csr_matrix((np.ones(len(edges)), (edges[:, 0], edges[:, 1])), shape=(n, n))
-    ncomp, labels = connected_components(adj, directed=False)
-    anchored = np.bincount(labels, weights=anchors.astype(float), minlength=ncomp) > 0
-    if not anchored.all():
-        c = int(np.flatnonzero(~anchored)[0])
-        members = np.flatnonzero(labels == c)
-        raise FormFindingError(
-            f"unsupported island: {len(members)} vertices (mesh vertices {vertex_ids[members[:8]].tolist()}"
-            f"{' ...' if len(members) > 8 else ''}) are connected to no support; support one of them or "
-            f"join them to the rest")
-    deg = np.bincount(edges.ravel(), minlength=n)
-    lonely = np.flatnonzero((deg < 2) & ~anchors)
+
+def _assembled(net: _Network, openings: list[_Opening]) -> FormDiagram:
+    """The frozen diagram: loaded faces, then opening faces, and the faces beside every edge."""
+    faces = tuple(net.faces) + tuple(o.vertices for o in openings)
+    loaded = np.zeros(len(faces), dtype=bool)
+    loaded[: len(net.faces)] = True
+    is_open = np.concatenate([np.zeros(len(net.faces), dtype=bool), np.array([o.open for o in openings], dtype=bool)])
+    n = len(net.xy)
+    edge_faces = _edge_faces(net.edges, faces, is_open, n)
+    for arr in (net.xy, net.edges, loaded, net.anchors, net.vertex_ids, edge_faces):
+        arr.setflags(write=False)
+    return FormDiagram(xy=net.xy, edges=net.edges, faces=faces, loaded=loaded, anchors=net.anchors,
+                       vertex_ids=net.vertex_ids, edge_faces=edge_faces, C=connectivity_matrix(net.edges, n))
+
+
+# ---- phase 5: can the network be in equilibrium? --------------------------------------------------
+
+
+def _check_network(form: FormDiagram, scale: float) -> None:
+    """Every part reaches a support, every free vertex has two edges, no edge has zero length, and every
+    edge with a free end has a face on both sides."""
+    _check_anchored(form)
+    lonely = np.flatnonzero((np.bincount(form.edges.ravel(), minlength=form.n_vertices) < 2) & ~form.anchors)
     if len(lonely):
         raise FormFindingError(
-            f"free mesh vertex {vertex_ids[lonely[0]]} has only one edge and cannot be in equilibrium "
+            f"free mesh vertex {form.vertex_ids[lonely[0]]} has only one edge and cannot be in equilibrium "
             f"({len(lonely)} such vertices); support it or remove it")
-    lengths = np.hypot(*(C @ xy).T)
-    short = np.flatnonzero(lengths <= 1e-12 * scale)
+    short = np.flatnonzero(form.edge_lengths() <= 1e-12 * scale)
     if len(short):
-        e = int(short[0])
-        raise FormFindingError(f"edge between mesh vertices {vertex_ids[edges[e, 0]]} and "
-                               f"{vertex_ids[edges[e, 1]]} has zero length")
-    active = ~(anchors[edges[:, 0]] & anchors[edges[:, 1]])
-    missing = np.flatnonzero(active & ((left < 0) | (right < 0)))
+        raise FormFindingError(f"edge between {_mesh_vertices(form, int(short[0]))} has zero length")
+    missing = np.flatnonzero(form.active & ((form.edge_faces[:, 0] < 0) | (form.edge_faces[:, 1] < 0)))
     if len(missing):  # pragma: no cover - guarded by the construction above
-        e = int(missing[0])
-        raise FormFindingError(f"edge between mesh vertices {vertex_ids[edges[e, 0]]} and "
-                               f"{vertex_ids[edges[e, 1]]} has no face on one side")
+        raise FormFindingError(f"edge between {_mesh_vertices(form, int(missing[0]))} has no face on one side")
 
-    for arr in (xy, edges, loaded, anchors, vertex_ids, edge_faces):
-        arr.setflags(write=False)
-    return FormDiagram(xy=xy, edges=edges, faces=all_faces, loaded=loaded, anchors=anchors,
-                       vertex_ids=vertex_ids, edge_faces=edge_faces, C=C)
+
+def _check_anchored(form: FormDiagram) -> None:
+    """Every connected part of the network has an anchor (it would float away otherwise)."""
+    ncomp, labels = form.components
+    anchored = np.bincount(labels, weights=form.anchors.astype(float), minlength=ncomp) > 0
+    if not anchored.all():
+        members = np.flatnonzero(labels == int(np.flatnonzero(~anchored)[0]))
+        raise FormFindingError(
+            f"unsupported island: {len(members)} vertices (mesh vertices {form.vertex_ids[members[:8]].tolist()}"
+            f"{' ...' if len(members) > 8 else ''}) are connected to no support; support one of them or "
+            f"join them to the rest")
+
+
+def _mesh_vertices(form: FormDiagram, e: int) -> str:
+    """``'mesh vertices i and j'``: the input-mesh ends of edge ``e``."""
+    return f"mesh vertices {form.vertex_ids[form.edges[e, 0]]} and {form.vertex_ids[form.edges[e, 1]]}"

@@ -36,22 +36,29 @@ angle between corresponding edges below ``tol_deg``. It stops early when the ang
 and then says why: edges whose force collapsed to zero length or flipped (about 180 degrees, i.e.
 tension -- no compression-only solution for this form diagram), or plain non-convergence.
 
-:func:`relax_openings` prepares form diagrams with openings: a straight unsupported edge cannot carry
-the thrust of the edges meeting it in compression, so open edges are first bent by the force density
-method into arches with a prescribed sag (as RhinoVAULT's "relax").
+:func:`horizontal` reads as these phases: build the fixed-point map (:class:`_Parallelisation`), iterate
+it with acceleration (:func:`_parallelise`), check the form edges, settle (collapse test, LP rescue),
+and read the force densities off the diagrams -- or explain the failure (:func:`_failure`).
+
+:func:`vaultgram.formfinding.relaxation.relax_openings` prepares form diagrams with openings: a
+straight unsupported edge cannot carry the thrust of the edges meeting it in compression, so open
+edges are first bent by the force density method into arches with a prescribed sag (as RhinoVAULT's
+"relax"). It is importable from here too (its former home).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
+from typing import NamedTuple
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.sparse.linalg import splu
 
 from vaultgram.errors import ConvergenceError, FormFindingError, HorizontalEquilibriumError
 from vaultgram.formfinding.forcediagram import ForceDiagram, PinnedLaplacian, WeightedFit, force_diagram
 from vaultgram.formfinding.formdiagram import FormDiagram
+from vaultgram.formfinding.relaxation import opening_edges, relax_openings  # their former home: still importable
 
 __all__ = ["HorizontalResult", "horizontal", "angle_deviations", "compression_lp",
            "relax_openings", "opening_edges"]
@@ -93,18 +100,51 @@ class HorizontalResult:
 
 
 def angle_deviations(u: np.ndarray, d: np.ndarray) -> np.ndarray:
-    """Angles in degrees, in [0, 180], between row vectors ``u`` and ``d`` (180 for flipped edges)."""
+    """Angles in degrees, in [0, 180], between row vectors ``u`` and ``d`` (180 for flipped edges).
+
+    >>> angle_deviations(np.array([[1.0, 0.0], [1.0, 0.0]]), np.array([[2.0, 2.0], [-1.0, 0.0]])).tolist()
+    [45.0, 180.0]
+    """
     cross = u[:, 0] * d[:, 1] - u[:, 1] * d[:, 0]
     dot = np.einsum("ij,ij->i", u, d)
     return np.degrees(np.abs(np.arctan2(cross, dot)))
 
 
 def _unit(v: np.ndarray) -> np.ndarray:
+    """Rows of ``v`` scaled to unit length (zero rows stay zero)."""
     n = np.hypot(v[:, 0], v[:, 1])
     out = np.zeros_like(v)
     ok = n > 0
     out[ok] = v[ok] / n[ok, None]
     return out
+
+
+def _lengths(v: np.ndarray) -> np.ndarray:
+    return np.hypot(v[:, 0], v[:, 1])
+
+
+def _max_angle(u: np.ndarray, d: np.ndarray) -> float:
+    return float(angle_deviations(u, d).max()) if len(u) else 0.0
+
+
+def _targets(u: np.ndarray, d: np.ndarray, a: float) -> np.ndarray:
+    """Unit target directions ``t_e``: the blend ``a form_e / |form_e| + (1 - a) force_e / |force_e|``,
+    the form's own direction where the blend vanishes (form and force opposite, ``a = 1/2``)."""
+    uh = _unit(u)
+    t = a * uh + (1.0 - a) * _unit(d)
+    vanishing = np.hypot(t[:, 0], t[:, 1]) < 1e-12
+    t[vanishing] = uh[vanishing]
+    return _unit(t)
+
+
+def _signed_densities(angles: np.ndarray, force_lengths: np.ndarray, form_lengths: np.ndarray) -> np.ndarray:
+    """``|force edge| / |form edge|``, negative for flipped edges (tension)."""
+    return np.where(angles > 90.0, -1.0, 1.0) * force_lengths / form_lengths
+
+
+def _collapsed(force_lengths: np.ndarray, min_force: float) -> np.ndarray:
+    """Force edges shorter than ``min_force`` times the median force length."""
+    return np.flatnonzero(force_lengths <= min_force * max(float(np.median(force_lengths)), 1e-300))
 
 
 def compression_lp(form: FormDiagram, force: ForceDiagram, q_ref: np.ndarray | None = None
@@ -125,14 +165,38 @@ def compression_lp(form: FormDiagram, force: ForceDiagram, q_ref: np.ndarray | N
         Force densities per force edge.
     y : ndarray (F, 2)
         Force-diagram positions.
+
+    Example
+    -------
+    >>> from vaultgram.formfinding.formdiagram import form_diagram
+    >>> from vaultgram.geometry.meshes import grid_mesh
+    >>> form = form_diagram(*grid_mesh(3))
+    >>> s, q, y = compression_lp(form, force_diagram(form))
+    >>> bool(s > 0), bool(np.all(q > 0))
+    (True, True)
     """
     from scipy.optimize import linprog
 
-    act = force.form_edge
-    U = (form.C[act] @ form.xy)
     k, F = force.n_edges, force.n_vertices
-    if q_ref is None:
-        q_ref = np.ones(k)
+    q_ref = np.ones(k) if q_ref is None else q_ref
+    A_eq, b_eq = _reciprocity_constraints(form, force, q_ref)
+    A_ub = sp.hstack([-sp.identity(k), sp.csr_matrix((k, 2 * F)), sp.csr_matrix(q_ref.reshape(-1, 1))]).tocsc()
+    c = np.zeros(k + 2 * F + 1)
+    c[-1] = -1.0
+    bounds = [(0, None)] * k + [(None, None)] * (2 * F) + [(None, 1.0)]
+    res = linprog(c, A_ub=A_ub, b_ub=np.zeros(k), A_eq=A_eq, b_eq=b_eq, bounds=bounds, method="highs")
+    if res.status != 0:
+        return -np.inf, np.zeros(k), np.array(force.xy)
+    x = res.x
+    return float(x[-1]), x[:k], np.column_stack([x[k:k + F], x[k + F:k + 2 * F]])
+
+
+def _reciprocity_constraints(form: FormDiagram, force: ForceDiagram, q_ref: np.ndarray
+                             ) -> tuple[sp.csc_matrix, np.ndarray]:
+    """``force_e - q_e form_e = 0`` (x and y) for every force edge, and ``sum q = sum q_ref``, over the
+    unknowns ``(q, y_x, y_y, s)`` of :func:`compression_lp`."""
+    U = form.C[force.form_edge] @ form.xy
+    k, F = force.n_edges, force.n_vertices
     D = force.C.tocsr()
     Z = sp.csr_matrix((k, F))
     zcol = sp.csr_matrix((k, 1))
@@ -141,67 +205,43 @@ def compression_lp(form: FormDiagram, force: ForceDiagram, q_ref: np.ndarray | N
         sp.hstack([-sp.diags(U[:, 1]), Z, D, zcol]),
         sp.hstack([sp.csr_matrix(np.ones((1, k))), sp.csr_matrix((1, 2 * F + 1))]),
     ]).tocsc()
-    b_eq = np.concatenate([np.zeros(2 * k), [q_ref.sum()]])
-    A_ub = sp.hstack([-sp.identity(k), sp.csr_matrix((k, 2 * F)), sp.csr_matrix(q_ref.reshape(-1, 1))]).tocsc()
-    b_ub = np.zeros(k)
-    c = np.zeros(k + 2 * F + 1)
-    c[-1] = -1.0
-    bounds = [(0, None)] * k + [(None, None)] * (2 * F) + [(None, 1.0)]
-    res = linprog(c, A_ub=A_ub, b_ub=b_ub, A_eq=A_eq, b_eq=b_eq, bounds=bounds, method="highs")
-    if res.status != 0:
-        return -np.inf, np.zeros(k), np.array(force.xy)
-    x = res.x
-    y = np.column_stack([x[k:k + F], x[k + F:k + 2 * F]])
-    return float(x[-1]), x[:k], y
+    return A_eq, np.concatenate([np.zeros(2 * k), [q_ref.sum()]])
 
 
 def horizontal(form: FormDiagram, force: ForceDiagram | None = None, *, alpha: float = 100.0,
                kmax: int = 1000, tol_deg: float = 0.5, min_force: float = 1e-6,
                stall_window: int = 50, rescue: bool = True, raise_on_failure: bool = True,
                length_weight: float = 0.01, anderson: int = 5, lp_max_edges: int = 5000) -> HorizontalResult:
-    """Parallelise form and force diagrams until the max angle deviation is below ``tol_deg``.
+    """Parallelise form and force diagrams until the max angle deviation is below ``tol_deg`` (TNA step 1).
 
     Parameters
     ----------
     form : FormDiagram
     force : ForceDiagram, optional
-        Initial force diagram (default: :func:`vaultgram.formfinding.forcediagram.force_diagram` least squares).
+        Initial force diagram (default: :func:`vaultgram.formfinding.forcediagram.force_diagram`).
     alpha : float
         Percentage weight of the form diagram in the target directions (100: form fixed, force moves;
         0: force fixed, form moves), as compas_tna ``horizontal_nodal``.
-    kmax : int
-        Iteration cap.
-    tol_deg : float
-        Stopping tolerance on the largest angle between corresponding edges (degrees).
+    kmax, tol_deg : int, float
+        Iteration cap; stopping tolerance on the largest angle between corresponding edges (degrees).
     min_force : float
         A force edge shorter than ``min_force * median force length`` counts as collapsed.
     stall_window : int
         Stop early when the max angle has not dropped by 1% over this many iterations.
     rescue : bool
-        When the iteration stalls or hits ``kmax`` (and there are at most ``lp_max_edges`` force
-        edges), decide exactly by linear programming
-        (:func:`compression_lp`) whether the current form diagram has a compression-only reciprocal;
-        if so, use it (``method == "lp"`` in the result), otherwise raise
-        :class:`HorizontalEquilibriumError`.
+        When the iteration stalls or hits ``kmax``, decide exactly by linear programming
+        (:func:`compression_lp`, up to ``lp_max_edges`` force edges: HiGHS takes about 1 s at 2,000,
+        minutes at 20,000) whether the current form diagram has a compression-only reciprocal; if so,
+        use it (``method == "lp"``), otherwise raise :class:`HorizontalEquilibriumError`.
     raise_on_failure : bool
         Raise (default) or return a result with ``converged=False``.
     length_weight : float in (0, 1]
-        ``mu`` of the weighted fit (see the module docstring): a change of an edge's length costs
-        ``mu`` times a deviation across its target direction. 1 is the plain fit of compas_tna
-        (hundreds to thousands of iterations on meshes with openings); the default 0.01 needs a few.
+        ``mu`` of the weighted fit (module docstring): a change of length costs ``mu`` times a deviation
+        across the target direction. 1 is compas_tna's plain fit (hundreds to thousands of iterations
+        on meshes with openings); the default 0.01 needs a few.
     anderson : int
-        Window of the Anderson acceleration of the iteration (0: off). An extrapolated iterate is
-        accepted only if its max angle is not worse than the plain update's; otherwise the plain
-        update is taken and the window restarts, so the stopping test and failure detection are
-        those of the plain iteration.
-    lp_max_edges : int
-        The exact linear-programming check (``rescue``) is run only up to this many force edges
-        (HiGHS takes about 1 s at 2,000 edges, minutes at 20,000); above it failures are reported
-        as not checked exactly.
-
-    Returns
-    -------
-    HorizontalResult
+        Window of the safeguarded Anderson acceleration (0: off); stopping test and failure detection
+        stay those of the plain iteration.
 
     Raises
     ------
@@ -209,293 +249,237 @@ def horizontal(form: FormDiagram, force: ForceDiagram | None = None, *, alpha: f
         edges flipped (tension) or collapsed: no compression-only solution; names edges and angles.
     ConvergenceError
         the angle did not drop below ``tol_deg`` within ``kmax`` iterations (``.result`` attached).
+
+    Example
+    -------
+    >>> from vaultgram.formfinding.formdiagram import form_diagram
+    >>> from vaultgram.geometry.meshes import grid_mesh
+    >>> h = horizontal(form_diagram(*grid_mesh(4)))
+    >>> h.converged, h.iterations, h.max_angle < 1e-9
+    (True, 0, True)
     """
-    if force is None:
-        force = force_diagram(form)
-    a = min(max(float(alpha) / 100.0, 0.0), 1.0)
-    if not 0.0 < length_weight <= 1.0:
-        raise ValueError(f"length_weight must be in (0, 1], got {length_weight}")
-    act = force.form_edge
-    Cu = form.C[act].tocsr()
-    Cd = force.C
-    xy = np.array(form.xy, dtype=float)
-    y = np.array(force.xy, dtype=float)
-    u = Cu @ xy
-    d = Cd @ y
-    # the frame of the weighted fit: the initial target directions (fixed, so one factorisation)
-    uh = _unit(u)
-    frame = a * uh + (1.0 - a) * _unit(d)
-    frame[np.hypot(frame[:, 0], frame[:, 1]) < 1e-12] = uh[np.hypot(frame[:, 0], frame[:, 1]) < 1e-12]
-    frame = _unit(frame)
-    solvers: list = []   # factorised on the first iteration (none when the start is already parallel)
-
-    def step(xy_, y_, u_, d_):
-        """One parallelisation update of both diagrams (the fixed-point map)."""
-        if not solvers:
-            if length_weight == 1.0:
-                solvers.append(PinnedLaplacian(Cu, form.fixed) if a < 1.0 else None)
-                solvers.append(PinnedLaplacian(Cd, force.pins) if a > 0.0 else None)
-            else:
-                solvers.append(WeightedFit(Cu, form.fixed, frame, length_weight) if a < 1.0 else None)
-                solvers.append(WeightedFit(Cd, force.pins, frame, length_weight) if a > 0.0 else None)
-        form_solver, force_solver = solvers
-        lu_ = np.hypot(u_[:, 0], u_[:, 1])
-        ld = np.hypot(d_[:, 0], d_[:, 1])
-        uh_ = _unit(u_)
-        t = a * uh_ + (1.0 - a) * _unit(d_)
-        bad = np.hypot(t[:, 0], t[:, 1]) < 1e-12
-        t[bad] = uh_[bad]
-        t = _unit(t)
-        if form_solver is not None:
-            xy_ = form_solver.solve(lu_[:, None] * t, xy_)
-        if force_solver is not None:
-            y_ = force_solver.solve(ld[:, None] * t, y_)
-        return xy_, y_
-
-    def max_angle(u_, d_) -> float:
-        return float(angle_deviations(u_, d_).max()) if len(u_) else 0.0
-
-    history: list[float] = []
-    converged = False
-    k = 0
-    X: list[np.ndarray] = []       # Anderson history: iterates and their residuals g(x) - x
-    G: list[np.ndarray] = []
-    angles = angle_deviations(u, d)
-    amax = float(angles.max()) if len(angles) else 0.0
-    while True:
-        history.append(amax)
-        if amax < tol_deg:
-            converged = True
-            break
-        if k >= kmax:
-            break
-        if k >= stall_window and history[-1 - stall_window] - amax < 0.01 * history[-1 - stall_window]:
-            break
-        xy_g, y_g = step(xy, y, u, d)
-        k += 1
-        x_now = np.concatenate([xy.ravel(), y.ravel()])
-        x_g = np.concatenate([xy_g.ravel(), y_g.ravel()])
-        u_g, d_g = Cu @ xy_g, Cd @ y_g
-        a_g = max_angle(u_g, d_g)
-        accepted = False
-        if anderson > 0:
-            X.append(x_now)
-            G.append(x_g - x_now)
-            if len(X) > anderson + 1:
-                X.pop(0)
-                G.pop(0)
-            if len(X) > 1:
-                dX = np.diff(np.array(X), axis=0).T
-                dG = np.diff(np.array(G), axis=0).T
-                gam = np.linalg.lstsq(dG, G[-1], rcond=None)[0]
-                x_aa = x_g - (dX + dG) @ gam
-                xy_aa = x_aa[:xy.size].reshape(xy.shape)
-                y_aa = x_aa[xy.size:].reshape(y.shape)
-                u_aa, d_aa = Cu @ xy_aa, Cd @ y_aa
-                a_aa = max_angle(u_aa, d_aa)
-                # safeguard: take the extrapolation only if it beats the plain update
-                if a_aa <= a_g and np.all(np.isfinite(x_aa)):
-                    xy, y, u, d, amax = xy_aa, y_aa, u_aa, d_aa, a_aa
-                    accepted = True
-                else:
-                    X, G = [], []
-        if not accepted:
-            xy, y, u, d, amax = xy_g, y_g, u_g, d_g, a_g
-        angles = angle_deviations(u, d)
-
-    u = Cu @ xy
-    d = Cd @ y
-    lu_ = np.hypot(u[:, 0], u[:, 1])
-    ld = np.hypot(d[:, 0], d[:, 1])
-    if not np.all(lu_ > 0):
-        e = int(np.flatnonzero(~(lu_ > 0))[0])
-        raise FormFindingError(f"form {form.edge_name(int(act[e]))} has collapsed to zero length during "
-                               f"horizontal equilibrium; use a larger alpha")
-    new_form = form.with_xy(xy) if a < 1.0 else form
-    method = "parallelisation"
-    lp_s = None
-    if converged:
-        collapsed = np.flatnonzero(ld <= min_force * max(float(np.median(ld)), 1e-300))
-        converged = len(collapsed) == 0
-    lp_ok = rescue and len(act) <= lp_max_edges
-    if not converged and lp_ok:
-        signed = np.where(angles > 90.0, -1.0, 1.0) * ld / lu_
-        pos = signed[signed > 0]
-        floor = 0.1 * float(np.median(pos)) if len(pos) else 1.0
-        lp_s, q_lp, y_lp = compression_lp(new_form, force, np.maximum(signed, floor))
-        if lp_s > 1e-9:
-            y = y_lp
-            d = Cd @ y
-            ld = np.hypot(d[:, 0], d[:, 1])
-            angles = angle_deviations(u, d)
-            amax = float(angles.max()) if len(angles) else 0.0
-            history.append(amax)
-            converged = amax < tol_deg
-            method = "lp"
-    q = np.zeros(form.n_edges)
-    q[act] = np.where(angles > 90.0, -1.0, 1.0) * ld / lu_
-    res = HorizontalResult(form=new_form, force=force.with_xy(y), q=q, angles=angles, max_angle=amax,
-                           iterations=k, history=tuple(history), converged=converged, method=method)
-    if converged or not raise_on_failure:
+    force = force_diagram(form) if force is None else force
+    fpm = _Parallelisation(form, force, _form_weight(alpha, length_weight), length_weight)
+    it, k, history, converged = _parallelise(fpm, tol_deg, kmax, stall_window, anderson)
+    new_form = _moved_form(form, fpm, it)
+    lp_ok = rescue and len(force.form_edge) <= lp_max_edges
+    end = _settled(new_form, fpm, it, converged, min_force, lp_ok, tol_deg, tuple(history))
+    res = HorizontalResult(form=new_form, force=force.with_xy(end.y), q=_force_densities(form, force, end),
+                           angles=end.angles, max_angle=end.max_angle, iterations=k, history=end.history,
+                           converged=end.converged, method=end.method)
+    if res.converged or not raise_on_failure:
         return res
-    flipped = np.flatnonzero(angles > 90.0)
-    collapsed = np.flatnonzero(ld <= min_force * max(float(np.median(ld)), 1e-300))
-    if lp_s is not None and lp_s <= 1e-9 or (lp_s is None and (len(flipped) or len(collapsed))):
-        bad = np.union1d(flipped, collapsed)
-        if len(bad) == 0:
-            bad = np.argsort(-angles)[:8]
-        worst = bad[np.argsort(-angles[bad])][:8]
-        desc = "; ".join(f"{form.edge_name(act[i])}: {angles[i]:.1f} deg, force length {ld[i]:.2g}"
-                         for i in worst)
-        proof = (" (checked exactly by linear programming)" if lp_s is not None else
-                 " (not checked exactly: rescue=False)" if not rescue else
-                 f" (not checked exactly: {len(act)} force edges > lp_max_edges = {lp_max_edges})")
-        if len(flipped) == 0 and len(collapsed) == 0:
-            raise HorizontalEquilibriumError(
-                f"horizontal equilibrium stalled at a max angle deviation of {amax:.3g} deg > {tol_deg} deg after "
-                f"{k} iterations, with every force edge in compression; this form diagram has no exactly "
-                f"parallel compression-only reciprocal{proof}, so the tolerance is below what it allows "
-                f"(worst: {desc}); raise tol_deg or relax the form diagram (relax_mode='all')",
-                edges=act[bad].tolist(), angles=angles[bad].tolist(), result=res)
-        raise HorizontalEquilibriumError(
+    raise _failure(res, force.form_edge, end, min_force, rescue, lp_max_edges, tol_deg)
+
+
+def _form_weight(alpha: float, length_weight: float) -> float:
+    """``alpha`` as a fraction in [0, 1]; ``length_weight`` checked."""
+    if not 0.0 < length_weight <= 1.0:
+        raise FormFindingError(f"length_weight must be in (0, 1], got {length_weight}")
+    return min(max(float(alpha) / 100.0, 0.0), 1.0)
+
+
+# ---- the iteration ---------------------------------------------------------------------------------
+
+
+class _Iterate(NamedTuple):
+    """Both diagrams at one iterate: positions, edge vectors of the active edges, the max angle."""
+
+    xy: np.ndarray
+    y: np.ndarray
+    u: np.ndarray
+    d: np.ndarray
+    amax: float
+
+
+class _Parallelisation:
+    """The fixed-point map of the parallelisation: each diagram fitted to its targets ``|edge| t_e``.
+
+    The fit's frame is the initial target directions, fixed, so each moving diagram's matrix is
+    factorised once, on the first step (never when the start is already parallel).
+    """
+
+    def __init__(self, form: FormDiagram, force: ForceDiagram, a: float, length_weight: float):
+        self.form, self.force, self.a, self.mu = form, force, a, length_weight
+        self.Cu = form.C[force.form_edge].tocsr()
+        self.Cd = force.C
+        self.start = self.iterate(np.array(form.xy, dtype=float), np.array(force.xy, dtype=float))
+        self.frame = _targets(self.start.u, self.start.d, a)
+
+    def iterate(self, xy: np.ndarray, y: np.ndarray) -> _Iterate:
+        u, d = self.Cu @ xy, self.Cd @ y
+        return _Iterate(xy, y, u, d, _max_angle(u, d))
+
+    @cached_property
+    def solvers(self) -> tuple:
+        """Form and force fits (None for a diagram that does not move: ``alpha`` 100 or 0)."""
+        return (self._fit(self.Cu, self.form.fixed) if self.a < 1.0 else None,
+                self._fit(self.Cd, self.force.pins) if self.a > 0.0 else None)
+
+    def _fit(self, C: sp.csr_matrix, pinned: np.ndarray):
+        """The plain fit of compas_tna (``mu = 1``) or the weighted one in the fixed frame."""
+        return PinnedLaplacian(C, pinned) if self.mu == 1.0 else WeightedFit(C, pinned, self.frame, self.mu)
+
+    def step(self, it: _Iterate) -> _Iterate:
+        """One parallelisation update of both diagrams (the fixed-point map)."""
+        form_fit, force_fit = self.solvers
+        t = _targets(it.u, it.d, self.a)
+        xy = form_fit.solve(_lengths(it.u)[:, None] * t, it.xy) if form_fit is not None else it.xy
+        y = force_fit.solve(_lengths(it.d)[:, None] * t, it.y) if force_fit is not None else it.y
+        return self.iterate(xy, y)
+
+
+class _Anderson:
+    """Safeguarded Anderson acceleration of a fixed-point map over the last ``window`` iterates: an
+    extrapolation is taken only when its max angle is not worse than the plain update's (otherwise
+    the window restarts)."""
+
+    def __init__(self, window: int):
+        self.window = window
+        self.X: list[np.ndarray] = []       # iterates and their residuals g(x) - x
+        self.G: list[np.ndarray] = []
+
+    def next(self, fpm: _Parallelisation, it: _Iterate, plain: _Iterate) -> _Iterate:
+        if self.window <= 0:
+            return plain
+        x_now = np.concatenate([it.xy.ravel(), it.y.ravel()])
+        x_g = np.concatenate([plain.xy.ravel(), plain.y.ravel()])
+        self.X.append(x_now)
+        self.G.append(x_g - x_now)
+        if len(self.X) > self.window + 1:
+            self.X.pop(0)
+            self.G.pop(0)
+        if len(self.X) == 1:
+            return plain
+        dX = np.diff(np.array(self.X), axis=0).T
+        dG = np.diff(np.array(self.G), axis=0).T
+        x_aa = x_g - (dX + dG) @ np.linalg.lstsq(dG, self.G[-1], rcond=None)[0]
+        n = it.xy.size
+        extrapolated = fpm.iterate(x_aa[:n].reshape(it.xy.shape), x_aa[n:].reshape(it.y.shape))
+        if extrapolated.amax <= plain.amax and np.all(np.isfinite(x_aa)):
+            return extrapolated
+        self.X, self.G = [], []
+        return plain
+
+
+def _parallelise(fpm: _Parallelisation, tol_deg: float, kmax: int, stall_window: int, anderson: int
+                 ) -> tuple[_Iterate, int, list[float], bool]:
+    """Iterate until the max angle is below ``tol_deg`` (converged), ``kmax`` iterations, or a stall:
+    the last iterate, the number of iterations, the max angle before each and after the last, and
+    whether it converged."""
+    it, history, acceleration = fpm.start, [], _Anderson(anderson)
+    while True:
+        history.append(it.amax)
+        if it.amax < tol_deg:
+            return it, len(history) - 1, history, True
+        if len(history) > kmax or _stalled(history, stall_window):
+            return it, len(history) - 1, history, False
+        it = acceleration.next(fpm, it, fpm.step(it))
+
+
+def _stalled(history: list[float], window: int) -> bool:
+    """The max angle has not dropped by 1% over the last ``window`` iterations."""
+    return len(history) > window and history[-1 - window] - history[-1] < 0.01 * history[-1 - window]
+
+
+# ---- after the iteration ----------------------------------------------------------------------------
+
+
+def _moved_form(form: FormDiagram, fpm: _Parallelisation, it: _Iterate) -> FormDiagram:
+    """The form diagram at the last iterate (itself when ``alpha = 100``); no form edge may vanish."""
+    short = np.flatnonzero(~(_lengths(it.u) > 0))
+    if len(short):
+        raise FormFindingError(f"form {form.edge_name(int(fpm.force.form_edge[short[0]]))} has collapsed to zero "
+                               f"length during horizontal equilibrium; use a larger alpha")
+    return form.with_xy(it.xy) if fpm.a < 1.0 else form
+
+
+class _Settled(NamedTuple):
+    """Where horizontal equilibrium ended, per force edge, after the LP rescue if there was one."""
+
+    y: np.ndarray
+    angles: np.ndarray
+    form_lengths: np.ndarray
+    force_lengths: np.ndarray
+    max_angle: float
+    converged: bool
+    method: str
+    lp_s: float | None
+    history: tuple
+
+
+def _settled(form: FormDiagram, fpm: _Parallelisation, it: _Iterate, converged: bool, min_force: float,
+             lp_ok: bool, tol_deg: float, history: tuple) -> _Settled:
+    """The end state: converged only if no force edge collapsed either; when the iteration failed, the
+    compression-only reciprocal of the current form diagram by :func:`compression_lp` if there is one
+    (``method == "lp"``)."""
+    angles, lu, ld = angle_deviations(it.u, it.d), _lengths(it.u), _lengths(it.d)
+    converged = converged and not len(_collapsed(ld, min_force))
+    end = _Settled(it.y, angles, lu, ld, it.amax, converged, "parallelisation", None, history)
+    if converged or not lp_ok:
+        return end
+    signed = _signed_densities(angles, ld, lu)
+    positive = signed[signed > 0]
+    floor = 0.1 * float(np.median(positive)) if len(positive) else 1.0
+    lp_s, _, y = compression_lp(form, fpm.force, np.maximum(signed, floor))
+    if lp_s <= 1e-9:
+        return end._replace(lp_s=lp_s)
+    d = fpm.Cd @ y
+    angles = angle_deviations(it.u, d)
+    amax = float(angles.max()) if len(angles) else 0.0
+    return _Settled(y, angles, lu, _lengths(d), amax, amax < tol_deg, "lp", lp_s, (*history, amax))
+
+
+def _force_densities(form: FormDiagram, force: ForceDiagram, end: _Settled) -> np.ndarray:
+    """``q`` per form edge: ``|force edge| / |form edge|``, negative where flipped, 0 without force edge."""
+    q = np.zeros(form.n_edges)
+    q[force.form_edge] = _signed_densities(end.angles, end.force_lengths, end.form_lengths)
+    return q
+
+
+def _failure(res: HorizontalResult, act: np.ndarray, end: _Settled, min_force: float, rescue: bool,
+             lp_max_edges: int, tol_deg: float) -> FormFindingError | ConvergenceError:
+    """The error that explains why ``res`` did not converge: no compression-only equilibrium (the LP
+    found none, or without the LP, edges flipped or collapsed), or plain non-convergence."""
+    flipped, collapsed = np.flatnonzero(res.angles > 90.0), _collapsed(end.force_lengths, min_force)
+    disproved = end.lp_s is not None and end.lp_s <= 1e-9
+    if not (disproved or (end.lp_s is None and (len(flipped) or len(collapsed)))):
+        return _not_converged(res, act, tol_deg)
+    proof = (" (checked exactly by linear programming)" if end.lp_s is not None else
+             " (not checked exactly: rescue=False)" if not rescue else
+             f" (not checked exactly: {len(act)} force edges > lp_max_edges = {lp_max_edges})")
+    return _no_compression(res, act, end.force_lengths, flipped, collapsed, proof, tol_deg)
+
+
+def _not_converged(res: HorizontalResult, act: np.ndarray, tol_deg: float) -> ConvergenceError:
+    """Plain non-convergence within ``kmax``, naming the five worst edges (``.result`` attached)."""
+    desc = "; ".join(f"{res.form.edge_name(act[i])}: {res.angles[i]:.2f} deg" for i in np.argsort(-res.angles)[:5])
+    err = ConvergenceError(
+        f"horizontal equilibrium did not converge: max angle deviation {res.max_angle:.3g} deg > {tol_deg} deg "
+        f"after {res.iterations} iterations (worst: {desc}); raise kmax, change alpha or relax the form diagram")
+    err.result = res
+    return err
+
+
+def _no_compression(res: HorizontalResult, act: np.ndarray, force_lengths: np.ndarray, flipped: np.ndarray,
+                    collapsed: np.ndarray, proof: str, tol_deg: float) -> HorizontalEquilibriumError:
+    """No compression-only reciprocal: the flipped (tension) and collapsed edges, or, when every force
+    edge is in compression, the angle floor of a form that is only approximately balanceable."""
+    angles, k, amax = res.angles, res.iterations, res.max_angle
+    bad = np.union1d(flipped, collapsed)
+    bad = np.argsort(-angles)[:8] if len(bad) == 0 else bad
+    desc = "; ".join(f"{res.form.edge_name(act[i])}: {angles[i]:.1f} deg, force length {force_lengths[i]:.2g}"
+                     for i in bad[np.argsort(-angles[bad])][:8])
+    if len(flipped) == 0 and len(collapsed) == 0:
+        message = (
+            f"horizontal equilibrium stalled at a max angle deviation of {amax:.3g} deg > {tol_deg} deg after "
+            f"{k} iterations, with every force edge in compression; this form diagram has no exactly "
+            f"parallel compression-only reciprocal{proof}, so the tolerance is below what it allows "
+            f"(worst: {desc}); raise tol_deg or relax the form diagram (relax_mode='all')")
+    else:
+        message = (
             f"no compression-only horizontal equilibrium for this form diagram{proof}: after {k} iterations "
             f"{len(flipped)} force edges flipped (tension) and {len(collapsed)} collapsed to zero length, "
             f"e.g. {desc}. Straight unsupported edges cannot be in compression: relax the openings "
-            f"(relax_openings), move the pattern or add supports",
-            edges=act[bad].tolist(), angles=angles[bad].tolist(), result=res)
-    worst = np.argsort(-angles)[:5]
-    desc = "; ".join(f"{form.edge_name(act[i])}: {angles[i]:.2f} deg" for i in worst)
-    err = ConvergenceError(
-        f"horizontal equilibrium did not converge: max angle deviation {amax:.3g} deg > {tol_deg} deg after "
-        f"{k} iterations (worst: {desc}); raise kmax, change alpha or relax the form diagram")
-    err.result = res
-    raise err
-
-
-# ---------------------------------------------------------------------------------------------------
-# Relaxing open edges
-# ---------------------------------------------------------------------------------------------------
-
-
-def opening_edges(form: FormDiagram) -> tuple[np.ndarray, np.ndarray]:
-    """Form edges along openings and, for each, the opening face index (position in ``form.faces``)."""
-    eidx, fidx = [], []
-    for k in np.flatnonzero(~form.loaded):
-        left = form.edge_faces[:, 0] == k
-        right = form.edge_faces[:, 1] == k
-        sel = np.flatnonzero(left | right)
-        eidx.append(sel)
-        fidx.append(np.full(len(sel), k))
-    if not eidx:
-        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
-    return np.concatenate(eidx), np.concatenate(fidx)
-
-
-def relax_openings(form: FormDiagram, sag: float = 0.1, *, mode: str = "boundary",
-                   q_interior: float = 1.0, iterations: int = 60) -> FormDiagram:
-    """Bend the open (unsupported) boundary edges into compression arches (force density method).
-
-    Each opening gets one force density ``q_b`` on its edges (all other edges ``q_interior``) and the
-    moving vertices are placed in equilibrium (Schek's force density method, in plan). ``q_b`` is
-    found per opening by bisection so that its vertices move by at most ``sag * span`` away from the
-    opening, towards the loaded side (``span``: the chord between the two supports of a boundary run;
-    ``4 area / perimeter`` for a closed hole, i.e. the side of a square hole). The opening grows: a
-    compression arch along an opening curves around it. Larger sag, lower thrust along the opening.
-    A sag beyond what the adjacent edges allow (about one edge length in mode ``"boundary"``) is
-    clamped by the bracket ``1e-4 <= q_b <= 1e4``.
-
-    Parameters
-    ----------
-    form : FormDiagram
-    sag : float
-        Sag-to-span ratio of the open edges (0.1 default, as the usual RhinoVAULT setting).
-    mode : {"boundary", "all"}
-        ``"boundary"`` moves only the free vertices on openings (the rest of the pattern is kept);
-        ``"all"`` moves every free vertex (a full force-density relaxation, which also smooths the
-        pattern and yields a form diagram in exact equilibrium with positive force densities).
-    q_interior : float
-        Force density of non-opening edges.
-
-    Returns
-    -------
-    FormDiagram
-        The diagram with new plan positions (unchanged when there is no opening).
-    """
-    if sag <= 0:
-        raise ValueError(f"sag must be positive, got {sag}")
-    eo, fo = opening_edges(form)
-    if len(eo) == 0:
-        return form
-    openings = np.flatnonzero(~form.loaded)
-    slot = np.full(form.n_faces, -1)
-    slot[openings] = np.arange(len(openings))
-    if mode == "boundary":
-        moving = np.zeros(form.n_vertices, dtype=bool)
-        moving[form.edges[eo].ravel()] = True
-        moving &= ~form.anchors
-    elif mode == "all":
-        moving = ~form.anchors
-    else:
-        raise ValueError(f"unknown mode {mode!r}; use 'boundary' or 'all'")
-    mv = np.flatnonzero(moving)
-    st = np.flatnonzero(~moving)
-    C = form.C
-    Cm, Cs = C[:, mv].tocsc(), C[:, st].tocsc()
-    xy0 = np.asarray(form.xy)
-    # the moving vertices of each opening, their outward normals (towards the loaded side: the opening
-    # face lies on the left of its traversal) and the opening's span
-    span = np.zeros(len(openings))
-    vert_of, normal_of = [], []
-    for j, k in enumerate(openings):
-        vs = np.array(form.faces[k])
-        pts = xy0[vs]
-        if form.anchors[vs[0]] and form.anchors[vs[-1]] and len(vs) >= 3 and np.all(~form.anchors[vs[1:-1]]):
-            # a run between two supports: span = chord between them
-            span[j] = np.linalg.norm(pts[-1] - pts[0])
-            prv, nxt = np.roll(pts, 1, axis=0), np.roll(pts, -1, axis=0)
-        else:
-            # a closed opening (hole): span = 4 area / perimeter (the side of a square hole)
-            nxt, prv = np.roll(pts, -1, axis=0), np.roll(pts, 1, axis=0)
-            area = 0.5 * abs(np.sum(pts[:, 0] * nxt[:, 1] - nxt[:, 0] * pts[:, 1]))
-            perim = np.linalg.norm(nxt - pts, axis=1).sum()
-            span[j] = 4.0 * area / perim
-        if span[j] <= 0:
-            span[j] = np.sqrt(((pts[:, None, :] - pts[None, :, :]) ** 2).sum(-1)).max()
-        t = nxt - prv
-        nrm = np.column_stack([t[:, 1], -t[:, 0]])
-        nrm /= np.maximum(np.linalg.norm(nrm, axis=1), 1e-300)[:, None]
-        sel = moving[vs]
-        vert_of.append(vs[sel])
-        normal_of.append(nrm[sel])
-    # an edge can border two openings (rare); it then takes the larger q_b
-    lo = np.full(len(openings), np.log(1e-4))
-    hi = np.full(len(openings), np.log(1e4))
-
-    def solve(logq: np.ndarray) -> np.ndarray:
-        q = np.full(form.n_edges, float(q_interior))
-        np.maximum.at(q, eo, np.exp(logq[slot[fo]]))
-        Q = sp.diags(q)
-        A = (Cm.T @ Q @ Cm).tocsc()
-        b = -(Cm.T @ (Q @ (Cs @ xy0[st])))
-        xy = xy0.copy()
-        xy[mv] = splu(A, permc_spec="MMD_AT_PLUS_A").solve(b)
-        return xy
-
-    target = sag * span
-    for _ in range(iterations):
-        mid = 0.5 * (lo + hi)
-        xy = solve(mid)
-        got = np.array([np.max(np.einsum("ij,ij->i", xy[vs] - xy0[vs], nr)) if len(vs) else 0.0
-                        for vs, nr in zip(vert_of, normal_of)])
-        too_much = got > target          # too much sag: raise q_b
-        lo = np.where(too_much, mid, lo)
-        hi = np.where(too_much, hi, mid)
-    out = form.with_xy(solve(0.5 * (lo + hi)))
-    l0, l1 = form.edge_lengths(), out.edge_lengths()
-    short = np.flatnonzero(~(l1 > 1e-3 * l0))
-    if len(short):
-        raise FormFindingError(
-            f"relaxing the openings collapsed {len(short)} edges, e.g. {form.edge_name(int(short[0]))} "
-            f"(length {l0[short[0]]:.3g} -> {l1[short[0]]:.3g}): the supports cannot hold the open edges "
-            f"apart; add supports or relax with a larger sag")
-    return out
+            f"(relax_openings), move the pattern or add supports")
+    return HorizontalEquilibriumError(message, edges=act[bad].tolist(), angles=angles[bad].tolist(), result=res)

@@ -21,15 +21,24 @@ import shapely
 
 from vaultgram.errors import FormFindingError
 from vaultgram.geometry.meshes import boundary_loops
+from vaultgram.geometry.polygons import bbox_diagonal, signed_area
 
 
 def outer_loop(vertices: np.ndarray, faces: Sequence[Sequence[int]]) -> list[int]:
-    """The boundary loop enclosing the largest area (the outer boundary of a mesh with holes)."""
-    loops = boundary_loops(faces)
+    """The boundary loop enclosing the largest area (the outer boundary of a mesh with holes).
+
+    Example
+    -------
+    >>> from vaultgram.geometry.meshes import grid_mesh, remove_faces
+    >>> v, f, _ = remove_faces(*grid_mesh(3), drop=[4])          # a 3 x 3 grid without its centre
+    >>> len(outer_loop(v, f))
+    12
+    """
+    loops = _boundary_loops(faces)
     if not loops:
         raise FormFindingError("the mesh has no boundary, so nothing can be supported by default")
-    xy = np.asarray(vertices)[:, :2]
-    return max(loops, key=lambda loop: shapely.Polygon(xy[loop]).area if len(loop) >= 3 else 0.0)
+    xy = np.asarray(vertices, dtype=float)[:, :2]
+    return max(loops, key=lambda loop: abs(signed_area(xy[loop])) if len(loop) >= 3 else 0.0)
 
 
 def support_vertices(vertices, faces, spec=None, domain=None) -> np.ndarray:
@@ -37,34 +46,63 @@ def support_vertices(vertices, faces, spec=None, domain=None) -> np.ndarray:
 
     ``domain`` is needed to resolve ``rings`` (which mesh boundary loop is which ring). Boundary
     vertices count as lying on a ring or polyline when within 1e-3 of the mesh's bounding-box diagonal.
+
+    Example
+    -------
+    >>> from vaultgram.geometry.meshes import grid_mesh
+    >>> v, f = grid_mesh(2)
+    >>> support_vertices(v, f).tolist(), support_vertices(v, f, {"polylines": [[[0, 0], [2, 0]]]}).tolist()
+    ([0, 1, 2, 3, 5, 6, 7, 8], [0, 1, 2])
     """
     xy = np.asarray(vertices, dtype=float)[:, :2]
     if spec is None:
         return np.array(sorted(outer_loop(xy, faces)), dtype=np.int64)
     if not isinstance(spec, dict) or len(set(spec) - {"comment"}) != 1:
         raise FormFindingError('supports: expected one of {"rings": ...}, {"polylines": ...} or {"vertices": ...}')
-    tol = 1e-3 * float(np.hypot(*(xy.max(axis=0) - xy.min(axis=0))))
-    boundary = np.array(sorted({v for loop in boundary_loops(faces) for v in loop}), dtype=np.int64)
     if "vertices" in spec:
-        idx = np.asarray(spec["vertices"], dtype=np.int64).ravel()
-        bad = idx[(idx < 0) | (idx >= len(xy))]
-        if len(bad):
-            raise FormFindingError(f"supports.vertices: vertex {int(bad[0])} does not exist ({len(xy)} vertices)")
-        chosen = np.unique(idx)
+        chosen = _listed_vertices(spec["vertices"], len(xy))
     elif "polylines" in spec:
-        lines = shapely.MultiLineString([np.asarray(p, dtype=float)[:, :2] for p in spec["polylines"]])
-        chosen = boundary[shapely.distance(shapely.points(xy[boundary]), lines) <= tol]
+        chosen = _boundary_on_lines(xy, faces, [np.asarray(p, dtype=float)[:, :2] for p in spec["polylines"]])
     elif "rings" in spec:
-        if domain is None:
-            raise FormFindingError("supports.rings needs the domain (rings are named by the domain file)")
-        rings = {"outer": domain.outer, **{k: h for k, h in enumerate(domain.holes)}}
-        missing = [r for r in spec["rings"] if r not in rings]
-        if missing:
-            raise FormFindingError(f"supports.rings: no ring {missing[0]!r} (the domain has {len(domain.holes)} holes)")
-        lines = shapely.MultiLineString([np.vstack([rings[r], rings[r][:1]]) for r in spec["rings"]])
-        chosen = boundary[shapely.distance(shapely.points(xy[boundary]), lines) <= tol]
+        chosen = _boundary_on_lines(xy, faces, _ring_lines(spec["rings"], domain))
     else:
         raise FormFindingError(f"supports: unknown key {sorted(spec)[0]!r}")
     if len(chosen) == 0:
         raise FormFindingError(f"supports {spec}: no mesh vertex lies on them, so nothing bears thrust")
     return chosen
+
+
+def _listed_vertices(vertices, n: int) -> np.ndarray:
+    """``supports.vertices``: distinct, existing mesh vertex indices."""
+    idx = np.asarray(vertices, dtype=np.int64).ravel()
+    bad = idx[(idx < 0) | (idx >= n)]
+    if len(bad):
+        raise FormFindingError(f"supports.vertices: vertex {int(bad[0])} does not exist ({n} vertices)")
+    return np.unique(idx)
+
+
+def _ring_lines(names, domain) -> list[np.ndarray]:
+    """``supports.rings``: the domain's rings ("outer" or hole indices) as closed polylines."""
+    if domain is None:
+        raise FormFindingError("supports.rings needs the domain (rings are named by the domain file)")
+    rings = {"outer": domain.outer, **{k: h for k, h in enumerate(domain.holes)}}
+    missing = [r for r in names if r not in rings]
+    if missing:
+        raise FormFindingError(f"supports.rings: no ring {missing[0]!r} (the domain has {len(domain.holes)} holes)")
+    return [np.vstack([rings[r], rings[r][:1]]) for r in names]
+
+
+def _boundary_on_lines(xy: np.ndarray, faces, lines: list[np.ndarray]) -> np.ndarray:
+    """The boundary vertices within 1e-3 of the bounding-box diagonal of one of the polylines."""
+    tol = 1e-3 * bbox_diagonal(xy)
+    boundary = np.array(sorted({v for loop in _boundary_loops(faces) for v in loop}), dtype=np.int64)
+    near = shapely.distance(shapely.points(xy[boundary]), shapely.MultiLineString(lines)) <= tol
+    return boundary[near]
+
+
+def _boundary_loops(faces) -> list[list[int]]:
+    """The mesh's boundary loops; a pinched boundary vertex is a :class:`FormFindingError`."""
+    try:
+        return boundary_loops(faces)
+    except ValueError as exc:
+        raise FormFindingError(f"the mesh boundary is not manifold: {exc}; split the vertex or support it") from None

@@ -6,7 +6,7 @@ geometry". :func:`vaultgram.pipeline.form_find` chains the stage functions of th
 order:
 
 1. :func:`vaultgram.formfinding.formdiagram.form_diagram` -- remove fully supported edges, add opening faces;
-2. :func:`vaultgram.formfinding.horizontal.relax_openings` -- bend unsupported edges into arches (if any);
+2. :func:`vaultgram.formfinding.relaxation.relax_openings` -- bend unsupported edges into arches (if any);
 3. :func:`vaultgram.formfinding.forcediagram.force_diagram` -- the reciprocal diagram (least squares);
 4. :func:`vaultgram.formfinding.horizontal.horizontal` -- parallelise until the max angle < ``tol_deg``;
 5. :func:`vaultgram.formfinding.vertical.vertical` -- heights under self-weight and point loads, optionally
@@ -35,7 +35,10 @@ __all__ = ["ThrustNetwork", "thrust_network", "format_summary"]
 
 @dataclass(frozen=True, eq=False)
 class ThrustNetwork:
-    """A thrust network in equilibrium: the output of :func:`form_find`.
+    """A thrust network in equilibrium: the output of :func:`vaultgram.pipeline.form_find`.
+
+    The heights come from vertical equilibrium, the plan and the force densities from horizontal
+    equilibrium; every array is in form-diagram numbering.
 
     Attributes
     ----------
@@ -110,8 +113,6 @@ def format_summary(summary: dict) -> str:
         f"scale {s['scale']:.6g}, z max {s['zmax']:.6g}",
         f"loads:      total {s['total_load']:.6g}, reactions {s['reaction_sum']:.6g}",
     ])
-
-
 
 
 def thrust_network(h: HorizontalResult, v: VerticalResult, n_openings: int) -> ThrustNetwork:

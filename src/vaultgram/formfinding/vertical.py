@@ -13,11 +13,16 @@ Self-weight depends on the 3D tributary areas (:mod:`vaultgram.formfinding.loads
 iterated to a fixed point. With ``zmax`` the thrust scale is solved for as well, so that the highest
 free vertex is exactly ``zmax``; scale and loads are iterated together. The matrix pattern and
 values are fixed (a common scale only divides the solution), so the system is factorised once.
+
+:func:`vertical` reads as its phases: check the force densities, factorise the height system, gather
+the loads, iterate heights (and scale) with the loads, then measure the equilibrium (residuals and
+reactions).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 import scipy.sparse as sp
@@ -81,6 +86,14 @@ def point_load_vector(form: FormDiagram, point_loads) -> np.ndarray:
     ``point_loads`` is None, an array with one entry per *form* vertex, or a dict
     ``{input mesh vertex index: load}`` (the form diagram may have dropped or renumbered vertices).
     A non-zero load on a mesh vertex that is not in the form diagram is an error.
+
+    Example
+    -------
+    >>> from vaultgram.formfinding.formdiagram import form_diagram
+    >>> from vaultgram.geometry.meshes import grid_mesh
+    >>> form = form_diagram(*grid_mesh(2))                     # the corners 0, 2, 6, 8 are dropped
+    >>> point_load_vector(form, {4: 2.5}).tolist()
+    [0.0, 0.0, 2.5, 0.0, 0.0]
     """
     p = np.zeros(form.n_vertices)
     if point_loads is None:
@@ -88,7 +101,7 @@ def point_load_vector(form: FormDiagram, point_loads) -> np.ndarray:
     if not isinstance(point_loads, dict):
         arr = np.asarray(point_loads, dtype=float).ravel()
         if arr.shape != (form.n_vertices,):
-            raise ValueError(f"point_loads has {arr.size} entries; give one per form vertex "
+            raise FormFindingError(f"point_loads has {arr.size} entries; give one per form vertex "
                              f"({form.n_vertices}) or a dict {{mesh vertex: load}}")
         return arr.copy()
     pos = {int(v): k for k, v in enumerate(form.vertex_ids)}
@@ -132,8 +145,8 @@ def vertical(form: FormDiagram, q, *, scale: float = 1.0, zmax: float | None = N
     ----------
     form : FormDiagram
     q : array (m,)
-        Force densities of the form edges, usually ``|force edge| / |form edge|`` from
-        :func:`vaultgram.formfinding.horizontal.horizontal`; positive (compression) on every edge with a free end.
+        Force densities of the form edges, usually ``|force edge| / |form edge|`` from horizontal
+        equilibrium (:func:`~vaultgram.formfinding.horizontal.horizontal`); > 0 on edges with a free end.
     scale : float
         Horizontal thrust scale: the force densities used are ``scale * q`` (ignored with ``zmax``).
     zmax : float, optional
@@ -149,92 +162,32 @@ def vertical(form: FormDiagram, q, *, scale: float = 1.0, zmax: float | None = N
     z_fixed : array (n_anchors,), optional
         Heights of the anchors (default 0).
     kmax : int
-        Cap on load/scale iterations.
+        Cap on load/scale iterations (at least 1).
     tol : float
         Stop when the largest height change is below ``tol * max(1, max |z|)`` and the relative scale
         change below ``tol``.
 
-    Returns
-    -------
-    VerticalResult
-
     Raises
     ------
     FormFindingError
-        non-positive force densities, unreachable ``zmax``, singular system.
+        non-positive force densities, unreachable ``zmax``, singular system, arrays of the wrong size.
     ConvergenceError
         loads/scale not converged within ``kmax`` iterations (``.result`` holds the last state).
+
+    Example
+    -------
+    >>> from vaultgram.formfinding.formdiagram import form_diagram
+    >>> from vaultgram.geometry.meshes import grid_mesh
+    >>> form = form_diagram(*grid_mesh(4))
+    >>> v = vertical(form, np.ones(form.n_edges), zmax=1.0)
+    >>> round(float(v.z.max()), 12), bool(abs(v.reactions[:, 2].sum() - v.total_load) < 1e-9)
+    (1.0, True)
     """
-    q0 = np.asarray(q, dtype=float).ravel()
-    if q0.shape != (form.n_edges,):
-        raise ValueError(f"q has {q0.size} entries, the form diagram has {form.n_edges} edges")
-    bad = np.flatnonzero(form.active & ~(q0 > 0))
-    if len(bad):
-        names = ", ".join(f"{form.edge_name(e)}: q = {q0[e]:.3g}" for e in bad[:5])
-        raise FormFindingError(
-            f"{len(bad)} edges have non-positive force density (tension or slack), e.g. {names}; "
-            f"a compression-only network needs q > 0")
-    if not np.isfinite(scale) or scale <= 0:
-        raise FormFindingError(f"the thrust scale must be positive, got {scale}")
-    free, fixed = form.free, form.fixed
-    C = form.C
-    Ci = C[:, free].tocsc()
-    Cf = C[:, fixed].tocsc()
-    Q0 = sp.diags(q0)
-    A0 = (Ci.T @ Q0 @ Ci).tocsc()
-    try:
-        lu = splu(A0, permc_spec="MMD_AT_PLUS_A")
-    except RuntimeError as exc:
-        raise FormFindingError(f"vertical equilibrium system is singular ({exc}); is every part supported?") from None
-    zf = np.zeros(len(fixed)) if z_fixed is None else np.asarray(z_fixed, dtype=float).ravel()
-    if zf.shape != (len(fixed),):
-        raise ValueError(f"z_fixed needs {len(fixed)} entries (one per anchor)")
-    b = -lu.solve(Ci.T @ (Q0 @ (Cf @ zf))) if zf.any() else np.zeros(len(free))
-
-    p0 = point_load_vector(form, point_loads)
-    thick = np.broadcast_to(np.asarray(thickness, dtype=float), (form.n_vertices,))
-    trib = TributaryAreas.from_faces(form.loaded_faces, form.n_vertices)
-    use_sw = selfweight and density != 0 and np.any(thick != 0)
-
-    xyz = np.zeros((form.n_vertices, 3))
-    xyz[:, :2] = form.xy
-    xyz[fixed, 2] = zf
-
-    def loads(x):
-        return p0 + trib(x) * thick * density if use_sw else p0
-
-    t = 1.0 / scale
-    history = []
-    converged = False
-    k = 0
-    for k in range(1, kmax + 1):
-        p = loads(xyz)
-        a = lu.solve(p[free])
-        t_new = _solve_t(a, b, zmax) if zmax is not None else t
-        z_new = a * t_new + b
-        dz = float(np.max(np.abs(z_new - xyz[free, 2]))) if len(free) else 0.0
-        ds = abs(t_new - t) / t_new
-        xyz[free, 2] = z_new
-        t = t_new
-        history.append(dz)
-        if not use_sw and (zmax is None or k > 1):
-            converged = True
-            break
-        if dz <= tol * max(1.0, float(np.max(np.abs(z_new)))) and ds <= tol and k > 1:
-            converged = True
-            break
-    s = 1.0 / t
-    qs = s * q0
-    p = loads(xyz)
-    CtQC = C.T @ sp.diags(qs) @ C
-    r = CtQC @ xyz[:, 2] - p
-    rxy = CtQC @ form.xy
-    reactions = np.column_stack([-rxy[fixed], -r[fixed]])
-    res = VerticalResult(
-        xyz=xyz, q=qs, scale=s, loads=p, reactions=reactions, total_load=float(p.sum()),
-        residual=float(np.max(np.abs(r[free]))) if len(free) else 0.0,
-        residual_xy=float(np.max(np.abs(rxy[free]))) if len(free) else 0.0,
-        iterations=k, history=tuple(history))
+    q0 = _checked_densities(form, q, scale, kmax)
+    system = _HeightSystem.factorised(form, q0, z_fixed)
+    loads = _Loads.of(form, point_loads, thickness, density, selfweight)
+    xyz, t, history, converged = _iterate_heights(form, system, loads, 1.0 / scale, zmax, kmax, tol)
+    res = _equilibrium(form, q0, xyz, t, loads(xyz), history)
     if not converged:
         err = ConvergenceError(
             f"vertical equilibrium: loads{' and scale' if zmax is not None else ''} did not converge in "
@@ -243,3 +196,109 @@ def vertical(form: FormDiagram, q, *, scale: float = 1.0, zmax: float | None = N
         err.result = res
         raise err
     return res
+
+
+def _checked_densities(form: FormDiagram, q, scale: float, kmax: int) -> np.ndarray:
+    """The force densities as an (m,) array, positive on every edge with a free end (compression)."""
+    q0 = np.asarray(q, dtype=float).ravel()
+    if q0.shape != (form.n_edges,):
+        raise FormFindingError(f"q has {q0.size} entries, the form diagram has {form.n_edges} edges")
+    bad = np.flatnonzero(form.active & ~(q0 > 0))
+    if len(bad):
+        names = ", ".join(f"{form.edge_name(e)}: q = {q0[e]:.3g}" for e in bad[:5])
+        raise FormFindingError(
+            f"{len(bad)} edges have non-positive force density (tension or slack), e.g. {names}; "
+            f"a compression-only network needs q > 0")
+    if not np.isfinite(scale) or scale <= 0:
+        raise FormFindingError(f"the thrust scale must be positive, got {scale}")
+    if kmax < 1:
+        raise FormFindingError(f"vertical equilibrium needs at least one iteration, got kmax = {kmax}")
+    return q0
+
+
+class _HeightSystem(NamedTuple):
+    """``Ci^T Q0 Ci`` factorised once for the input force densities ``Q0``: with a thrust scale ``s``
+    the free heights are ``a t + b`` with ``a = lu.solve(p_i)``, ``t = 1 / s`` and ``b`` the part due
+    to the support heights ``z_f``."""
+
+    lu: object
+    z_fixed: np.ndarray
+    b: np.ndarray
+
+    @classmethod
+    def factorised(cls, form: FormDiagram, q0: np.ndarray, z_fixed) -> "_HeightSystem":
+        Ci = form.C[:, form.free].tocsc()
+        Cf = form.C[:, form.fixed].tocsc()
+        Q0 = sp.diags(q0)
+        try:
+            lu = splu((Ci.T @ Q0 @ Ci).tocsc(), permc_spec="MMD_AT_PLUS_A")
+        except RuntimeError as exc:
+            raise FormFindingError(f"vertical equilibrium system is singular ({exc}); is every part supported?"
+                                   ) from None
+        zf = np.zeros(len(form.fixed)) if z_fixed is None else np.asarray(z_fixed, dtype=float).ravel()
+        if zf.shape != (len(form.fixed),):
+            raise FormFindingError(f"z_fixed needs {len(form.fixed)} entries (one per anchor)")
+        b = -lu.solve(Ci.T @ (Q0 @ (Cf @ zf))) if zf.any() else np.zeros(len(form.free))
+        return cls(lu, zf, b)
+
+
+@dataclass(frozen=True)
+class _Loads:
+    """Vertical loads at a geometry: point loads, plus self-weight (3D tributary area x thickness x
+    density, :mod:`vaultgram.formfinding.loads`) when there is any."""
+
+    points: np.ndarray
+    areas: TributaryAreas
+    thickness: np.ndarray
+    density: float
+    selfweight: bool
+
+    @classmethod
+    def of(cls, form: FormDiagram, point_loads, thickness, density: float, selfweight: bool) -> "_Loads":
+        thick = np.broadcast_to(np.asarray(thickness, dtype=float), (form.n_vertices,))
+        return cls(point_load_vector(form, point_loads), TributaryAreas.from_faces(form.loaded_faces, form.n_vertices),
+                   thick, density, selfweight and density != 0 and bool(np.any(thick != 0)))
+
+    def __call__(self, xyz: np.ndarray) -> np.ndarray:
+        return self.points + self.areas(xyz) * self.thickness * self.density if self.selfweight else self.points
+
+
+def _iterate_heights(form: FormDiagram, system: _HeightSystem, loads: _Loads, t: float, zmax: float | None,
+                     kmax: int, tol: float) -> tuple[np.ndarray, float, list[float], bool]:
+    """Heights and ``t = 1 / scale`` at the fixed point of loads (and scale, with ``zmax``): the last
+    geometry, ``t``, the largest height change per iteration, and whether it converged."""
+    free = form.free
+    xyz = np.zeros((form.n_vertices, 3))
+    xyz[:, :2] = form.xy
+    xyz[form.fixed, 2] = system.z_fixed
+    history: list[float] = []
+    for k in range(1, kmax + 1):
+        a = system.lu.solve(loads(xyz)[free])
+        t_new = _solve_t(a, system.b, zmax) if zmax is not None else t
+        z_new = a * t_new + system.b
+        dz = float(np.max(np.abs(z_new - xyz[free, 2]))) if len(free) else 0.0
+        ds = abs(t_new - t) / t_new
+        xyz[free, 2] = z_new
+        t = t_new
+        history.append(dz)
+        if not loads.selfweight and (zmax is None or k > 1):
+            return xyz, t, history, True
+        if dz <= tol * max(1.0, float(np.max(np.abs(z_new)))) and ds <= tol and k > 1:
+            return xyz, t, history, True
+    return xyz, t, history, False
+
+
+def _equilibrium(form: FormDiagram, q0: np.ndarray, xyz: np.ndarray, t: float, p: np.ndarray,
+                 history: list[float]) -> VerticalResult:
+    """Scaled force densities, residuals and support reactions of the network at ``xyz`` under ``p``."""
+    free, fixed = form.free, form.fixed
+    s = 1.0 / t
+    qs = s * q0
+    CtQC = form.C.T @ sp.diags(qs) @ form.C
+    r = CtQC @ xyz[:, 2] - p
+    rxy = CtQC @ form.xy
+    return VerticalResult(
+        xyz=xyz, q=qs, scale=s, loads=p, reactions=np.column_stack([-rxy[fixed], -r[fixed]]),
+        total_load=float(p.sum()), residual=float(np.max(np.abs(r[free]))) if len(free) else 0.0,
+        residual_xy=float(np.max(np.abs(rxy[free]))) if len(free) else 0.0,
+        iterations=len(history), history=tuple(history))

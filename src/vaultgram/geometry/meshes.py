@@ -27,6 +27,8 @@ __all__ = [
     "has_twin",
     "adjacency",
     "boundary_adjacency",
+    "face_areas",
+    "boundary_halfedges",
 ]
 
 
@@ -140,9 +142,13 @@ def has_twin(u: np.ndarray, v: np.ndarray, n: int | None = None) -> np.ndarray:
     >>> has_twin(np.array([0, 1, 1]), np.array([1, 0, 2])).tolist()
     [True, True, False]
     """
+    if len(u) == 0:
+        return np.zeros(0, dtype=bool)
     if n is None:
-        n = int(max(u.max(), v.max())) + 1 if len(u) else 0
-    return np.isin(v * n + u, u * n + v)
+        n = int(max(u.max(), v.max())) + 1
+    codes = np.sort(u * n + v)  # a sorted search: np.isin is ~50x slower here (numpy 2.4)
+    twin = v * n + u
+    return codes[np.minimum(np.searchsorted(codes, twin), len(codes) - 1)] == twin
 
 
 def boundary_loops(faces: Sequence[Sequence[int]]) -> list[list[int]]:
@@ -223,3 +229,38 @@ def _symmetric_adjacency(n: int, u: np.ndarray, v: np.ndarray) -> sp.csr_matrix:
     a = a + a.T
     a.data[:] = 1.0
     return a
+
+
+def face_areas(xy: np.ndarray, faces: Sequence[Sequence[int]]) -> np.ndarray:
+    """Signed area of every face (shoelace over its corners): positive for counter-clockwise faces.
+
+    Vectorised over all corners at once (no loop over faces); ``xy`` may be ``(n, 2)`` or ``(n, 3)``
+    (z is ignored).
+
+    Example
+    -------
+    >>> v, f = grid_mesh(2, spacing=2.0)
+    >>> face_areas(v, [f[0], f[1][::-1]]).tolist()
+    [4.0, -4.0]
+    """
+    face, u, v, _ = corner_arrays(faces)
+    xy = np.asarray(xy)
+    cross = xy[u, 0] * xy[v, 1] - xy[v, 0] * xy[u, 1]
+    return 0.5 * np.bincount(face, weights=cross, minlength=len(faces))
+
+
+def boundary_halfedges(faces: Sequence[Sequence[int]]) -> tuple[np.ndarray, np.ndarray]:
+    """The halfedges ``u -> v`` of ``faces`` that have no twin ``v -> u``, in corner order.
+
+    For counter-clockwise faces the mesh lies to their left: the outer boundary runs
+    counter-clockwise, holes clockwise (as in :func:`boundary_loops`).
+
+    Example
+    -------
+    >>> u, v = boundary_halfedges([(0, 1, 2), (0, 2, 3)])
+    >>> list(zip(u.tolist(), v.tolist()))
+    [(0, 1), (1, 2), (2, 3), (3, 0)]
+    """
+    _, u, v, _ = corner_arrays(faces)
+    free = ~has_twin(u, v)
+    return u[free], v[free]

@@ -4,19 +4,20 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from formfinding.cases import holed_grid
 
 from vaultgram.errors import ConvergenceError, FormFindingError, HorizontalEquilibriumError, VaultgramError
 from vaultgram.formfinding.formdiagram import form_diagram
-from vaultgram.formfinding.horizontal import horizontal, relax_openings
+from vaultgram.formfinding.horizontal import horizontal
+from vaultgram.formfinding.relaxation import relax_openings
 from vaultgram.formfinding.vertical import vertical
-from vaultgram.geometry.meshes import boundary_loops, grid_index, grid_mesh, remove_faces
+from vaultgram.geometry.meshes import grid_index, grid_mesh, remove_faces
 from vaultgram.pipeline import form_find
 
 
-def holed(n=12, lo=4, hi=8):
-    v, f = grid_mesh(n)
-    v2, f2, _ = remove_faces(v, f, [j * n + i for i in range(lo, hi) for j in range(lo, hi)])
-    return v2, f2, max(boundary_loops(f2), key=len)
+def holed():
+    """A 12 x 12 grid with a 4 x 4 hole; the outer loop supported."""
+    return holed_grid(12, 4, 8)
 
 
 def test_errors_are_vaultgram_errors():
@@ -185,3 +186,56 @@ def test_no_compression_only_names_flipped_edges_with_default_solver():
     with pytest.raises((HorizontalEquilibriumError, ConvergenceError)) as info:
         horizontal(form, lp_max_edges=0)
     assert "not checked exactly" in str(info.value) or "did not converge" in str(info.value)
+
+
+# ---- every user mistake is a VaultgramError, never a bare ValueError -----------------------------------
+
+def test_cli_sag_zero_is_one_line_and_exit_2(tmp_path):
+    """``vaultgram formfind examples/quad_with_hole.json --sag 0`` used to end in a ValueError traceback."""
+    from click.testing import CliRunner
+
+    from vaultgram.cli import main
+
+    from paths import EXAMPLES
+
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["formfind", str(EXAMPLES / "quad_with_hole.json"), "--out", str(out),
+                                       "--sag", "0"])
+    assert result.exit_code == 2, result.output
+    assert result.stderr.strip().splitlines() == ["error: sag must be positive, got 0.0"]
+    assert "Traceback" not in result.output and not out.exists()
+
+
+def touching_squares():
+    """Two unit squares of a 2 x 2 grid that touch at one corner (mesh vertex 3, the grid's centre)."""
+    v, f = grid_mesh(2)
+    v, f, _ = remove_faces(v, f, [1, 2])
+    return v, f
+
+
+def test_pinched_boundary_vertex_is_named():
+    v, f = touching_squares()
+    with pytest.raises(FormFindingError, match="mesh vertex 3 is a pinched boundary vertex"):
+        form_diagram(v, f, supports=[0])
+    with pytest.raises(FormFindingError, match="not manifold"):       # the default supports need the outer loop
+        form_diagram(v, f)
+
+
+def test_bad_options_and_shapes_are_form_finding_errors():
+    v, f = grid_mesh(4)
+    form = form_diagram(v, f)
+    q = np.ones(form.n_edges)
+    with pytest.raises(FormFindingError, match="unknown mode 'everything'"):
+        relax_openings(form, 0.1, mode="everything")
+    with pytest.raises(FormFindingError, match=r"length_weight must be in \(0, 1\]"):
+        horizontal(form, length_weight=0.0)
+    with pytest.raises(FormFindingError, match="q has 3 entries"):
+        vertical(form, np.ones(3))
+    with pytest.raises(FormFindingError, match="z_fixed needs"):
+        vertical(form, q, z_fixed=[0.0])
+    with pytest.raises(FormFindingError, match="point_loads has 2 entries"):
+        vertical(form, q, point_loads=np.ones(2))
+    with pytest.raises(FormFindingError, match="at least one iteration"):
+        vertical(form, q, kmax=0)
+    with pytest.raises(FormFindingError, match="xy has shape"):
+        form.with_xy(np.zeros((2, 2)))

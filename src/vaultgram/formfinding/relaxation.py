@@ -1,0 +1,220 @@
+"""Relaxing the openings of a form diagram before horizontal equilibrium (§5; RhinoVAULT's "relax").
+
+A straight unsupported edge cannot carry the thrust of the edges meeting it in compression: the force
+polygons of its vertices would need the edge in tension. As RhinoVAULT does (Rippmann, Lachauer &
+Block 2012), the open edges are first bent into compression arches by the force density method
+(Schek 1974), in plan: each opening gets one force density ``q_b`` on its edges, every other edge
+``q_interior``, and the moving vertices are placed in equilibrium. ``q_b`` is found per opening by
+bisection so that the opening's vertices move by the prescribed sag.
+
+:func:`relax_openings` reads as its phases: the opening edges, the moving vertices, each opening's
+arch (span and outward normals), the force-density system, the bisection on the sag, and the check
+that no edge collapsed.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.linalg import splu
+
+from vaultgram.errors import FormFindingError
+from vaultgram.formfinding.formdiagram import FormDiagram
+from vaultgram.geometry.polygons import signed_area
+from vaultgram.geometry.polylines import polyline_length
+
+__all__ = ["relax_openings", "opening_edges"]
+
+RELAX_MODES = ("boundary", "all")
+
+
+def opening_edges(form: FormDiagram) -> tuple[np.ndarray, np.ndarray]:
+    """Form edges along openings and, for each, the opening face index (position in ``form.faces``).
+
+    Example
+    -------
+    >>> from vaultgram.formfinding.formdiagram import form_diagram
+    >>> from vaultgram.geometry.meshes import grid_mesh, remove_faces
+    >>> v, f, _ = remove_faces(*grid_mesh(3), drop=[4])            # a square hole in the middle
+    >>> edges, faces = opening_edges(form_diagram(v, f))
+    >>> len(edges), faces.tolist() == [8] * 4
+    (4, True)
+    """
+    eidx, fidx = [], []
+    for k in np.flatnonzero(~form.loaded):
+        sel = np.flatnonzero((form.edge_faces[:, 0] == k) | (form.edge_faces[:, 1] == k))
+        eidx.append(sel)
+        fidx.append(np.full(len(sel), k))
+    if not eidx:
+        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+    return np.concatenate(eidx), np.concatenate(fidx)
+
+
+def relax_openings(form: FormDiagram, sag: float = 0.1, *, mode: str = "boundary",
+                   q_interior: float = 1.0, iterations: int = 60) -> FormDiagram:
+    """Bend the open (unsupported) boundary edges into compression arches (force density method).
+
+    Each opening gets one force density ``q_b`` on its edges (all other edges ``q_interior``) and the
+    moving vertices are placed in equilibrium (Schek's force density method, in plan). ``q_b`` is
+    found per opening by bisection so that its vertices move by at most ``sag * span`` away from the
+    opening, towards the loaded side (``span``: the chord between the two supports of a boundary run;
+    ``4 area / perimeter`` for a closed hole, i.e. the side of a square hole). The opening grows: a
+    compression arch along an opening curves around it. Larger sag, lower thrust along the opening.
+    A sag beyond what the adjacent edges allow (about one edge length in mode ``"boundary"``) is
+    clamped by the bracket ``1e-4 <= q_b <= 1e4``.
+
+    Parameters
+    ----------
+    form : FormDiagram
+    sag : float
+        Sag-to-span ratio of the open edges (0.1 default, as the usual RhinoVAULT setting).
+    mode : {"boundary", "all"}
+        ``"boundary"`` moves only the free vertices on openings (the rest of the pattern is kept);
+        ``"all"`` moves every free vertex (a full force-density relaxation, which also smooths the
+        pattern and yields a form diagram in exact equilibrium with positive force densities).
+    q_interior : float
+        Force density of non-opening edges.
+    iterations : int
+        Bisection steps on ``log q_b``.
+
+    Returns
+    -------
+    FormDiagram
+        The diagram with new plan positions (unchanged when there is no opening).
+
+    Raises
+    ------
+    FormFindingError
+        a sag that is not positive, an unknown mode, or supports that cannot hold the open edges
+        apart (edges collapse).
+
+    Example
+    -------
+    >>> from vaultgram.formfinding.formdiagram import form_diagram
+    >>> from vaultgram.geometry.meshes import grid_mesh, remove_faces
+    >>> v, f, _ = remove_faces(*grid_mesh(6), drop=[14, 15, 20, 21])  # a 2 x 2 hole in a 6 x 6 grid
+    >>> form = form_diagram(v, f)
+    >>> moved = np.linalg.norm(relax_openings(form, 0.1).xy - form.xy, axis=1)
+    >>> round(float(moved.max()), 6)                                # sag x span (the side of the hole)
+    0.2
+    """
+    _check_options(sag, mode)
+    eo, fo = opening_edges(form)
+    if len(eo) == 0:
+        return form
+    moving = _moving_vertices(form, eo, mode)
+    arches = [_arch(form, k, moving) for k in np.flatnonzero(~form.loaded)]
+    system = _ForceDensities(form, moving, eo, fo, q_interior)
+    logq = _bisect_sag(system, arches, sag, iterations)
+    out = form.with_xy(system.solve(logq))
+    _check_not_collapsed(form, out)
+    return out
+
+
+def _check_options(sag: float, mode: str) -> None:
+    if sag <= 0:
+        raise FormFindingError(f"sag must be positive, got {sag}")
+    if mode not in RELAX_MODES:
+        raise FormFindingError(f"unknown mode {mode!r}; use 'boundary' or 'all'")
+
+
+def _moving_vertices(form: FormDiagram, eo: np.ndarray, mode: str) -> np.ndarray:
+    """Boolean mask of the vertices that move: the free ones on openings, or every free one."""
+    if mode == "all":
+        return ~form.anchors
+    moving = np.zeros(form.n_vertices, dtype=bool)
+    moving[form.edges[eo].ravel()] = True
+    return moving & ~form.anchors
+
+
+class _Arch(NamedTuple):
+    """An opening to be bent: its span, and its moving vertices with their outward normals (towards the
+    loaded side: the opening face lies on the left of its traversal)."""
+
+    span: float
+    vertices: np.ndarray
+    normals: np.ndarray
+
+
+def _arch(form: FormDiagram, k: int, moving: np.ndarray) -> _Arch:
+    """The arch along opening face ``k``: a run between two supports spans their chord, a closed hole
+    ``4 area / perimeter`` (the side of a square hole); the largest vertex distance if that is zero."""
+    vs = np.array(form.faces[k])
+    pts = np.asarray(form.xy)[vs]
+    prv, nxt = np.roll(pts, 1, axis=0), np.roll(pts, -1, axis=0)
+    if _is_run(vs, form.anchors):
+        span = np.linalg.norm(pts[-1] - pts[0])
+    else:
+        span = 4.0 * abs(signed_area(pts)) / polyline_length(np.vstack([pts, pts[:1]]))
+    if span <= 0:
+        span = np.sqrt(((pts[:, None, :] - pts[None, :, :]) ** 2).sum(-1)).max()
+    t = nxt - prv
+    normals = np.column_stack([t[:, 1], -t[:, 0]])
+    normals /= np.maximum(np.linalg.norm(normals, axis=1), 1e-300)[:, None]
+    sel = moving[vs]
+    return _Arch(span, vs[sel], normals[sel])
+
+
+def _is_run(vs: np.ndarray, anchors: np.ndarray) -> bool:
+    """An open opening face: from one support to another through free vertices only."""
+    return bool(anchors[vs[0]] and anchors[vs[-1]] and len(vs) >= 3 and np.all(~anchors[vs[1:-1]]))
+
+
+class _ForceDensities:
+    """The plan force-density system ``Cm^T Q Cm x_m = -Cm^T Q Cs x_s`` for the moving vertices, with
+    ``q_b = exp(logq[j])`` on the edges of opening ``j`` (an edge on two openings takes the larger)."""
+
+    def __init__(self, form: FormDiagram, moving: np.ndarray, eo: np.ndarray, fo: np.ndarray, q_interior: float):
+        openings = np.flatnonzero(~form.loaded)
+        slot = np.full(form.n_faces, -1)
+        slot[openings] = np.arange(len(openings))
+        self.eo, self.slot_of_edge = eo, slot[fo]
+        self.q_interior, self.m = float(q_interior), form.n_edges
+        self.mv, st = np.flatnonzero(moving), np.flatnonzero(~moving)
+        self.Cm, self.Cs = form.C[:, self.mv].tocsc(), form.C[:, st].tocsc()
+        self.xy0 = np.asarray(form.xy)
+        self.xs = self.xy0[st]
+
+    def solve(self, logq: np.ndarray) -> np.ndarray:
+        """Plan positions in equilibrium for the opening force densities ``exp(logq)``."""
+        q = np.full(self.m, self.q_interior)
+        np.maximum.at(q, self.eo, np.exp(logq[self.slot_of_edge]))
+        Q = sp.diags(q)
+        A = (self.Cm.T @ Q @ self.Cm).tocsc()
+        b = -(self.Cm.T @ (Q @ (self.Cs @ self.xs)))
+        xy = self.xy0.copy()
+        xy[self.mv] = splu(A, permc_spec="MMD_AT_PLUS_A").solve(b)
+        return xy
+
+
+def _bisect_sag(system: _ForceDensities, arches: list[_Arch], sag: float, iterations: int) -> np.ndarray:
+    """``log q_b`` per opening, bisected in ``[log 1e-4, log 1e4]`` until each opening's largest outward
+    displacement is ``sag * span`` (too much sag: raise ``q_b``)."""
+    lo = np.full(len(arches), np.log(1e-4))
+    hi = np.full(len(arches), np.log(1e4))
+    target = sag * np.array([a.span for a in arches])
+    for _ in range(iterations):
+        mid = 0.5 * (lo + hi)
+        too_much = _sags(system.solve(mid), system.xy0, arches) > target
+        lo = np.where(too_much, mid, lo)
+        hi = np.where(too_much, hi, mid)
+    return 0.5 * (lo + hi)
+
+
+def _sags(xy: np.ndarray, xy0: np.ndarray, arches: list[_Arch]) -> np.ndarray:
+    """Largest displacement of each arch's vertices along their outward normals."""
+    return np.array([np.max(np.einsum("ij,ij->i", xy[a.vertices] - xy0[a.vertices], a.normals))
+                     if len(a.vertices) else 0.0 for a in arches])
+
+
+def _check_not_collapsed(form: FormDiagram, out: FormDiagram) -> None:
+    """No edge shrank below a thousandth of its length: the supports held the open edges apart."""
+    l0, l1 = form.edge_lengths(), out.edge_lengths()
+    short = np.flatnonzero(~(l1 > 1e-3 * l0))
+    if len(short):
+        raise FormFindingError(
+            f"relaxing the openings collapsed {len(short)} edges, e.g. {form.edge_name(int(short[0]))} "
+            f"(length {l0[short[0]]:.3g} -> {l1[short[0]]:.3g}): the supports cannot hold the open edges "
+            f"apart; add supports or relax with a larger sag")
