@@ -44,3 +44,14 @@ def interior_angle(before, corner, after) -> float:
     a = math.atan2(after[1] - corner[1], after[0] - corner[0])
     b = math.atan2(before[1] - corner[1], before[0] - corner[0])
     return math.degrees((b - a) % (2 * math.pi))
+
+
+def triangle_areas(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
+    """Signed area of each triangle ``points[triangles[k]]`` (vectorised): positive when counter-clockwise.
+
+    >>> p = np.array([[0.0, 0.0], [2.0, 0.0], [0.0, 1.0]])
+    >>> triangle_areas(p, np.array([[0, 1, 2], [0, 2, 1]])).tolist()
+    [1.0, -1.0]
+    """
+    a, b, c = points[triangles[:, 0]], points[triangles[:, 1]], points[triangles[:, 2]]
+    return 0.5 * ((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]))
