@@ -56,7 +56,7 @@ from scipy.spatial import Delaunay, QhullError
 
 from vaultgram.domain.model import ring_name
 from vaultgram.errors import DomainError
-from vaultgram.geometry.polygons import triangle_areas
+from vaultgram.geometry.polygons import bbox_diagonal, triangle_areas
 from vaultgram.geometry.text import fmt_point
 from vaultgram.topology.discretise import Discretisation
 
@@ -230,7 +230,7 @@ def _delaunay(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """
     n = len(pts)
     lo, hi = pts.min(axis=0), pts.max(axis=0)
-    mid, big = 0.5 * (lo + hi), 10.0 * max(float(np.hypot(*(hi - lo))), 1e-300)
+    mid, big = 0.5 * (lo + hi), 10.0 * max(bbox_diagonal(pts), 1e-300)
     ang = np.radians([15.0, 105.0, 195.0, 285.0, 60.0])
     frame = mid + big * np.stack([np.cos(ang), np.sin(ang)], axis=1) * np.array([[1.0], [1.1], [1.0], [1.2], [1.3]])
     try:
