@@ -71,34 +71,26 @@ def _normalise_supports(value: Any) -> Any:
         )
     keys = set(value) - {"comment"}
     if keys == {"rings"}:
-        _check_support_rings(value["rings"])
+        for i, r in enumerate(_non_empty_list(value["rings"], "supports.rings", '"outer" or hole indices')):
+            if not (r == "outer" or (isinstance(r, int) and not isinstance(r, bool) and r >= 0)):
+                raise DomainError(
+                    f'supports.rings[{i}]: expected "outer" or a hole index (integer >= 0), got {r!r}'
+                )
         return value
     if keys == {"polylines"}:
-        _check_support_polylines(value["polylines"])
+        for i, pl in enumerate(_non_empty_list(value["polylines"], "supports.polylines", "polylines")):
+            check_finite(_as_coords(pl, f"supports.polylines[{i}]", min_len=2), f"supports.polylines[{i}]")
         return value
     raise DomainError(
         f'supports: expected exactly one of the keys "rings" or "polylines", got {sorted(value)}'
     )
 
 
-def _check_support_rings(rings: Any) -> None:
-    """``supports.rings``: a non-empty list of ``"outer"`` and hole indices."""
-    if not isinstance(rings, list) or not rings:
-        raise DomainError('supports.rings: expected a non-empty list of "outer" or hole indices')
-    for i, r in enumerate(rings):
-        if not (r == "outer" or (isinstance(r, int) and not isinstance(r, bool) and r >= 0)):
-            raise DomainError(
-                f'supports.rings[{i}]: expected "outer" or a hole index (integer >= 0), got {r!r}'
-            )
-
-
-def _check_support_polylines(pls: Any) -> None:
-    """``supports.polylines``: a non-empty list of polylines of at least two finite points."""
-    if not isinstance(pls, list) or not pls:
-        raise DomainError("supports.polylines: expected a non-empty list of polylines")
-    for i, pl in enumerate(pls):
-        arr = _as_coords(pl, f"supports.polylines[{i}]", min_len=2)
-        check_finite(arr, f"supports.polylines[{i}]")
+def _non_empty_list(value: Any, what: str, items: str) -> list:
+    """``value`` if it is a non-empty list, else an error saying what ``items`` it should hold."""
+    if not isinstance(value, list) or not value:
+        raise DomainError(f"{what}: expected a non-empty list of {items}")
+    return value
 
 
 def _build(

@@ -156,12 +156,10 @@ def decomposition_graph(sk: Skeleton, rulebook: Rulebook) -> HostGraph:
     -------
     >>> from collections import Counter
     >>> from vaultgram.domain import load_domain
-    >>> from vaultgram.topology.discretise import discretise
+    >>> from vaultgram.pipeline import decompose
     >>> from vaultgram.topology.rulebook import load_vault_rulebook
-    >>> from vaultgram.topology.skeleton import skeleton
-    >>> from vaultgram.topology.triangulation import triangulate
-    >>> sk = skeleton(triangulate(discretise(load_domain("examples/l_shape.json"), 0.05)))
-    >>> g = decomposition_graph(sk, load_vault_rulebook())
+    >>> rewritten = decompose(load_domain("examples/l_shape.json"), 0.05)
+    >>> g = decomposition_graph(rewritten.skeleton, load_vault_rulebook())  # the graph before the rules
     >>> sorted(Counter(g.node_type(n) for n in g.nodes()).items())
     [('BoundaryVertex', 57), ('Corner', 5), ('Singularity', 3)]
     """
