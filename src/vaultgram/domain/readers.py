@@ -184,6 +184,7 @@ def _list_of(d: dict, key: str, what: str) -> list:
 
 
 def _domain_from_dict(d: Any, source: str) -> Domain:
+    """:func:`domain_from_dict` without the ``source`` prefix on errors."""
     if not isinstance(d, dict):
         raise DomainError(f"expected a JSON object with an 'outer' key, got {type(d).__name__}")
     if "outer" not in d:
@@ -239,6 +240,8 @@ class _GeoJsonParts(NamedTuple):
 
 
 def _domain_from_geojson(d: Any, source: str) -> Domain:
+    """:func:`domain_from_geojson` without the ``source`` prefix on errors; the name comes from the
+    document, its properties or the polygon feature's properties, else from ``source``."""
     feats = _geojson_features(d)
     parts = _GeoJsonParts([], [], [])
     for i, f in enumerate(feats):

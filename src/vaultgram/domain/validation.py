@@ -75,6 +75,7 @@ class _Shapes(NamedTuple):
 
     @classmethod
     def of(cls, domain: Domain) -> _Shapes:
+        """The shapes of ``domain`` (its rings already checked one by one)."""
         outer = shapely.Polygon(domain.outer)
         shapely.prepare(outer)
         poly = domain.polygon()
@@ -417,6 +418,7 @@ class _Clearance(NamedTuple):
 
     @property
     def h(self) -> float:
+        """The absolute spacing."""
         return self.spacing * self.diagonal
 
     def trimmed(self, geom, around: list):

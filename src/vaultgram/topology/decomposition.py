@@ -82,6 +82,7 @@ class Decomposition:
 
     @functools.cached_property
     def _marked_poles(self) -> dict:
+        """The marked pole of each Patch node that has one, keyed by the set of its corners."""
         g = self.graph
         out = {}
         for node in self.patch_nodes():
@@ -115,6 +116,7 @@ class Decomposition:
         }
 
     def _edge_json(self, e: int) -> dict:
+        """One edge for :meth:`to_json`: a patch corner's index, or a plan edge's polyline."""
         g = self.graph
         u, v = g.ends(e)
         out = {"id": e, "type": g.edge_type(e), "source": u, "target": v}

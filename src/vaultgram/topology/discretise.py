@@ -246,15 +246,10 @@ def _insert_features(domain: Domain, tol: float) -> _Placed:
         point_refs.append(ref)
     ring_hits = [_insert(r, ins, tol) for r, ins in zip(rings, ring_inserts)]
     curve_hits = [_insert(c, ins, tol) for c, ins in zip(curves, curve_inserts)]
-
-    def resolved(ref):
-        if ref is None:
-            return None
-        hits = ring_hits if ref.on_ring else curve_hits
-        return ref._replace(vertex=hits[ref.owner][1][ref.vertex])
-
+    hits = {True: [at for _, at in ring_hits], False: [at for _, at in curve_hits]}
     return _Placed([r for r, _ in ring_hits], [c for c, _ in curve_hits],
-                   [[resolved(r) for r in refs] for refs in end_refs], [resolved(r) for r in point_refs])
+                   [[_resolved(ref, hits) for ref in refs] for refs in end_refs],
+                   [_resolved(ref, hits) for ref in point_refs])
 
 
 def _on_rings(rings: list, p: np.ndarray, tol: float) -> tuple[int, int, float] | None:
@@ -284,6 +279,11 @@ def _queue(inserts: list, on_ring: bool, hit, p: np.ndarray) -> _At | None:
     owner, seg, t = hit
     inserts[owner].append(_Insert(seg, t, p.copy()))
     return _At(on_ring, owner, len(inserts[owner]) - 1)
+
+
+def _resolved(ref: _At | None, hits: dict) -> _At | None:
+    """A queued point's reference with its vertex after insertion (``hits[on_ring][owner][k]``)."""
+    return None if ref is None else ref._replace(vertex=hits[ref.on_ring][ref.owner][ref.vertex])
 
 
 def _insert(poly: np.ndarray, inserts: list, tol: float) -> tuple[np.ndarray, list[int]]:
@@ -338,9 +338,11 @@ class _Samples(NamedTuple):
 
     @classmethod
     def concatenate(cls, parts: list) -> _Samples:
+        """The samples of several rings, curves and points, one after the other."""
         return cls(*(np.concatenate(column) for column in zip(*parts)))
 
     def subset(self, keep: np.ndarray) -> _Samples:
+        """The samples where the mask ``keep`` is true."""
         return _Samples(*(column[keep] for column in self))
 
 

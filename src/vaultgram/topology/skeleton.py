@@ -216,6 +216,7 @@ class _CellGraph(NamedTuple):
 
     @classmethod
     def of(cls, tri: Triangulation) -> _CellGraph:
+        """The cell graph of a triangulation (vectorised over face edges)."""
         T, cell, nc, m = tri.triangles, tri.cell, tri.n_cells, len(tri.triangles)
         t = np.repeat(np.arange(m), 3)
         k = np.tile(np.arange(3), m)
@@ -236,9 +237,11 @@ class _CellGraph(NamedTuple):
         return int(self.b[link] if self.a[link] == c else self.a[link])
 
     def cell_faces(self, c: int) -> np.ndarray:
+        """The faces of cell ``c``, in increasing order."""
         return self.faces[self.face_ptr[c]:self.face_ptr[c + 1]]
 
     def cell_points(self, c: int) -> np.ndarray:
+        """The points of the faces of cell ``c``, sorted."""
         return np.unique(self.triangles[self.cell_faces(c)])
 
 
@@ -253,6 +256,7 @@ class _Live:
     corner_of: dict
 
     def links_of(self, graph: _CellGraph, c: int) -> list[int]:
+        """The live links of cell ``c``, in increasing order."""
         return [int(e) for e in graph.links[graph.link_ptr[c]:graph.link_ptr[c + 1]] if self.links[e]]
 
 

@@ -270,6 +270,7 @@ class _HalfEdges(NamedTuple):
 
     @classmethod
     def of(cls, tri: np.ndarray, n: int) -> _HalfEdges:
+        """The half-edges of counter-clockwise triangles over ``n`` points."""
         keys = _edge_keys(tri, n).ravel()
         order = np.argsort(keys, kind="stable")
         return cls(keys, order, keys[order], n)
