@@ -253,8 +253,8 @@ def _domain_from_geojson(d: Any, source: str) -> Domain:
     i, rings = parts.polygons[0]
     if not isinstance(rings, list) or not rings:
         raise DomainError(f"features[{i}].geometry.coordinates: expected a list of linear rings")
-    name = d.get("name") or (d.get("properties") or {}).get("name")
-    name = name or (feats[i].get("properties") or {}).get("name") or _default_name(source)
+    name = d.get("name") or _properties(d).get("name")
+    name = name or _properties(feats[i]).get("name") or _default_name(source)
     outer = _as_coords(rings[0], "outer ring")
     holes = [_as_coords(r, f"hole {k}") for k, r in enumerate(rings[1:])]
     pts = np.array([_as_coords([p], f"point feature {k}")[0] for k, p in enumerate(parts.points)]).reshape(-1, 2)
@@ -287,20 +287,35 @@ def _collect_geometry(geom: Any, i: int, parts: _GeoJsonParts) -> None:
     if t == "Polygon":
         parts.polygons.append((i, coords))
     elif t == "MultiPolygon":
-        parts.polygons.extend((i, part) for part in coords or [])
+        parts.polygons.extend((i, part) for part in _multi(coords, i))
     elif t == "Point":
         parts.points.append(coords)
     elif t == "MultiPoint":
-        parts.points.extend(coords or [])
+        parts.points.extend(_multi(coords, i))
     elif t == "LineString":
         parts.curves.append(coords)
     elif t == "MultiLineString":
-        parts.curves.extend(coords or [])
+        parts.curves.extend(_multi(coords, i))
     elif t == "GeometryCollection":
-        for g in geom.get("geometries", []):
+        for g in _multi(geom.get("geometries"), i, "geometries"):
             _collect_geometry(g, i, parts)
     else:
         raise DomainError(f"features[{i}].geometry.type: unsupported geometry type {t!r}")
+
+
+def _multi(parts: Any, i: int, key: str = "coordinates") -> list:
+    """The parts of a multi-part geometry of feature ``i`` (none if absent)."""
+    if parts is None:
+        return []
+    if not isinstance(parts, list):
+        raise DomainError(f"features[{i}].geometry.{key}: expected a list, got {type(parts).__name__}")
+    return parts
+
+
+def _properties(obj: dict) -> dict:
+    """The ``properties`` of a GeoJSON object (empty when absent or not an object)."""
+    props = obj.get("properties")
+    return props if isinstance(props, dict) else {}
 
 
 # --------------------------------------------------------------------------------------------
