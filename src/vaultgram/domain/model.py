@@ -15,11 +15,11 @@ A :class:`Domain` is the plain, immutable input of the pipeline
 
 Every loader normalises the rings (closing vertex dropped, outer ring counter-clockwise, holes
 clockwise, so that the domain always lies to the *left* of every ring) and runs
-:func:`~vaultgram.domain.validation.validate_domain` before returning, so a ``Domain`` that exists is valid. Problems raise
-:class:`vaultgram.errors.DomainError` with a message that names the ring or feature and the vertex
-index, e.g. ``outer ring: vertices 3 and 4 coincide at (10, 0)``. Vertex indices are those of the
-normalised ring: the file's order, reversed when the orientation had to be fixed (vertex 0 stays
-vertex 0); messages also give the coordinates.
+:func:`~vaultgram.domain.validation.validate_domain` before returning, so a ``Domain`` that exists is
+valid. Problems raise :class:`vaultgram.errors.DomainError` with a message that names the ring or
+feature and the vertex index, e.g. ``outer ring: vertices 3 and 4 coincide at (10, 0)``. Vertex
+indices are those of the normalised ring: the file's order, reversed when the orientation had to be
+fixed (vertex 0 stays vertex 0); messages also give the coordinates.
 
 Tolerance: two vertices closer than ``1e-9`` times the diagonal of the outer ring's bounding box are
 "the same point" (:attr:`Domain.tolerance`).
@@ -44,6 +44,9 @@ REL_TOL = 1e-9
 class Domain:
     """A planar vault domain (paper §3.1 input, with the §4 point and curve features).
 
+    Build one with a reader (:mod:`vaultgram.domain.readers`), which normalises and validates it;
+    constructed directly, it is used as given.
+
     Attributes
     ----------
     name : str
@@ -62,6 +65,12 @@ class Domain:
         The raw ``supports`` value (validated for shape only): ``None`` means the whole outer
         boundary is supported and holes are open; ``{"rings": ["outer", 0, ...]}`` selects whole
         rings; ``{"polylines": [[[x, y], ...], ...]}`` supports the boundary parts lying on them.
+
+    Example
+    -------
+    >>> d = Domain("square", np.array([[0.0, 0.0], [4.0, 0.0], [4.0, 3.0], [0.0, 3.0]]))
+    >>> d.area, d.diagonal, len(d.rings)
+    (12.0, 5.0, 1)
     """
 
     name: str
@@ -103,7 +112,9 @@ class Domain:
 
 
 def ring_name(ring: int) -> str:
-    """Human name of ring ``ring`` in the standard order (0 = outer, 1.. = hole ring-1)."""
+    """Human name of ring ``ring`` in the standard order (0 = outer, 1.. = hole ring-1), for messages.
+
+    >>> ring_name(0), ring_name(2)
+    ('outer ring', 'hole 1')
+    """
     return "outer ring" if ring == 0 else f"hole {ring - 1}"
-
-

@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-__all__ = ["signed_area", "bbox_diagonal", "interior_angle", "cross_z"]
+__all__ = ["signed_area", "bbox_diagonal", "interior_angle", "cross_z", "triangle_areas"]
 
 
 def signed_area(poly: np.ndarray) -> float:
@@ -55,3 +55,14 @@ def cross_z(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     [1.0, -2.0]
     """
     return a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+
+
+def triangle_areas(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
+    """Signed area of each triangle ``points[triangles[k]]`` (vectorised): positive when counter-clockwise.
+
+    >>> p = np.array([[0.0, 0.0], [2.0, 0.0], [0.0, 1.0]])
+    >>> triangle_areas(p, np.array([[0, 1, 2], [0, 2, 1]])).tolist()
+    [1.0, -1.0]
+    """
+    a, b, c = points[triangles[:, 0]], points[triangles[:, 1]], points[triangles[:, 2]]
+    return 0.5 * ((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]))

@@ -25,6 +25,7 @@ __all__ = [
     "resample_polyline",
     "chord_deviation",
     "polyline_hausdorff",
+    "subdivide_polyline",
 ]
 
 _CHUNK = 2_000_000  # points x segments per block when projecting many points at once
@@ -254,3 +255,28 @@ def polyline_hausdorff(a: np.ndarray, b: np.ndarray, samples: int = 8) -> float:
     d1 = shapely.distance(shapely.points(_densified(a, samples)), lb).max()
     d2 = shapely.distance(shapely.points(_densified(b, samples)), la).max()
     return float(max(d1, d2))
+
+
+def subdivide_polyline(poly: np.ndarray, max_length: float, closed: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """Split every segment of a polyline into the fewest equal parts no longer than ``max_length``.
+
+    Every vertex is kept. Returns the points in order (a closed polyline does not repeat its first
+    point at the end) and the index of each input vertex among them. A segment whose length is a
+    whole multiple of ``max_length`` is not split once more by rounding.
+
+    >>> pts, at = subdivide_polyline(np.array([[0.0, 0.0], [3.0, 0.0], [3.0, 1.0]]), 1.0)
+    >>> pts[:, 0].tolist(), at.tolist()
+    ([0.0, 1.0, 2.0, 3.0, 3.0], [0, 3, 4])
+    """
+    start, d = _segments(poly, closed)
+    length = np.hypot(d[:, 0], d[:, 1])
+    m = np.maximum(1, np.ceil(length / max_length * (1 - 1e-12))).astype(np.int64)
+    seg = np.repeat(np.arange(len(start)), m)
+    offsets = np.concatenate([[0], np.cumsum(m)])
+    t = (np.arange(offsets[-1]) - offsets[seg]) / m[seg]
+    out = start[seg] + t[:, None] * d[seg]
+    at = offsets[:-1].copy()
+    if not closed:
+        out = np.concatenate([out, np.asarray(poly, dtype=float)[-1:]])
+        at = np.concatenate([at, [len(out) - 1]])
+    return out, at

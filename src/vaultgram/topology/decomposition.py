@@ -33,10 +33,27 @@ from vaultgram.engine.strategy import Runner
 from vaultgram.errors import DomainError, RewriteError
 from vaultgram.geometry.polylines import arc_lengths
 from vaultgram.geometry.text import fmt_point
-from vaultgram.topology.discretise import Discretisation
+from vaultgram.topology.discretise import RING_POINT, Discretisation
 from vaultgram.topology.patches import Patch, find_patches, half_edge_polyline
 from vaultgram.topology.skeleton import Skeleton
-from vaultgram.topology.types import PATCH_STRATEGIES, PLAN_EDGES, TOPOLOGY_STRATEGY
+from vaultgram.topology.types import (
+    BOUNDARY,
+    BOUNDARY_VERTEX,
+    BRANCH,
+    CORNER,
+    CURVE,
+    CURVE_EXTREMITY,
+    CURVE_POINT,
+    DUAL,
+    FEATURE_POINT,
+    LOOP_VERTEX,
+    PATCH,
+    PATCH_CORNER,
+    PATCH_STRATEGIES,
+    PLAN_EDGES,
+    SINGULARITY,
+    TOPOLOGY_STRATEGY,
+)
 
 LOOP_CUTS = 4  # cut points on a skeleton loop without singularity (an annulus becomes 2 x 4 quads)
 
@@ -65,20 +82,23 @@ class Decomposition:
 
     @functools.cached_property
     def _marked_poles(self) -> dict:
+        """The marked pole of each Patch node that has one, keyed by the set of its corners."""
         g = self.graph
         out = {}
         for node in self.patch_nodes():
-            edges = list(g.incident(node, ["PatchCorner"]))
+            edges = list(g.incident(node, [PATCH_CORNER]))
             pole = [g.ends(e)[1] for e in edges if g.get_edge(e, "pole")]
             if pole:
                 out[frozenset(g.ends(e)[1] for e in edges)] = pole[0]
         return out
 
     def patch_nodes(self) -> list[int]:
-        return [n for n in self.graph.nodes() if self.graph.node_type(n) == "Patch"]
+        """The ``Patch`` nodes of the graph (one per patch after the patching rules)."""
+        return [n for n in self.graph.nodes() if self.graph.node_type(n) == PATCH]
 
     def singularities(self) -> list[int]:
-        return [n for n in self.graph.nodes() if self.graph.node_type(n) == "Singularity"]
+        """The ``Singularity`` nodes of the rewritten graph."""
+        return [n for n in self.graph.nodes() if self.graph.node_type(n) == SINGULARITY]
 
     def valence(self, n: int) -> int:
         """Number of patch-layout edges (branches, rebranches, boundary pieces) at node ``n``."""
@@ -96,14 +116,16 @@ class Decomposition:
         }
 
     def _edge_json(self, e: int) -> dict:
+        """One edge for :meth:`to_json`: a patch corner's index, or a plan edge's polyline."""
         g = self.graph
         u, v = g.ends(e)
         out = {"id": e, "type": g.edge_type(e), "source": u, "target": v}
-        if g.edge_type(e) == "PatchCorner":
+        if g.edge_type(e) == PATCH_CORNER:
             return {**out, "index": g.get_edge(e, "index")}
         return {**out, "polyline": half_edge_polyline(g, e, u).tolist()}
 
     def patches_json(self) -> dict:
+        """The patches: corners and sides, and how many have 3 and 4 sides."""
         return {
             "name": self.disc.domain.name,
             "patches": [p.to_json() for p in self.patches],
@@ -128,57 +150,97 @@ def edge_angle(graph: HostGraph, e: int, n: int) -> float:
 
 
 def decomposition_graph(sk: Skeleton, rulebook: Rulebook) -> HostGraph:
-    """The typed graph of §3.1 before rewriting (see the module docstring)."""
+    """The typed graph of §3.1 before rewriting (see the module docstring): the points of the plan,
+    its boundary and curve segments, the skeleton vertices with their duals, the branches, and the
+    skeleton loops cut into branches.
+
+    Example
+    -------
+    >>> from collections import Counter
+    >>> from vaultgram.domain import load_domain
+    >>> from vaultgram.pipeline import decompose
+    >>> from vaultgram.topology.rulebook import load_vault_rulebook
+    >>> rewritten = decompose(load_domain("examples/l_shape.json"), 0.05)
+    >>> g = decomposition_graph(rewritten.skeleton, load_vault_rulebook())  # the graph before the rules
+    >>> sorted(Counter(g.node_type(n) for n in g.nodes()).items())
+    [('BoundaryVertex', 57), ('Corner', 5), ('Singularity', 3)]
+    """
     disc = sk.triangulation.disc
     g = HostGraph(rulebook.schema, angle=edge_angle)
-    pts = disc.points
-    corner_points = {int(n.point) for n in sk.nodes if n.kind == "corner"}
-    for ring in disc.rings:
-        for k, p in enumerate(ring):
-            kind = "Corner" if disc.corner_kind[p] == 1 else "BoundaryVertex"
-            g.add_node(kind, {"pos": tuple(pts[p]), "ring": int(disc.ring[p]), "index": k}, id=int(p))
-    curve_ends = {int(c[k]) for c in disc.curves for k in (0, -1)}
-    for p in np.flatnonzero(disc.ring < 0):  # feature points and curve points (section 4)
-        kind = "FeaturePoint" if disc.ring[p] == -2 else "CurveExtremity" if p in curve_ends else "CurvePoint"
-        g.add_node(kind, {"pos": tuple(pts[p])}, id=int(p))
-    for p in disc.feature_points:  # point features, on the boundary or inside (section 4.1)
-        g.set_node_attr(int(p), "feature", True)
-    for p in corner_points:
-        g.set_node_attr(p, "corner", True)
-    for ring in disc.rings:
-        for a, b in zip(ring, np.roll(ring, -1)):
-            g.add_edge("Boundary", int(a), int(b))
-    for curve in disc.curves:
-        for a, b in zip(curve[:-1], curve[1:]):
-            g.add_edge("Curve", int(a), int(b))
-
-    node_of: dict[int, int] = {}
-    for node in sk.nodes:
-        if node.kind == "corner":
-            node_of[node.id] = int(node.point)
-        else:  # a singularity, or the centre cell of a domain without corners and holes
-            dual = node.dual if node.kind == "singularity" else tuple(sk.triangulation.triangles[node.face])
-            radius = float(sk.triangulation.cell_radii[node.cell])
-            s = g.add_node("Singularity", {"pos": tuple(node.pos), "radius": radius})
-            node_of[node.id] = s
-            for p in dual:
-                g.add_edge("Dual", s, int(p))
+    _add_plan_points(g, disc, {int(n.point) for n in sk.nodes if n.kind == "corner"})
+    _add_plan_segments(g, disc)
+    node_of = _add_skeleton_vertices(g, sk)
     for branch in sk.branches:
-        a, b = node_of[branch.start], node_of[branch.end]
-        poly = branch.polyline
-        if a == b:  # a branch returning to its own node: cut it once in the middle
-            cut = _add_loop_vertex(g, sk, poly, branch.faces, len(poly) // 2)
-            g.add_edge("Branch", a, cut, {"polyline": _plain(poly[: len(poly) // 2 + 1])})
-            g.add_edge("Branch", cut, b, {"polyline": _plain(poly[len(poly) // 2 :])})
-        else:
-            g.add_edge("Branch", a, b, {"polyline": _plain(poly)})
+        _add_branch(g, sk, node_of[branch.start], node_of[branch.end], branch)
     for loop in sk.loops:
         _cut_loop(g, sk, loop)
     g.forget()
     return g
 
 
+def _add_plan_points(g: HostGraph, disc: Discretisation, corner_points: set) -> None:
+    """A node for every sample point, with the point's index as id: ring points (``Corner`` at a
+    polygon corner), then point features and curve points (§4); point features are marked
+    ``feature``, the corner vertices of corner faces ``corner`` (their branches are to be pruned)."""
+    pts = disc.points
+    for ring in disc.rings:
+        for k, p in enumerate(ring):
+            kind = CORNER if disc.corner_kind[p] == 1 else BOUNDARY_VERTEX
+            g.add_node(kind, {"pos": tuple(pts[p]), "ring": int(disc.ring[p]), "index": k}, id=int(p))
+    curve_ends = {int(c[k]) for c in disc.curves for k in (0, -1)}
+    for p in np.flatnonzero(disc.ring < 0):
+        kind = FEATURE_POINT if disc.ring[p] == RING_POINT else CURVE_EXTREMITY if p in curve_ends else CURVE_POINT
+        g.add_node(kind, {"pos": tuple(pts[p])}, id=int(p))
+    for p in disc.feature_points:  # point features, on the boundary or inside (§4.1)
+        g.set_node_attr(int(p), "feature", True)
+    for p in corner_points:
+        g.set_node_attr(p, "corner", True)
+
+
+def _add_plan_segments(g: HostGraph, disc: Discretisation) -> None:
+    """``Boundary`` edges between consecutive ring points, ``Curve`` edges along each curve feature
+    from its first point towards its last."""
+    for ring in disc.rings:
+        for a, b in zip(ring, np.roll(ring, -1)):
+            g.add_edge(BOUNDARY, int(a), int(b))
+    for curve in disc.curves:
+        for a, b in zip(curve[:-1], curve[1:]):
+            g.add_edge(CURVE, int(a), int(b))
+
+
+def _add_skeleton_vertices(g: HostGraph, sk: Skeleton) -> dict[int, int]:
+    """A ``Singularity`` for every singularity of the skeleton, and for the centre cell of a domain
+    without corners and holes (its dual is the cell's face), with ``Dual`` edges to its dual; corner
+    nodes are their corner points. Returns the graph node of each skeleton node."""
+    node_of: dict[int, int] = {}
+    for node in sk.nodes:
+        if node.kind == "corner":
+            node_of[node.id] = int(node.point)
+            continue
+        dual = node.dual if node.kind == "singularity" else tuple(sk.triangulation.triangles[node.face])
+        radius = float(sk.triangulation.cell_radii[node.cell])
+        s = g.add_node(SINGULARITY, {"pos": tuple(node.pos), "radius": radius})
+        node_of[node.id] = s
+        for p in dual:
+            g.add_edge(DUAL, s, int(p))
+    return node_of
+
+
+def _add_branch(g: HostGraph, sk: Skeleton, a: int, b: int, branch) -> None:
+    """A ``Branch`` edge from node ``a`` to ``b`` along the branch's polyline; a branch returning to
+    its own node is cut once in the middle by a ``LoopVertex``."""
+    poly = branch.polyline
+    if a != b:
+        g.add_edge(BRANCH, a, b, {"polyline": _plain(poly)})
+        return
+    cut = _add_loop_vertex(g, sk, poly, branch.faces, len(poly) // 2)
+    g.add_edge(BRANCH, a, cut, {"polyline": _plain(poly[: len(poly) // 2 + 1])})
+    g.add_edge(BRANCH, cut, b, {"polyline": _plain(poly[len(poly) // 2 :])})
+
+
 def _cut_loop(g: HostGraph, sk: Skeleton, loop) -> None:
+    """Cut a skeleton loop without singularity at :data:`LOOP_CUTS` points evenly spaced along it,
+    joined by ``Branch`` edges (an annulus becomes a ring of quads on each side)."""
     poly = loop.polyline[:-1]
     if len(poly) < 2 * LOOP_CUTS:
         raise DomainError("a skeleton loop is too short to cut into patches; use a smaller spacing")
@@ -188,7 +250,7 @@ def _cut_loop(g: HostGraph, sk: Skeleton, loop) -> None:
     for k in range(LOOP_CUTS):
         i, j = at[k], at[(k + 1) % LOOP_CUTS]
         piece = loop.polyline[i : j + 1] if j > i else np.vstack([loop.polyline[i:-1], loop.polyline[: j + 1]])
-        g.add_edge("Branch", cuts[k], cuts[(k + 1) % LOOP_CUTS], {"polyline": _plain(piece)})
+        g.add_edge(BRANCH, cuts[k], cuts[(k + 1) % LOOP_CUTS], {"polyline": _plain(piece)})
 
 
 def _add_loop_vertex(g: HostGraph, sk: Skeleton, poly: np.ndarray, faces, i: int) -> int:
@@ -200,36 +262,38 @@ def _add_loop_vertex(g: HostGraph, sk: Skeleton, poly: np.ndarray, faces, i: int
     rel = tri.points[verts] - p
     side = np.sign(d[0] * rel[:, 1] - d[1] * rel[:, 0])
     along = np.abs(rel @ d)
-    n = g.add_node("LoopVertex", {"pos": tuple(p), "radius": float(np.linalg.norm(rel, axis=1).max())})
+    n = g.add_node(LOOP_VERTEX, {"pos": tuple(p), "radius": float(np.linalg.norm(rel, axis=1).max())})
     for s in (1, -1):
         candidates = np.flatnonzero(side == s)
         if len(candidates) == 0:
             raise DomainError(f"cannot cut the skeleton loop at {fmt_point(p)}; use a smaller spacing")
-        g.add_edge("Dual", n, int(verts[candidates[np.argmin(along[candidates])]]))
+        g.add_edge(DUAL, n, int(verts[candidates[np.argmin(along[candidates])]]))
     return n
 
 
 def _plain_attrs(attrs) -> dict:
+    """Node attributes for JSON: tuples (positions) as lists."""
     return {k: list(v) if isinstance(v, tuple) else v for k, v in attrs.items()}
 
 
 def _plain(poly: np.ndarray) -> tuple:
+    """A polyline as a graph attribute: a tuple of (x, y) float pairs."""
     return tuple((float(x), float(y)) for x, y in poly)
 
 
 def add_patch_nodes(graph: HostGraph, patches) -> None:
     """Make the patches visible to rules: a ``Patch`` node each, ``PatchCorner`` edges to its corners."""
     for patch in patches:
-        p = graph.add_node("Patch", {"sides": patch.n_sides})
+        p = graph.add_node(PATCH, {"sides": patch.n_sides})
         for k, c in enumerate(patch.corners):
-            graph.add_edge("PatchCorner", p, c, {"index": k})
+            graph.add_edge(PATCH_CORNER, p, c, {"index": k})
 
 
 def check_patch_nodes(graph: HostGraph, patches) -> None:
     """The patching rules must keep the patch nodes in step with the faces of the plan."""
     nodes = sorted(
-        sorted(graph.ends(e)[1] for e in graph.incident(p, ["PatchCorner"]))
-        for p in graph.nodes() if graph.node_type(p) == "Patch"
+        sorted(graph.ends(e)[1] for e in graph.incident(p, [PATCH_CORNER]))
+        for p in graph.nodes() if graph.node_type(p) == PATCH
     )
     faces = sorted(sorted(patch.corners) for patch in patches)
     if nodes != faces:  # a fault of the rules, not of the domain
@@ -246,6 +310,18 @@ def block_decomposition(sk: Skeleton, rulebook: Rulebook) -> Decomposition:
     the faces it leaves become ``Patch`` nodes and the ``curve_patching`` and ``patching`` strategies
     (when the rulebook has them) may split them (curve T-junctions, Figures 4 and 8); the patches are
     then read off the faces again, and must all have 3 or 4 sides.
+
+    Example
+    -------
+    >>> from vaultgram.domain import load_domain
+    >>> from vaultgram.topology.discretise import discretise
+    >>> from vaultgram.topology.rulebook import load_vault_rulebook
+    >>> from vaultgram.topology.skeleton import skeleton
+    >>> from vaultgram.topology.triangulation import triangulate
+    >>> sk = skeleton(triangulate(discretise(load_domain("examples/l_shape.json"), 0.05)))
+    >>> dec = block_decomposition(sk, load_vault_rulebook())
+    >>> dec.patches_json()["counts"], [dec.valence(s) for s in dec.singularities()]
+    ({'3': 0, '4': 9}, [4, 5, 4])
     """
     disc = sk.triangulation.disc
     graph = decomposition_graph(sk, rulebook)

@@ -28,13 +28,14 @@ over rings and features.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from scipy.spatial import cKDTree
 
 from vaultgram.domain.model import Domain
 from vaultgram.errors import DomainError
-from vaultgram.geometry.polylines import locate_on_polyline, turning_angles
+from vaultgram.geometry.polylines import locate_on_polyline, subdivide_polyline, turning_angles
 
 __all__ = ["Discretisation", "discretise", "SPACING_RANGE"]
 
@@ -43,6 +44,7 @@ SPACING_RANGE = (0.01, 0.05)
 #: Spacings outside ``(0, SPACING_MAX]`` are rejected.
 SPACING_MAX = 0.2
 
+#: :attr:`Discretisation.ring` of curve-feature points and of point features off rings and curves.
 RING_CURVE = -1
 RING_POINT = -2
 
@@ -125,71 +127,12 @@ class Discretisation:
         )
 
 
-def _resample(poly: np.ndarray, h: float, closed: bool):
-    """Split every segment into equal parts no longer than ``h``.
-
-    Returns the new points, the index of each input vertex in the output, and a mask of input
-    vertices.
-    """
-    if closed:
-        nxt = np.roll(poly, -1, axis=0)
-        start = poly
-    else:
-        nxt = poly[1:]
-        start = poly[:-1]
-    d = nxt - start
-    length = np.hypot(d[:, 0], d[:, 1])
-    m = np.maximum(1, np.ceil(length / h * (1 - 1e-12))).astype(np.int64)
-    seg = np.repeat(np.arange(len(start)), m)
-    offsets = np.concatenate([[0], np.cumsum(m)])
-    k = np.arange(offsets[-1]) - offsets[seg]
-    t = k / m[seg]
-    out = start[seg] + t[:, None] * d[seg]
-    vertex_pos = offsets[:-1].copy()
-    if not closed:
-        out = np.concatenate([out, poly[-1:]])
-        vertex_pos = np.concatenate([vertex_pos, [len(out) - 1]])
-    is_vertex = np.zeros(len(out), dtype=bool)
-    is_vertex[vertex_pos] = True
-    return out, vertex_pos, is_vertex
-
-
-def _insert(poly: np.ndarray, inserts: list, tol: float, closed: bool):
-    """Insert points (seg, t, p) into a polyline; return new polyline and each insert's vertex index."""
-    n = len(poly)
-    if not inserts:
-        return poly, []
-    # keys: a point at t ~ 0 or ~ 1 reuses the vertex
-    resolved = []
-    new = []
-    for seg, t, p in inserts:
-        nxt = (seg + 1) % n
-        if np.hypot(*(poly[seg] - p)) <= tol:
-            resolved.append(("v", seg))
-        elif np.hypot(*(poly[nxt] - p)) <= tol:
-            resolved.append(("v", nxt))
-        else:
-            resolved.append(("n", len(new)))
-            new.append((seg, t, p))
-    if not new:
-        return poly, [r[1] for r in resolved]
-    order = sorted(range(len(new)), key=lambda i: (new[i][0], new[i][1]))
-    # build the merged vertex list
-    rows, kinds = [], []
-    j = 0
-    for v in range(n):
-        rows.append(poly[v])
-        kinds.append(("v", v))
-        while j < len(order) and new[order[j]][0] == v:
-            rows.append(new[order[j]][2])
-            kinds.append(("n", order[j]))
-            j += 1
-    pos = {k: i for i, k in enumerate(kinds)}
-    return np.array(rows), [pos[r] for r in resolved]
-
-
 def discretise(domain: Domain, spacing: float = 0.02, corner_angle: float = 30.0) -> Discretisation:
     """Sample the boundaries and features of ``domain`` (paper §3.1; features §4).
+
+    Feature points on the boundary or on a curve are inserted into it; the rings and curves are
+    subdivided to the spacing, curves sharing their boundary end points; coincident feature points
+    are merged; corners are decided by angle (see the module docstring).
 
     Parameters
     ----------
@@ -210,8 +153,42 @@ def discretise(domain: Domain, spacing: float = 0.02, corner_angle: float = 30.0
     ------
     DomainError
         If ``spacing`` or ``corner_angle`` is out of range.
+
+    Example
+    -------
+    >>> from vaultgram.domain import load_domain
+    >>> disc = discretise(load_domain("examples/l_shape.json"), 0.05)
+    >>> disc
+    Discretisation('l_shape', spacing=0.05, 62 points, 6 corners)
+    >>> disc.corner_kind[disc.is_corner].tolist()  # the reflex corner of the L at (5, 5)
+    [1, 1, 1, -1, 1, 1]
     """
-    spacing = float(spacing)
+    spacing, corner_angle = _checked_parameters(spacing, corner_angle)
+    h, tol = spacing * domain.diagonal, domain.tolerance
+    placed = _insert_features(domain, tol)
+    rings, ring_members, ring_vertices = _sample_rings(placed.rings, h)
+    n_ring_points = sum(len(part.points) for part in rings)
+    curves, curve_members, curve_vertices = _sample_curves(placed, ring_vertices, h, n_ring_points)
+    n_line_points = n_ring_points + sum(len(part.points) for part in curves)
+    feature, isolated = _point_features(domain.points, placed.points, ring_vertices, curve_vertices, n_line_points)
+    samples = _Samples.concatenate(rings + curves + isolated)
+    samples, curve_members, feature = _merge_coincident_features(samples, curve_members, feature, n_ring_points,
+                                                                 tol)
+    is_corner, corner_kind = _corners(samples, curve_members, corner_angle)
+    for a in (*samples, is_corner, corner_kind, feature):
+        a.setflags(write=False)
+    return Discretisation(
+        domain, spacing, h, samples.points, samples.ring, samples.index, is_corner, corner_kind, samples.turning,
+        samples.is_vertex, rings=tuple(ring_members), curves=tuple(curve_members), feature_points=feature,
+    )
+
+
+def _checked_parameters(spacing, corner_angle) -> tuple[float, float]:
+    """The spacing and corner angle as numbers in their ranges, or a :class:`DomainError`."""
+    try:
+        spacing, corner_angle = float(spacing), float(corner_angle)
+    except (TypeError, ValueError):
+        raise DomainError(f"spacing {spacing!r} and corner_angle {corner_angle!r} must be numbers") from None
     if not (0.0 < spacing <= SPACING_MAX) or not np.isfinite(spacing):
         raise DomainError(
             f"spacing {spacing:g} is out of range: it is a fraction of the bounding-box diagonal "
@@ -219,173 +196,264 @@ def discretise(domain: Domain, spacing: float = 0.02, corner_angle: float = 30.0
         )
     if not (0.0 <= corner_angle < 180.0):
         raise DomainError(f"corner_angle {corner_angle:g} must lie in [0, 180) degrees")
-    diag = domain.diagonal
-    h = spacing * diag
-    tol = domain.tolerance
+    return spacing, corner_angle
 
+
+# --------------------------------------------------------------------------------------------
+# Feature points on rings and curves (§4.1, §4.2)
+# --------------------------------------------------------------------------------------------
+
+
+class _Insert(NamedTuple):
+    """A point to insert into a polyline: on segment ``seg`` at parameter ``t``."""
+
+    seg: int
+    t: float
+    p: np.ndarray
+
+
+class _At(NamedTuple):
+    """Where a feature point lies: the vertex ``vertex`` of ring or curve ``owner`` after insertion."""
+
+    on_ring: bool
+    owner: int
+    vertex: int
+
+
+class _Placed(NamedTuple):
+    """The rings and curves with the feature points that lie on them inserted as vertices."""
+
+    rings: list  # of (n, 2) arrays
+    curves: list
+    curve_ends: list  # for each curve, an _At or None for its first and for its last point
+    points: list  # for each point feature, an _At or None (a point off every ring and curve)
+
+
+def _insert_features(domain: Domain, tol: float) -> _Placed:
+    """Insert the curve ends lying on a ring into it, then the point features lying on a ring or on a
+    curve (§4: they share the point there)."""
     rings = [np.asarray(r) for r in domain.rings]
     curves = [np.asarray(c) for c in domain.curves]
-    ring_inserts: list[list] = [[] for _ in rings]
-    curve_inserts: list[list] = [[] for _ in curves]
-    # who refers to an inserted vertex: ("ring", r, k-th insert) / ("curve", c, k-th insert)
-    curve_end_ref: dict = {}
-    point_ref: dict = {}
+    ring_inserts: list[list[_Insert]] = [[] for _ in rings]
+    curve_inserts: list[list[_Insert]] = [[] for _ in curves]
+    end_refs = [[_queue(ring_inserts, True, _on_rings(rings, curve[end], tol), curve[end])
+                 for end in (0, len(curve) - 1)] for curve in curves]
+    point_refs = []
+    for p in domain.points:
+        ref = _queue(ring_inserts, True, _on_rings(rings, p, tol), p)
+        if ref is None:
+            ref = _queue(curve_inserts, False, _on_curves(curves, p, tol), p)
+        point_refs.append(ref)
+    ring_hits = [_insert(r, ins, tol) for r, ins in zip(rings, ring_inserts)]
+    curve_hits = [_insert(c, ins, tol) for c, ins in zip(curves, curve_inserts)]
+    hits = {True: [at for _, at in ring_hits], False: [at for _, at in curve_hits]}
+    return _Placed([r for r, _ in ring_hits], [c for c, _ in curve_hits],
+                   [[_resolved(ref, hits) for ref in refs] for refs in end_refs],
+                   [_resolved(ref, hits) for ref in point_refs])
 
-    def on_ring(p):
-        best = None
-        for r, ring in enumerate(rings):
-            d, seg, t = locate_on_polyline(ring, p, closed=True)
-            if d <= tol and (best is None or d < best[0]):
-                best = (d, r, seg, t)
-        return best
 
-    for c, curve in enumerate(curves):
-        for end in (0, len(curve) - 1):
-            hit = on_ring(curve[end])
-            if hit is not None:
-                _, r, seg, t = hit
-                curve_end_ref[(c, end)] = (r, len(ring_inserts[r]))
-                ring_inserts[r].append((seg, t, curve[end].copy()))
-    for i, p in enumerate(domain.points):
-        hit = on_ring(p)
-        if hit is not None:
-            _, r, seg, t = hit
-            point_ref[i] = ("ring", r, len(ring_inserts[r]))
-            ring_inserts[r].append((seg, t, p.copy()))
-            continue
-        for c, curve in enumerate(curves):
-            d, seg, t = locate_on_polyline(curve, p, closed=False)
-            if d <= tol:
-                point_ref[i] = ("curve", c, len(curve_inserts[c]))
-                curve_inserts[c].append((seg, t, p.copy()))
-                break
-
-    ring_ins_idx = []
-    for r in range(len(rings)):
-        rings[r], idx = _insert(rings[r], ring_inserts[r], tol, closed=True)
-        ring_ins_idx.append(idx)
-    curve_ins_idx = []
-    for c in range(len(curves)):
-        curves[c], idx = _insert(curves[c], curve_inserts[c], tol, closed=False)
-        curve_ins_idx.append(idx)
-
-    pts, ring_lab, index, turning, is_vertex, ring_idx = [], [], [], [], [], []
-    offset = 0
-    ring_vertex_global = []
+def _on_rings(rings: list, p: np.ndarray, tol: float) -> tuple[int, int, float] | None:
+    """``(ring, segment, t)`` of the ring nearest to ``p`` if it lies on one (within ``tol``)."""
+    best = None
     for r, ring in enumerate(rings):
-        out, vpos, isv = _resample(ring, h, closed=True)
-        ang = np.zeros(len(out))
-        ang[vpos] = turning_angles(ring, closed=True)
-        pts.append(out)
-        ring_lab.append(np.full(len(out), r, dtype=np.int64))
-        index.append(np.arange(len(out)))
-        turning.append(ang)
-        is_vertex.append(isv)
-        ring_idx.append(np.arange(offset, offset + len(out)))
-        ring_vertex_global.append(vpos + offset)
-        offset += len(out)
-    n_ring_points = offset
+        d, seg, t = locate_on_polyline(ring, p, closed=True)
+        if d <= tol and (best is None or d < best[0]):
+            best = (d, r, seg, t)
+    return None if best is None else best[1:]
 
-    curve_idx = []
-    curve_vertex_global = []
+
+def _on_curves(curves: list, p: np.ndarray, tol: float) -> tuple[int, int, float] | None:
+    """``(curve, segment, t)`` of the first curve ``p`` lies on (within ``tol``)."""
     for c, curve in enumerate(curves):
-        out, vpos, isv = _resample(curve, h, closed=False)
-        ang = np.zeros(len(out))
-        ang[vpos] = turning_angles(curve, closed=False)
+        d, seg, t = locate_on_polyline(curve, p, closed=False)
+        if d <= tol:
+            return c, seg, t
+    return None
+
+
+def _queue(inserts: list, on_ring: bool, hit, p: np.ndarray) -> _At | None:
+    """Queue ``p`` for insertion into a ring or curve where ``hit`` says (``(owner, segment, t)``);
+    its reference holds the position in the owner's queue until :func:`_insert` says the vertex."""
+    if hit is None:
+        return None
+    owner, seg, t = hit
+    inserts[owner].append(_Insert(seg, t, p.copy()))
+    return _At(on_ring, owner, len(inserts[owner]) - 1)
+
+
+def _resolved(ref: _At | None, hits: dict) -> _At | None:
+    """A queued point's reference with its vertex after insertion (``hits[on_ring][owner][k]``)."""
+    return None if ref is None else ref._replace(vertex=hits[ref.on_ring][ref.owner][ref.vertex])
+
+
+def _insert(poly: np.ndarray, inserts: list, tol: float) -> tuple[np.ndarray, list[int]]:
+    """Insert points into a polyline; return the new polyline and each insert's vertex index.
+
+    A point within ``tol`` of a vertex of its segment is that vertex; the others are inserted in
+    order along their segments.
+    """
+    n = len(poly)
+    if not inserts:
+        return poly, []
+    resolved = []  # ("v", vertex) or ("n", index into new)
+    new = []
+    for ins in inserts:
+        nxt = (ins.seg + 1) % n
+        if np.hypot(*(poly[ins.seg] - ins.p)) <= tol:
+            resolved.append(("v", ins.seg))
+        elif np.hypot(*(poly[nxt] - ins.p)) <= tol:
+            resolved.append(("v", nxt))
+        else:
+            resolved.append(("n", len(new)))
+            new.append(ins)
+    if not new:
+        return poly, [r[1] for r in resolved]
+    order = sorted(range(len(new)), key=lambda i: (new[i].seg, new[i].t))
+    rows, kinds = [], []
+    j = 0
+    for v in range(n):
+        rows.append(poly[v])
+        kinds.append(("v", v))
+        while j < len(order) and new[order[j]].seg == v:
+            rows.append(new[order[j]].p)
+            kinds.append(("n", order[j]))
+            j += 1
+    pos = {k: i for i, k in enumerate(kinds)}
+    return np.array(rows), [pos[r] for r in resolved]
+
+
+# --------------------------------------------------------------------------------------------
+# Sampling (§3.1)
+# --------------------------------------------------------------------------------------------
+
+
+class _Samples(NamedTuple):
+    """Sample points with their per-point labels (see :class:`Discretisation`)."""
+
+    points: np.ndarray
+    ring: np.ndarray
+    index: np.ndarray
+    turning: np.ndarray
+    is_vertex: np.ndarray
+
+    @classmethod
+    def concatenate(cls, parts: list) -> _Samples:
+        """The samples of several rings, curves and points, one after the other."""
+        return cls(*(np.concatenate(column) for column in zip(*parts)))
+
+    def subset(self, keep: np.ndarray) -> _Samples:
+        """The samples where the mask ``keep`` is true."""
+        return _Samples(*(column[keep] for column in self))
+
+
+def _subdivided(poly: np.ndarray, h: float, closed: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """A ring or curve split to the spacing ``h``: its points, the positions of its input vertices,
+    the turning angle at each point (0 between input vertices) and the mask of input vertices."""
+    out, at = subdivide_polyline(poly, h, closed=closed)
+    turning = np.zeros(len(out))
+    turning[at] = turning_angles(poly, closed=closed)
+    is_vertex = np.zeros(len(out), dtype=bool)
+    is_vertex[at] = True
+    return out, at, turning, is_vertex
+
+
+def _sample_rings(rings: list, h: float) -> tuple[list[_Samples], list[np.ndarray], list[np.ndarray]]:
+    """Every ring subdivided to the spacing, numbered in order from 0.
+
+    Returns the samples of each ring, the point indices of each ring, and the point index of each
+    ring vertex.
+    """
+    samples, members, vertices = [], [], []
+    offset = 0
+    for r, ring in enumerate(rings):
+        out, at, turning, is_vertex = _subdivided(ring, h, closed=True)
+        samples.append(_Samples(out, np.full(len(out), r, dtype=np.int64), np.arange(len(out)), turning, is_vertex))
+        members.append(np.arange(offset, offset + len(out)))
+        vertices.append(at + offset)
+        offset += len(out)
+    return samples, members, vertices
+
+
+def _sample_curves(placed: _Placed, ring_vertices: list, h: float, offset: int
+                   ) -> tuple[list[_Samples], list[np.ndarray], list[np.ndarray]]:
+    """Every curve subdivided to the spacing and numbered from ``offset``, an end point on a ring
+    being that ring's point (§4.2).
+
+    Returns the samples of each curve (without the ring points), the point indices of each curve,
+    and the point index of each curve vertex.
+    """
+    samples, members, vertices = [], [], []
+    for curve, ends in zip(placed.curves, placed.curve_ends):
+        out, at, turning, is_vertex = _subdivided(curve, h, closed=False)
         glob = np.arange(offset, offset + len(out))
         keep = np.ones(len(out), dtype=bool)
-        for end_v, end_o in ((0, 0), (len(domain.curves[c]) - 1, len(out) - 1)):
-            ref = curve_end_ref.get((c, end_v))
-            if ref is not None:
-                r, k = ref
-                glob[end_o] = ring_vertex_global[r][ring_ins_idx[r][k]]
-                keep[end_o] = False
-        # renumber the kept points consecutively
-        glob[keep] = np.arange(offset, offset + int(keep.sum()))
-        pts.append(out[keep])
-        ring_lab.append(np.full(int(keep.sum()), RING_CURVE, dtype=np.int64))
-        index.append(np.flatnonzero(keep))
-        turning.append(ang[keep])
-        is_vertex.append(isv[keep])
-        curve_idx.append(glob)
-        curve_vertex_global.append(glob[vpos])
-        offset += int(keep.sum())
+        for end, on_ring in zip((0, len(out) - 1), ends):
+            if on_ring is not None:
+                glob[end] = ring_vertices[on_ring.owner][on_ring.vertex]
+                keep[end] = False
+        n_kept = int(keep.sum())
+        glob[keep] = np.arange(offset, offset + n_kept)
+        samples.append(_Samples(out[keep], np.full(n_kept, RING_CURVE, dtype=np.int64), np.flatnonzero(keep),
+                                turning[keep], is_vertex[keep]))
+        members.append(glob)
+        vertices.append(glob[at])
+        offset += n_kept
+    return samples, members, vertices
 
-    feature = np.empty(len(domain.points), dtype=np.int64)
-    iso = []
-    for i, p in enumerate(domain.points):
-        ref = point_ref.get(i)
-        if ref is None:
-            feature[i] = offset + len(iso)
-            iso.append(p)
-        elif ref[0] == "ring":
-            _, r, k = ref
-            feature[i] = ring_vertex_global[r][ring_ins_idx[r][k]]
+
+def _point_features(points: np.ndarray, where: list, ring_vertices: list, curve_vertices: list, offset: int
+                    ) -> tuple[np.ndarray, list[_Samples]]:
+    """The point index of each point feature (§4.1): its ring or curve point (``where`` it lies, see
+    :class:`_Placed`), or a point of its own, numbered from ``offset``. Returns the indices and the
+    samples of the points of their own."""
+    feature = np.empty(len(points), dtype=np.int64)
+    own = []
+    for i, (p, at) in enumerate(zip(points, where)):
+        if at is None:
+            feature[i] = offset + len(own)
+            own.append(p)
         else:
-            _, c, k = ref
-            feature[i] = curve_vertex_global[c][curve_ins_idx[c][k]]
-    if iso:
-        pts.append(np.array(iso))
-        ring_lab.append(np.full(len(iso), RING_POINT, dtype=np.int64))
-        index.append(np.zeros(len(iso), dtype=np.int64))
-        turning.append(np.zeros(len(iso)))
-        is_vertex.append(np.ones(len(iso), dtype=bool))
+            feature[i] = (ring_vertices if at.on_ring else curve_vertices)[at.owner][at.vertex]
+    if not own:
+        return feature, []
+    k = len(own)
+    return feature, [_Samples(np.array(own), np.full(k, RING_POINT, dtype=np.int64), np.zeros(k, dtype=np.int64),
+                              np.zeros(k), np.ones(k, dtype=bool))]
 
-    points = np.concatenate(pts)
-    ring_arr = np.concatenate(ring_lab)
-    index_arr = np.concatenate(index).astype(np.int64)
-    turning_arr = np.concatenate(turning)
-    is_vertex_arr = np.concatenate(is_vertex)
 
-    # curve / point features coinciding with another feature point (e.g. two curves sharing an end
-    # point, a point feature at a curve's end): merge them so that the Delaunay sites are distinct.
-    if len(points) > n_ring_points:
-        remap = np.arange(len(points))
-        pairs = cKDTree(points).query_pairs(r=tol, output_type="ndarray")
-        if len(pairs):
-            pairs = np.sort(pairs, axis=1)
-            pairs = pairs[pairs[:, 1] >= n_ring_points]
-            for a, b in pairs[np.lexsort((pairs[:, 0], pairs[:, 1]))]:
-                remap[b] = remap[a] if remap[a] == a else remap[remap[a]]
-        if (remap != np.arange(len(points))).any():
-            keep = remap == np.arange(len(points))
-            new_id = np.cumsum(keep) - 1
-            final = new_id[remap]
-            points, ring_arr, index_arr = points[keep], ring_arr[keep], index_arr[keep]
-            turning_arr, is_vertex_arr = turning_arr[keep], is_vertex_arr[keep]
-            curve_idx = [final[c] for c in curve_idx]
-            feature = final[feature]
+def _merge_coincident_features(samples: _Samples, curves: list, feature: np.ndarray, n_ring_points: int,
+                               tol: float) -> tuple[_Samples, list, np.ndarray]:
+    """Merge curve and point features coinciding with another feature point (two curves sharing an
+    end point, a point feature at a curve's end), so that the Delaunay sites are distinct."""
+    n = len(samples.points)
+    if n <= n_ring_points:
+        return samples, curves, feature
+    remap = np.arange(n)
+    pairs = cKDTree(samples.points).query_pairs(r=tol, output_type="ndarray")
+    if len(pairs):
+        pairs = np.sort(pairs, axis=1)
+        pairs = pairs[pairs[:, 1] >= n_ring_points]
+        for a, b in pairs[np.lexsort((pairs[:, 0], pairs[:, 1]))]:
+            remap[b] = remap[a] if remap[a] == a else remap[remap[a]]
+    keep = remap == np.arange(n)
+    if keep.all():
+        return samples, curves, feature
+    final = (np.cumsum(keep) - 1)[remap]
+    return samples.subset(keep), [final[c] for c in curves], final[feature]
 
-    n = len(points)
-    is_ring = ring_arr >= 0
-    is_corner = is_ring & (np.abs(turning_arr) > corner_angle)
-    corner_kind = np.zeros(n, dtype=np.int8)
-    corner_kind[is_corner & (turning_arr > 0)] = 1
-    corner_kind[is_corner & (turning_arr < 0)] = -1
-    # Curve features cut the domain (§4.2): where a curve meets a ring, and where a curve turns
-    # sharply, the regions on either side see a convex corner.
-    on_curve = ring_arr == RING_CURVE
-    sharp = on_curve & (np.abs(turning_arr) > corner_angle)
-    ends = np.array([i for c in curve_idx for i in (c[0], c[-1]) if ring_arr[i] >= 0], dtype=np.int64)
+
+def _corners(samples: _Samples, curves: list, corner_angle: float) -> tuple[np.ndarray, np.ndarray]:
+    """Ring points turning by more than ``corner_angle`` are corners, convex (1) when the ring turns
+    towards the domain, reflex (-1) otherwise. Curve features cut the domain (§4.2): where a curve
+    meets a ring, and where a curve turns sharply, the regions on either side see a convex corner."""
+    ring, turning = samples.ring, samples.turning
+    is_corner = (ring >= 0) & (np.abs(turning) > corner_angle)
+    corner_kind = np.zeros(len(ring), dtype=np.int8)
+    corner_kind[is_corner & (turning > 0)] = 1
+    corner_kind[is_corner & (turning < 0)] = -1
+    sharp = (ring == RING_CURVE) & (np.abs(turning) > corner_angle)
+    ends = np.array([i for c in curves for i in (c[0], c[-1]) if ring[i] >= 0], dtype=np.int64)
     for cut in (np.flatnonzero(sharp), ends):
         is_corner[cut] = True
         corner_kind[cut] = 1
-
-    arrays = [points, ring_arr, index_arr, is_corner, corner_kind, turning_arr, is_vertex_arr, feature]
-    for a in arrays:
-        a.setflags(write=False)
-    return Discretisation(
-        domain=domain,
-        spacing=spacing,
-        h=h,
-        points=points,
-        ring=ring_arr,
-        index=index_arr,
-        is_corner=is_corner,
-        corner_kind=corner_kind,
-        turning=turning_arr,
-        is_input_vertex=is_vertex_arr,
-        rings=tuple(ring_idx),
-        curves=tuple(curve_idx),
-        feature_points=feature,
-    )
+    return is_corner, corner_kind

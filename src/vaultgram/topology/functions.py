@@ -1,8 +1,10 @@
-"""The geometric helper functions the vault pipeline registers for its rules.
+"""The geometric helper functions the vault pipeline registers for its rules (§3.1, §4).
 
-The engine knows nothing about geometry; rules in ``rules/`` may call these by name. The point
-functions are pure and local (they read only their arguments), so rules using them re-match
-incrementally; the curve functions walk the graph along a curve feature and are declared non-local.
+The engine knows nothing about vaults or geometry; rules in ``rules/`` may call these by name
+(``docs/rulebook.md`` lists them). The point functions are pure and local (they read only their
+arguments), so rules using them re-match incrementally; the curve and patch functions read the
+graph beyond their arguments' incident edges (along a curve feature, around a patch) and are
+registered non-local. None of them changes the graph.
 """
 
 from __future__ import annotations
@@ -13,26 +15,50 @@ import numpy as np
 
 from vaultgram.engine.embedding import face_walk
 from vaultgram.engine.expressions import Functions
+from vaultgram.errors import RuleError
 from vaultgram.geometry.polygons import interior_angle, signed_area
-from vaultgram.geometry.polylines import arc_lengths
+from vaultgram.geometry.polylines import arc_lengths, point_at_length
 from vaultgram.topology.patches import half_edge_polyline
-from vaultgram.topology.types import PLAN_EDGES
+from vaultgram.topology.types import CURVE, PATCH_CORNER, PLAN_EDGES
+
+__all__ = ["vault_functions", "distance", "midpoint", "lerp", "move_end", "angle_between", "curve_side",
+           "curve_neighbours", "patch_corner", "patch_chains", "patch_side_starts", "patch_angle", "diagonal_path",
+           "path_clear"]
 
 
 def distance(p, q) -> float:
+    """The distance between two points.
+
+    >>> distance((0, 0), (3, 4))
+    5.0
+    """
     return math.dist(p, q)
 
 
 def midpoint(p, q) -> tuple[float, ...]:
+    """The point halfway between two points.
+
+    >>> midpoint((0, 0), (3, 4))
+    (1.5, 2.0)
+    """
     return tuple((a + b) / 2 for a, b in zip(p, q))
 
 
 def lerp(p, q, t) -> tuple[float, ...]:
+    """The point ``p + t (q - p)``: ``p`` at 0, ``q`` at 1.
+
+    >>> lerp((0, 0), (4, 2), 0.25)
+    (1.0, 0.5)
+    """
     return tuple(a + (b - a) * t for a, b in zip(p, q))
 
 
 def move_end(polyline, old, new) -> tuple:
-    """``polyline`` with the end point that lies at ``old`` moved to ``new`` (the nearer end)."""
+    """``polyline`` with the end point that lies at ``old`` moved to ``new`` (the nearer end).
+
+    >>> move_end([(0, 0), (1, 0), (2, 0)], (2, 0), (2, 1))
+    ((0, 0), (1, 0), (2, 1))
+    """
     points = [tuple(p) for p in polyline]
     if len(points) < 2:
         return tuple(points)
@@ -42,7 +68,11 @@ def move_end(polyline, old, new) -> tuple:
 
 
 def angle_between(p, centre, q) -> float:
-    """The angle p-centre-q in degrees, in [0, 180]."""
+    """The angle p-centre-q in degrees, in [0, 180].
+
+    >>> angle_between((1, 0), (0, 0), (0, -1))
+    90.0
+    """
     a = math.atan2(p[1] - centre[1], p[0] - centre[0])
     b = math.atan2(q[1] - centre[1], q[0] - centre[0])
     d = abs(a - b) % (2 * math.pi)
@@ -56,7 +86,7 @@ def curve_side(graph, p: int) -> int:
     the right, 0: from both sides, from neither, or ``p`` is not an inner point of a curve.
     """
     rotation = [e for e in graph.rotation(p) if graph.edge_type(e) in PLAN_EDGES]
-    curve = [e for e in rotation if graph.edge_type(e) == "Curve"]
+    curve = [e for e in rotation if graph.edge_type(e) == CURVE]
     if len(curve) != 2 or len(rotation) == 2:
         return 0
     # curve edges are created along the curve, from its first point towards its last
@@ -72,10 +102,10 @@ def curve_side(graph, p: int) -> int:
 
 def curve_neighbours(graph, p: int, q: int) -> bool:
     """Whether ``q`` is reached from ``p`` along the curve through points where nothing else arrives."""
-    for first in [e for e in graph.incident(p, ["Curve"])]:
+    for first in [e for e in graph.incident(p, [CURVE])]:
         prev, node = p, graph.other(first, p)
         while node != q and graph.degree(node, PLAN_EDGES) == 2 and not graph.get(node, "corner"):
-            nxt = [e for e in graph.incident(node, ["Curve"]) if graph.other(e, node) != prev]
+            nxt = [e for e in graph.incident(node, [CURVE]) if graph.other(e, node) != prev]
             if not nxt:
                 break
             prev, node = node, graph.other(nxt[0], node)
@@ -85,11 +115,17 @@ def curve_neighbours(graph, p: int, q: int) -> bool:
 
 
 def patch_corner(graph, patch: int, index: int) -> int:
-    """The corner of a Patch node with the given index (its PatchCorner edge's ``index``)."""
-    for e in graph.incident(patch, ["PatchCorner"]):
+    """The corner of a Patch node with the given index (its PatchCorner edge's ``index``).
+
+    Raises
+    ------
+    RuleError
+        If the patch has no corner with that index: the rule asked for it.
+    """
+    for e in graph.incident(patch, [PATCH_CORNER]):
         if graph.get_edge(e, "index") == index:
             return graph.ends(e)[1]
-    raise ValueError(f"patch {patch} has no corner {index}")
+    raise RuleError(f"patch {patch} has no corner {index}")
 
 
 def _patch_outline(graph, patch: int, x: int) -> tuple[list, np.ndarray] | None:
@@ -97,7 +133,7 @@ def _patch_outline(graph, patch: int, x: int) -> tuple[list, np.ndarray] | None:
     closed outline (first point = last point = ``x``); None if no face at ``x`` has all the patch's
     corners (a Patch node out of step with the plan, which decompose reports at the end). Only the
     faces at ``x`` are walked."""
-    corners = {graph.ends(e)[1] for e in graph.incident(patch, ["PatchCorner"])}
+    corners = {graph.ends(e)[1] for e in graph.incident(patch, [PATCH_CORNER])}
     for first in graph.rotation(x):
         if graph.edge_type(first) not in PLAN_EDGES:
             continue
@@ -211,17 +247,18 @@ def _clear(path: np.ndarray, start: np.ndarray, end: np.ndarray) -> bool:
 
 
 def _points(path) -> tuple:
+    """A path as a rule value: a tuple of (x, y) float pairs."""
     return tuple((float(px), float(py)) for px, py in path)
 
 
 def _resample(chain: np.ndarray, t: np.ndarray) -> np.ndarray:
-    length = arc_lengths(chain)
-    s = t * length[-1]
-    return np.column_stack([np.interp(s, length, chain[:, 0]), np.interp(s, length, chain[:, 1])])
+    """The points of a polyline at the fractions ``t`` of its length."""
+    return point_at_length(chain, t * arc_lengths(chain)[-1]).T
 
 
 def vault_functions() -> Functions:
-    """A registry with the engine's builtins plus the vault pipeline's geometry."""
+    """A registry with the engine's builtins plus the vault pipeline's geometry (the signatures
+    rules see; ``uses_graph`` functions get the host graph as their first argument)."""
     f = Functions()
     f.register("distance", distance, ("vec", "vec"), "float")
     f.register("midpoint", midpoint, ("vec2", "vec2"), "vec2")

@@ -19,6 +19,7 @@ from vaultgram.errors import DomainError
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.text import fmt_point
 from vaultgram.topology.discretise import Discretisation
+from vaultgram.topology.types import BOUNDARY, BOUNDARY_VERTEX, CURVE_EXTREMITY, FEATURE_POINT, SKELETON_VERTEX
 
 
 @dataclass(frozen=True, eq=False)
@@ -50,9 +51,11 @@ class Patch:
         return np.vstack([s[:-1] for s in self.sides])
 
     def area(self) -> float:
+        """Signed area of the outline (positive: counter-clockwise)."""
         return float(signed_area(self.polygon()))
 
     def to_json(self) -> dict:
+        """Corners, side count and side polylines, for ``patches.json``."""
         return {
             "id": self.id,
             "corners": list(self.corners),
@@ -77,6 +80,16 @@ def find_patches(graph: HostGraph, disc: Discretisation, edge_types, strict: boo
 
     With ``strict`` every patch must have 3 or 4 sides; without, faces with more sides are returned
     too (for the patching rules to split).
+
+    Example
+    -------
+    >>> from vaultgram.domain import load_domain
+    >>> from vaultgram.pipeline import decompose
+    >>> from vaultgram.topology.types import PLAN_EDGES
+    >>> dec = decompose(load_domain("examples/quad_with_hole.json"), 0.05)
+    >>> patches = find_patches(dec.graph, dec.disc, PLAN_EDGES)
+    >>> len(patches), {p.n_sides for p in patches}
+    (12, {4})
     """
     types = set(edge_types)
     patches = []
@@ -85,35 +98,35 @@ def find_patches(graph: HostGraph, disc: Discretisation, edge_types, strict: boo
         outline = np.vstack([p[:-1] for p in polys])
         if signed_area(outline) <= 0 or _is_hole(graph, face):
             continue  # the unbounded face, or the inside of a hole
-        start = next((i for i, (_, u) in enumerate(face) if _is_corner(graph, u, types)), None)
-        if start is None:
-            raise DomainError(f"a region around {_where(outline)} has no corner at all; it cannot be a patch")
-        face = face[start:] + face[:start]
-        polys = polys[start:] + polys[:start]
-        corners, sides, side_edges = [], [], []
-        for (e, u), poly in zip(face, polys):
-            if _is_corner(graph, u, types):
-                corners.append(u)
-                sides.append([poly])
-                side_edges.append([(e, u)])
-            else:
-                sides[-1].append(poly[1:])
-                side_edges[-1].append((e, u))
+        corners, sides, side_edges = _sides(graph, face, polys, outline, types)
         if len(corners) < 3 or (strict and len(corners) > 4):
             raise DomainError(
                 f"patch around {_where(outline)} has {len(corners)} sides (corners at "
                 f"{', '.join(fmt_point(graph.get(c, 'pos')) for c in corners)}); only 3- and 4-sided patches "
                 "can be meshed: try another spacing or check the rules"
             )
-        patches.append(
-            Patch(
-                len(patches),
-                tuple(corners),
-                tuple(np.vstack(s) for s in sides),
-                tuple(tuple(s) for s in side_edges),
-            )
-        )
+        patches.append(Patch(len(patches), corners, sides, side_edges))
     return patches
+
+
+def _sides(graph: HostGraph, face: list, polys: list, outline: np.ndarray, types) -> tuple[tuple, tuple, tuple]:
+    """A face of the plan cut at its corners: the corners, the side polylines between them and the
+    half-edges along each side, starting at the first corner of the face's walk."""
+    start = next((i for i, (_, u) in enumerate(face) if _is_corner(graph, u, types)), None)
+    if start is None:
+        raise DomainError(f"a region around {_where(outline)} has no corner at all; it cannot be a patch")
+    face = face[start:] + face[:start]
+    polys = polys[start:] + polys[:start]
+    corners, sides, side_edges = [], [], []
+    for (e, u), poly in zip(face, polys):
+        if _is_corner(graph, u, types):
+            corners.append(u)
+            sides.append([poly])
+            side_edges.append([(e, u)])
+        else:
+            sides[-1].append(poly[1:])
+            side_edges[-1].append((e, u))
+    return tuple(corners), tuple(np.vstack(s) for s in sides), tuple(tuple(s) for s in side_edges)
 
 
 def _is_corner(graph: HostGraph, n: int, types) -> bool:
@@ -122,18 +135,19 @@ def _is_corner(graph: HostGraph, n: int, types) -> bool:
     arrives. A boundary point feature in the middle of a side is thus a flat corner of its patch,
     which the patching rules split there (``split_at_boundary_feature``)."""
     t = graph.node_type(n)
-    if t in ("FeaturePoint", "CurveExtremity") or graph.schema.is_subtype(t, "SkeletonVertex"):
+    if t in (FEATURE_POINT, CURVE_EXTREMITY) or graph.schema.is_subtype(t, SKELETON_VERTEX):
         return True
     return graph.get(n, "corner") or graph.get(n, "feature") or graph.degree(n, types) > 2
 
 
 def _is_hole(graph: HostGraph, face) -> bool:
     """A face made only of boundary edges of one hole ring, walked around the hole."""
-    rings = {graph.get(u, "ring") if graph.schema.is_subtype(graph.node_type(u), "BoundaryVertex") else -1
+    rings = {graph.get(u, "ring") if graph.schema.is_subtype(graph.node_type(u), BOUNDARY_VERTEX) else -1
              for _, u in face}
     edge_types = {graph.edge_type(e) for e, _ in face}
-    return edge_types == {"Boundary"} and len(rings) == 1 and next(iter(rings)) > 0
+    return edge_types == {BOUNDARY} and len(rings) == 1 and next(iter(rings)) > 0
 
 
 def _where(outline: np.ndarray) -> str:
+    """Where a face is, for messages: the mean of its outline points."""
     return fmt_point(outline.mean(axis=0))

@@ -30,6 +30,18 @@ def load_vault_rulebook(rules_dir: str | Path | None = None) -> Rulebook:
 
     Loaded rulebooks are kept for the life of the process, keyed by the folder and the modification
     times of its rule files, so a changed file is read again.
+
+    Raises
+    ------
+    RuleError
+        If the folder has no ``topology.vgr``, a rule file is wrong (:class:`RuleSyntaxError`,
+        :class:`RuleTypeError`), or the rulebook lacks a type or strategy the pipeline needs.
+
+    Example
+    -------
+    >>> book = load_vault_rulebook()
+    >>> "topology" in book.strategies
+    True
     """
     directory = Path(rules_dir) if rules_dir is not None else default_rules_dir()
     path = directory / "topology.vgr"
@@ -41,6 +53,8 @@ def load_vault_rulebook(rules_dir: str | Path | None = None) -> Rulebook:
 
 @functools.lru_cache(maxsize=8)
 def _load_checked(path: Path, stamp: tuple) -> Rulebook:
+    """The rulebook at ``path`` with the vault functions, checked to declare the pipeline's types and
+    the topology strategy (``stamp``, the files' modification times, only keys the cache)."""
     book = load_rulebook([path], vault_functions())
     missing = [t for t in PIPELINE_TYPES if t not in book.schema.node_types and t not in book.schema.edge_types]
     if missing:

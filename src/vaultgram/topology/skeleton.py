@@ -8,25 +8,27 @@ singularities, i.e. the centre of the circumcircles of the singular faces." (§3
 Method
 ------
 The skeleton is the dual graph of the Delaunay mesh, built on the *cells* of
-:class:`~vaultgram.topology.triangulation.Triangulation` (faces with coincident circumcircles merged, slivers
-absorbed), so that arbitrary diagonals of cocircular point sets never create singularities.
+:class:`~vaultgram.topology.triangulation.Triangulation` (faces with coincident circumcircles
+merged, slivers absorbed), so that arbitrary diagonals of cocircular point sets never create
+singularities.
 
-1. **Cell graph.** Two cells are adjacent when a face of one is adjacent to a face of the other
-   (curve-feature edges are cut, §4.2).
-2. **Pruning of spurious leaves.** A leaf cell (one neighbour: a corner face) is a *true corner*
-   when one of its vertices off its single adjacent edge is a convex corner by angle
-   (:attr:`Discretisation.corner_kind` == 1). Other leaves are *ears* of dense curved boundaries,
-   or faces left by cocircular ties; they would hang spurious branches, and spurious singularities
-   where those branches join, on the skeleton. They are removed repeatedly (smallest circumradius
-   first, with a heap: O(n log n)) until every leaf is a true corner. A component without corners
-   or cycles (a disc, an ellipse) shrinks to one cell, kept as a ``"centre"`` node of valence 0.
-3. **Nodes.** Cells of remaining degree >= 3 are ``"singularity"`` nodes at the cell centre (the
-   circumcentre of the singular face); degree 3 is the paper's singular face, a higher degree only
-   arises from an exactly cocircular cell (e.g. the centre of a square) and is the *merged valence*.
-   Leaves are ``"corner"`` nodes placed at their corner vertex.
-4. **Branches** are the chains of degree-2 cells between nodes, as polylines of cell centres from
-   start node to end node. Cycles without any node (e.g. in an annulus) are returned as
-   :class:`Loop` objects.
+1. **Cell graph** (:class:`_CellGraph`). Two cells are adjacent when a face of one is adjacent to
+   a face of the other (curve-feature edges are cut, §4.2).
+2. **Pruning of spurious leaves** (:func:`_prune_spurious_leaves`). A leaf cell (one neighbour: a
+   corner face) is a *true corner* when one of its vertices off its single adjacent edge is a
+   convex corner by angle (:attr:`Discretisation.corner_kind` == 1). Other leaves are *ears* of
+   dense curved boundaries, or faces left by cocircular ties; they would hang spurious branches,
+   and spurious singularities where those branches join, on the skeleton. They are removed
+   repeatedly (smallest circumradius first, with a heap: O(n log n)) until every leaf is a true
+   corner. A component without corners or cycles (a disc, an ellipse) shrinks to one cell, kept as
+   a ``"centre"`` node of valence 0.
+3. **Nodes** (:func:`_nodes`). Cells of remaining degree >= 3 are ``"singularity"`` nodes at the
+   cell centre (the circumcentre of the singular face); degree 3 is the paper's singular face, a
+   higher degree only arises from an exactly cocircular cell (e.g. the centre of a square) and is
+   the *merged valence*. Leaves are ``"corner"`` nodes placed at their corner vertex.
+4. **Branches** (:func:`_walks`, :func:`_branches`) are the chains of degree-2 cells between nodes,
+   as polylines of cell centres from start node to end node. Cycles without any node (e.g. in an
+   annulus) are returned as :class:`Loop` objects (:func:`_loops`).
 
 The *dual* of a singularity (used by the rebranching of §3.1, Figure 2e) lists one point per gap
 between consecutive branches around the cell, counter-clockwise: the shared vertex when two
@@ -36,12 +38,14 @@ For a plain singular triangle this is its three vertices.
 
 from __future__ import annotations
 
+import dataclasses
 import heapq
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
-from vaultgram.geometry.polylines import arc_lengths, polyline_length
+from vaultgram.geometry.polylines import arc_parameters, polyline_length, segment_lengths
 from vaultgram.topology.triangulation import Triangulation
 
 __all__ = ["SkeletonNode", "Branch", "Loop", "Skeleton", "skeleton"]
@@ -107,6 +111,7 @@ class Branch:
 
     @property
     def length(self) -> float:
+        """Length of the branch polyline."""
         return polyline_length(self.polyline)
 
 
@@ -132,24 +137,20 @@ class Skeleton:
     branches : tuple of Branch
     loops : tuple of Loop
     triangulation : Triangulation
-    cell_alive : ndarray (C,) bool
-        Cells kept after pruning the spurious leaves (their centres lie on the skeleton).
     """
 
     nodes: tuple
     branches: tuple
     loops: tuple
     triangulation: Triangulation
-    cell_alive: np.ndarray
 
     def singularities(self) -> list:
+        """The singularity nodes, in id order."""
         return [n for n in self.nodes if n.kind == "singularity"]
 
     def corners(self) -> list:
+        """The corner nodes, in id order."""
         return [n for n in self.nodes if n.kind == "corner"]
-
-    def valence(self, node: int) -> int:
-        return self.nodes[node].valence
 
     def __repr__(self) -> str:
         return (
@@ -160,6 +161,10 @@ class Skeleton:
 
 def skeleton(tri: Triangulation, smooth: bool = False, smoothing: float = 1.0) -> Skeleton:
     """Build the discrete topological skeleton of a triangulated domain (paper §3.1).
+
+    The cell graph (the dual of the Delaunay mesh, cut along curve features) is pruned of its
+    spurious leaves; its cells of degree 1 or of degree 3 and more are the nodes, and the chains
+    of cells between them the branches (see the module docstring).
 
     Parameters
     ----------
@@ -173,238 +178,288 @@ def skeleton(tri: Triangulation, smooth: bool = False, smoothing: float = 1.0) -
     Returns
     -------
     Skeleton
+
+    Example
+    -------
+    >>> from vaultgram.domain import load_domain
+    >>> from vaultgram.topology.discretise import discretise
+    >>> from vaultgram.topology.triangulation import triangulate
+    >>> sk = skeleton(triangulate(discretise(load_domain("examples/quad_with_hole.json"), 0.05)))
+    >>> sk
+    Skeleton(4 singularities, 4 corners, 8 branches, 0 loops)
+    >>> [n.valence for n in sk.singularities()]
+    [3, 3, 3, 3]
     """
-    disc = tri.disc
-    pts = tri.points
-    T = tri.triangles
-    nb = tri.neighbours
-    cell = tri.cell
-    nc = tri.n_cells
-    m = len(T)
+    graph = _CellGraph.of(tri)
+    live = _prune_spurious_leaves(graph, tri)
+    nodes = _nodes(graph, live, tri)
+    branch_walks, loop_walks = _walks(graph, live, {node.cell: node.id for node in nodes})
+    s = smoothing * tri.disc.h**2 if smooth else None
+    return Skeleton(nodes, _branches(branch_walks, nodes, graph, tri, s), _loops(loop_walks, graph, tri, s), tri)
 
-    # ---- cell graph: one record per interior face edge between different cells ------------
-    t = np.repeat(np.arange(m), 3)
-    k = np.tile(np.arange(3), m)
-    u = nb.ravel()
-    sel = (u > t) & (cell[t] != cell[np.maximum(u, 0)])
-    t, k, u = t[sel], k[sel], u[sel]
-    ea, eb = cell[t], cell[u]
-    ne = len(t)
-    # CSR incidence cell -> edges
-    inc_cell = np.concatenate([ea, eb])
-    inc_edge = np.concatenate([np.arange(ne), np.arange(ne)])
-    order = np.lexsort((inc_edge, inc_cell))
-    inc_edge = inc_edge[order]
-    ptr = np.concatenate([[0], np.cumsum(np.bincount(inc_cell, minlength=nc))])
-    deg = np.diff(ptr).astype(np.int64)
-    edge_pts = np.stack([T[t, (k + 1) % 3], T[t, (k + 2) % 3]], axis=1)
 
-    # faces per cell (CSR)
-    forder = np.argsort(cell, kind="stable")
-    fptr = np.concatenate([[0], np.cumsum(np.bincount(cell, minlength=nc))])
-    rep_face = forder[fptr[:-1]]
+class _CellGraph(NamedTuple):
+    """The dual graph of the triangulation's cells (§3.1): one *link* per pair of adjacent faces that
+    lie in different cells (curve-feature edges are cut already, §4.2)."""
 
-    corner_kind = disc.corner_kind
-    turning = disc.turning
+    triangles: np.ndarray
+    a: np.ndarray  # (L,) the cells at the two ends of each link
+    b: np.ndarray
+    face_a: np.ndarray  # (L,) the faces across the link, in cell a and in cell b
+    face_b: np.ndarray
+    edge_points: np.ndarray  # (L, 2) the two points of the triangle edge the link crosses
+    link_ptr: np.ndarray  # CSR: the links of cell c are links[link_ptr[c]:link_ptr[c + 1]]
+    links: np.ndarray
+    face_ptr: np.ndarray  # CSR: the faces of cell c are faces[face_ptr[c]:face_ptr[c + 1]]
+    faces: np.ndarray
+    rep_face: np.ndarray  # (C,) the smallest face of each cell
 
-    def cell_points(c: int) -> np.ndarray:
-        return np.unique(T[forder[fptr[c]:fptr[c + 1]]])
+    @classmethod
+    def of(cls, tri: Triangulation) -> _CellGraph:
+        """The cell graph of a triangulation (vectorised over face edges)."""
+        T, cell, nc, m = tri.triangles, tri.cell, tri.n_cells, len(tri.triangles)
+        t = np.repeat(np.arange(m), 3)
+        k = np.tile(np.arange(3), m)
+        u = tri.neighbours.ravel()
+        sel = (u > t) & (cell[t] != cell[np.maximum(u, 0)])
+        t, k, u = t[sel], k[sel], u[sel]
+        ea, eb = cell[t], cell[u]
+        inc_cell = np.concatenate([ea, eb])
+        inc_link = np.concatenate([np.arange(len(t)), np.arange(len(t))])
+        link_ptr = np.concatenate([[0], np.cumsum(np.bincount(inc_cell, minlength=nc))])
+        faces = np.argsort(cell, kind="stable")
+        face_ptr = np.concatenate([[0], np.cumsum(np.bincount(cell, minlength=nc))])
+        return cls(T, ea, eb, t, u, np.stack([T[t, (k + 1) % 3], T[t, (k + 2) % 3]], axis=1), link_ptr,
+                   inc_link[np.lexsort((inc_link, inc_cell))], face_ptr, faces, faces[face_ptr[:-1]])
 
-    edge_alive = np.ones(ne, dtype=bool)
-    alive = np.ones(nc, dtype=bool)
+    def other(self, link: int, c: int) -> int:
+        """The cell at the other end of ``link`` from cell ``c``."""
+        return int(self.b[link] if self.a[link] == c else self.a[link])
 
-    def live_edges(c: int) -> list:
-        es = inc_edge[ptr[c]:ptr[c + 1]]
-        return [int(e) for e in es if edge_alive[e]]
+    def cell_faces(self, c: int) -> np.ndarray:
+        """The faces of cell ``c``, in increasing order."""
+        return self.faces[self.face_ptr[c]:self.face_ptr[c + 1]]
 
-    def leaf_corner(c: int) -> int | None:
-        """Corner vertex of leaf cell c, or None when it is a spurious leaf."""
-        es = live_edges(c)
-        cand = cell_points(c)
-        if es:
-            cand = cand[~np.isin(cand, edge_pts[es[0]])]
-        cand = cand[corner_kind[cand] == 1]
-        if len(cand) == 0:
-            return None
-        return int(cand[np.argmax(turning[cand])])
+    def cell_points(self, c: int) -> np.ndarray:
+        """The points of the faces of cell ``c``, sorted."""
+        return np.unique(self.triangles[self.cell_faces(c)])
 
-    # ---- prune spurious leaves (heap keyed by circumradius) -------------------------------
-    radii = tri.cell_radii
-    corner_of: dict[int, int] = {}
-    heap = []
-    for c in np.flatnonzero(deg == 1):
-        cv = leaf_corner(int(c))
-        if cv is None:
-            heap.append((float(radii[c]), int(c)))
-        else:
-            corner_of[int(c)] = cv
-    heapq.heapify(heap)
-    while heap:
-        _, c = heapq.heappop(heap)
-        if not alive[c] or deg[c] != 1:
+
+@dataclass
+class _Live:
+    """What pruning leaves of a cell graph: live cells and links, degrees, and the corner vertex of
+    each leaf found to be a true corner."""
+
+    cells: np.ndarray
+    links: np.ndarray
+    degree: np.ndarray
+    corner_of: dict
+
+    def links_of(self, graph: _CellGraph, c: int) -> list[int]:
+        """The live links of cell ``c``, in increasing order."""
+        return [int(e) for e in graph.links[graph.link_ptr[c]:graph.link_ptr[c + 1]] if self.links[e]]
+
+
+def _prune_spurious_leaves(graph: _CellGraph, tri: Triangulation) -> _Live:
+    """Remove leaf cells that are not true corners, smallest circumradius first, until every leaf is
+    one (a heap: O(n log n)); see the module docstring."""
+    degree = np.diff(graph.link_ptr).astype(np.int64)
+    live = _Live(np.ones(len(degree), dtype=bool), np.ones(len(graph.a), dtype=bool), degree, {})
+    spurious: list[tuple[float, int]] = []
+    for c in np.flatnonzero(degree == 1):
+        _sort_leaf(graph, live, tri, int(c), spurious)
+    while spurious:
+        _, c = heapq.heappop(spurious)
+        if not live.cells[c] or live.degree[c] != 1:
             continue
-        (e,) = live_edges(c)
-        other = int(eb[e] if ea[e] == c else ea[e])
-        alive[c] = False
-        edge_alive[e] = False
-        deg[c] = 0
-        deg[other] -= 1
-        if deg[other] == 1:
-            cv = leaf_corner(other)
-            if cv is None:
-                heapq.heappush(heap, (float(radii[other]), other))
-            else:
-                corner_of[other] = cv
+        (e,) = live.links_of(graph, c)
+        other = graph.other(e, c)
+        live.cells[c] = False
+        live.links[e] = False
+        live.degree[c] = 0
+        live.degree[other] -= 1
+        if live.degree[other] == 1:
+            _sort_leaf(graph, live, tri, other, spurious)
+    return live
 
-    # ---- nodes ------------------------------------------------------------------------------
-    node_cells = np.flatnonzero(alive & ((deg >= 3) | (deg <= 1)))
-    raw = []
-    for c in node_cells:
-        c = int(c)
-        if deg[c] >= 3:
-            raw.append(("singularity", tri.cell_centres[c], int(rep_face[c]), None, _dual(tri, c, forder, fptr, alive, edge_alive, ea, eb, t, u), c))
-        elif deg[c] == 1:
-            v = corner_of.get(c)
-            if v is None:  # pragma: no cover - every remaining leaf is a corner by construction
-                v = leaf_corner(c)
-            faces = forder[fptr[c]:fptr[c + 1]]
-            f = int(faces[np.any(T[faces] == v, axis=1)][0])
-            raw.append(("corner", pts[v].copy(), f, v, None, c))
-        else:
-            raw.append(("centre", tri.cell_centres[c], int(rep_face[c]), None, None, c))
-    if raw:
-        pos = np.array([r[1] for r in raw])
-        srt = np.lexsort((pos[:, 1], pos[:, 0]))
+
+def _sort_leaf(graph: _CellGraph, live: _Live, tri: Triangulation, c: int, spurious: list) -> None:
+    """Record the corner vertex of leaf cell ``c`` if it is a true corner, else push it onto the heap
+    of spurious leaves (keyed by circumradius)."""
+    v = _leaf_corner(graph, live, tri.disc, c)
+    if v is None:
+        heapq.heappush(spurious, (float(tri.cell_radii[c]), c))
     else:
-        srt = []
-    node_of_cell = {}
-    nodes_tmp = []
-    for new_id, i in enumerate(srt):
-        kind, p, f, v, dual, c = raw[i]
-        node_of_cell[c] = new_id
-        nodes_tmp.append((new_id, kind, np.asarray(p, dtype=float), f, v, dual, int(deg[c]), c))
+        live.corner_of[c] = v
 
-    # ---- branches and loops -----------------------------------------------------------------
-    used = np.zeros(ne, dtype=bool)
 
-    def pos_face(c: int):
-        nid = node_of_cell.get(c)
-        if nid is not None:
-            nd = nodes_tmp[nid]
-            return nd[2], nd[3]
-        return tri.cell_centres[c], int(rep_face[c])
+def _leaf_corner(graph: _CellGraph, live: _Live, disc, c: int) -> int | None:
+    """Corner vertex of leaf cell ``c`` (the convex corner by angle off its one live link that turns
+    most), or None when it is a spurious leaf."""
+    es = live.links_of(graph, c)
+    cand = graph.cell_points(c)
+    if es:
+        cand = cand[~np.isin(cand, graph.edge_points[es[0]])]
+    cand = cand[disc.corner_kind[cand] == 1]
+    if len(cand) == 0:
+        return None
+    return int(cand[np.argmax(disc.turning[cand])])
 
-    def walk(c0: int, e0: int):
-        cells = [c0]
-        e = e0
-        c = c0
-        while True:
-            used[e] = True
-            c = int(eb[e] if ea[e] == c else ea[e])
-            cells.append(c)
-            if c in node_of_cell or c == c0:
-                return cells
-            nxt = [x for x in live_edges(c) if x != e]
-            e = nxt[0]
 
-    branches_raw = []
-    for nid, *_rest in nodes_tmp:
-        c0 = nodes_tmp[nid][7]
-        for e in live_edges(c0):
-            if used[e]:
-                continue
-            cells = walk(c0, e)
-            branches_raw.append(cells)
-    loops_raw = []
-    for e in np.flatnonzero(edge_alive & ~used):
-        if used[e]:
-            continue
-        c0 = int(ea[e])
-        loops_raw.append(walk(c0, int(e)))
-
-    branches = []
-    for cells in branches_raw:
-        s, t_ = node_of_cell[cells[0]], node_of_cell[cells[-1]]
-        if s > t_ or (s == t_ and rep_face[cells[1]] > rep_face[cells[-2]]):
-            cells = cells[::-1]
-            s, t_ = t_, s
-        pf = [pos_face(c) for c in cells]
-        poly = np.array([p for p, _ in pf], dtype=float)
-        if smooth:
-            poly = _smooth(poly, smoothing * disc.h**2, closed=False)
-        branches.append((s, t_, poly, tuple(f for _, f in pf)))
-    branches.sort(key=lambda b: (b[0], b[1], b[3]))
-    loops = []
-    for cells in loops_raw:
-        poly = np.array([tri.cell_centres[c] for c in cells], dtype=float)
-        if smooth:
-            poly = _smooth(poly, smoothing * disc.h**2, closed=True)
-        loops.append((poly, tuple(int(rep_face[c]) for c in cells)))
-    loops.sort(key=lambda lp: min(lp[1]))
-
-    nodes = tuple(
-        SkeletonNode(id=i, kind=kd, pos=p, face=f, point=v, dual=d, valence=val, cell=c)
-        for i, kd, p, f, v, d, val, c in nodes_tmp
-    )
+def _nodes(graph: _CellGraph, live: _Live, tri: Triangulation) -> tuple:
+    """The skeleton nodes, sorted by x then y: live cells of degree 3 or more (singularities), 1
+    (corners) or 0 (the centre of a domain without corners or holes)."""
+    cells = np.flatnonzero(live.cells & ((live.degree >= 3) | (live.degree <= 1)))
+    unsorted = [_node(graph, live, tri, int(c)) for c in cells]
+    if not unsorted:
+        return ()
+    pos = np.array([n.pos for n in unsorted])
+    order = np.lexsort((pos[:, 1], pos[:, 0]))
+    nodes = tuple(dataclasses.replace(unsorted[i], id=k) for k, i in enumerate(order))
     for n in nodes:
         n.pos.setflags(write=False)
-    return Skeleton(
-        nodes=nodes,
-        branches=tuple(Branch(i, s, e, p, f) for i, (s, e, p, f) in enumerate(branches)),
-        loops=tuple(Loop(i, p, f) for i, (p, f) in enumerate(loops)),
-        triangulation=tri,
-        cell_alive=alive,
-    )
+    return nodes
 
 
-def _dual(tri, c, forder, fptr, alive, edge_alive, ea, eb, et, eu) -> tuple:
-    """One point per gap between consecutive live edges around cell c, ccw (see module docstring)."""
+def _node(graph: _CellGraph, live: _Live, tri: Triangulation, c: int) -> SkeletonNode:
+    """The node at cell ``c`` (its id still to be given)."""
+    degree = int(live.degree[c])
+    if degree >= 3:
+        return SkeletonNode(-1, "singularity", tri.cell_centres[c], int(graph.rep_face[c]), None,
+                            _dual(graph, live, tri, c), degree, c)
+    if degree == 1:
+        v = live.corner_of.get(c)
+        if v is None:  # pragma: no cover - every remaining leaf is a corner by construction
+            v = _leaf_corner(graph, live, tri.disc, c)
+        faces = graph.cell_faces(c)
+        f = int(faces[np.any(graph.triangles[faces] == v, axis=1)][0])
+        return SkeletonNode(-1, "corner", tri.points[v].copy(), f, v, None, degree, c)
+    return SkeletonNode(-1, "centre", tri.cell_centres[c], int(graph.rep_face[c]), None, None, degree, c)
+
+
+def _dual(graph: _CellGraph, live: _Live, tri: Triangulation, c: int) -> tuple:
+    """One point per gap between consecutive live links around cell ``c``, ccw (see the module
+    docstring): the middle point of the outline of the cell between the two links."""
+    cycle = _cell_outline(graph, live, tri, c)
+    at_link = [i for i, (_, _, linked) in enumerate(cycle) if linked]
+    dual = []
+    for j, i in enumerate(at_link):
+        end = at_link[(j + 1) % len(at_link)]
+        chain = [cycle[i][1]]
+        q = (i + 1) % len(cycle)
+        while q != end:
+            chain.append(cycle[q][1])
+            q = (q + 1) % len(cycle)
+        dual.append(int(chain[(len(chain) - 1) // 2]))
+    return tuple(dual)
+
+
+def _cell_outline(graph: _CellGraph, live: _Live, tri: Triangulation, c: int) -> list[tuple[int, int, bool]]:
+    """The outline of cell ``c`` counter-clockwise, as edges ``(a, b, crossed by a live link)``,
+    starting at an edge a live link crosses."""
     T, nb, cell = tri.triangles, tri.neighbours, tri.cell
-    faces = forder[fptr[c]:fptr[c + 1]]
-    # live face pairs of this cell (the graph edges still alive)
-    live_pairs = set()
-    for e in np.flatnonzero(edge_alive & ((ea == c) | (eb == c))):
-        live_pairs.add((int(et[e]), int(eu[e])))
-        live_pairs.add((int(eu[e]), int(et[e])))
+    linked = set()
+    for e in live.links_of(graph, c):
+        linked.add((int(graph.face_a[e]), int(graph.face_b[e])))
+        linked.add((int(graph.face_b[e]), int(graph.face_a[e])))
     nxt = {}
-    for f in faces:
+    for f in graph.cell_faces(c):
         for k in range(3):
             g = int(nb[f, k])
             if g >= 0 and cell[g] == c:
                 continue
             a, b = int(T[f, (k + 1) % 3]), int(T[f, (k + 2) % 3])
-            nxt[a] = (b, (int(f), g) in live_pairs)
-    # walk the boundary cycle of the cell
-    start = next(a for a, (b, live) in nxt.items() if live)
-    cyc = []
+            nxt[a] = (b, (int(f), g) in linked)
+    start = next(a for a, (b, crossed) in nxt.items() if crossed)
+    cycle = []
     a = start
     while True:
-        b, live = nxt[a]
-        cyc.append((a, b, live))
+        b, crossed = nxt[a]
+        cycle.append((a, b, crossed))
         a = b
-        if a == start or len(cyc) > len(nxt):
-            break
-    live_idx = [i for i, x in enumerate(cyc) if x[2]]
-    dual = []
-    for j, i in enumerate(live_idx):
-        i2 = live_idx[(j + 1) % len(live_idx)]
-        chain = [cyc[i][1]]
-        q = (i + 1) % len(cyc)
-        while q != i2:
-            chain.append(cyc[q][1])
-            q = (q + 1) % len(cyc)
-        dual.append(int(chain[len(chain) // 2]) if len(chain) % 2 else int(chain[(len(chain) - 1) // 2]))
-    return tuple(dual)
+        if a == start or len(cycle) > len(nxt):
+            return cycle
 
 
-def _smooth(poly: np.ndarray, s_per_point: float, closed: bool) -> np.ndarray:
-    """Smoothing spline through a polyline, end points fixed, same number of points."""
+def _walks(graph: _CellGraph, live: _Live, node_of_cell: dict) -> tuple[list, list]:
+    """The chains of live cells from node to node (branches, from each node in id order), then the
+    cycles of live cells that meet no node (loops)."""
+    used = np.zeros(len(graph.a), dtype=bool)
+    branches = []
+    for c0 in node_of_cell:
+        for e in live.links_of(graph, c0):
+            if not used[e]:
+                branches.append(_walk(graph, live, node_of_cell, used, c0, e))
+    loops = []
+    for e in np.flatnonzero(live.links & ~used):
+        if not used[e]:
+            loops.append(_walk(graph, live, node_of_cell, used, int(graph.a[e]), int(e)))
+    return branches, loops
+
+
+def _walk(graph: _CellGraph, live: _Live, stops: dict, used: np.ndarray, c0: int, e0: int) -> list[int]:
+    """The cells from ``c0`` along link ``e0`` and on through cells of degree 2, up to a node cell or
+    back to ``c0``; the links walked are marked ``used``."""
+    cells = [c0]
+    e, c = e0, c0
+    while True:
+        used[e] = True
+        c = graph.other(e, c)
+        cells.append(c)
+        if c in stops or c == c0:
+            return cells
+        e = next(x for x in live.links_of(graph, c) if x != e)
+
+
+def _branches(walks: list, nodes: tuple, graph: _CellGraph, tri: Triangulation, s: float | None) -> tuple:
+    """Branches from the cell chains: directed from the smaller node id, through the cell centres (a
+    corner end at its corner vertex), optionally smoothed (``s`` per point), sorted by their ends
+    and faces."""
+    node_of_cell = {node.cell: node for node in nodes}
+
+    def pos_face(c: int):
+        node = node_of_cell.get(c)
+        if node is not None:
+            return node.pos, node.face
+        return tri.cell_centres[c], int(graph.rep_face[c])
+
+    out = []
+    for cells in walks:
+        start, end = node_of_cell[cells[0]].id, node_of_cell[cells[-1]].id
+        if start > end or (start == end and graph.rep_face[cells[1]] > graph.rep_face[cells[-2]]):
+            cells = cells[::-1]
+            start, end = end, start
+        pf = [pos_face(c) for c in cells]
+        poly = np.array([p for p, _ in pf], dtype=float)
+        if s is not None:
+            poly = _smooth(poly, s)
+        out.append(Branch(-1, start, end, poly, tuple(f for _, f in pf)))
+    out.sort(key=lambda b: (b.start, b.end, b.faces))
+    return tuple(dataclasses.replace(b, id=i) for i, b in enumerate(out))
+
+
+def _loops(walks: list, graph: _CellGraph, tri: Triangulation, s: float | None) -> tuple:
+    """Loops from the closed cell chains, through the cell centres, optionally smoothed, sorted by
+    their smallest face."""
+    out = []
+    for cells in walks:
+        poly = np.array([tri.cell_centres[c] for c in cells], dtype=float)
+        if s is not None:
+            poly = _smooth(poly, s)
+        out.append((poly, tuple(int(graph.rep_face[c]) for c in cells)))
+    out.sort(key=lambda lp: min(lp[1]))
+    return tuple(Loop(i, p, f) for i, (p, f) in enumerate(out))
+
+
+def _smooth(poly: np.ndarray, s_per_point: float) -> np.ndarray:
+    """Smoothing spline through a polyline (closed ones too: their first point is their last), end
+    points fixed, same number of points; repeated points keep the place of the one before."""
     n = len(poly)
     if n < 5:
         return poly
     from scipy.interpolate import splev, splprep
 
-    d = np.hypot(*np.diff(poly, axis=0).T)
+    d = segment_lengths(poly)
     if (d <= 0).any():
         keep = np.concatenate([[True], d > 0])
         if keep.sum() < 5:
@@ -413,8 +468,7 @@ def _smooth(poly: np.ndarray, s_per_point: float, closed: bool) -> np.ndarray:
     else:
         base = poly
         keep = np.ones(n, dtype=bool)
-    u = arc_lengths(base)
-    u /= u[-1]
+    u = arc_parameters(base)
     w = np.ones(len(base))
     w[[0, -1]] = 1e6
     try:

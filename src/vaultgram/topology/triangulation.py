@@ -8,18 +8,21 @@ corner faces those with only one adjacent face." (§3.1)
 Method
 ------
 1. Delaunay triangulation of all sample points (:class:`scipy.spatial.Delaunay`), triangles
-   re-oriented counter-clockwise.
+   re-oriented counter-clockwise (:func:`_delaunay`).
 2. Faces whose centroid is outside the outer ring or inside a hole are removed
    (``shapely.contains_xy``, vectorised).
-3. Every boundary segment must be an edge of a kept triangle, with the triangle on the domain side.
-   The discretisation is dense enough for Delaunay to recover the boundary in normal cases; if a
-   segment is missing we raise :class:`DomainError` naming the ring and vertex and suggesting a
-   smaller spacing, rather than returning a triangulation that does not tile the domain.
-4. Adjacency across edges (``neighbours``) from sorted directed-edge keys. Curve-feature segments are
-   *cut* (§4.2: "two adjacent faces ... that have their shared edge lying on the curve feature are
-   not considered as adjacent") when ``cut_curves`` is true.
+3. Every boundary segment must be an edge of a kept triangle, with the triangle on the domain side
+   (:func:`_check_boundary_recovered`, :func:`_check_curves_recovered`). The discretisation is
+   dense enough for Delaunay to recover the boundary in normal cases; if a segment is missing we
+   raise :class:`DomainError` naming the ring and vertex and suggesting a smaller spacing, rather
+   than returning a triangulation that does not tile the domain.
+4. Adjacency across edges (``neighbours``) from sorted directed-edge keys (:class:`_HalfEdges`).
+   Curve-feature segments are *cut* (§4.2: "two adjacent faces ... that have their shared edge
+   lying on the curve feature are not considered as adjacent") when ``cut_curves`` is true.
 5. ``kind`` is the paper's classification by neighbour count (1 corner, 2 regular, 3 singular; 0
    for an isolated face).
+6. The faces must tile the domain: same area, and the Euler characteristic of a disc with its
+   holes (:func:`_check_tiling`).
 
 Degenerate cases: skeleton cells
 --------------------------------
@@ -43,6 +46,7 @@ are pruned as spurious branches).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import shapely
@@ -52,12 +56,13 @@ from scipy.spatial import Delaunay, QhullError
 
 from vaultgram.domain.model import ring_name
 from vaultgram.errors import DomainError
+from vaultgram.geometry.polygons import bbox_diagonal, triangle_areas
 from vaultgram.geometry.text import fmt_point
 from vaultgram.topology.discretise import Discretisation
 
 __all__ = ["Triangulation", "triangulate", "circumcentres", "KIND_CORNER", "KIND_REGULAR", "KIND_SINGULAR"]
 
-KIND_ISOLATED = 0
+#: :attr:`Triangulation.kind` of the paper's corner, regular and singular faces (0: an isolated face).
 KIND_CORNER = 1
 KIND_REGULAR = 2
 KIND_SINGULAR = 3
@@ -117,8 +122,7 @@ class Triangulation:
 
     def edges(self) -> np.ndarray:
         """Unique undirected edges (E, 2), each as (min, max) point index."""
-        e = np.concatenate([self.triangles[:, [1, 2]], self.triangles[:, [2, 0]], self.triangles[:, [0, 1]]])
-        return np.unique(np.sort(e, axis=1), axis=0)
+        return _undirected_edges(self.triangles)
 
     def __repr__(self) -> str:
         counts = np.bincount(self.kind, minlength=4)
@@ -132,6 +136,10 @@ def circumcentres(p: np.ndarray, tri: np.ndarray) -> tuple[np.ndarray, np.ndarra
     """Circumcentres and circumradii of triangles ``tri`` over points ``p`` (vectorised).
 
     Computed relative to the first vertex for accuracy; degenerate faces give inf.
+
+    >>> centre, radius = circumcentres(np.array([[0.0, 0.0], [2.0, 0.0], [0.0, 2.0]]), np.array([[0, 1, 2]]))
+    >>> centre.tolist(), radius.round(6).tolist()
+    ([[1.0, 1.0]], [1.414214])
     """
     a = p[tri[:, 0]]
     b = p[tri[:, 1]] - a
@@ -148,13 +156,6 @@ def circumcentres(p: np.ndarray, tri: np.ndarray) -> tuple[np.ndarray, np.ndarra
     centre[bad] = np.inf
     radius[bad] = np.inf
     return centre, radius
-
-
-def _edge_keys(tri: np.ndarray, n: int) -> np.ndarray:
-    """Directed edge keys (M, 3): key of the edge opposite vertex k, oriented as in the ccw face."""
-    a = tri[:, [1, 2, 0]]
-    b = tri[:, [2, 0, 1]]
-    return a.astype(np.int64) * n + b
 
 
 def triangulate(
@@ -185,13 +186,51 @@ def triangulate(
     DomainError
         If a boundary (or curve-feature) segment is not an edge of the triangulation: the sampling
         is too coarse for the geometry there.
+
+    Example
+    -------
+    >>> from vaultgram.domain import load_domain
+    >>> from vaultgram.topology.discretise import discretise
+    >>> triangulate(discretise(load_domain("examples/quad_with_hole.json"), 0.05))
+    Triangulation(124 points, 124 faces: 4 corner, 116 regular, 4 singular; 116 cells)
     """
     pts = disc.points
+    tri, areas = _faces_inside(disc)
+    half_edges = _HalfEdges.of(tri, len(pts))
+    _check_boundary_recovered(disc, half_edges)
+    _check_curves_recovered(disc, half_edges)
+    neighbours = _neighbours(half_edges, disc.curve_segments() if cut_curves else None)
+    kind = (neighbours >= 0).sum(axis=1).astype(np.int8)
+    _check_tiling(disc, tri, areas)
+    centres, radii = circumcentres(pts, tri)
+    cell, cell_centres, cell_radii = _cells(pts, tri, neighbours, centres, radii, areas,
+                                            cocircular_tol * disc.h, sliver_tol * disc.h**2)
+    for arr in (tri, neighbours, kind, centres, radii, areas, cell, cell_centres, cell_radii):
+        arr.setflags(write=False)
+    return Triangulation(disc, pts, tri, neighbours, kind, centres, radii, areas, cell, cell_centres, cell_radii,
+                         cut_curves)
+
+
+def _faces_inside(disc: Discretisation) -> tuple[np.ndarray, np.ndarray]:
+    """The counter-clockwise Delaunay triangles whose centroid lies in the domain, and their areas."""
+    tri, signed, centroid = _delaunay(disc.points)
+    poly = disc.domain.polygon()
+    shapely.prepare(poly)
+    inside = shapely.contains_xy(poly, centroid[:, 0], centroid[:, 1])
+    return tri[inside], np.abs(signed[inside])
+
+
+def _delaunay(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The Delaunay triangles of ``pts``, made counter-clockwise, with their signed areas (before the
+    turn) and centroids.
+
+    A far frame around the points means no sample lies on the convex hull, so collinear boundary
+    samples never produce qhull's flat (zero-area) hull triangles; triangles touching the frame are
+    dropped.
+    """
     n = len(pts)
-    # A far frame around the points: no sample lies on the convex hull, so collinear boundary
-    # samples never produce qhull's flat (zero-area) hull triangles.
     lo, hi = pts.min(axis=0), pts.max(axis=0)
-    mid, big = 0.5 * (lo + hi), 10.0 * max(float(np.hypot(*(hi - lo))), 1e-300)
+    mid, big = 0.5 * (lo + hi), 10.0 * max(bbox_diagonal(pts), 1e-300)
     ang = np.radians([15.0, 105.0, 195.0, 285.0, 60.0])
     frame = mid + big * np.stack([np.cos(ang), np.sin(ang)], axis=1) * np.array([[1.0], [1.1], [1.0], [1.2], [1.3]])
     try:
@@ -200,32 +239,55 @@ def triangulate(
         raise DomainError(f"Delaunay triangulation failed: {str(e).splitlines()[0]}") from None
     tri = dl.simplices.astype(np.int64)
     tri = tri[(tri < n).all(axis=1)]
-    a, b, c = pts[tri[:, 0]], pts[tri[:, 1]], pts[tri[:, 2]]
-    signed = 0.5 * ((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]))
+    signed = triangle_areas(pts, tri)
+    centroid = (pts[tri[:, 0]] + pts[tri[:, 1]] + pts[tri[:, 2]]) / 3.0
     flip = signed < 0
     tri[flip] = tri[flip][:, [0, 2, 1]]
-    centroid = (a + b + c) / 3.0
-    poly = disc.domain.polygon()
-    shapely.prepare(poly)
-    inside = shapely.contains_xy(poly, centroid[:, 0], centroid[:, 1])
-    tri = tri[inside]
-    areas = np.abs(signed[inside])
+    return tri, signed, centroid
 
-    keys = _edge_keys(tri, n)
-    flat = keys.ravel()
-    order = np.argsort(flat, kind="stable")
-    sorted_keys = flat[order]
 
-    def find(q: np.ndarray) -> np.ndarray:
+def _edge_keys(tri: np.ndarray, n: int) -> np.ndarray:
+    """Directed edge keys (M, 3): key of the edge opposite vertex k, oriented as in the ccw face."""
+    a = tri[:, [1, 2, 0]]
+    b = tri[:, [2, 0, 1]]
+    return a.astype(np.int64) * n + b
+
+
+def _undirected_edges(tri: np.ndarray) -> np.ndarray:
+    """Unique undirected edges (E, 2) of triangles, each as (min, max) point index, sorted."""
+    e = np.concatenate([tri[:, [1, 2]], tri[:, [2, 0]], tri[:, [0, 1]]])
+    return np.unique(np.sort(e, axis=1), axis=0)
+
+
+class _HalfEdges(NamedTuple):
+    """The directed edges of the faces, keyed ``a * n + b`` for the edge from point ``a`` to ``b``:
+    the key of the edge opposite corner ``k`` of face ``t`` is ``keys[3 * t + k]``."""
+
+    keys: np.ndarray
+    order: np.ndarray  # argsort of keys
+    sorted_keys: np.ndarray
+    n: int  # number of points
+
+    @classmethod
+    def of(cls, tri: np.ndarray, n: int) -> _HalfEdges:
+        """The half-edges of counter-clockwise triangles over ``n`` points."""
+        keys = _edge_keys(tri, n).ravel()
+        order = np.argsort(keys, kind="stable")
+        return cls(keys, order, keys[order], n)
+
+    def find(self, q: np.ndarray) -> np.ndarray:
         """Flat position (face*3 + k) of directed edge keys q, or -1."""
-        pos = np.searchsorted(sorted_keys, q)
-        pos = np.minimum(pos, len(sorted_keys) - 1)
-        hit = sorted_keys[pos] == q if len(sorted_keys) else np.zeros(len(q), bool)
-        return np.where(hit, order[pos], -1)
+        pos = np.searchsorted(self.sorted_keys, q)
+        pos = np.minimum(pos, len(self.sorted_keys) - 1)
+        hit = self.sorted_keys[pos] == q if len(self.sorted_keys) else np.zeros(len(q), bool)
+        return np.where(hit, self.order[pos], -1)
 
-    # --- boundary recovery check ------------------------------------------------------------
+
+def _check_boundary_recovered(disc: Discretisation, half_edges: _HalfEdges) -> None:
+    """Every boundary segment is an edge of a face on the domain side."""
+    pts, n = disc.points, half_edges.n
     seg = disc.segments()
-    found = find(seg[:, 0] * n + seg[:, 1])
+    found = half_edges.find(seg[:, 0] * n + seg[:, 1])
     if (found < 0).any():
         s = int(np.flatnonzero(found < 0)[0])
         i, j = seg[s]
@@ -235,77 +297,85 @@ def triangulate(
             f"{fmt_point(pts[j], 10)} is not an edge of the Delaunay triangulation (spacing {disc.spacing:g} is "
             "too coarse for the geometry there); use a smaller spacing or add vertices to the ring"
         )
-    cseg = disc.curve_segments()
-    if len(cseg):
-        f1 = find(cseg[:, 0] * n + cseg[:, 1])
-        f2 = find(cseg[:, 1] * n + cseg[:, 0])
-        if ((f1 < 0) & (f2 < 0)).any():
-            s = int(np.flatnonzero((f1 < 0) & (f2 < 0))[0])
-            i, j = cseg[s]
-            c_id = next(k for k, cv in enumerate(disc.curves) if np.any((cv[:-1] == i) & (cv[1:] == j)))
-            pos = int(np.flatnonzero(disc.curves[c_id] == i)[0])
-            raise DomainError(
-                f"curve feature {c_id}, vertex {pos}: segment from {fmt_point(pts[i], 10)} to {fmt_point(pts[j], 10)} "
-                f"is not an edge of the Delaunay triangulation (spacing {disc.spacing:g} is too "
-                "coarse there); use a smaller spacing"
-            )
 
-    # --- adjacency ----------------------------------------------------------------------------
-    twin = (flat % n) * n + flat // n
-    pos = find(twin)
+
+def _check_curves_recovered(disc: Discretisation, half_edges: _HalfEdges) -> None:
+    """Every curve-feature segment is an edge of a face (on either side)."""
+    pts, n = disc.points, half_edges.n
+    cseg = disc.curve_segments()
+    if not len(cseg):
+        return
+    missing = (half_edges.find(cseg[:, 0] * n + cseg[:, 1]) < 0) & (half_edges.find(cseg[:, 1] * n + cseg[:, 0]) < 0)
+    if missing.any():
+        i, j = cseg[int(np.flatnonzero(missing)[0])]
+        c_id = next(k for k, cv in enumerate(disc.curves) if np.any((cv[:-1] == i) & (cv[1:] == j)))
+        pos = int(np.flatnonzero(disc.curves[c_id] == i)[0])
+        raise DomainError(
+            f"curve feature {c_id}, vertex {pos}: segment from {fmt_point(pts[i], 10)} to {fmt_point(pts[j], 10)} "
+            f"is not an edge of the Delaunay triangulation (spacing {disc.spacing:g} is too "
+            "coarse there); use a smaller spacing"
+        )
+
+
+def _neighbours(half_edges: _HalfEdges, cut: np.ndarray | None) -> np.ndarray:
+    """``(M, 3)``: the face across the edge opposite each corner, -1 across the boundary and across
+    the ``cut`` segments (the §4.2 topological cut along curve features)."""
+    flat, n = half_edges.keys, half_edges.n
+    pos = half_edges.find((flat % n) * n + flat // n)
     neighbours = np.where(pos >= 0, pos // 3, -1).reshape(-1, 3)
-    if cut_curves and len(cseg):
-        und = np.sort(cseg, axis=1)
+    if cut is not None and len(cut):
+        und = np.sort(cut, axis=1)
         ckeys = und[:, 0] * n + und[:, 1]
         ea, eb = flat // n, flat % n
         ekeys = np.minimum(ea, eb) * n + np.maximum(ea, eb)
         neighbours = np.where(np.isin(ekeys, ckeys).reshape(-1, 3), -1, neighbours)
-    kind = (neighbours >= 0).sum(axis=1).astype(np.int8)
+    return neighbours
 
-    # --- area guard (the triangles must tile the domain) ------------------------------------
+
+def _check_tiling(disc: Discretisation, tri: np.ndarray, areas: np.ndarray) -> None:
+    """The triangles tile the domain: the same area, and the Euler characteristic of a disc with holes."""
     total, expect = float(areas.sum()), disc.domain.area
     if abs(total - expect) > 1e-9 * abs(expect) + 1e-12:
         raise DomainError(
             f"triangulation covers area {total:.12g} but the domain has area {expect:.12g}; "
             "use a smaller spacing"
         )
-
-    edges = np.unique(np.sort(np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]]), axis=1), axis=0)
-    euler = len(np.unique(tri)) - len(edges) + len(tri)
+    euler = len(np.unique(tri)) - len(_undirected_edges(tri)) + len(tri)
     if euler != 1 - len(disc.domain.holes):
         raise DomainError(
             f"triangulation is not a valid tiling of the domain (Euler characteristic {euler}, "
             f"expected {1 - len(disc.domain.holes)}); use a smaller spacing"
         )
-    centres, radii = circumcentres(pts, tri)
-    cell, cell_centres, cell_radii = _cells(pts, tri, neighbours, centres, radii, areas,
-                                            cocircular_tol * disc.h, sliver_tol * disc.h**2)
-    for arr in (tri, neighbours, kind, centres, radii, areas, cell, cell_centres, cell_radii):
-        arr.setflags(write=False)
-    return Triangulation(
-        disc=disc,
-        points=pts,
-        triangles=tri,
-        neighbours=neighbours,
-        kind=kind,
-        circumcentres=centres,
-        circumradii=radii,
-        areas=areas,
-        cell=cell,
-        cell_centres=cell_centres,
-        cell_radii=cell_radii,
-        cut_curves=cut_curves,
-    )
+
+
+# --------------------------------------------------------------------------------------------
+# Skeleton cells (see the module docstring)
+# --------------------------------------------------------------------------------------------
 
 
 def _cells(pts, tri, neighbours, centres, radii, areas, ctol, atol):
-    """Group faces into skeleton cells: cocircular neighbours and slivers (see module docstring)."""
+    """Group faces into skeleton cells: cocircular neighbours and slivers (see module docstring).
+
+    Returns the cell of each face, and the centre and radius of each cell.
+    """
+    m = len(tri)
+    sliver = areas < atol
+    ea, eb = _cell_links(pts, tri, neighbours, centres, sliver, ctol)
+    graph = coo_matrix((np.ones(len(ea)), (ea, eb)), shape=(m, m))
+    _, labels = connected_components(graph, directed=False)
+    cell = _numbered_by_first_face(labels, m)
+    cc, rr = _cell_centres(pts, tri, cell, centres, radii, sliver)
+    return cell.astype(np.int64), cc, rr
+
+
+def _cell_links(pts, tri, neighbours, centres, sliver, ctol) -> tuple[np.ndarray, np.ndarray]:
+    """Pairs of faces in one cell: adjacent faces with coincident circumcentres (neither a sliver),
+    and each sliver with its neighbour across its longest edge."""
     m = len(tri)
     t = np.repeat(np.arange(m), 3)
     u = neighbours.ravel()
     ok = u > t  # each interior edge once
     t, u = t[ok], u[ok]
-    sliver = areas < atol
     good = ~sliver[t] & ~sliver[u]
     with np.errstate(invalid="ignore"):
         same = good & (np.hypot(*(centres[t] - centres[u]).T) <= ctol)
@@ -322,16 +392,22 @@ def _cells(pts, tri, neighbours, centres, radii, areas, ctol, atol):
         has = target >= 0
         ea.append(s[has])
         eb.append(target[has])
-    ea, eb = np.concatenate(ea), np.concatenate(eb)
-    graph = coo_matrix((np.ones(len(ea)), (ea, eb)), shape=(m, m))
-    _, labels = connected_components(graph, directed=False)
-    # number cells by their smallest face index
+    return np.concatenate(ea), np.concatenate(eb)
+
+
+def _numbered_by_first_face(labels: np.ndarray, m: int) -> np.ndarray:
+    """Component labels renumbered so that cells are in the order of their smallest face index."""
     first = np.full(labels.max() + 1 if m else 0, m, dtype=np.int64)
     np.minimum.at(first, labels, np.arange(m))
     rank = np.empty_like(first)
     rank[np.argsort(first, kind="stable")] = np.arange(len(first))
-    cell = rank[labels]
-    nc = len(first)
+    return rank[labels]
+
+
+def _cell_centres(pts, tri, cell, centres, radii, sliver) -> tuple[np.ndarray, np.ndarray]:
+    """Centre and radius of each cell: the mean circumcentre and circumradius of its faces that are not
+    slivers; a cell made only of slivers has the centroid of its first face and radius 0."""
+    nc = int(cell.max()) + 1 if len(cell) else 0
     w = (~sliver).astype(float)
     wsum = np.bincount(cell, weights=w, minlength=nc)
     cx = np.bincount(cell, weights=np.where(sliver, 0.0, centres[:, 0]), minlength=nc)
@@ -340,11 +416,8 @@ def _cells(pts, tri, neighbours, centres, radii, areas, ctol, atol):
     with np.errstate(invalid="ignore", divide="ignore"):
         cc = np.stack([cx / wsum, cy / wsum], axis=1)
         rr = cr / wsum
-    # a cell made only of slivers: use the centroid of its first face
-    lonely = wsum == 0
-    if lonely.any():
-        for ci in np.flatnonzero(lonely):
-            f = int(np.flatnonzero(cell == ci)[0])
-            cc[ci] = pts[tri[f]].mean(axis=0)
-            rr[ci] = 0.0
-    return cell.astype(np.int64), cc, rr
+    for ci in np.flatnonzero(wsum == 0):
+        f = int(np.flatnonzero(cell == ci)[0])
+        cc[ci] = pts[tri[f]].mean(axis=0)
+        rr[ci] = 0.0
+    return cc, rr

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from collections import Counter
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -15,11 +14,10 @@ from vaultgram.topology.discretise import discretise
 from vaultgram.topology.skeleton import skeleton
 from vaultgram.topology.triangulation import triangulate
 
-from paths import ARCHITECTURE
+from paths import ARCHITECTURE, EXAMPLES
 
 PLANS = sorted(ARCHITECTURE.glob("*.json")) if ARCHITECTURE.is_dir() else []
 SPACINGS = [0.01, 0.0125, 0.015, 0.0175, 0.02, 0.025, 0.03, 0.035, 0.04, 0.045, 0.05]
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
 
 def build(domain, spacing, **kw):
@@ -56,11 +54,6 @@ def quad():
     return load_domain(EXAMPLES / "quad_with_hole.json")
 
 
-@pytest.fixture(scope="module")
-def lshape():
-    return load_domain(EXAMPLES / "l_shape.json")
-
-
 def check_quad(sk):
     check_graph(sk)
     sing, corners = sk.singularities(), sk.corners()
@@ -91,17 +84,6 @@ def check_quad(sk):
         assert sorted([on_x[0], on_x[1]]) == [False, True] and sorted([on_y[0], on_y[1]]) == [False, True]
 
 
-@pytest.mark.parametrize("spacing", SPACINGS)
-def test_quad_with_hole(quad, spacing):
-    check_quad(build(quad, spacing))
-
-
-@given(spacing=st.floats(0.01, 0.05))
-@settings(max_examples=30, deadline=None)
-def test_quad_with_hole_any_spacing(spacing):
-    check_quad(build(load_domain(EXAMPLES / "quad_with_hole.json"), spacing))
-
-
 def check_l(sk):
     check_graph(sk)
     sing, corners = sk.singularities(), sk.corners()
@@ -116,15 +98,20 @@ def check_l(sk):
         assert np.hypot(*(pos - expected).T).min() < 2 * h
 
 
+EXAMPLE_CHECKS = [("quad_with_hole", check_quad), ("l_shape", check_l)]
+
+
+@pytest.mark.parametrize("name, check", EXAMPLE_CHECKS, ids=[name for name, _ in EXAMPLE_CHECKS])
 @pytest.mark.parametrize("spacing", SPACINGS)
-def test_l_shape(lshape, spacing):
-    check_l(build(lshape, spacing))
+def test_examples(name, check, spacing):
+    check(build(load_domain(EXAMPLES / f"{name}.json"), spacing))
 
 
+@pytest.mark.parametrize("name, check", EXAMPLE_CHECKS, ids=[name for name, _ in EXAMPLE_CHECKS])
 @given(spacing=st.floats(0.01, 0.05))
 @settings(max_examples=30, deadline=None)
-def test_l_shape_any_spacing(spacing):
-    check_l(build(load_domain(EXAMPLES / "l_shape.json"), spacing))
+def test_examples_any_spacing(name, check, spacing):
+    check(build(load_domain(EXAMPLES / f"{name}.json"), spacing))
 
 
 @pytest.mark.parametrize("path", PLANS or [None], ids=lambda p: p.stem if p else "absent")
