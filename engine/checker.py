@@ -13,9 +13,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from vaultgram.errors import RuleTypeError, did_you_mean
 from vaultgram.grammar import ast
 
+from .errors import RuleTypeError, did_you_mean
 from .expressions import ANY, TYPE, Compiled, ExpressionCompiler, Symbol, VType, walk
 from .schema import VALUE_TYPES, TypeSchema, value_conforms
 

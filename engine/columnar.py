@@ -23,9 +23,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from vaultgram.errors import RewriteError
-
 from .checker import Condition
+from .errors import RewriteError
 from .graph import HostGraph
 from .plan import Bound, Check, Extend, Scan, Step
 

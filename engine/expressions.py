@@ -16,9 +16,9 @@ import operator
 from dataclasses import dataclass, field
 from typing import Callable, Mapping
 
-from vaultgram.errors import RuleTypeError, did_you_mean
 from vaultgram.grammar import ast
 
+from .errors import RuleTypeError, did_you_mean
 from .schema import TypeSchema
 
 # ----------------------------------------------------------------------------------------------

@@ -30,8 +30,7 @@ from typing import Callable, Iterable, Iterator, Mapping
 import networkx as nx
 import numpy as np
 
-from vaultgram.errors import SchemaError
-
+from .errors import SchemaError
 from .schema import TypeSchema, normalise_value, value_conforms
 
 AngleFunction = Callable[["HostGraph", int, int], float]

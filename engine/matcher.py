@@ -11,12 +11,11 @@ from __future__ import annotations
 
 from typing import Iterator, Mapping
 
-from vaultgram.errors import RewriteError
-
 import numpy as np
 
 from .checker import CompiledPattern, CompiledRule, Condition
 from .columnar import Table, nac_rows, run_columnar
+from .errors import RewriteError
 from .graph import HostGraph
 from .plan import Check, Extend, Scan, Step, build_plan
 from .rewriter import footprint

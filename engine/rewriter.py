@@ -22,9 +22,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from vaultgram.errors import RewriteError, SchemaError
-
 from .checker import CCreateEdge, CCreateNode, CDelete, CForeach, CMerge, CompiledRule, CRetype, CSet
+from .errors import RewriteError, SchemaError
 from .graph import HostGraph
 
 

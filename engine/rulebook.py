@@ -11,11 +11,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Iterable
 
-from vaultgram.errors import RuleTypeError, did_you_mean
 from vaultgram.grammar import ast
 from vaultgram.grammar.parser import load_files, parse_text
 
 from .checker import CompiledRule, RuleChecker, describe
+from .errors import RuleTypeError, did_you_mean
 from .expressions import ExpressionCompiler, Functions
 from .schema import TypeSchema, build_schema, value_conforms
 

@@ -15,7 +15,7 @@ import math
 from dataclasses import dataclass
 from typing import Mapping
 
-from vaultgram.errors import RuleTypeError, SchemaError, did_you_mean
+from .errors import RuleTypeError, SchemaError, did_you_mean
 
 VALUE_TYPES = ("int", "float", "bool", "str", "vec2", "vec3", "list", "any")
 ROOT_NODE = "Node"

@@ -22,9 +22,9 @@ import time
 from dataclasses import dataclass, field
 from typing import Callable, Mapping, Sequence
 
-from vaultgram.errors import RewriteError
 from vaultgram.grammar import ast
 
+from .errors import RewriteError
 from .graph import HostGraph
 from .incremental import MatchSet
 from .matcher import Match, Matcher

@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Union
 
-from vaultgram.errors import SourcePos
+from vaultgram.grammar.errors import SourcePos
 
 # --------------------------------------------------------------------------------------------
 # Expressions

@@ -2,7 +2,7 @@
 
 The syntax is defined by ``rules.lark`` next to this module (LALR(1), contextual lexer); this module
 only turns lark's parse trees into AST dataclasses and lark's errors into
-:class:`~vaultgram.errors.RuleSyntaxError` with a position and a hint. It gives no meaning to what it
+:class:`~vaultgram.grammar.errors.RuleSyntaxError` with a position and a hint. It gives no meaning to what it
 reads: unknown types, duplicate names and misplaced ``next(v)`` are for the engine's checker.
 
 Public API
@@ -45,7 +45,7 @@ from lark.exceptions import (
     VisitError,
 )
 
-from vaultgram.errors import RuleSyntaxError, SourcePos
+from vaultgram.grammar.errors import RuleSyntaxError, SourcePos
 from vaultgram.grammar.ast import (
     Attr,
     AttrDecl,
