@@ -17,7 +17,8 @@ from vaultgram.grammar import ast
 
 from .errors import RuleTypeError, did_you_mean
 from .expressions import ANY, TYPE, Compiled, ExpressionCompiler, Symbol, VType, walk
-from .schema import VALUE_TYPES, TypeSchema, value_conforms
+from .schema import TypeSchema
+from .values import VALUE_TYPES, storable, value_conforms
 
 # ----------------------------------------------------------------------------------------------
 # Compiled forms
@@ -460,13 +461,7 @@ class RuleChecker:
     def _check_value_type(self, vtype: VType, declared: str, attr: str, pos) -> None:
         if vtype == ANY or declared == "any":
             return
-        ok = vtype.kind == "value" and (
-            vtype.name == declared
-            or (declared == "float" and vtype.name == "int")
-            or (declared == "list" and vtype.name in ("list", "vec2", "vec3"))
-            or (declared in ("vec2", "vec3") and vtype.name == "list")
-        )
-        if not ok:
+        if not (vtype.kind == "value" and storable(vtype.name, declared)):
             raise RuleTypeError(f"attribute '{attr}' is {declared} but the value is {vtype}", pos)
 
     # -- helpers ---------------------------------------------------------------------------------

@@ -20,6 +20,7 @@ from vaultgram.grammar import ast
 
 from .errors import RuleTypeError, did_you_mean
 from .schema import TypeSchema
+from .values import NUMERIC, VECTORS, passable
 
 # ----------------------------------------------------------------------------------------------
 # Static types
@@ -45,8 +46,6 @@ STR = VType("value", "str")
 NONE = VType("value", "none")
 LIST = VType("value", "list")
 TYPE = VType("type", "")
-NUMERIC = ("int", "float")
-VECTORS = ("vec2", "vec3")
 
 
 @dataclass(frozen=True)
@@ -359,15 +358,7 @@ def _accepts(kind: str, t: VType) -> bool:
         return True
     if kind in ("node", "edge", "type"):
         return t.kind == kind
-    if t.kind != "value":
-        return False
-    if kind == "number":
-        return t.name in NUMERIC
-    if kind == "vec":
-        return t.name in VECTORS
-    if kind == "float":
-        return t.name in NUMERIC
-    return t.name == kind
+    return t.kind == "value" and passable(kind, t.name)
 
 
 def _check_arguments(func: Function, expr, types: list[VType]) -> None:

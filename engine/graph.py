@@ -31,7 +31,7 @@ import networkx as nx
 import numpy as np
 
 from .errors import SchemaError
-from .schema import TypeSchema, normalise_value, value_conforms
+from .schema import TypeSchema
 
 AngleFunction = Callable[["HostGraph", int, int], float]
 
@@ -469,12 +469,7 @@ class HostGraph:
                 self._rot_keys[n] = keys
 
     def _set_attr(self, kind: str, i: int, type_name: str, data: dict, name: str, value: object) -> None:
-        spec = self.schema.attrs(type_name).get(name)
-        if spec is None:
-            raise SchemaError(f"{kind} {i}: type {type_name} has no attribute '{name}'")
-        value = normalise_value(value)
-        if not value_conforms(value, spec.type):
-            raise SchemaError(f"{kind} {i}: attribute '{name}' of {type_name} must be {spec.type}, got {value!r}")
+        value = self.schema.checked_value(type_name, name, value, f"{kind} {i}")
         self._journal.append(("set_attr", kind, i, name, data[name]))
         data[name] = value
 

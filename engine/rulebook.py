@@ -17,7 +17,8 @@ from vaultgram.grammar.parser import load_files, parse_text
 from .checker import CompiledRule, RuleChecker, describe
 from .errors import RuleTypeError, did_you_mean
 from .expressions import ExpressionCompiler, Functions
-from .schema import TypeSchema, build_schema, value_conforms
+from .schema import TypeSchema, build_schema
+from .values import value_conforms
 
 
 @dataclass

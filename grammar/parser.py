@@ -82,10 +82,7 @@ from vaultgram.grammar.ast import (
     Unary,
 )
 
-__all__ = ["parse_text", "parse_file", "load_files", "ATTRIBUTE_TYPES", "KEYWORDS"]
-
-#: The value types an attribute can be declared with.
-ATTRIBUTE_TYPES = ("int", "float", "bool", "str", "vec2", "vec3", "list", "any")
+__all__ = ["parse_text", "parse_file", "load_files", "KEYWORDS"]
 
 #: Reserved words: never a name.
 KEYWORDS = frozenset(
@@ -508,13 +505,7 @@ class _ToAst(Transformer_NonRecursive):
 
     def attr_decl(self, meta, children):
         name, type_, *default = children
-        if str(type_) not in ATTRIBUTE_TYPES:
-            raise RuleSyntaxError(
-                f"unknown attribute type {str(type_)!r}",
-                self._tpos(type_),
-                "attribute types are: " + " ".join(ATTRIBUTE_TYPES),
-            )
-        return AttrDecl(str(name), str(type_), default[0] if default else None, self._pos(meta))
+        return AttrDecl(str(name), str(type_), default[0] if default else None, self._pos(meta), self._tpos(type_))
 
     # -- rules --------------------------------------------------------------------------------
 
