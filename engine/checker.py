@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 
 from vaultgram.grammar import ast
 
-from .errors import RuleTypeError, did_you_mean
+from .errors import RewriteError, RuleTypeError, did_you_mean
 from .expressions import ANY, TYPE, Compiled, ExpressionCompiler, Symbol, VType, walk
 from .schema import TypeSchema
 from .values import VALUE_TYPES, storable, value_conforms
@@ -33,6 +33,11 @@ class Condition:
     reads: frozenset[str]
     text: str
     pos: object
+
+    def failure(self, rule: str, exc: Exception) -> RewriteError:
+        """The error to raise when evaluating the test raised ``exc`` (a host function or arithmetic
+        failing on this graph)."""
+        return RewriteError(f"rule {rule}: {self.pos}: evaluating `{self.text}` failed: {exc!r}")
 
 
 @dataclass(frozen=True)
