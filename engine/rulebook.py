@@ -72,7 +72,7 @@ def rulebook_from_text(text: str, functions: Functions | None = None, filename: 
 def _build(files: list[ast.RuleFile], functions: Functions) -> Rulebook:
     schemas = [s for f in files for s in f.schemas]
     constant = ExpressionCompiler(build_schema([], None), functions)
-    schema = build_schema(schemas, lambda expr: constant.compile(expr, {})[0](None, {}))
+    schema = build_schema(schemas, lambda expr: constant.compile(expr, {}).fn(None, {}))
     checker = RuleChecker(schema, ExpressionCompiler(schema, functions))
 
     rules: dict[str, CompiledRule] = {}
@@ -127,8 +127,7 @@ def _check_strategy(strategy: ast.Strategy, rules, strategies, checker: RuleChec
 
 def constant_value(expr, checker: RuleChecker):
     """The value of an expression with no variables (strategy arguments, defaults)."""
-    fn, _, _ = checker.compiler.compile(expr, checker.type_symbols)
-    return fn(None, {})
+    return checker.compiler.compile(expr, checker.type_symbols).fn(None, {})
 
 
 def _check_no_recursion(strategies: dict[str, ast.Strategy]) -> None:
