@@ -119,7 +119,7 @@ class Matcher:
         """Whether a complete binding is (still) a match."""
         given = dict(binding)
         g = self.graph
-        for var, pn in self.rule.pattern.nodes.items():
+        for var in self.rule.pattern.nodes:
             if var not in given or not g.has_node(given[var]):
                 return False
         for pe in self.rule.pattern.edges:
