@@ -23,31 +23,30 @@ from .checker import CompiledPattern, Condition, PatternEdge, PatternNode
 
 
 @dataclass(frozen=True)
-class Bound:
-    node: PatternNode
+class _NodeStep:
+    """A step about one pattern node. Every step also tells the variables it ``binds``, its ``pos``
+    in the rule, and what is ``missing()`` when it finds nothing (for why-not reports)."""
 
-    binds = ()  # the variables the step binds
+    node: PatternNode
 
     @property
     def pos(self):
         return self.node.pos
 
+
+@dataclass(frozen=True)
+class Bound(_NodeStep):
+    binds = ()
+
     def missing(self) -> str:
-        """What the step could not find, in the rule's own words (for why-not reports)."""
         return f"no node {self.node.var}: {self.node.type} found"
 
 
 @dataclass(frozen=True)
-class Scan:
-    node: PatternNode
-
+class Scan(_NodeStep):
     @property
     def binds(self) -> tuple[str, ...]:
         return (self.node.var,)
-
-    @property
-    def pos(self):
-        return self.node.pos
 
     def missing(self) -> str:
         return f"no a node {self.node.var}: {self.node.type} found"
