@@ -164,7 +164,6 @@ class CompiledRule:
     radius: int | None  # None: any change anywhere may matter (re-match the whole graph)
     deletes_nodes: bool
     source: ast.Rule
-    order: int = 0
     key_vars: tuple[str, ...] = field(default=())
 
 
@@ -183,7 +182,7 @@ class RuleChecker:
             name: Symbol(TYPE, schema.subtypes(name)) for name in (*schema.node_types, *schema.edge_types)
         }
 
-    def compile_rule(self, rule: ast.Rule, order: int = 0) -> CompiledRule:
+    def compile_rule(self, rule: ast.Rule) -> CompiledRule:
         self._created = set()
         scope = dict(self.type_symbols)
         params = {p.name: p for p in rule.params}
@@ -205,7 +204,6 @@ class RuleChecker:
             radius=0,
             deletes_nodes=any(isinstance(s, CDelete) and s.node_vars and not s.detach for s in flatten(statements)),
             source=rule,
-            order=order,
             key_vars=tuple(pattern.variables),
         )
         compiled.reads_types = self._reads_types(rule, compiled)

@@ -13,7 +13,7 @@ from typing import Iterator, Mapping, NamedTuple
 
 import numpy as np
 
-from .checker import CompiledPattern, CompiledRule
+from .checker import CompiledRule
 from .columnar import Table, nac_rows, run_columnar
 from .errors import RewriteError
 from .graph import HostGraph
@@ -161,8 +161,8 @@ class Matcher:
 
     def rejection(self, binding: dict) -> Rejection | None:
         """Why a complete positive match is refused, or None when it is a match."""
-        for i, nac in enumerate(self.rule.nacs):
-            if self.nac_matches(i, nac, binding):
+        for i in range(len(self.rule.nacs)):
+            if self.nac_matches(i, binding):
                 return Rejection(nac=i)
         if self.rule.deletes_nodes:
             dangling = footprint(self.rule, self.graph, binding).dangling(self.graph)
@@ -176,13 +176,12 @@ class Matcher:
             self._nac_plans.append(build_plan(self.rule.nacs[k], self.rule.nacs[k].outer, self.graph.count))
         return self._nac_plans[i]
 
-    def nac_matches(self, i: int, nac: CompiledPattern, binding: dict) -> dict | None:
-        self._nac_plan(i)
+    def nac_matches(self, i: int, binding: dict) -> dict | None:
+        """A binding of NAC ``i`` around the complete positive ``binding``, or None when it has none."""
         used_nodes = {binding[v] for v in self.rule.pattern.nodes}
         used_edges = {binding[e.var] for e in self.rule.pattern.edges}
-        for b in run_plan(self.graph, self._nac_plans[i], dict(binding), used_nodes, used_edges, self.rule.name, {}):
-            return b
-        return None
+        plan = self._nac_plan(i)
+        return next(run_plan(self.graph, plan, dict(binding), used_nodes, used_edges, self.rule.name, {}), None)
 
 
 def _row_bindings(table: Table):

@@ -82,7 +82,7 @@ def _build(files: list[ast.RuleFile], functions: Functions) -> Rulebook:
                 raise RuleTypeError(
                     f"rule '{rule.name}' is defined twice (first at {rules[rule.name].source.pos})", rule.pos
                 )
-            rules[rule.name] = checker.compile_rule(rule, order=len(rules))
+            rules[rule.name] = checker.compile_rule(rule)
 
     strategies: dict[str, ast.Strategy] = {}
     for f in files:

@@ -53,10 +53,9 @@ class EdgeType:
 class TypeSchema:
     """Node and edge types with their inheritance, attributes and (for edges) endpoint types."""
 
-    def __init__(self, node_types: Mapping[str, NodeType], edge_types: Mapping[str, EdgeType], names=()):
+    def __init__(self, node_types: Mapping[str, NodeType], edge_types: Mapping[str, EdgeType]):
         self.node_types = dict(node_types)
         self.edge_types = dict(edge_types)
-        self.names = tuple(names)
         self._subtypes: dict[str, frozenset[str]] = {}
         for table in (self.node_types, self.edge_types):
             for name in table:
@@ -167,7 +166,7 @@ def build_schema(schemas, evaluate_constant) -> TypeSchema:
     edge_types = _resolve_all(
         edge_decls, EdgeType(ROOT_EDGE, None, ROOT_NODE, ROOT_NODE, False, {}, True), "edge", edge_type
     )
-    return TypeSchema(node_types, edge_types, [s.name for s in schemas])
+    return TypeSchema(node_types, edge_types)
 
 
 def _resolve_all(decls: dict, root, kind: str, make) -> dict:
