@@ -11,6 +11,8 @@ algorithm can run on :meth:`HostGraph.to_networkx`) and keeps, current on every 
   of an edge's polyline as it leaves a node) edges are kept sorted counter-clockwise by that angle;
   without one, by edge id (creation order). Faces of a planar graph are walked with it
   (:mod:`vaultgram.engine.embedding`), and ``foreach`` visits neighbours in this order;
+* the same typed structure for search loops, read-only: :attr:`HostGraph.incidence` (live
+  mappings) and :meth:`HostGraph.arrays` (flat numpy arrays indexed by id, with ``type_code``);
 * an **undo log** (journal): every primitive change records its inverse, so an application either
   completes or is rolled back exactly (:meth:`transaction`), and exploration can step back
   (:meth:`mark` / :meth:`rollback`) without copying the graph.
@@ -284,6 +286,14 @@ class HostGraph:
             return sum(len(s) for s in inc.values())
         return sum(len(inc[t]) for t in types if t in inc)
 
+    def arrays(self) -> TypeArrays:
+        """Type code per node id, and per edge id its type code and (source, target); -1 where unused.
+
+        The arrays are views of the graph's own: read them before the next change, never write them.
+        """
+        return TypeArrays(self._node_codes[: self._next_node], self._edge_codes[: self._next_edge],
+                          self._edge_ends[: self._next_edge])
+
     def rotation(self, n: int) -> list[int]:
         """Incident edge ids in cyclic (counter-clockwise when the graph has an angle function) order."""
         return list(self._rot[n])
@@ -549,14 +559,6 @@ class HostGraph:
                 del self._inc[n][type_name]
             i = self._rot[n].index(e)
             del self._rot[n][i], self._rot_keys[n][i]
-
-    def arrays(self) -> TypeArrays:
-        """Type code per node id, and per edge id its type code and (source, target); -1 where unused.
-
-        The arrays are views of the graph's own: read them before the next change, never write them.
-        """
-        return TypeArrays(self._node_codes[: self._next_node], self._edge_codes[: self._next_edge],
-                          self._edge_ends[: self._next_edge])
 
     def _rotation_key(self, e: int, n: int) -> tuple[float, int]:
         if self.angle is None:
