@@ -11,8 +11,9 @@ from pathlib import Path
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from paths import REPO
 
-from vaultgram.errors import RuleSyntaxError, SourcePos
+from vaultgram.grammar.errors import RuleSyntaxError, SourcePos
 from vaultgram.grammar.ast import (
     Attr,
     AttrDecl,
@@ -761,7 +762,7 @@ def test_deep_nesting_is_not_a_crash():
 
 
 def test_language_reference_examples_parse():
-    doc = Path(__file__).resolve().parents[1] / "docs" / "language.md"
+    doc = REPO / "docs" / "language.md"
     if not doc.exists():
         pytest.skip("docs/language.md not present")
     blocks = doc.read_text(encoding="utf-8").split("```")[1::2]

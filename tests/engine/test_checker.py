@@ -5,10 +5,10 @@ from __future__ import annotations
 
 import pytest
 
-from engine_strategies import SCHEMA, book
+from strategies.rules import SCHEMA, book
 from vaultgram.engine.expressions import Functions
 from vaultgram.engine.rulebook import rulebook_from_text
-from vaultgram.errors import RuleTypeError, SourcePos
+from vaultgram.engine.errors import RuleTypeError, SourcePos
 
 BASE = SCHEMA.count("\n")  # rules start on line BASE + 1
 
