@@ -108,6 +108,8 @@ def storable(static: str, declared: str) -> bool:
 def passable(kind: str, static: str) -> bool:
     """Whether a value of static type ``static`` may be passed to a function parameter of ``kind``
     (a value type, ``number`` or ``vec``; an unknown kind takes only itself)."""
+    if kind == "any" or static == "any":
+        return True
     if kind in VALUE_TYPES:
         return static in VALUE_TYPES[kind].takes
     return static in _ARGUMENT_KINDS.get(kind, (kind,))
