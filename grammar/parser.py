@@ -2,8 +2,9 @@
 
 The syntax is defined by ``rules.lark`` next to this module (LALR(1), contextual lexer); this module
 only turns lark's parse trees into AST dataclasses and lark's errors into
-:class:`~vaultgram.grammar.errors.RuleSyntaxError` with a position and a hint. It gives no meaning to what it
-reads: unknown types, duplicate names and misplaced ``next(v)`` are for the engine's checker.
+:class:`~vaultgram.grammar.errors.RuleSyntaxError` with a position and a hint. It gives no meaning to
+what it reads: unknown types (attribute types included), duplicate names and misplaced ``next(v)``
+are for the engine's checker.
 
 Public API
 ----------
