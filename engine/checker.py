@@ -12,12 +12,14 @@ reads, and how far from a change a match can be affected (its *radius*).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
-from vaultgram.errors import RuleTypeError, did_you_mean
 from vaultgram.grammar import ast
 
+from .errors import RewriteError, RuleTypeError, did_you_mean
 from .expressions import ANY, TYPE, Compiled, ExpressionCompiler, Symbol, VType, walk
-from .schema import VALUE_TYPES, TypeSchema, value_conforms
+from .schema import TypeSchema
+from .values import VALUE_TYPES, storable, value_conforms
 
 # ----------------------------------------------------------------------------------------------
 # Compiled forms
@@ -32,6 +34,11 @@ class Condition:
     reads: frozenset[str]
     text: str
     pos: object
+
+    def failure(self, rule: str, exc: Exception) -> RewriteError:
+        """The error to raise when evaluating the test raised ``exc`` (a host function or arithmetic
+        failing on this graph)."""
+        return RewriteError(f"rule {rule}: {self.pos}: evaluating `{self.text}` failed: {exc!r}")
 
 
 @dataclass(frozen=True)
@@ -88,11 +95,19 @@ class CCreateNode:
     pos: object
 
 
+class End(NamedTuple):
+    """An endpoint of a created edge: a variable, in this iteration of the enclosing foreach (step 0),
+    the next one (+1, ``next(v)``) or the previous one (-1, ``prev(v)``)."""
+
+    var: str
+    step: int
+
+
 @dataclass(frozen=True)
 class CCreateEdge:
     var: str | None
-    source: tuple[str, int]
-    target: tuple[str, int]
+    source: End
+    target: End
     type: str
     attrs: tuple[tuple[str, Compiled], ...]
     pos: object
@@ -149,7 +164,6 @@ class CompiledRule:
     radius: int | None  # None: any change anywhere may matter (re-match the whole graph)
     deletes_nodes: bool
     source: ast.Rule
-    order: int = 0
     key_vars: tuple[str, ...] = field(default=())
 
 
@@ -168,40 +182,14 @@ class RuleChecker:
             name: Symbol(TYPE, schema.subtypes(name)) for name in (*schema.node_types, *schema.edge_types)
         }
 
-    def compile_rule(self, rule: ast.Rule, order: int = 0) -> CompiledRule:
+    def compile_rule(self, rule: ast.Rule) -> CompiledRule:
         self._created = set()
         scope = dict(self.type_symbols)
-        node_params: dict[str, str] = {}
-        defaults: dict[str, object] = {}
-        params = {}
-        for p in rule.params:
-            self._fresh(p.name, scope, p.pos)
-            params[p.name] = p
-            if self.schema.is_node_type(p.type):
-                node_params[p.name] = p.type
-                scope[p.name] = Symbol(VType("node", p.type))
-                if p.default is not None:
-                    raise RuleTypeError(f"node parameter '{p.name}' cannot have a default", p.pos)
-            elif p.type in VALUE_TYPES:
-                scope[p.name] = Symbol(VType("value", p.type))
-                if p.default is not None:
-                    fn, _, reads = self.compiler.compile(p.default, self.type_symbols)
-                    value = fn(None, {})
-                    if not value_conforms(value, p.type):
-                        raise RuleTypeError(f"default of parameter '{p.name}' must be {p.type}", p.default.pos)
-                    defaults[p.name] = value
-            else:
-                raise RuleTypeError(
-                    f"parameter '{p.name}': unknown type '{p.type}'",
-                    p.pos,
-                    did_you_mean(p.type, [*VALUE_TYPES, *self.schema.node_types]),
-                )
-
+        params = {p.name: p for p in rule.params}
+        node_params, defaults = self._params(rule.params, scope)
         pattern = self._pattern(rule.match, scope, frozenset(params), node_params)
-        nacs = []
-        for nac in rule.nacs:
-            nac_scope = dict(scope)
-            nacs.append(self._pattern(nac, nac_scope, frozenset(pattern_vars(pattern) | set(params)), {}))
+        outer = frozenset({*pattern.variables, *params})
+        nacs = [self._pattern(nac, dict(scope), outer, {}) for nac in rule.nacs]
         statements = self._statements(rule.statements, scope, None)
         compiled = CompiledRule(
             name=rule.name,
@@ -214,17 +202,40 @@ class RuleChecker:
             statements=statements,
             reads_types=frozenset(),
             radius=0,
-            deletes_nodes=False,
+            deletes_nodes=any(isinstance(s, CDelete) and s.node_vars and not s.detach for s in flatten(statements)),
             source=rule,
-            order=order,
             key_vars=tuple(pattern.variables),
-        )
-        compiled.deletes_nodes = any(
-            isinstance(s, CDelete) and s.node_vars and not s.detach for s in flatten(statements)
         )
         compiled.reads_types = self._reads_types(rule, compiled)
         compiled.radius = self._radius(rule, compiled)
         return compiled
+
+    def _params(self, params, scope: dict) -> tuple[dict[str, str], dict[str, object]]:
+        """Put the rule's parameters in scope; return its node parameters (name -> type) and the
+        values of its value parameters' defaults."""
+        node_params: dict[str, str] = {}
+        defaults: dict[str, object] = {}
+        for p in params:
+            self._fresh(p.name, scope, p.pos)
+            if self.schema.is_node_type(p.type):
+                node_params[p.name] = p.type
+                scope[p.name] = Symbol(VType("node", p.type))
+                if p.default is not None:
+                    raise RuleTypeError(f"node parameter '{p.name}' cannot have a default", p.pos)
+            elif p.type in VALUE_TYPES:
+                scope[p.name] = Symbol(VType("value", p.type))
+                if p.default is not None:
+                    value = self.compiler.compile(p.default, self.type_symbols).fn(None, {})
+                    if not value_conforms(value, p.type):
+                        raise RuleTypeError(f"default of parameter '{p.name}' must be {p.type}", p.default.pos)
+                    defaults[p.name] = value
+            else:
+                raise RuleTypeError(
+                    f"parameter '{p.name}': unknown type '{p.type}'",
+                    p.pos,
+                    did_you_mean(p.type, [*VALUE_TYPES, *self.schema.node_types]),
+                )
+        return node_params, defaults
 
     # -- patterns --------------------------------------------------------------------------------
 
@@ -240,32 +251,7 @@ class RuleChecker:
             checks = tuple(self._constraint(c, n.var, scope) for c in n.constraints)
             nodes[n.var] = PatternNode(n.var, n.type, self.schema.subtypes(n.type), checks, n.pos)
 
-        edges: list[PatternEdge] = []
-        for k, e in enumerate(pat.edges):
-            info = self._edge_type(e.type, e.pos)
-            for end in (e.source, e.target):
-                sym = scope.get(end)
-                if sym is None or sym.type.kind != "node":
-                    raise RuleTypeError(
-                        f"'{end}' is not a node of the pattern",
-                        e.pos,
-                        f"declare it first, e.g. `{end}: {info.source}`",
-                    )
-            if e.source == e.target:
-                raise RuleTypeError("an edge pattern cannot join a node to itself", e.pos)
-            if e.directed and not info.directed:
-                raise RuleTypeError(
-                    f"edge type {e.type} is undirected: write {e.source} -{e.type}- {e.target}", e.pos
-                )
-            self._check_endpoint_fit(e, info, scope)
-            var = e.var or f"_edge{len(outer)}_{k}"
-            if e.var:
-                self._fresh(e.var, scope, e.pos)
-                scope[e.var] = Symbol(VType("edge", e.type))
-            types = self.schema.subtypes(e.type)
-            if e.directed:
-                types = frozenset(t for t in types if self.schema.edge_types[t].directed)
-            edges.append(PatternEdge(var, e.source, e.target, e.type, types, "out" if e.directed else "any", (), e.pos))
+        edges = [self._pattern_edge(e, f"_edge{len(outer)}_{k}", scope) for k, e in enumerate(pat.edges)]
         for i, e in enumerate(pat.edges):
             if e.constraints:
                 scope_var = edges[i].var
@@ -275,6 +261,32 @@ class RuleChecker:
                 edges[i] = PatternEdge(**{**edges[i].__dict__, "checks": checks})
         conditions = [self._condition(c, scope) for c in pat.conditions]
         return CompiledPattern(nodes, edges, conditions, outer, pat.pos)
+
+    def _pattern_edge(self, e: ast.EdgePattern, anonymous: str, scope: dict) -> PatternEdge:
+        """An edge of a pattern, without its constraints (they may name edges declared after it);
+        an anonymous edge gets the variable name ``anonymous``."""
+        info = self._edge_type(e.type, e.pos)
+        for end in (e.source, e.target):
+            sym = scope.get(end)
+            if sym is None or sym.type.kind != "node":
+                raise RuleTypeError(
+                    f"'{end}' is not a node of the pattern",
+                    e.pos,
+                    f"declare it first, e.g. `{end}: {info.source}`",
+                )
+        if e.source == e.target:
+            raise RuleTypeError("an edge pattern cannot join a node to itself", e.pos)
+        if e.directed and not info.directed:
+            raise RuleTypeError(f"edge type {e.type} is undirected: write {e.source} -{e.type}- {e.target}", e.pos)
+        self._check_endpoint_fit(e, info, scope)
+        if e.var:
+            self._fresh(e.var, scope, e.pos)
+            scope[e.var] = Symbol(VType("edge", e.type))
+        types = self.schema.subtypes(e.type)
+        if e.directed:
+            types = frozenset(t for t in types if self.schema.edge_types[t].directed)
+        mode = "out" if e.directed else "any"
+        return PatternEdge(e.var or anonymous, e.source, e.target, e.type, types, mode, (), e.pos)
 
     def _check_endpoint_fit(self, e: ast.EdgePattern, info, scope) -> None:
         s_type = scope[e.source].type.name
@@ -295,70 +307,67 @@ class RuleChecker:
         return self._condition(expr, scope, text=f"{var}.{c.attr} {c.op} ...")
 
     def _condition(self, expr, scope, text: str | None = None) -> Condition:
-        fn, _, reads = self.compiler.compile(expr, scope)
-        return Condition(fn, reads, text or describe(expr), expr.pos)
+        compiled = self.compiler.compile(expr, scope)
+        return Condition(compiled.fn, compiled.reads, text or describe(expr), expr.pos)
 
     # -- statements ------------------------------------------------------------------------------
 
     def _statements(self, statements, scope: dict, foreach_created: set | None) -> tuple:
-        out = []
-        for s in statements:
-            out.append(self._statement(s, scope, foreach_created))
-        return tuple(out)
+        """The compiled statements; ``foreach_created`` collects the nodes created in a foreach body
+        (None outside foreach)."""
+        return tuple(self._STATEMENTS[type(s)](self, s, scope, foreach_created) for s in statements)
 
-    def _statement(self, s, scope: dict, foreach_created):
-        if isinstance(s, ast.Delete):
-            for var in s.vars:
-                sym = self._element(var, scope, s.pos)
-                if s.detach and sym.type.kind != "node":
-                    raise RuleTypeError(f"'detach delete' applies to nodes; '{var}' is an edge", s.pos)
-                if var in self._created:
-                    raise RuleTypeError(f"'{var}' is created by this rule; deleting it makes no sense", s.pos)
-            nodes = tuple(v for v in s.vars if scope[v].type.kind == "node")
-            return CDelete(s.vars, s.detach, nodes, s.pos)
-        if isinstance(s, ast.CreateNode):
-            info = self._node_type(s.type, s.pos)
-            if info.abstract:
-                raise RuleTypeError(f"node type {s.type} is abstract and cannot be created", s.pos)
-            attrs = self._attr_inits(s.type, s.attrs, scope, s.pos)
-            self._fresh(s.var, scope, s.pos)
-            scope[s.var] = Symbol(VType("node", s.type))
-            self._created.add(s.var)
-            if foreach_created is not None:
-                foreach_created.add(s.var)
-            return CCreateNode(s.var, s.type, attrs, s.pos)
-        if isinstance(s, ast.CreateEdge):
-            return self._create_edge(s, scope, foreach_created)
-        if isinstance(s, ast.Retype):
-            sym = self._element(s.var, scope, s.pos)
-            info = self._node_type(s.type, s.pos)
-            if sym.type.kind != "node":
-                raise RuleTypeError(f"only nodes can be retyped; '{s.var}' is an edge", s.pos)
-            if info.abstract:
-                raise RuleTypeError(f"cannot retype to abstract type {s.type}", s.pos)
-            return CRetype(s.var, s.type, s.pos)
-        if isinstance(s, ast.SetAttr):
-            sym = self._element(s.var, scope, s.pos)
-            spec = self.schema.attrs(sym.type.name).get(s.attr)
-            if spec is None:
-                raise RuleTypeError(
-                    f"{sym.type.kind} type {sym.type.name} has no attribute '{s.attr}'",
-                    s.pos,
-                    did_you_mean(s.attr, self.schema.attrs(sym.type.name)),
-                )
-            fn, vtype, _ = self.compiler.compile(s.value, scope)
-            self._check_value_type(vtype, spec.type, s.attr, s.value.pos)
-            return CSet(s.var, sym.type.kind, s.attr, fn, s.pos)
-        if isinstance(s, ast.Merge):
-            for var in (s.source, s.target):
-                if self._element(var, scope, s.pos).type.kind != "node":
-                    raise RuleTypeError(f"only nodes can be merged; '{var}' is an edge", s.pos)
-            if s.source == s.target:
-                raise RuleTypeError("cannot merge a node into itself", s.pos)
-            return CMerge(s.source, s.target, s.pos)
-        if isinstance(s, ast.Foreach):
-            return self._foreach(s, scope)
-        raise AssertionError(f"unknown statement {s!r}")
+    def _delete(self, s: ast.Delete, scope: dict, foreach_created) -> CDelete:
+        for var in s.vars:
+            sym = self._element(var, scope, s.pos)
+            if s.detach and sym.type.kind != "node":
+                raise RuleTypeError(f"'detach delete' applies to nodes; '{var}' is an edge", s.pos)
+            if var in self._created:
+                raise RuleTypeError(f"'{var}' is created by this rule; deleting it makes no sense", s.pos)
+        nodes = tuple(v for v in s.vars if scope[v].type.kind == "node")
+        return CDelete(s.vars, s.detach, nodes, s.pos)
+
+    def _create_node(self, s: ast.CreateNode, scope: dict, foreach_created) -> CCreateNode:
+        info = self._node_type(s.type, s.pos)
+        if info.abstract:
+            raise RuleTypeError(f"node type {s.type} is abstract and cannot be created", s.pos)
+        attrs = self._attr_inits(s.type, s.attrs, scope, s.pos)
+        self._fresh(s.var, scope, s.pos)
+        scope[s.var] = Symbol(VType("node", s.type))
+        self._created.add(s.var)
+        if foreach_created is not None:
+            foreach_created.add(s.var)
+        return CCreateNode(s.var, s.type, attrs, s.pos)
+
+    def _retype(self, s: ast.Retype, scope: dict, foreach_created) -> CRetype:
+        sym = self._element(s.var, scope, s.pos)
+        info = self._node_type(s.type, s.pos)
+        if sym.type.kind != "node":
+            raise RuleTypeError(f"only nodes can be retyped; '{s.var}' is an edge", s.pos)
+        if info.abstract:
+            raise RuleTypeError(f"cannot retype to abstract type {s.type}", s.pos)
+        return CRetype(s.var, s.type, s.pos)
+
+    def _set(self, s: ast.SetAttr, scope: dict, foreach_created) -> CSet:
+        sym = self._element(s.var, scope, s.pos)
+        spec = self.schema.attrs(sym.type.name).get(s.attr)
+        if spec is None:
+            raise RuleTypeError(
+                f"{sym.type.kind} type {sym.type.name} has no attribute '{s.attr}'",
+                s.pos,
+                did_you_mean(s.attr, self.schema.attrs(sym.type.name)),
+            )
+        value = self.compiler.compile(s.value, scope)
+        self._check_value_type(value.type, spec.type, s.attr, s.value.pos)
+        return CSet(s.var, sym.type.kind, s.attr, value.fn, s.pos)
+
+    def _merge(self, s: ast.Merge, scope: dict, foreach_created) -> CMerge:
+        for var in (s.source, s.target):
+            if self._element(var, scope, s.pos).type.kind != "node":
+                raise RuleTypeError(f"only nodes can be merged; '{var}' is an edge", s.pos)
+        if s.source == s.target:
+            raise RuleTypeError("cannot merge a node into itself", s.pos)
+        return CMerge(s.source, s.target, s.pos)
 
     def _create_edge(self, s: ast.CreateEdge, scope, foreach_created):
         info = self._edge_type(s.type, s.pos)
@@ -397,9 +406,10 @@ class RuleChecker:
             self._fresh(s.var, scope, s.pos)
             scope[s.var] = Symbol(VType("edge", s.type))
             self._created.add(s.var)
-        return CCreateEdge(s.var, (s.source.var, s.source.step), (s.target.var, s.target.step), s.type, attrs, s.pos)
+        source, target = End(s.source.var, s.source.step), End(s.target.var, s.target.step)
+        return CCreateEdge(s.var, source, target, s.type, attrs, s.pos)
 
-    def _foreach(self, s: ast.Foreach, scope):
+    def _foreach(self, s: ast.Foreach, scope: dict, foreach_created) -> CForeach:
         center = scope.get(s.center)
         if center is None or center.type.kind != "node":
             raise RuleTypeError(f"foreach: '{s.center}' is not a node of the pattern", s.pos)
@@ -445,9 +455,9 @@ class RuleChecker:
             if init.attr in seen:
                 raise RuleTypeError(f"attribute '{init.attr}' is set twice", init.pos)
             seen.add(init.attr)
-            fn, vtype, _ = self.compiler.compile(init.value, scope)
-            self._check_value_type(vtype, spec.type, init.attr, init.value.pos)
-            out.append((init.attr, fn))
+            value = self.compiler.compile(init.value, scope)
+            self._check_value_type(value.type, spec.type, init.attr, init.value.pos)
+            out.append((init.attr, value.fn))
         missing = [name for name, spec in specs.items() if spec.required and name not in seen]
         if missing:
             raise RuleTypeError(
@@ -460,13 +470,7 @@ class RuleChecker:
     def _check_value_type(self, vtype: VType, declared: str, attr: str, pos) -> None:
         if vtype == ANY or declared == "any":
             return
-        ok = vtype.kind == "value" and (
-            vtype.name == declared
-            or (declared == "float" and vtype.name == "int")
-            or (declared == "list" and vtype.name in ("list", "vec2", "vec3"))
-            or (declared in ("vec2", "vec3") and vtype.name == "list")
-        )
-        if not ok:
+        if not (vtype.kind == "value" and storable(vtype.name, declared)):
             raise RuleTypeError(f"attribute '{attr}' is {declared} but the value is {vtype}", pos)
 
     # -- helpers ---------------------------------------------------------------------------------
@@ -551,9 +555,15 @@ class RuleChecker:
             radius = max(radius, *(depth[v] for v in nac.nodes), 0)
         return radius
 
-
-def pattern_vars(pattern: CompiledPattern) -> set[str]:
-    return set(pattern.variables)
+    _STATEMENTS = {
+        ast.Delete: _delete,
+        ast.CreateNode: _create_node,
+        ast.CreateEdge: _create_edge,
+        ast.Retype: _retype,
+        ast.SetAttr: _set,
+        ast.Merge: _merge,
+        ast.Foreach: _foreach,
+    }
 
 
 def flatten(statements):
@@ -588,27 +598,32 @@ def _statement_expressions(statements):
 
 
 def describe(expr) -> str:
-    """A short source-like rendering of an expression, for messages."""
-    if isinstance(expr, ast.Literal):
-        return repr(expr.value) if not isinstance(expr.value, bool) else str(expr.value).lower()
-    if isinstance(expr, ast.Name):
-        return expr.name
-    if isinstance(expr, ast.Attr):
-        return f"{describe(expr.target)}.{expr.attr}"
-    if isinstance(expr, ast.Index):
-        return f"{describe(expr.target)}[{describe(expr.index)}]"
-    if isinstance(expr, ast.Call):
-        return f"{expr.func}({', '.join(describe(a) for a in expr.args)})"
-    if isinstance(expr, ast.ListExpr):
-        return f"[{', '.join(describe(a) for a in expr.items)}]"
-    if isinstance(expr, ast.Unary):
-        return f"{expr.op} {describe(expr.operand)}" if expr.op == "not" else f"-{describe(expr.operand)}"
-    if isinstance(expr, ast.Binary):
-        return f"{_operand(expr.left)} {expr.op} {_operand(expr.right)}"
-    return "?"
+    """A short source-like rendering of an expression, for messages.
+
+    >>> describe(ast.Binary("<", ast.Attr(ast.Name("a", None), "w", None), ast.Literal(2, None), None))
+    'a.w < 2'
+    """
+    render = _DESCRIBE.get(type(expr))
+    return render(expr) if render else "?"
+
+
+def _literal_text(value) -> str:
+    return str(value).lower() if isinstance(value, bool) else repr(value)
 
 
 def _operand(expr) -> str:
     """An operand of a binary operator, in parentheses when it is itself an operation."""
     text = describe(expr)
     return f"({text})" if isinstance(expr, (ast.Binary, ast.Unary)) else text
+
+
+_DESCRIBE = {
+    ast.Literal: lambda e: _literal_text(e.value),
+    ast.Name: lambda e: e.name,
+    ast.Attr: lambda e: f"{describe(e.target)}.{e.attr}",
+    ast.Index: lambda e: f"{describe(e.target)}[{describe(e.index)}]",
+    ast.Call: lambda e: f"{e.func}({', '.join(describe(a) for a in e.args)})",
+    ast.ListExpr: lambda e: f"[{', '.join(describe(a) for a in e.items)}]",
+    ast.Unary: lambda e: f"not {describe(e.operand)}" if e.op == "not" else f"-{describe(e.operand)}",
+    ast.Binary: lambda e: f"{_operand(e.left)} {e.op} {_operand(e.right)}",
+}

@@ -23,8 +23,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from vaultgram.errors import RewriteError
-
 from .checker import Condition
 from .graph import HostGraph
 from .plan import Bound, Check, Extend, Scan, Step
@@ -125,21 +123,35 @@ def run_columnar(
     for step in plan:
         if table.rows == 0:
             return table
-        if isinstance(step, Scan):
-            table = _scan(g, arrays, step, table)
-            table = _check_rows(g, table, step.node.checks, values, rule)
-        elif isinstance(step, Extend):
-            table = _extend(arrays, step, table)
-            checks = step.edge.checks + (step.end_node.checks if step.end_node is not None else ())
-            table = _check_rows(g, table, checks, values, rule)
-        elif isinstance(step, Check):
-            table = _check_rows(g, table, (step.condition,), values, rule)
-        elif isinstance(step, Bound):
-            col = table.nodes[step.node.var]
-            ok = (col < len(arrays.node_code)) & (col >= 0)
-            ok[ok] = _type_mask(arrays, step.node.types)[arrays.node_code[col[ok]]]
-            table = _check_rows(g, table.filter(ok), step.node.checks, values, rule)
+        table, checks = _PHASES[type(step)](g, arrays, step, table)
+        table = _check_rows(g, table, checks, values, rule)
     return table
+
+
+def _scan_phase(g: HostGraph, arrays: GraphArrays, step: Scan, table: Table):
+    return _scan(g, arrays, step, table), step.node.checks
+
+
+def _extend_phase(g: HostGraph, arrays: GraphArrays, step: Extend, table: Table):
+    checks = step.edge.checks + (step.end_node.checks if step.end_node is not None else ())
+    return _extend(arrays, step, table), checks
+
+
+def _check_phase(g: HostGraph, arrays: GraphArrays, step: Check, table: Table):
+    return table, (step.condition,)
+
+
+def _bound_phase(g: HostGraph, arrays: GraphArrays, step: Bound, table: Table):
+    """Rows whose given node still exists with a fitting type."""
+    col = table.nodes[step.node.var]
+    ok = (col < len(arrays.node_code)) & (col >= 0)
+    ok[ok] = _type_mask(arrays, step.node.types)[arrays.node_code[col[ok]]]
+    return table.filter(ok), step.node.checks
+
+
+#: For each kind of step: (graph, arrays, step, table) -> (the table after the step, the conditions
+#: its new rows must then pass).
+_PHASES = {Scan: _scan_phase, Extend: _extend_phase, Check: _check_phase, Bound: _bound_phase}
 
 
 def _scan(g: HostGraph, arrays: GraphArrays, step: Scan, table: Table) -> Table:
@@ -201,7 +213,7 @@ def _check_rows(g: HostGraph, table: Table, conditions: tuple[Condition, ...], v
                     keep[i] = False
                     break
             except Exception as exc:  # a host function or arithmetic failing on this graph
-                raise RewriteError(f"rule {rule}: {c.pos}: evaluating `{c.text}` failed: {exc!r}") from None
+                raise c.failure(rule, exc) from None
     return table.filter(keep)
 
 

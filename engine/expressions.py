@@ -14,12 +14,13 @@ from __future__ import annotations
 import math
 import operator
 from dataclasses import dataclass, field
-from typing import Callable, Mapping
+from typing import Callable, Mapping, NamedTuple
 
-from vaultgram.errors import RuleTypeError, did_you_mean
 from vaultgram.grammar import ast
 
+from .errors import RuleTypeError, did_you_mean
 from .schema import TypeSchema
+from .values import NUMERIC, VECTORS, passable
 
 # ----------------------------------------------------------------------------------------------
 # Static types
@@ -45,8 +46,6 @@ STR = VType("value", "str")
 NONE = VType("value", "none")
 LIST = VType("value", "list")
 TYPE = VType("type", "")
-NUMERIC = ("int", "float")
-VECTORS = ("vec2", "vec3")
 
 
 @dataclass(frozen=True)
@@ -149,6 +148,24 @@ def _builtins() -> list[Function]:
 Compiled = Callable[[object, Mapping[str, object]], object]
 
 
+class Typed(NamedTuple):
+    """A compiled expression: the closure, its static type and the names (variables, parameters) it reads."""
+
+    fn: Compiled
+    type: VType
+    reads: frozenset[str]
+
+
+_LITERAL_TYPES = {bool: BOOL, int: INT, float: FLOAT, str: STR}
+_COMPARISONS = {"==": operator.eq, "!=": operator.ne, "<": operator.lt, "<=": operator.le, ">": operator.gt,
+                ">=": operator.ge}
+_ARITHMETIC = {"+": operator.add, "-": operator.sub, "*": operator.mul, "/": operator.truediv, "%": operator.mod}
+
+
+def _reads(parts) -> frozenset[str]:
+    return frozenset().union(*(p.reads for p in parts))
+
+
 class ExpressionCompiler:
     """Type-checks expressions against a scope and compiles them to closures ``f(graph, binding)``."""
 
@@ -156,10 +173,9 @@ class ExpressionCompiler:
         self.schema = schema
         self.functions = functions
 
-    def compile(self, expr, scope: Mapping[str, Symbol]) -> tuple[Compiled, VType, frozenset[str]]:
+    def compile(self, expr, scope: Mapping[str, Symbol]) -> Typed:
         """Return the closure, the static type and the names (variables/parameters) the expression reads."""
-        method = getattr(self, "_" + type(expr).__name__.lower())
-        return method(expr, scope)
+        return self._COMPILE[type(expr)](self, expr, scope)
 
     def reads_nonlocal(self, expr) -> bool:
         """Whether the expression calls a function declared non-local."""
@@ -168,21 +184,11 @@ class ExpressionCompiler:
 
     # -- atoms -----------------------------------------------------------------------------------
 
-    def _literal(self, expr, scope):
+    def _literal(self, expr: ast.Literal, scope) -> Typed:
         value = expr.value
-        if isinstance(value, bool):
-            t = BOOL
-        elif isinstance(value, int):
-            t = INT
-        elif isinstance(value, float):
-            t = FLOAT
-        elif isinstance(value, str):
-            t = STR
-        else:
-            t = NONE
-        return (lambda g, b: value), t, frozenset()
+        return Typed(lambda g, b: value, _LITERAL_TYPES.get(type(value), NONE), frozenset())
 
-    def _name(self, expr, scope):
+    def _name(self, expr: ast.Name, scope) -> Typed:
         sym = scope.get(expr.name)
         if sym is None:
             known = [n for n in scope if not n.startswith("_")]
@@ -193,17 +199,16 @@ class ExpressionCompiler:
             )
         if sym.type.kind == "type":
             types = sym.types
-            return (lambda g, b: types), sym.type, frozenset()
+            return Typed(lambda g, b: types, sym.type, frozenset())
         name = expr.name
-        return (lambda g, b: b[name]), sym.type, frozenset([name])
+        return Typed(lambda g, b: b[name], sym.type, frozenset([name]))
 
-    def _listexpr(self, expr, scope):
+    def _list(self, expr: ast.ListExpr, scope) -> Typed:
         parts = [self.compile(item, scope) for item in expr.items]
-        fns = [p[0] for p in parts]
-        reads = frozenset().union(*(p[2] for p in parts)) if parts else frozenset()
-        return (lambda g, b: tuple(f(g, b) for f in fns)), LIST, reads
+        fns = [p.fn for p in parts]
+        return Typed(lambda g, b: tuple(f(g, b) for f in fns), LIST, _reads(parts))
 
-    def _attr(self, expr, scope):
+    def _attr(self, expr: ast.Attr, scope) -> Typed:
         target, ttype, reads = self.compile(expr.target, scope)
         attr = expr.attr
         if ttype.kind in ("node", "edge"):
@@ -217,15 +222,15 @@ class ExpressionCompiler:
             getter = (lambda g, b: g.nx.nodes[target(g, b)][attr]) if ttype.kind == "node" else (
                 lambda g, b: g.get_edge(target(g, b), attr)
             )
-            return getter, VType("value", spec.type), reads
+            return Typed(getter, VType("value", spec.type), reads)
         if ttype.name in VECTORS + ("any",) and attr in ("x", "y", "z"):
             if ttype.name == "vec2" and attr == "z":
                 raise RuleTypeError("a vec2 has no component 'z'", expr.pos)
             k = "xyz".index(attr)
-            return (lambda g, b: target(g, b)[k]), FLOAT if ttype.name != "any" else ANY, reads
+            return Typed(lambda g, b: target(g, b)[k], FLOAT if ttype.name != "any" else ANY, reads)
         raise RuleTypeError(f"cannot take attribute '{attr}' of a value of type {ttype}", expr.pos)
 
-    def _index(self, expr, scope):
+    def _index(self, expr: ast.Index, scope) -> Typed:
         target, ttype, r1 = self.compile(expr.target, scope)
         index, itype, r2 = self.compile(expr.index, scope)
         if ttype.name not in VECTORS + ("list", "any") or ttype.kind != "value":
@@ -233,9 +238,9 @@ class ExpressionCompiler:
         if itype.name not in ("int", "any"):
             raise RuleTypeError(f"an index must be an int, not {itype}", expr.index.pos)
         result = FLOAT if ttype.name in VECTORS else ANY
-        return (lambda g, b: target(g, b)[index(g, b)]), result, r1 | r2
+        return Typed(lambda g, b: target(g, b)[index(g, b)], result, r1 | r2)
 
-    def _call(self, expr, scope):
+    def _call(self, expr: ast.Call, scope) -> Typed:
         func = self.functions.table.get(expr.func)
         if func is None:
             raise RuleTypeError(
@@ -244,93 +249,119 @@ class ExpressionCompiler:
                 did_you_mean(expr.func, self.functions.table) or "the host application registers functions rules may call",
             )
         parts = [self.compile(a, scope) for a in expr.args]
-        _check_arguments(func, expr, [p[1] for p in parts])
-        fns = tuple(p[0] for p in parts)
-        reads = frozenset().union(*(p[2] for p in parts)) if parts else frozenset()
+        _check_arguments(func, expr, [p.type for p in parts])
+        fns = tuple(p.fn for p in parts)
         fn = func.fn
         if func.uses_graph:
             call = lambda g, b: fn(g, *[f(g, b) for f in fns])  # noqa: E731
         else:
             call = lambda g, b: fn(*[f(g, b) for f in fns])  # noqa: E731
-        return call, _return_type(func.returns), reads
+        return Typed(call, _return_type(func.returns), _reads(parts))
 
     # -- operators -------------------------------------------------------------------------------
 
-    def _unary(self, expr, scope):
+    def _unary(self, expr: ast.Unary, scope) -> Typed:
         operand, t, reads = self.compile(expr.operand, scope)
         if expr.op == "not":
-            return (lambda g, b: not operand(g, b)), BOOL, reads
+            return Typed(lambda g, b: not operand(g, b), BOOL, reads)
         if t.kind != "value" or t.name not in NUMERIC + VECTORS + ("any",):
             raise RuleTypeError(f"cannot negate a value of type {t}", expr.pos)
         if t.name in VECTORS:
-            return (lambda g, b: tuple(-c for c in operand(g, b))), t, reads
-        return (lambda g, b: -operand(g, b)), t, reads
+            return Typed(lambda g, b: tuple(-c for c in operand(g, b)), t, reads)
+        return Typed(lambda g, b: -operand(g, b), t, reads)
 
-    def _binary(self, expr, scope):
-        left, lt, r1 = self.compile(expr.left, scope)
-        right, rt, r2 = self.compile(expr.right, scope)
-        reads = r1 | r2
-        op = expr.op
-        if op == "and":
-            return (lambda g, b: bool(left(g, b)) and bool(right(g, b))), BOOL, reads
-        if op == "or":
-            return (lambda g, b: bool(left(g, b)) or bool(right(g, b))), BOOL, reads
-        if op in ("==", "!="):
-            _check_comparable(lt, rt, expr)
-            f = operator.eq if op == "==" else operator.ne
-            return (lambda g, b: f(left(g, b), right(g, b))), BOOL, reads
-        if op == "in":
-            if rt.kind != "value" or rt.name not in ("list", "any", "vec2", "vec3"):
-                raise RuleTypeError(f"'in' needs a list on its right, not {rt}", expr.right.pos)
-            return (lambda g, b: left(g, b) in right(g, b)), BOOL, reads
-        if op in ("<", "<=", ">", ">="):
-            if not (_both(lt, rt, NUMERIC) or _both(lt, rt, ("str",))):
-                raise RuleTypeError(f"cannot compare {lt} {op} {rt}", expr.pos)
-            f = {"<": operator.lt, "<=": operator.le, ">": operator.gt, ">=": operator.ge}[op]
-            return (lambda g, b: f(left(g, b), right(g, b))), BOOL, reads
-        return self._arithmetic(op, left, lt, right, rt, expr, reads)
+    def _binary(self, expr: ast.Binary, scope) -> Typed:
+        left = self.compile(expr.left, scope)
+        right = self.compile(expr.right, scope)
+        fn, result = _BINARY[expr.op](expr, left, right)
+        return Typed(fn, result, left.reads | right.reads)
 
-    def _arithmetic(self, op, left, lt, right, rt, expr, reads):
-        scalar_ops = {"+": operator.add, "-": operator.sub, "*": operator.mul, "/": operator.truediv,
-                      "%": operator.mod}
-        f = scalar_ops[op]
-        if _both(lt, rt, NUMERIC):
-            result = INT if lt.name == rt.name == "int" and op != "/" else FLOAT
-            if ANY in (lt, rt):
-                result = ANY
-            return (lambda g, b: f(left(g, b), right(g, b))), result, reads
-        if op == "+" and lt == rt == STR:
-            return (lambda g, b: left(g, b) + right(g, b)), STR, reads
-        if op in "+-" and lt.name in VECTORS and lt == rt:
-            return (lambda g, b: tuple(f(x, y) for x, y in zip(left(g, b), right(g, b)))), lt, reads
-        if op in "*/" and lt.name in VECTORS and rt.name in NUMERIC:
-            return (lambda g, b: tuple(f(x, right(g, b)) for x in left(g, b))), lt, reads
-        if op == "*" and lt.name in NUMERIC and rt.name in VECTORS:
-            return (lambda g, b: tuple(left(g, b) * y for y in right(g, b))), rt, reads
-        raise RuleTypeError(f"operator '{op}' does not apply to {lt} and {rt}", expr.pos)
+    _COMPILE = {
+        ast.Literal: _literal,
+        ast.Name: _name,
+        ast.ListExpr: _list,
+        ast.Attr: _attr,
+        ast.Index: _index,
+        ast.Call: _call,
+        ast.Unary: _unary,
+        ast.Binary: _binary,
+    }
+
+
+# -- binary operators: (expr, left, right) -> (closure, static type) ----------------------------
+
+
+def _logic(expr, left: Typed, right: Typed):
+    lf, rf = left.fn, right.fn
+    if expr.op == "and":
+        return (lambda g, b: bool(lf(g, b)) and bool(rf(g, b))), BOOL
+    return (lambda g, b: bool(lf(g, b)) or bool(rf(g, b))), BOOL
+
+
+def _equality(expr, left: Typed, right: Typed):
+    _check_comparable(left.type, right.type, expr)
+    lf, rf, f = left.fn, right.fn, _COMPARISONS[expr.op]
+    return (lambda g, b: f(lf(g, b), rf(g, b))), BOOL
+
+
+def _membership(expr, left: Typed, right: Typed):
+    rt = right.type
+    if rt.kind != "value" or rt.name not in ("list", "any", "vec2", "vec3"):
+        raise RuleTypeError(f"'in' needs a list on its right, not {rt}", expr.right.pos)
+    lf, rf = left.fn, right.fn
+    return (lambda g, b: lf(g, b) in rf(g, b)), BOOL
+
+
+def _ordering(expr, left: Typed, right: Typed):
+    lt, rt = left.type, right.type
+    if not (_both(lt, rt, NUMERIC) or _both(lt, rt, ("str",))):
+        raise RuleTypeError(f"cannot compare {lt} {expr.op} {rt}", expr.pos)
+    lf, rf, f = left.fn, right.fn, _COMPARISONS[expr.op]
+    return (lambda g, b: f(lf(g, b), rf(g, b))), BOOL
+
+
+def _arithmetic(expr, left: Typed, right: Typed):
+    op, lt, rt = expr.op, left.type, right.type
+    lf, rf, f = left.fn, right.fn, _ARITHMETIC[op]
+    if _both(lt, rt, NUMERIC):
+        result = INT if lt.name == rt.name == "int" and op != "/" else FLOAT
+        if ANY in (lt, rt):
+            result = ANY
+        return (lambda g, b: f(lf(g, b), rf(g, b))), result
+    if op == "+" and lt == rt == STR:
+        return (lambda g, b: lf(g, b) + rf(g, b)), STR
+    if op in "+-" and lt.name in VECTORS and lt == rt:
+        return (lambda g, b: tuple(f(x, y) for x, y in zip(lf(g, b), rf(g, b)))), lt
+    if op in "*/" and lt.name in VECTORS and rt.name in NUMERIC:
+        return (lambda g, b: tuple(f(x, rf(g, b)) for x in lf(g, b))), lt
+    if op == "*" and lt.name in NUMERIC and rt.name in VECTORS:
+        return (lambda g, b: tuple(lf(g, b) * y for y in rf(g, b))), rt
+    raise RuleTypeError(f"operator '{op}' does not apply to {lt} and {rt}", expr.pos)
+
+
+_BINARY = {
+    "and": _logic, "or": _logic,
+    "==": _equality, "!=": _equality,
+    "in": _membership,
+    "<": _ordering, "<=": _ordering, ">": _ordering, ">=": _ordering,
+    **dict.fromkeys(_ARITHMETIC, _arithmetic),
+}
+
+_CHILDREN = {
+    ast.Attr: lambda e: (e.target,),
+    ast.Index: lambda e: (e.target, e.index),
+    ast.Call: lambda e: e.args,
+    ast.ListExpr: lambda e: e.items,
+    ast.Unary: lambda e: (e.operand,),
+    ast.Binary: lambda e: (e.left, e.right),
+}
 
 
 def walk(expr):
     """Every sub-expression of ``expr`` (itself included)."""
     yield expr
-    for child in _children(expr):
+    for child in _CHILDREN.get(type(expr), lambda e: ())(expr):
         yield from walk(child)
-
-
-def _children(expr):
-    if isinstance(expr, (ast.Attr,)):
-        return (expr.target,)
-    if isinstance(expr, ast.Index):
-        return (expr.target, expr.index)
-    if isinstance(expr, ast.Call):
-        return expr.args
-    if isinstance(expr, ast.ListExpr):
-        return expr.items
-    if isinstance(expr, ast.Unary):
-        return (expr.operand,)
-    if isinstance(expr, ast.Binary):
-        return (expr.left, expr.right)
-    return ()
 
 
 def _both(a: VType, b: VType, names) -> bool:
@@ -359,15 +390,7 @@ def _accepts(kind: str, t: VType) -> bool:
         return True
     if kind in ("node", "edge", "type"):
         return t.kind == kind
-    if t.kind != "value":
-        return False
-    if kind == "number":
-        return t.name in NUMERIC
-    if kind == "vec":
-        return t.name in VECTORS
-    if kind == "float":
-        return t.name in NUMERIC
-    return t.name == kind
+    return t.kind == "value" and passable(kind, t.name)
 
 
 def _check_arguments(func: Function, expr, types: list[VType]) -> None:

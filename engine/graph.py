@@ -11,6 +11,8 @@ algorithm can run on :meth:`HostGraph.to_networkx`) and keeps, current on every 
   of an edge's polyline as it leaves a node) edges are kept sorted counter-clockwise by that angle;
   without one, by edge id (creation order). Faces of a planar graph are walked with it
   (:mod:`vaultgram.engine.embedding`), and ``foreach`` visits neighbours in this order;
+* the same typed structure for search loops, read-only: :attr:`HostGraph.incidence` (live
+  mappings) and :meth:`HostGraph.arrays` (flat numpy arrays indexed by id, with ``type_code``);
 * an **undo log** (journal): every primitive change records its inverse, so an application either
   completes or is rolled back exactly (:meth:`transaction`), and exploration can step back
   (:meth:`mark` / :meth:`rollback`) without copying the graph.
@@ -25,14 +27,13 @@ from __future__ import annotations
 import bisect
 from contextlib import contextmanager
 from dataclasses import dataclass
-from typing import Callable, Iterable, Iterator, Mapping
+from typing import AbstractSet, Callable, Iterable, Iterator, Mapping, NamedTuple
 
 import networkx as nx
 import numpy as np
 
-from vaultgram.errors import SchemaError
-
-from .schema import TypeSchema, normalise_value, value_conforms
+from .errors import SchemaError
+from .schema import TypeSchema
 
 AngleFunction = Callable[["HostGraph", int, int], float]
 
@@ -43,6 +44,138 @@ class ChangeSet:
 
     nodes: frozenset[int]
     types: frozenset[str]
+
+
+class Incidence(NamedTuple):
+    """The typed structure of a host graph, for search loops: the graph's own tables, seen read-only.
+
+    They stay current as the graph changes; never change them (only :class:`HostGraph` methods do).
+    ``node_type``: node id -> type name; ``edge_type``: edge id -> type name; ``ends``: edge id ->
+    (source, target); ``typed``: node id -> edge type name -> ids of the node's edges of that type.
+    """
+
+    node_type: Mapping[int, str]
+    edge_type: Mapping[int, str]
+    ends: Mapping[int, tuple[int, int]]
+    typed: Mapping[int, Mapping[str, AbstractSet[int]]]
+
+
+class TypeArrays(NamedTuple):
+    """The typed structure as flat arrays indexed by id (-1 where an id is not in use)."""
+
+    node_code: np.ndarray  # node id -> type code
+    edge_code: np.ndarray  # edge id -> type code
+    edge_ends: np.ndarray  # edge id -> (source, target)
+
+
+# ----------------------------------------------------------------------------------------------
+# The journal: one record per primitive change, which knows how to undo it and what it touched
+# ----------------------------------------------------------------------------------------------
+
+
+def _touch_node(g: "HostGraph", n: int, nodes: set, types: set) -> None:
+    nodes.add(n)
+    types.add(g._node_type.get(n, ""))
+
+
+def _touch_edge(g: "HostGraph", e: int, nodes: set, types: set) -> None:
+    if e in g._ends:
+        nodes.update(g._ends[e])
+        types.add(g._edge_type[e])
+
+
+class _AddNode(NamedTuple):
+    n: int
+    next_id: int  # the node counter before the addition
+
+    def undo(self, g: "HostGraph") -> None:
+        g._delete_node(self.n)
+        g._next_node = self.next_id
+
+    def touched(self, g: "HostGraph", nodes: set, types: set) -> None:
+        _touch_node(g, self.n, nodes, types)
+
+
+class _AddEdge(NamedTuple):
+    e: int
+    next_id: int  # the edge counter before the addition
+
+    def undo(self, g: "HostGraph") -> None:
+        g._delete_edge(self.e)
+        g._next_edge = self.next_id
+
+    def touched(self, g: "HostGraph", nodes: set, types: set) -> None:
+        _touch_edge(g, self.e, nodes, types)
+
+
+class _RemoveNode(NamedTuple):
+    n: int
+    type_name: str
+    attrs: dict
+
+    def undo(self, g: "HostGraph") -> None:
+        g._insert_node(self.n, self.type_name, self.attrs)
+
+    def touched(self, g: "HostGraph", nodes: set, types: set) -> None:
+        nodes.add(self.n)
+        types.add(self.type_name)
+
+
+class _RemoveEdge(NamedTuple):
+    e: int
+    type_name: str
+    u: int
+    v: int
+    attrs: dict
+    positions: tuple[int, int]  # where the edge stood in the rotations of u and v
+
+    def undo(self, g: "HostGraph") -> None:
+        g._insert_edge(self.e, self.type_name, self.u, self.v, self.attrs, self.positions)
+
+    def touched(self, g: "HostGraph", nodes: set, types: set) -> None:
+        nodes.update((self.u, self.v))
+        types.add(self.type_name)
+
+
+class _SetAttr(NamedTuple):
+    kind: str  # "node" or "edge"
+    i: int
+    name: str
+    old: object
+
+    def undo(self, g: "HostGraph") -> None:
+        data = g.nx.nodes[self.i] if self.kind == "node" else g.nx.edges[(*g._ends[self.i], self.i)]
+        data[self.name] = self.old
+
+    def touched(self, g: "HostGraph", nodes: set, types: set) -> None:
+        (_touch_node if self.kind == "node" else _touch_edge)(g, self.i, nodes, types)
+
+
+class _Retype(NamedTuple):
+    n: int
+    old_type: str
+    old_attrs: dict
+
+    def undo(self, g: "HostGraph") -> None:
+        g._set_node_type(self.n, self.old_type)
+        g._replace_attrs(self.n, self.old_attrs)
+
+    def touched(self, g: "HostGraph", nodes: set, types: set) -> None:
+        types.add(self.old_type)
+        _touch_node(g, self.n, nodes, types)
+
+
+class _Rotation(NamedTuple):
+    n: int
+    order: list[int]
+    keys: list[tuple[float, int]]
+
+    def undo(self, g: "HostGraph") -> None:
+        g._rot[self.n] = self.order
+        g._rot_keys[self.n] = self.keys
+
+    def touched(self, g: "HostGraph", nodes: set, types: set) -> None:
+        nodes.add(self.n)
 
 
 class HostGraph:
@@ -61,13 +194,14 @@ class HostGraph:
         self._rot_keys: dict[int, list[tuple[float, int]]] = {}
         self._next_node = 0
         self._next_edge = 0
-        self._journal: list[tuple] = []
+        self._journal: list = []  # of the records above
         self.version = 0  # bumped by every change of structure or types (caches key on it)
         # the same typed structure as flat arrays indexed by id (-1: unused id), for whole-graph search
         self.type_code = {t: i for i, t in enumerate((*schema.node_types, *schema.edge_types))}
         self._node_codes = np.full(64, -1, dtype=np.int64)
         self._edge_codes = np.full(64, -1, dtype=np.int64)
         self._edge_ends = np.full((64, 2), -1, dtype=np.int64)
+        self.incidence = Incidence(self._node_type, self._edge_type, self._ends, self._inc)
 
     # ------------------------------------------------------------------------------------------
     # Queries
@@ -152,6 +286,14 @@ class HostGraph:
             return sum(len(s) for s in inc.values())
         return sum(len(inc[t]) for t in types if t in inc)
 
+    def arrays(self) -> TypeArrays:
+        """Type code per node id, and per edge id its type code and (source, target); -1 where unused.
+
+        The arrays are views of the graph's own: read them before the next change, never write them.
+        """
+        return TypeArrays(self._node_codes[: self._next_node], self._edge_codes[: self._next_edge],
+                          self._edge_ends[: self._next_edge])
+
     def rotation(self, n: int) -> list[int]:
         """Incident edge ids in cyclic (counter-clockwise when the graph has an angle function) order."""
         return list(self._rot[n])
@@ -174,7 +316,7 @@ class HostGraph:
             raise SchemaError(f"node type '{type_name}' is abstract and cannot be instantiated")
         n = self._allocate(id, self._node_type, "node")
         values = self.schema.fill_attrs(type_name, attrs or {}, f"node {n}")
-        self._journal.append(("add_node", n, self._next_node))
+        self._journal.append(_AddNode(n, self._next_node))
         self._next_node = max(self._next_node, n + 1)
         self._insert_node(n, type_name, values)
         return n
@@ -196,7 +338,7 @@ class HostGraph:
         self._check_endpoints(type_name, u, v)
         e = self._allocate(id, self._edge_type, "edge")
         values = self.schema.fill_attrs(type_name, attrs or {}, f"edge {e}")
-        self._journal.append(("add_edge", e, self._next_edge))
+        self._journal.append(_AddEdge(e, self._next_edge))
         self._next_edge = max(self._next_edge, e + 1)
         self._insert_edge(e, type_name, u, v, values, None)
         return e
@@ -205,14 +347,14 @@ class HostGraph:
         u, v = self._ends[e]
         positions = (self._rot[u].index(e), self._rot[v].index(e))
         attrs = dict(self.nx.edges[u, v, e])
-        self._journal.append(("remove_edge", e, self._edge_type[e], u, v, attrs, positions))
+        self._journal.append(_RemoveEdge(e, self._edge_type[e], u, v, attrs, positions))
         self._delete_edge(e)
 
     def remove_node(self, n: int) -> None:
         """Remove a node that has no edges left (the dangling condition of double-pushout rewriting)."""
         if self._rot[n]:
             raise SchemaError(f"node {n} still has {len(self._rot[n])} edge(s): {sorted(self._rot[n])}")
-        self._journal.append(("remove_node", n, self._node_type[n], dict(self.nx.nodes[n])))
+        self._journal.append(_RemoveNode(n, self._node_type[n], dict(self.nx.nodes[n])))
         self._delete_node(n)
 
     def set_node_attr(self, n: int, name: str, value: object) -> None:
@@ -241,10 +383,8 @@ class HostGraph:
             except SchemaError:
                 self._set_node_type(n, old_type)
                 raise
-        self._journal.append(("retype", n, old_type, old_attrs))
-        data = self.nx.nodes[n]
-        data.clear()
-        data.update(values)
+        self._journal.append(_Retype(n, old_type, old_attrs))
+        self._replace_attrs(n, values)
 
     # ------------------------------------------------------------------------------------------
     # Transactions and undo
@@ -257,7 +397,7 @@ class HostGraph:
     def rollback(self, mark: int) -> None:
         """Undo every change made since ``mark``, restoring the graph (ids, rotations, counters) exactly."""
         while len(self._journal) > mark:
-            self._undo(self._journal.pop())
+            self._journal.pop().undo(self)
 
     @contextmanager
     def transaction(self):
@@ -278,34 +418,7 @@ class HostGraph:
         nodes: set[int] = set()
         types: set[str] = set()
         for record in self._journal[mark:]:
-            op = record[0]
-            if op == "add_node":
-                nodes.add(record[1])
-                types.add(self._node_type.get(record[1], ""))
-            elif op == "remove_node":
-                nodes.add(record[1])
-                types.add(record[2])
-            elif op == "add_edge":
-                e = record[1]
-                if e in self._ends:
-                    nodes.update(self._ends[e])
-                    types.add(self._edge_type[e])
-            elif op == "remove_edge":
-                nodes.update((record[3], record[4]))
-                types.add(record[2])
-            elif op == "set_attr":
-                kind, i = record[1], record[2]
-                if kind == "node":
-                    nodes.add(i)
-                    types.add(self._node_type.get(i, ""))
-                elif i in self._ends:
-                    nodes.update(self._ends[i])
-                    types.add(self._edge_type[i])
-            elif op == "retype":
-                nodes.add(record[1])
-                types.update((record[2], self._node_type.get(record[1], "")))
-            elif op == "rotation":
-                nodes.add(record[1])
+            record.touched(self, nodes, types)
         types.discard("")
         return ChangeSet(frozenset(nodes), frozenset(types))
 
@@ -447,11 +560,6 @@ class HostGraph:
             i = self._rot[n].index(e)
             del self._rot[n][i], self._rot_keys[n][i]
 
-    def arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Type code per node id, and per edge id its type code and (source, target); -1 where unused."""
-        return (self._node_codes[: self._next_node], self._edge_codes[: self._next_edge],
-                self._edge_ends[: self._next_edge])
-
     def _rotation_key(self, e: int, n: int) -> tuple[float, int]:
         if self.angle is None:
             return (0.0, e)
@@ -465,51 +573,19 @@ class HostGraph:
             keys = sorted(self._rotation_key(e, n) for e in self._rot[n])
             order = [e for _, e in keys]
             if order != self._rot[n]:
-                self._journal.append(("rotation", n, self._rot[n], self._rot_keys[n]))
+                self._journal.append(_Rotation(n, self._rot[n], self._rot_keys[n]))
                 self._rot[n] = order
                 self._rot_keys[n] = keys
 
     def _set_attr(self, kind: str, i: int, type_name: str, data: dict, name: str, value: object) -> None:
-        spec = self.schema.attrs(type_name).get(name)
-        if spec is None:
-            raise SchemaError(f"{kind} {i}: type {type_name} has no attribute '{name}'")
-        value = normalise_value(value)
-        if not value_conforms(value, spec.type):
-            raise SchemaError(f"{kind} {i}: attribute '{name}' of {type_name} must be {spec.type}, got {value!r}")
-        self._journal.append(("set_attr", kind, i, name, data[name]))
+        value = self.schema.checked_value(type_name, name, value, f"{kind} {i}")
+        self._journal.append(_SetAttr(kind, i, name, data[name]))
         data[name] = value
 
-    def _undo(self, record: tuple) -> None:
-        op = record[0]
-        if op == "add_node":
-            self._delete_node(record[1])
-            self._next_node = record[2]
-        elif op == "add_edge":
-            self._delete_edge(record[1])
-            self._next_edge = record[2]
-        elif op == "remove_node":
-            _, n, type_name, attrs = record
-            self._insert_node(n, type_name, attrs)
-        elif op == "remove_edge":
-            _, e, type_name, u, v, attrs, positions = record
-            self._insert_edge(e, type_name, u, v, attrs, positions)
-        elif op == "set_attr":
-            _, kind, i, name, old = record
-            if kind == "node":
-                self.nx.nodes[i][name] = old
-            else:
-                u, v = self._ends[i]
-                self.nx.edges[u, v, i][name] = old
-        elif op == "retype":
-            _, n, old_type, old_attrs = record
-            self._set_node_type(n, old_type)
-            data = self.nx.nodes[n]
-            data.clear()
-            data.update(old_attrs)
-        elif op == "rotation":
-            _, n, order, keys = record
-            self._rot[n] = order
-            self._rot_keys[n] = keys
+    def _replace_attrs(self, n: int, values: Mapping[str, object]) -> None:
+        data = self.nx.nodes[n]
+        data.clear()
+        data.update(values)
 
 
 def _fit(array: np.ndarray, i: int) -> np.ndarray:

@@ -9,16 +9,15 @@ variables in declaration order, so "the first match" never depends on hash seeds
 
 from __future__ import annotations
 
-from typing import Iterator, Mapping
-
-from vaultgram.errors import RewriteError
+from typing import Iterator, Mapping, NamedTuple
 
 import numpy as np
 
-from .checker import CompiledPattern, CompiledRule, Condition
+from .checker import CompiledRule
 from .columnar import Table, nac_rows, run_columnar
+from .errors import RewriteError
 from .graph import HostGraph
-from .plan import Check, Extend, Scan, Step, build_plan
+from .plan import Bound, Check, Extend, Scan, Step, build_plan
 from .rewriter import footprint
 
 
@@ -45,6 +44,14 @@ class Match:
 
     def __repr__(self) -> str:
         return f"Match({self.rule}, {self.binding})"
+
+
+class Rejection(NamedTuple):
+    """Why a complete positive match is refused: the index of a NAC that matches around it, or the
+    nodes a plain ``delete`` would leave with edges (the dangling condition), node -> edge ids."""
+
+    nac: int | None = None
+    dangling: dict[int, list[int]] | None = None
 
 
 class Matcher:
@@ -112,7 +119,7 @@ class Matcher:
         """Whether a complete binding is (still) a match."""
         given = dict(binding)
         g = self.graph
-        for var, pn in self.rule.pattern.nodes.items():
+        for var in self.rule.pattern.nodes:
             if var not in given or not g.has_node(given[var]):
                 return False
         for pe in self.rule.pattern.edges:
@@ -152,15 +159,15 @@ class Matcher:
             return True
         return self.rejection(binding) is None
 
-    def rejection(self, binding: dict) -> tuple[str, object] | None:
-        """Why a complete positive match is refused: ("nac", index) or ("dangling", {node: edges})."""
-        for i, nac in enumerate(self.rule.nacs):
-            if self.nac_matches(i, nac, binding):
-                return ("nac", i)
+    def rejection(self, binding: dict) -> Rejection | None:
+        """Why a complete positive match is refused, or None when it is a match."""
+        for i in range(len(self.rule.nacs)):
+            if self.nac_matches(i, binding):
+                return Rejection(nac=i)
         if self.rule.deletes_nodes:
             dangling = footprint(self.rule, self.graph, binding).dangling(self.graph)
             if dangling:
-                return ("dangling", dangling)
+                return Rejection(dangling=dangling)
         return None
 
     def _nac_plan(self, i: int) -> list[Step]:
@@ -169,13 +176,12 @@ class Matcher:
             self._nac_plans.append(build_plan(self.rule.nacs[k], self.rule.nacs[k].outer, self.graph.count))
         return self._nac_plans[i]
 
-    def nac_matches(self, i: int, nac: CompiledPattern, binding: dict) -> dict | None:
-        self._nac_plan(i)
+    def nac_matches(self, i: int, binding: dict) -> dict | None:
+        """A binding of NAC ``i`` around the complete positive ``binding``, or None when it has none."""
         used_nodes = {binding[v] for v in self.rule.pattern.nodes}
         used_edges = {binding[e.var] for e in self.rule.pattern.edges}
-        for b in run_plan(self.graph, self._nac_plans[i], dict(binding), used_nodes, used_edges, self.rule.name, {}):
-            return b
-        return None
+        plan = self._nac_plan(i)
+        return next(run_plan(self.graph, plan, dict(binding), used_nodes, used_edges, self.rule.name, {}), None)
 
 
 def _row_bindings(table: Table):
@@ -188,85 +194,121 @@ def _row_bindings(table: Table):
 def run_plan(
     g: HostGraph, plan: list[Step], binding: dict, used_nodes: set, used_edges: set, rule: str, fixed_edges: dict
 ) -> Iterator[dict]:
-    """Execute a plan depth-first, yielding each complete binding (the same dict, mutated)."""
-    n_steps = len(plan)
-    node_type = g._node_type
-    ends = g._ends
-    inc = g._inc
+    """Execute a plan depth-first, yielding each complete binding (the same dict, mutated).
 
-    def holds(c: Condition) -> bool:
-        try:
-            return bool(c.fn(g, binding))
-        except Exception as exc:  # a host function or arithmetic failing on this graph
-            raise RewriteError(f"rule {rule}: {c.pos}: evaluating `{c.text}` failed: {exc!r}") from None
+    ``used_nodes`` and ``used_edges`` are the elements already bound (matching is injective);
+    ``fixed_edges`` binds edge variables in advance (pattern variable -> the only edge it may take).
+    """
+    return _Search(g, plan, binding, used_nodes, used_edges, rule, fixed_edges).run(0)
 
-    def go(i: int) -> Iterator[dict]:
-        if i == n_steps:
-            yield binding
-            return
-        step = plan[i]
-        if isinstance(step, Extend):
-            pe = step.edge
-            start = binding[step.start]
-            wanted = fixed_edges.get(pe.var)
-            end_node = step.end_node
-            target = None if end_node is not None else binding[step.end]
-            start_inc = inc[start]
-            for t in pe.types:
-                bucket = start_inc.get(t)
-                if not bucket:
+
+class _Search:
+    """One depth-first run of a plan: the binding being built and, for each kind of step, a generator
+    that binds the step's variables in every possible way and continues with the next step."""
+
+    __slots__ = ("g", "node_type", "ends", "typed", "binding", "used_nodes", "used_edges", "rule", "fixed_edges",
+                 "steps")
+
+    def __init__(self, g: HostGraph, plan, binding, used_nodes, used_edges, rule: str, fixed_edges: dict):
+        self.g = g
+        self.node_type, _, self.ends, self.typed = g.incidence
+        self.binding, self.used_nodes, self.used_edges = binding, used_nodes, used_edges
+        self.rule, self.fixed_edges = rule, fixed_edges
+        self.steps = [(_PHASES[type(step)], step) for step in plan]
+
+    def run(self, i: int) -> Iterator[dict]:
+        """The complete bindings that extend the current one from step ``i`` on."""
+        if i == len(self.steps):
+            return iter((self.binding,))
+        phase, step = self.steps[i]
+        return phase(self, step, i + 1)
+
+    def holds(self, conditions) -> bool:
+        g, binding = self.g, self.binding
+        for c in conditions:
+            try:
+                if not c.fn(g, binding):
+                    return False
+            except Exception as exc:  # a host function or arithmetic failing on this graph
+                raise c.failure(self.rule, exc) from None
+        return True
+
+    def bound(self, step: Bound, nxt: int) -> Iterator[dict]:
+        """A node given from outside: it must still exist, have a fitting type and pass its checks."""
+        pn = step.node
+        n = self.binding[pn.var]
+        if n in self.node_type and self.node_type[n] in pn.types and self.holds(pn.checks):
+            yield from self.run(nxt)
+
+    def scan(self, step: Scan, nxt: int) -> Iterator[dict]:
+        """Every unused node of a fitting type, in id order."""
+        pn = step.node
+        binding, used_nodes = self.binding, self.used_nodes
+        for n in sorted(self.g.of_types(pn.types)):
+            if n in used_nodes:
+                continue
+            binding[pn.var] = n
+            used_nodes.add(n)
+            if self.holds(pn.checks):
+                yield from self.run(nxt)
+            used_nodes.discard(n)
+            del binding[pn.var]
+
+    def check(self, step: Check, nxt: int) -> Iterator[dict]:
+        if self.holds((step.condition,)):
+            yield from self.run(nxt)
+
+    def extend(self, step: Extend, nxt: int) -> Iterator[dict]:
+        """Every unused edge of the pattern edge's types and direction at the bound start node whose
+        other end is the bound end node, or an unused node of a fitting type that it then binds."""
+        binding, used_nodes, used_edges, ends, node_type = (
+            self.binding, self.used_nodes, self.used_edges, self.ends, self.node_type)
+        pe, end_node = step.edge, step.end_node
+        start = binding[step.start]
+        target = None if end_node is not None else binding[step.end]
+        checks = pe.checks if end_node is None else end_node.checks + pe.checks
+        directed, forward = pe.mode == "out", step.forward
+        for e in self.edges_at(pe.var, pe.types, start):
+            if e in used_edges:
+                continue
+            u, v = ends[e]
+            if directed:
+                if (u if forward else v) != start:
                     continue
-                for e in list(bucket) if wanted is None else ([wanted] if wanted in bucket else []):
-                    if e in used_edges:
-                        continue
-                    u, v = ends[e]
-                    if pe.mode == "out":
-                        if step.forward:
-                            if u != start:
-                                continue
-                            other = v
-                        else:
-                            if v != start:
-                                continue
-                            other = u
-                    else:
-                        other = v if u == start else u
-                    if target is not None:
-                        if other != target:
-                            continue
-                    elif other in used_nodes or node_type[other] not in end_node.types:
-                        continue
-                    binding[pe.var] = e
-                    used_edges.add(e)
-                    if target is None:
-                        binding[step.end] = other
-                        used_nodes.add(other)
-                        if all(holds(c) for c in end_node.checks) and all(holds(c) for c in pe.checks):
-                            yield from go(i + 1)
-                        used_nodes.discard(other)
-                        del binding[step.end]
-                    elif all(holds(c) for c in pe.checks):
-                        yield from go(i + 1)
-                    used_edges.discard(e)
-                    del binding[pe.var]
-        elif isinstance(step, Check):
-            if holds(step.condition):
-                yield from go(i + 1)
-        elif isinstance(step, Scan):
-            pn = step.node
-            for n in sorted(g.of_types(pn.types)):
-                if n in used_nodes:
+                other = v if forward else u
+            else:
+                other = v if u == start else u
+            if target is not None:
+                if other != target:
                     continue
-                binding[pn.var] = n
-                used_nodes.add(n)
-                if all(holds(c) for c in pn.checks):
-                    yield from go(i + 1)
-                used_nodes.discard(n)
-                del binding[pn.var]
-        else:  # Bound
-            pn = step.node
-            n = binding[pn.var]
-            if g.has_node(n) and node_type[n] in pn.types and all(holds(c) for c in pn.checks):
-                yield from go(i + 1)
+            elif other in used_nodes or node_type[other] not in end_node.types:
+                continue
+            binding[pe.var] = e
+            used_edges.add(e)
+            if target is None:
+                binding[step.end] = other
+                used_nodes.add(other)
+            if not checks or self.holds(checks):
+                yield from self.run(nxt)
+            if target is None:
+                used_nodes.discard(other)
+                del binding[step.end]
+            used_edges.discard(e)
+            del binding[pe.var]
 
-    yield from go(0)
+    def edges_at(self, var: str, types, start: int) -> list[int]:
+        """The edges of ``types`` at node ``start`` (only the one fixed for ``var``, if it is fixed)."""
+        wanted = self.fixed_edges.get(var)
+        at = self.typed[start]
+        out: list[int] = []
+        for t in types:
+            bucket = at.get(t)
+            if bucket:
+                if wanted is None:
+                    out.extend(bucket)
+                elif wanted in bucket:
+                    out.append(wanted)
+        return out
+
+
+_PHASES = {Bound: _Search.bound, Scan: _Search.scan, Check: _Search.check, Extend: _Search.extend}

@@ -23,13 +23,33 @@ from .checker import CompiledPattern, Condition, PatternEdge, PatternNode
 
 
 @dataclass(frozen=True)
-class Bound:
+class _NodeStep:
+    """A step about one pattern node. Every step also tells the variables it ``binds``, its ``pos``
+    in the rule, and what is ``missing()`` when it finds nothing (for why-not reports)."""
+
     node: PatternNode
+
+    @property
+    def pos(self):
+        return self.node.pos
 
 
 @dataclass(frozen=True)
-class Scan:
-    node: PatternNode
+class Bound(_NodeStep):
+    binds = ()
+
+    def missing(self) -> str:
+        return f"no node {self.node.var}: {self.node.type} found"
+
+
+@dataclass(frozen=True)
+class Scan(_NodeStep):
+    @property
+    def binds(self) -> tuple[str, ...]:
+        return (self.node.var,)
+
+    def missing(self) -> str:
+        return f"no a node {self.node.var}: {self.node.type} found"
 
 
 @dataclass(frozen=True)
@@ -40,10 +60,33 @@ class Extend:
     end_node: PatternNode | None  # None when ``end`` is already bound
     forward: bool  # for a directed ("out") edge: start is its source
 
+    @property
+    def binds(self) -> tuple[str, ...]:
+        return (self.edge.var,) if self.end_node is None else (self.edge.var, self.end)
+
+    @property
+    def pos(self):
+        return self.edge.pos
+
+    def missing(self) -> str:
+        e = self.edge
+        arrow = f"-{e.type}->" if e.mode == "out" else f"-{e.type}-"
+        name = "" if e.var.startswith("_") else f"{e.var}: "
+        return f"no edge {name}{e.source} {arrow} {e.target} found"
+
 
 @dataclass(frozen=True)
 class Check:
     condition: Condition
+
+    binds = ()
+
+    @property
+    def pos(self):
+        return self.condition.pos
+
+    def missing(self) -> str:
+        return f"condition `{self.condition.text}` is false"
 
 
 Step = Bound | Scan | Extend | Check
@@ -97,25 +140,3 @@ def build_plan(
     place_conditions()
     assert not conditions, f"conditions read unbound variables: {[c.text for c in conditions]}"
     return steps
-
-
-def describe_step(step: Step) -> str:
-    """What a step looks for, in the rule's own words (for why-not reports)."""
-    if isinstance(step, Bound):
-        return f"node {step.node.var}: {step.node.type}"
-    if isinstance(step, Scan):
-        return f"a node {step.node.var}: {step.node.type}"
-    if isinstance(step, Extend):
-        e = step.edge
-        arrow = f"-{e.type}->" if e.mode == "out" else f"-{e.type}-"
-        name = "" if e.var.startswith("_") else f"{e.var}: "
-        return f"edge {name}{e.source} {arrow} {e.target}"
-    return f"condition `{step.condition.text}`"
-
-
-def step_pos(step: Step):
-    if isinstance(step, (Bound, Scan)):
-        return step.node.pos
-    if isinstance(step, Extend):
-        return step.edge.pos
-    return step.condition.pos

@@ -21,10 +21,10 @@ and a :class:`RewriteError` names the rule and the statement.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
-from vaultgram.errors import RewriteError, SchemaError
-
-from .checker import CCreateEdge, CCreateNode, CDelete, CForeach, CMerge, CompiledRule, CRetype, CSet
+from .checker import CCreateEdge, CCreateNode, CDelete, CForeach, CMerge, CompiledRule, CRetype, CSet, End
+from .errors import RewriteError, SchemaError
 from .graph import HostGraph
 
 
@@ -67,8 +67,15 @@ class Application:
     mark: int  # journal position before the application: graph.rollback(mark) undoes it
 
 
-def foreach_iterations(graph: HostGraph, stmt: CForeach, scope: dict) -> list[tuple[int, int]]:
-    """(edge, neighbour) pairs of a foreach, in the rotation order around its center."""
+class Iteration(NamedTuple):
+    """One iteration of a ``foreach``: the edge and the neighbour it reaches."""
+
+    edge: int
+    neighbour: int
+
+
+def foreach_iterations(graph: HostGraph, stmt: CForeach, scope: dict) -> list[Iteration]:
+    """The iterations of a foreach, in the rotation order around its center."""
     center = scope[stmt.center]
     out = []
     for e in graph.rotation(center):
@@ -82,8 +89,13 @@ def foreach_iterations(graph: HostGraph, stmt: CForeach, scope: dict) -> list[tu
             inner = {**scope, stmt.edge_var: e, stmt.neighbour: n}
             if not stmt.condition.fn(graph, inner):
                 continue
-        out.append((e, n))
+        out.append(Iteration(e, n))
     return out
+
+
+def _iteration_scopes(graph: HostGraph, stmt: CForeach, scope: dict) -> list[dict]:
+    """The scope of each iteration of a foreach: ``scope`` with its edge and neighbour bound."""
+    return [{**scope, stmt.edge_var: e, stmt.neighbour: n} for e, n in foreach_iterations(graph, stmt, scope)]
 
 
 def footprint(rule: CompiledRule, graph: HostGraph, scope: dict) -> Footprint:
@@ -93,29 +105,59 @@ def footprint(rule: CompiledRule, graph: HostGraph, scope: dict) -> Footprint:
     return fp
 
 
-def _collect(statements, graph, scope, fp: Footprint) -> None:
+def _collect(statements, graph: HostGraph, scope: dict, fp: Footprint) -> None:
     for s in statements:
-        if isinstance(s, CDelete):
-            for var in s.vars:
-                if var not in scope:
-                    continue
-                if var in s.node_vars:
-                    (fp.detached_nodes if s.detach else fp.deleted_nodes).add(scope[var])
-                else:
-                    fp.deleted_edges.add(scope[var])
-        elif isinstance(s, CRetype) and s.var in scope:
-            fp.changed_nodes.add(scope[s.var])
-        elif isinstance(s, CSet) and s.var in scope:
-            (fp.changed_nodes if s.kind == "node" else fp.changed_edges).add(scope[s.var])
-        elif isinstance(s, CMerge):
-            fp.changed_nodes.update(scope[v] for v in (s.source, s.target) if v in scope)
-        elif isinstance(s, CForeach):
-            for e, n in foreach_iterations(graph, s, scope):
-                _collect(s.body, graph, {**scope, s.edge_var: e, s.neighbour: n}, fp)
+        collect = _FOOTPRINTS.get(type(s))
+        if collect is not None:
+            collect(s, graph, scope, fp)
+
+
+def _delete_footprint(s: CDelete, graph: HostGraph, scope: dict, fp: Footprint) -> None:
+    for var in s.vars:
+        if var not in scope:
+            continue
+        if var in s.node_vars:
+            (fp.detached_nodes if s.detach else fp.deleted_nodes).add(scope[var])
+        else:
+            fp.deleted_edges.add(scope[var])
+
+
+def _retype_footprint(s: CRetype, graph: HostGraph, scope: dict, fp: Footprint) -> None:
+    if s.var in scope:
+        fp.changed_nodes.add(scope[s.var])
+
+
+def _set_footprint(s: CSet, graph: HostGraph, scope: dict, fp: Footprint) -> None:
+    if s.var in scope:
+        (fp.changed_nodes if s.kind == "node" else fp.changed_edges).add(scope[s.var])
+
+
+def _merge_footprint(s: CMerge, graph: HostGraph, scope: dict, fp: Footprint) -> None:
+    fp.changed_nodes.update(scope[v] for v in (s.source, s.target) if v in scope)
+
+
+def _foreach_footprint(s: CForeach, graph: HostGraph, scope: dict, fp: Footprint) -> None:
+    for inner in _iteration_scopes(graph, s, scope):
+        _collect(s.body, graph, inner, fp)
+
+
+#: What each kind of statement adds to a footprint (creations add nothing).
+_FOOTPRINTS = {
+    CDelete: _delete_footprint,
+    CRetype: _retype_footprint,
+    CSet: _set_footprint,
+    CMerge: _merge_footprint,
+    CForeach: _foreach_footprint,
+}
 
 
 class _Run:
-    """The state of one application while its statements execute."""
+    """The state of one application while its statements execute.
+
+    Each statement is run by the method the table ``_STATEMENTS`` names for its class, with the scope
+    (variables -> ids, parameters -> values) and, inside a foreach, the scopes of the cyclically next
+    and previous iterations (for ``next(v)`` and ``prev(v)``).
+    """
 
     def __init__(self, rule: CompiledRule, graph: HostGraph):
         self.rule = rule
@@ -123,74 +165,95 @@ class _Run:
         self.created_nodes: list[int] = []
         self.created_edges: list[int] = []
         self.delete_edges: list[int] = []
-        self.delete_nodes: list[tuple[int, bool]] = []
-        self.merges: list[tuple[int, int]] = []
+        self.delete_nodes: list[tuple[int, bool]] = []  # (node, detach)
+        self.merges: list[tuple[int, int]] = []  # (merged node, node it is merged into)
 
     def execute(self, statements, scope: dict, neighbours: tuple[dict, dict] | None = None) -> None:
         for s in statements:
-            self.statement(s, scope, neighbours)
+            self._STATEMENTS[type(s)](self, s, scope, neighbours)
 
-    def statement(self, s, scope: dict, neighbours) -> None:
+    def create_node(self, s: CCreateNode, scope: dict, neighbours) -> None:
+        if s.var not in scope:  # already created in a foreach's first pass
+            g = self.graph
+            scope[s.var] = g.add_node(s.type, {name: fn(g, scope) for name, fn in s.attrs})
+            self.created_nodes.append(scope[s.var])
+
+    def create_edge(self, s: CCreateEdge, scope: dict, neighbours) -> None:
         g = self.graph
-        if isinstance(s, CCreateNode):
-            if s.var not in scope:  # already created in a foreach's first pass
-                attrs = {name: fn(g, scope) for name, fn in s.attrs}
-                scope[s.var] = g.add_node(s.type, attrs)
-                self.created_nodes.append(scope[s.var])
-        elif isinstance(s, CCreateEdge):
-            u = self.endpoint(s.source, scope, neighbours)
-            v = self.endpoint(s.target, scope, neighbours)
-            attrs = {name: fn(g, scope) for name, fn in s.attrs}
-            e = g.add_edge(s.type, u, v, attrs)
-            self.created_edges.append(e)
-            if s.var:
-                scope[s.var] = e
-        elif isinstance(s, CRetype):
-            g.retype(scope[s.var], s.type)
-        elif isinstance(s, CSet):
-            value = s.value(g, scope)
-            if s.kind == "node":
-                g.set_node_attr(scope[s.var], s.attr, value)
-            else:
-                g.set_edge_attr(scope[s.var], s.attr, value)
-        elif isinstance(s, CMerge):
-            self.merges.append((scope[s.source], scope[s.target]))
-        elif isinstance(s, CDelete):
-            for var in s.vars:
-                if var in s.node_vars:
-                    self.delete_nodes.append((scope[var], s.detach))
-                else:
-                    self.delete_edges.append(scope[var])
-        elif isinstance(s, CForeach):
-            self.foreach(s, scope)
+        u = self.endpoint(s.source, scope, neighbours)
+        v = self.endpoint(s.target, scope, neighbours)
+        e = g.add_edge(s.type, u, v, {name: fn(g, scope) for name, fn in s.attrs})
+        self.created_edges.append(e)
+        if s.var:
+            scope[s.var] = e
 
-    def foreach(self, s: CForeach, scope: dict) -> None:
-        iterations = foreach_iterations(self.graph, s, scope)
-        scopes = [{**scope, s.edge_var: e, s.neighbour: n} for e, n in iterations]
+    def retype(self, s: CRetype, scope: dict, neighbours) -> None:
+        self.graph.retype(scope[s.var], s.type)
+
+    def set_attr(self, s: CSet, scope: dict, neighbours) -> None:
+        g = self.graph
+        value = s.value(g, scope)
+        if s.kind == "node":
+            g.set_node_attr(scope[s.var], s.attr, value)
+        else:
+            g.set_edge_attr(scope[s.var], s.attr, value)
+
+    def merge(self, s: CMerge, scope: dict, neighbours) -> None:
+        self.merges.append((scope[s.source], scope[s.target]))
+
+    def delete(self, s: CDelete, scope: dict, neighbours) -> None:
+        for var in s.vars:
+            if var in s.node_vars:
+                self.delete_nodes.append((scope[var], s.detach))
+            else:
+                self.delete_edges.append(scope[var])
+
+    def foreach(self, s: CForeach, scope: dict, neighbours) -> None:
+        scopes = _iteration_scopes(self.graph, s, scope)
         creations = [c for c in s.body if isinstance(c, CCreateNode)]
         for inner in scopes:
             for c in creations:
-                self.statement(c, inner, None)
+                self.create_node(c, inner, None)
         k = len(scopes)
         for i, inner in enumerate(scopes):
             self.execute(s.body, inner, (scopes[(i + 1) % k], scopes[(i - 1) % k]))
 
+    _STATEMENTS = {
+        CCreateNode: create_node,
+        CCreateEdge: create_edge,
+        CRetype: retype,
+        CSet: set_attr,
+        CMerge: merge,
+        CDelete: delete,
+        CForeach: foreach,
+    }
+
     @staticmethod
-    def endpoint(ref: tuple[str, int], scope: dict, neighbours) -> int:
-        var, step = ref
-        if step == 0:
-            return scope[var]
-        return (neighbours[0] if step > 0 else neighbours[1])[var]
+    def endpoint(ref: End, scope: dict, neighbours) -> int:
+        if ref.step == 0:
+            return scope[ref.var]
+        return (neighbours[0] if ref.step > 0 else neighbours[1])[ref.var]
 
     def finish(self) -> tuple[list[int], list[int]]:
         """Run the deferred deletions and merges; return the deleted node and edge ids."""
+        deleted_edges = self._delete_edges()
+        deleted_nodes = self._merge_nodes(deleted_edges)
+        self._delete_nodes(deleted_nodes, deleted_edges)
+        return deleted_nodes, deleted_edges
+
+    def _delete_edges(self) -> list[int]:
         g = self.graph
-        deleted_edges: list[int] = []
+        deleted: list[int] = []
         for e in dict.fromkeys(self.delete_edges):
             if g.has_edge(e):
                 g.remove_edge(e)
-                deleted_edges.append(e)
-        deleted_nodes: list[int] = []
+                deleted.append(e)
+        return deleted
+
+    def _merge_nodes(self, deleted_edges: list[int]) -> list[int]:
+        """Move each merged node's edges (same ids) to its target, dropping those between the two."""
+        g = self.graph
+        deleted: list[int] = []
         for a, b in self.merges:
             for e in g.rotation(a):
                 u, v = g.ends(e)
@@ -201,7 +264,11 @@ class _Run:
                     continue
                 g.add_edge(type_name, b if u == a else u, b if v == a else v, attrs, id=e)
             g.remove_node(a)
-            deleted_nodes.append(a)
+            deleted.append(a)
+        return deleted
+
+    def _delete_nodes(self, deleted_nodes: list[int], deleted_edges: list[int]) -> None:
+        g = self.graph
         for n, detach in dict.fromkeys(self.delete_nodes):
             if not g.has_node(n):
                 continue
@@ -211,7 +278,6 @@ class _Run:
                     deleted_edges.append(e)
             g.remove_node(n)
             deleted_nodes.append(n)
-        return deleted_nodes, deleted_edges
 
 
 def apply_rule(rule: CompiledRule, graph: HostGraph, binding: dict, values: dict) -> Application:

@@ -11,13 +11,14 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Iterable
 
-from vaultgram.errors import RuleTypeError, did_you_mean
 from vaultgram.grammar import ast
 from vaultgram.grammar.parser import load_files, parse_text
 
 from .checker import CompiledRule, RuleChecker, describe
+from .errors import RuleTypeError, did_you_mean
 from .expressions import ExpressionCompiler, Functions
-from .schema import TypeSchema, build_schema, value_conforms
+from .schema import TypeSchema, build_schema
+from .values import value_conforms
 
 
 @dataclass
@@ -71,7 +72,7 @@ def rulebook_from_text(text: str, functions: Functions | None = None, filename: 
 def _build(files: list[ast.RuleFile], functions: Functions) -> Rulebook:
     schemas = [s for f in files for s in f.schemas]
     constant = ExpressionCompiler(build_schema([], None), functions)
-    schema = build_schema(schemas, lambda expr: constant.compile(expr, {})[0](None, {}))
+    schema = build_schema(schemas, lambda expr: constant.compile(expr, {}).fn(None, {}))
     checker = RuleChecker(schema, ExpressionCompiler(schema, functions))
 
     rules: dict[str, CompiledRule] = {}
@@ -81,7 +82,7 @@ def _build(files: list[ast.RuleFile], functions: Functions) -> Rulebook:
                 raise RuleTypeError(
                     f"rule '{rule.name}' is defined twice (first at {rules[rule.name].source.pos})", rule.pos
                 )
-            rules[rule.name] = checker.compile_rule(rule, order=len(rules))
+            rules[rule.name] = checker.compile_rule(rule)
 
     strategies: dict[str, ast.Strategy] = {}
     for f in files:
@@ -126,8 +127,7 @@ def _check_strategy(strategy: ast.Strategy, rules, strategies, checker: RuleChec
 
 def constant_value(expr, checker: RuleChecker):
     """The value of an expression with no variables (strategy arguments, defaults)."""
-    fn, _, _ = checker.compiler.compile(expr, checker.type_symbols)
-    return fn(None, {})
+    return checker.compiler.compile(expr, checker.type_symbols).fn(None, {})
 
 
 def _check_no_recursion(strategies: dict[str, ast.Strategy]) -> None:

@@ -11,13 +11,12 @@ inherits from it; undirected, joining any two nodes). Both are abstract.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Mapping
 
-from vaultgram.errors import RuleTypeError, SchemaError, did_you_mean
+from .errors import RuleTypeError, SchemaError, did_you_mean
+from .values import check_type_name, normalise_value, value_conforms
 
-VALUE_TYPES = ("int", "float", "bool", "str", "vec2", "vec3", "list", "any")
 ROOT_NODE = "Node"
 ROOT_EDGE = "Edge"
 
@@ -51,48 +50,12 @@ class EdgeType:
     abstract: bool
 
 
-def value_conforms(value: object, type_name: str) -> bool:
-    """Whether a runtime value fits a declared attribute type (``int`` fits ``float``)."""
-    if type_name == "any":
-        return True
-    if type_name == "int":
-        return isinstance(value, int) and not isinstance(value, bool)
-    if type_name == "float":
-        return isinstance(value, (int, float)) and not isinstance(value, bool)
-    if type_name == "bool":
-        return isinstance(value, bool)
-    if type_name == "str":
-        return isinstance(value, str)
-    if type_name in ("vec2", "vec3"):
-        n = 2 if type_name == "vec2" else 3
-        return (
-            isinstance(value, tuple)
-            and len(value) == n
-            and all(isinstance(c, (int, float)) and not isinstance(c, bool) and math.isfinite(c) for c in value)
-        )
-    if type_name == "list":
-        return isinstance(value, (list, tuple))
-    return False
-
-
-def normalise_value(value: object) -> object:
-    """Turn numpy scalars and arrays into plain Python values (vectors and lists become tuples)."""
-    if hasattr(value, "tolist") and not isinstance(value, (str, bytes)):
-        value = value.tolist()
-    if isinstance(value, list):
-        return tuple(normalise_value(v) for v in value)
-    if isinstance(value, tuple):
-        return tuple(normalise_value(v) for v in value)
-    return value
-
-
 class TypeSchema:
     """Node and edge types with their inheritance, attributes and (for edges) endpoint types."""
 
-    def __init__(self, node_types: Mapping[str, NodeType], edge_types: Mapping[str, EdgeType], names=()):
+    def __init__(self, node_types: Mapping[str, NodeType], edge_types: Mapping[str, EdgeType]):
         self.node_types = dict(node_types)
         self.edge_types = dict(edge_types)
-        self.names = tuple(names)
         self._subtypes: dict[str, frozenset[str]] = {}
         for table in (self.node_types, self.edge_types):
             for name in table:
@@ -144,23 +107,23 @@ class TypeSchema:
 
     def fill_attrs(self, type_name: str, given: Mapping[str, object], where: str) -> dict[str, object]:
         """Check given attribute values against the type and add defaults; raise SchemaError if wrong."""
-        specs = self.attrs(type_name)
-        out: dict[str, object] = {}
-        for name, value in given.items():
-            if name not in specs:
-                raise SchemaError(f"{where}: type {type_name} has no attribute '{name}'")
-            value = normalise_value(value)
-            if not value_conforms(value, specs[name].type):
-                raise SchemaError(
-                    f"{where}: attribute '{name}' of {type_name} must be {specs[name].type}, got {value!r}"
-                )
-            out[name] = value
-        for name, spec in specs.items():
+        out = {name: self.checked_value(type_name, name, value, where) for name, value in given.items()}
+        for name, spec in self.attrs(type_name).items():
             if name not in out:
                 if spec.required:
                     raise SchemaError(f"{where}: {type_name} needs attribute '{name}' ({spec.type})")
                 out[name] = spec.default
         return out
+
+    def checked_value(self, type_name: str, name: str, value: object, where: str) -> object:
+        """``value`` made plain, if the type has attribute ``name`` and the value fits it; else SchemaError."""
+        spec = self.attrs(type_name).get(name)
+        if spec is None:
+            raise SchemaError(f"{where}: type {type_name} has no attribute '{name}'")
+        value = normalise_value(value)
+        if not value_conforms(value, spec.type):
+            raise SchemaError(f"{where}: attribute '{name}' of {type_name} must be {spec.type}, got {value!r}")
+        return value
 
     def summary(self) -> dict:
         """A plain description (used by ``vaultgram rules check``)."""
@@ -179,6 +142,7 @@ def build_schema(schemas, evaluate_constant) -> TypeSchema:
 
     ``evaluate_constant(expr)`` turns a default-value expression into a value (or raises RuleTypeError).
     """
+    _check_attribute_types(schemas)
     node_decls: dict = {}
     edge_decls: dict = {}
     for schema in schemas:
@@ -187,47 +151,55 @@ def build_schema(schemas, evaluate_constant) -> TypeSchema:
         for decl in schema.edges:
             _declare(decl, edge_decls, node_decls)
 
-    node_types = {ROOT_NODE: NodeType(ROOT_NODE, None, {}, True)}
-    edge_types = {ROOT_EDGE: EdgeType(ROOT_EDGE, None, ROOT_NODE, ROOT_NODE, False, {}, True)}
+    def node_type(decl, parent: str, base: NodeType) -> NodeType:
+        return NodeType(decl.name, parent, _merge_attrs(base.attrs, decl, evaluate_constant), decl.abstract)
 
-    def resolve_node(name):
-        if name in node_types:
-            return node_types[name]
-        decl = node_decls[name]
-        parent = decl.parent or ROOT_NODE
-        _check_parent(decl, parent, node_decls, node_types, "node")
-        _check_no_cycle(decl, node_decls)
-        base = resolve_node(parent)
-        attrs = _merge_attrs(base.attrs, decl, evaluate_constant)
-        node_types[name] = NodeType(name, parent, attrs, decl.abstract)
-        return node_types[name]
-
-    def resolve_edge(name):
-        if name in edge_types:
-            return edge_types[name]
-        decl = edge_decls[name]
-        parent = decl.parent or ROOT_EDGE
-        _check_parent(decl, parent, edge_decls, edge_types, "edge")
-        _check_no_cycle(decl, edge_decls)
-        base = resolve_edge(parent)
+    def edge_type(decl, parent: str, base: EdgeType) -> EdgeType:
         if decl.source is None:
-            source, target, directed = base.source, base.target, base.directed
+            ends = (base.source, base.target, base.directed)
         else:
-            for end in (decl.source, decl.target):
-                if end not in node_decls and end != ROOT_NODE:
-                    raise RuleTypeError(
-                        f"edge {decl.name}: unknown node type '{end}'", decl.pos, did_you_mean(end, node_decls)
-                    )
-            source, target, directed = decl.source, decl.target, decl.directed
-        attrs = _merge_attrs(base.attrs, decl, evaluate_constant)
-        edge_types[name] = EdgeType(name, parent, source, target, directed, attrs, decl.abstract)
-        return edge_types[name]
+            _check_endpoint_types(decl, node_decls)
+            ends = (decl.source, decl.target, decl.directed)
+        return EdgeType(decl.name, parent, *ends, _merge_attrs(base.attrs, decl, evaluate_constant), decl.abstract)
 
-    for name in node_decls:
-        resolve_node(name)
-    for name in edge_decls:
-        resolve_edge(name)
-    return TypeSchema(node_types, edge_types, [s.name for s in schemas])
+    node_types = _resolve_all(node_decls, NodeType(ROOT_NODE, None, {}, True), "node", node_type)
+    edge_types = _resolve_all(
+        edge_decls, EdgeType(ROOT_EDGE, None, ROOT_NODE, ROOT_NODE, False, {}, True), "edge", edge_type
+    )
+    return TypeSchema(node_types, edge_types)
+
+
+def _resolve_all(decls: dict, root, kind: str, make) -> dict:
+    """The root and every declared type of one kind, each built by ``make(decl, parent, base)`` after
+    its parent, otherwise in declaration order."""
+    built = {root.name: root}
+
+    def resolve(name: str):
+        if name not in built:
+            decl = decls[name]
+            parent = decl.parent or root.name
+            _check_parent(decl, parent, decls, built, kind)
+            _check_no_cycle(decl, decls)
+            built[name] = make(decl, parent, resolve(parent))
+        return built[name]
+
+    for name in decls:
+        resolve(name)
+    return built
+
+
+def _check_attribute_types(schemas) -> None:
+    """Every attribute is declared with a value type (checked before anything else in the schemas)."""
+    for schema in schemas:
+        for decl in (*schema.nodes, *schema.edges):
+            for a in decl.attrs:
+                check_type_name(a.type, a.type_pos or a.pos)
+
+
+def _check_endpoint_types(decl, node_decls: dict) -> None:
+    for end in (decl.source, decl.target):
+        if end not in node_decls and end != ROOT_NODE:
+            raise RuleTypeError(f"edge {decl.name}: unknown node type '{end}'", decl.pos, did_you_mean(end, node_decls))
 
 
 def _declare(decl, same_kind: dict, other_kind: dict) -> None:
@@ -258,12 +230,6 @@ def _check_no_cycle(decl, decls: dict) -> None:
 def _merge_attrs(inherited: Mapping[str, AttrSpec], decl, evaluate_constant) -> dict[str, AttrSpec]:
     attrs = dict(inherited)
     for a in decl.attrs:
-        if a.type not in VALUE_TYPES:
-            raise RuleTypeError(
-                f"attribute '{a.name}' of {decl.name}: unknown type '{a.type}'",
-                a.pos,
-                "attribute types are " + ", ".join(VALUE_TYPES),
-            )
         if a.name in attrs and attrs[a.name].type != a.type:
             raise RuleTypeError(
                 f"attribute '{a.name}' of {decl.name} is {a.type} but the parent type declares it {attrs[a.name].type}",

@@ -19,12 +19,13 @@ Every application is appended to the runner's :class:`~.trace.Trace`.
 from __future__ import annotations
 
 import time
+from collections import Counter
 from dataclasses import dataclass, field
-from typing import Callable, Mapping, Sequence
+from typing import Callable, Mapping, NamedTuple, Sequence
 
-from vaultgram.errors import RewriteError
 from vaultgram.grammar import ast
 
+from .errors import RewriteError
 from .graph import HostGraph
 from .incremental import MatchSet
 from .matcher import Match, Matcher
@@ -34,10 +35,18 @@ from .trace import Trace
 
 DEFAULT_MAX_STEPS = 10_000
 
-Chooser = Callable[[Sequence[tuple[str, Match]]], int]
+
+class Option(NamedTuple):
+    """What a chooser chooses among: a rule and one of its matches."""
+
+    rule: str
+    match: Match
 
 
-def first_option(options: Sequence[tuple[str, Match]]) -> int:
+Chooser = Callable[[Sequence[Option]], int]
+
+
+def first_option(options: Sequence[Option]) -> int:
     """The default chooser: the first option (highest priority, smallest key)."""
     return 0
 
@@ -102,20 +111,14 @@ class Runner:
             start, before = time.perf_counter(), len(self.trace)
             self.run_step(step)
             new = self.trace.applications[before:]
-            by_rule: dict[str, int] = {}
-            for app in new:
-                by_rule[app.rule] = by_rule.get(app.rule, 0) + 1
+            by_rule = dict(Counter(app.rule for app in new))
             self.reports.append(StepReport(describe_step(step), len(new), time.perf_counter() - start, by_rule))
         return self.reports
 
     def run_step(self, step: ast.Step) -> None:
         matchers = self._group(step)
         if step.mode == "once":
-            options = self._options(matchers, first_only=not step.choose)
-            if options:
-                k = self.chooser(options) if step.choose else 0
-                rule_name, match = options[k]
-                self.apply(next(m for m in matchers if m.rule.name == rule_name), match)
+            self._once(matchers, step.choose)
         elif step.mode == "all":
             self._all(matchers, step.choose)
         else:
@@ -131,21 +134,27 @@ class Runner:
         order = {id(m): i for i, m in enumerate(matchers)}
         return sorted(matchers, key=lambda m: (-m.rule.priority, order[id(m)]))
 
-    def _options(self, matchers: list[Matcher], first_only: bool) -> list[tuple[str, Match]]:
+    def _options(self, matchers: list[Matcher], first_only: bool) -> list[Option]:
         options = []
         for m in matchers:
             found = m.all()
             if found and first_only:
-                return [(m.rule.name, found[0])]
-            options.extend((m.rule.name, match) for match in found)
+                return [Option(m.rule.name, found[0])]
+            options.extend(Option(m.rule.name, match) for match in found)
         return options
+
+    def _once(self, matchers: list[Matcher], choose: bool) -> None:
+        options = self._options(matchers, first_only=not choose)
+        if options:
+            rule_name, match = options[self.chooser(options) if choose else 0]
+            self.apply(next(m for m in matchers if m.rule.name == rule_name), match)
 
     def _all(self, matchers: list[Matcher], choose: bool) -> list[Application]:
         if choose:
             candidates = [m for m in matchers if m.first() is not None]
             if not candidates:
                 return []
-            options = [(m.rule.name, m.first()) for m in candidates]
+            options = [Option(m.rule.name, m.first()) for m in candidates]
             matchers = [candidates[self.chooser(options)]]
         applied: list[Application] = []
         reads: set = set()
@@ -170,12 +179,12 @@ class Runner:
         steps = 0
         while True:
             if choose:
-                options = [(s.rule.name, s.first()) for s in sets if s.first() is not None]
+                options = [Option(s.rule.name, s.first()) for s in sets if s.first() is not None]
                 if not options:
                     return steps
                 k = self.chooser(options)
-                chosen = next(s for s in sets if s.rule.name == options[k][0])
-                match = options[k][1]
+                chosen = next(s for s in sets if s.rule.name == options[k].rule)
+                match = options[k].match
             else:
                 chosen = next((s for s in sets if s.first() is not None), None)
                 if chosen is None:

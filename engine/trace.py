@@ -1,4 +1,4 @@
-"""Traces: the record of every rule application, saved as JSON and replayable to the same graph.
+"""Traces: the record of every rule application, as JSON, replayable to the same graph.
 
 A trace lists, for each application, the rule, its parameter values, the binding of its pattern
 variables and the ids it created and deleted. :func:`replay` applies the same rules at the same
@@ -12,8 +12,7 @@ import json
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
-from vaultgram.errors import RewriteError
-
+from .errors import RewriteError, TraceError
 from .graph import HostGraph
 from .matcher import Matcher
 from .rewriter import Application, apply_rule
@@ -48,10 +47,11 @@ def _plain(value):
 
 
 def load_trace(path: str | Path) -> list[dict]:
+    """The records of a trace written as JSON (``Trace.to_json``), for :func:`replay`."""
     try:
         return json.loads(Path(path).read_text())
     except (OSError, json.JSONDecodeError) as exc:
-        raise RewriteError(f"{path}: cannot read trace: {exc}") from None
+        raise TraceError(f"{path}: cannot read trace: {exc}") from None
 
 
 def replay(records: list[dict], rulebook, graph: HostGraph) -> Trace:

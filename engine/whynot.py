@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 from .graph import HostGraph
 from .matcher import Matcher, run_plan
-from .plan import Bound, Check, Extend, Scan, build_plan, describe_step, step_pos
+from .plan import build_plan
 
 
 @dataclass
@@ -38,56 +38,70 @@ def why_not(matcher: Matcher) -> WhyNot:
     count = len(matcher.all())
     if count:
         return WhyNot(rule.name, count, {}, "", rule.source.pos)
-    g = matcher.graph
-    given = frozenset(matcher.fixed) | frozenset(matcher.values)
-    plan = build_plan(rule.pattern, given, g.count)
-    best = {"depth": -1, "binding": {}, "failed": "", "pos": rule.source.pos}
-    binding = {**matcher.values, **matcher.fixed}
+    search = _DeepestSearch(matcher)
+    search.go(0, set(search.binding[v] for v in matcher.fixed), set())
+    best = search.best
+    return WhyNot(rule.name, 0, best.binding, best.failed, best.pos)
 
-    def note(depth: int, failed: str, pos) -> None:
-        if depth > best["depth"]:
-            best.update(depth=depth, binding={k: v for k, v in binding.items() if k not in matcher.values},
-                        failed=failed, pos=pos)
 
-    def go(i: int, used_nodes: set, used_edges: set) -> None:
-        if i == len(plan):
-            reason = matcher.rejection(binding)
-            if reason and reason[0] == "nac":
-                nac = rule.nacs[reason[1]]
-                note(i, f"refused by NAC #{reason[1] + 1}, which matches here", nac.pos)
-            elif reason:
-                edges = "; ".join(f"node {n} keeps edges {es}" for n, es in reason[1].items())
-                note(i, f"refused by the dangling condition (DPO): {edges}", rule.source.pos)
+@dataclass
+class _Deepest:
+    """The deepest step a search reached, the binding it had there, and what failed next."""
+
+    depth: int
+    binding: dict[str, int]
+    failed: str
+    pos: object
+
+
+class _DeepestSearch:
+    """The matcher's plan run one step at a time, noting the deepest failure."""
+
+    def __init__(self, matcher: Matcher):
+        self.matcher = matcher
+        self.rule = matcher.rule
+        given = frozenset(matcher.fixed) | frozenset(matcher.values)
+        self.plan = build_plan(self.rule.pattern, given, matcher.graph.count)
+        self.binding = {**matcher.values, **matcher.fixed}
+        self.best = _Deepest(-1, {}, "", self.rule.source.pos)
+
+    def note(self, depth: int, failed: str, pos) -> None:
+        if depth > self.best.depth:
+            values = self.matcher.values
+            self.best = _Deepest(depth, {k: v for k, v in self.binding.items() if k not in values}, failed, pos)
+
+    def go(self, i: int, used_nodes: set, used_edges: set) -> None:
+        if i == len(self.plan):
+            self.refused(i)
             return
-        step = plan[i]
+        step = self.plan[i]
+        nodes = self.rule.pattern.nodes
         found = False
-        for var_values in _candidates(g, step, binding, used_nodes, used_edges):
+        for values in _candidates(self.matcher.graph, step, self.binding, used_nodes, used_edges):
             found = True
-            binding.update(var_values)
-            new_nodes = {v for k, v in var_values.items() if k in rule.pattern.nodes}
-            new_edges = {v for k, v in var_values.items() if k not in rule.pattern.nodes}
-            go(i + 1, used_nodes | new_nodes, used_edges | new_edges)
-            for k in var_values:
-                del binding[k]
+            self.binding.update(values)
+            new_nodes = {v for k, v in values.items() if k in nodes}
+            new_edges = {v for k, v in values.items() if k not in nodes}
+            self.go(i + 1, used_nodes | new_nodes, used_edges | new_edges)
+            for k in values:
+                del self.binding[k]
         if not found:
-            note(i, f"no {describe_step(step)} found" if not isinstance(step, Check)
-                 else f"{describe_step(step)} is false", step_pos(step))
+            self.note(i, step.missing(), step.pos)
 
-    go(0, {binding[v] for v in matcher.fixed}, set())
-    return WhyNot(rule.name, 0, best["binding"], best["failed"], best["pos"])
+    def refused(self, depth: int) -> None:
+        """Note why a complete positive match is refused (a NAC, or the dangling condition)."""
+        reason = self.matcher.rejection(self.binding)
+        if reason is None:
+            return
+        if reason.nac is not None:
+            nac = self.rule.nacs[reason.nac]
+            self.note(depth, f"refused by NAC #{reason.nac + 1}, which matches here", nac.pos)
+        else:
+            edges = "; ".join(f"node {n} keeps edges {es}" for n, es in reason.dangling.items())
+            self.note(depth, f"refused by the dangling condition (DPO): {edges}", self.rule.source.pos)
 
 
 def _candidates(g: HostGraph, step, binding: dict, used_nodes: set, used_edges: set):
     """The bindings a single plan step can add (the same tests as the matcher, one step at a time)."""
     for b in run_plan(g, [step], dict(binding), set(used_nodes), set(used_edges), "why-not", {}):
-        if isinstance(step, Check):
-            yield {}
-        elif isinstance(step, Bound):
-            yield {}
-        elif isinstance(step, Scan):
-            yield {step.node.var: b[step.node.var]}
-        elif isinstance(step, Extend):
-            out = {step.edge.var: b[step.edge.var]}
-            if step.end_node is not None:
-                out[step.end] = b[step.end]
-            yield out
+        yield {var: b[var] for var in step.binds}

@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Union
 
-from vaultgram.errors import SourcePos
+from vaultgram.grammar.errors import SourcePos
 
 # --------------------------------------------------------------------------------------------
 # Expressions
@@ -99,13 +99,15 @@ Expr = Union[Literal, Name, Attr, Index, Call, ListExpr, Unary, Binary]
 class AttrDecl:
     """``name: type [= default]`` inside a node or edge declaration.
 
-    ``type`` is one of ``int float bool str vec2 vec3 list any``.
+    ``type`` is the word written (the engine accepts ``int float bool str vec2 vec3 list any``);
+    ``type_pos`` is where it is written (left out of comparisons, like a second ``pos``).
     """
 
     name: str
     type: str
     default: Expr | None
     pos: SourcePos
+    type_pos: SourcePos | None = field(default=None, compare=False)
 
 
 @dataclass(frozen=True)

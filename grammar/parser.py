@@ -2,8 +2,9 @@
 
 The syntax is defined by ``rules.lark`` next to this module (LALR(1), contextual lexer); this module
 only turns lark's parse trees into AST dataclasses and lark's errors into
-:class:`~vaultgram.errors.RuleSyntaxError` with a position and a hint. It gives no meaning to what it
-reads: unknown types, duplicate names and misplaced ``next(v)`` are for the engine's checker.
+:class:`~vaultgram.grammar.errors.RuleSyntaxError` with a position and a hint. It gives no meaning to
+what it reads: unknown types (attribute types included), duplicate names and misplaced ``next(v)``
+are for the engine's checker.
 
 Public API
 ----------
@@ -33,7 +34,7 @@ from __future__ import annotations
 import functools
 import os
 from pathlib import Path
-from typing import Iterable
+from typing import Iterable, NamedTuple
 
 from lark import Lark, Token, Transformer_NonRecursive, v_args
 from lark.exceptions import (
@@ -45,7 +46,7 @@ from lark.exceptions import (
     VisitError,
 )
 
-from vaultgram.errors import RuleSyntaxError, SourcePos
+from vaultgram.grammar.errors import RuleSyntaxError, SourcePos
 from vaultgram.grammar.ast import (
     Attr,
     AttrDecl,
@@ -82,10 +83,7 @@ from vaultgram.grammar.ast import (
     Unary,
 )
 
-__all__ = ["parse_text", "parse_file", "load_files", "ATTRIBUTE_TYPES", "KEYWORDS"]
-
-#: The value types an attribute can be declared with.
-ATTRIBUTE_TYPES = ("int", "float", "bool", "str", "vec2", "vec3", "list", "any")
+__all__ = ["parse_text", "parse_file", "load_files", "KEYWORDS"]
 
 #: Reserved words: never a name.
 KEYWORDS = frozenset(
@@ -424,6 +422,37 @@ class _Nac:
 _ESCAPES = {'"': '"', "\\": "\\", "n": "\n", "t": "\t", "r": "\r", "0": "\0"}
 
 
+class _Edge(NamedTuple):
+    """The parts of ``[var:] a -Type- b {...}`` (``<-Type-`` already turned around)."""
+
+    var: str | None
+    source: object  # a NAME token, or a NodeRef in a create statement
+    target: object
+    type: str
+    directed: bool
+    block: tuple  # constraints or attribute initialisations
+
+
+def _by_class(items, *classes) -> tuple[tuple, ...]:
+    """For each class, the items of that class, in their order."""
+    return tuple(tuple(i for i in items if isinstance(i, c)) for c in classes)
+
+
+def _constant(value):
+    """A transformer method whose result is always ``value``."""
+    return lambda self, meta, children: value
+
+
+def _literal(convert):
+    """A transformer method making a Literal of ``convert(token)`` (None: no token)."""
+    return lambda self, meta, children: Literal(convert(*children), self._pos(meta))
+
+
+def _endpoint(step: int):
+    """A transformer method making the NodeRef of ``v``, ``next(v)`` (+1) or ``prev(v)`` (-1)."""
+    return lambda self, meta, children: NodeRef(str(children[0]), step, self._pos(meta))
+
+
 @v_args(meta=True)
 class _ToAst(Transformer_NonRecursive):
     """Builds AST nodes; each method is named after the grammar rule (or alias) it transforms."""
@@ -452,16 +481,17 @@ class _ToAst(Transformer_NonRecursive):
             return token.value[2:-1], "<-"
         return token.value[1:-1], "--"
 
+    def _edge(self, children) -> _Edge:
+        *var, source, arrow, target, block = children
+        type_, direction = self._arrow(arrow)
+        if direction == "<-":
+            source, target = target, source
+        return _Edge(str(var[0]) if var else None, source, target, type_, direction != "--", block)
+
     # -- file ---------------------------------------------------------------------------------
 
     def start(self, meta, children):
-        return RuleFile(
-            path=self.file,
-            schemas=tuple(c for c in children if isinstance(c, Schema)),
-            rules=tuple(c for c in children if isinstance(c, Rule)),
-            strategies=tuple(c for c in children if isinstance(c, Strategy)),
-            includes=tuple(c for c in children if isinstance(c, Include)),
-        )
+        return RuleFile(self.file, *_by_class(children, Schema, Rule, Strategy, Include))
 
     def include(self, meta, children):
         (path,) = children
@@ -471,12 +501,7 @@ class _ToAst(Transformer_NonRecursive):
 
     def schema(self, meta, children):
         name, *decls = children
-        return Schema(
-            name=str(name),
-            nodes=tuple(d for d in decls if isinstance(d, NodeTypeDecl)),
-            edges=tuple(d for d in decls if isinstance(d, EdgeTypeDecl)),
-            pos=self._pos(meta),
-        )
+        return Schema(str(name), *_by_class(decls, NodeTypeDecl, EdgeTypeDecl), self._pos(meta))
 
     def node_decl(self, meta, children):
         abstract, name, parent, attrs = children
@@ -492,29 +517,20 @@ class _ToAst(Transformer_NonRecursive):
     def parent(self, meta, children):
         return str(children[0]) if children else None
 
-    def no_endpoints(self, meta, children):
-        return (None, None, None)
+    no_endpoints = _constant((None, None, None))  # (source, target, directed)
 
     def undirected_endpoints(self, meta, children):
-        source, target = children
-        return (str(source), str(target), False)
+        return (*map(str, children), False)
 
     def directed_endpoints(self, meta, children):
-        source, target = children
-        return (str(source), str(target), True)
+        return (*map(str, children), True)
 
     def attr_decls(self, meta, children):
         return tuple(children)
 
     def attr_decl(self, meta, children):
         name, type_, *default = children
-        if str(type_) not in ATTRIBUTE_TYPES:
-            raise RuleSyntaxError(
-                f"unknown attribute type {str(type_)!r}",
-                self._tpos(type_),
-                "attribute types are: " + " ".join(ATTRIBUTE_TYPES),
-            )
-        return AttrDecl(str(name), str(type_), default[0] if default else None, self._pos(meta))
+        return AttrDecl(str(name), str(type_), default[0] if default else None, self._pos(meta), self._tpos(type_))
 
     # -- rules --------------------------------------------------------------------------------
 
@@ -544,12 +560,8 @@ class _ToAst(Transformer_NonRecursive):
         return int(children[0]) if children else 0
 
     def _pattern(self, meta, items) -> Pattern:
-        return Pattern(
-            nodes=tuple(i for i in items if isinstance(i, NodePattern)),
-            edges=tuple(i for i in items if isinstance(i, EdgePattern)),
-            conditions=tuple(i.expr for i in items if isinstance(i, _Where)),
-            pos=self._pos(meta),
-        )
+        nodes, edges, wheres = _by_class(items, NodePattern, EdgePattern, _Where)
+        return Pattern(nodes, edges, tuple(w.expr for w in wheres), self._pos(meta))
 
     def match(self, meta, children):
         return self._pattern(meta, children)
@@ -566,19 +578,8 @@ class _ToAst(Transformer_NonRecursive):
         return NodePattern(str(var), str(type_), constraints, self._pos(meta))
 
     def edge_pattern(self, meta, children):
-        *var, source, arrow, target, constraints = children
-        type_, direction = self._arrow(arrow)
-        if direction == "<-":
-            source, target = target, source
-        return EdgePattern(
-            var=str(var[0]) if var else None,
-            source=str(source),
-            target=str(target),
-            type=type_,
-            directed=direction != "--",
-            constraints=constraints,
-            pos=self._pos(meta),
-        )
+        e = self._edge(children)
+        return EdgePattern(e.var, str(e.source), str(e.target), e.type, e.directed, e.block, self._pos(meta))
 
     def constraints(self, meta, children):
         return tuple(children)
@@ -604,28 +605,12 @@ class _ToAst(Transformer_NonRecursive):
         return CreateNode(str(var), str(type_), attrs, self._pos(meta))
 
     def create_edge(self, meta, children):
-        *var, source, arrow, target, attrs = children
-        type_, direction = self._arrow(arrow)
-        if direction == "<-":
-            source, target = target, source
-        return CreateEdge(
-            var=str(var[0]) if var else None,
-            source=source,
-            target=target,
-            type=type_,
-            directed=direction != "--",
-            attrs=attrs,
-            pos=self._pos(meta),
-        )
+        e = self._edge(children)
+        return CreateEdge(e.var, e.source, e.target, e.type, e.directed, e.block, self._pos(meta))
 
-    def endpoint_var(self, meta, children):
-        return NodeRef(str(children[0]), 0, self._pos(meta))
-
-    def endpoint_next(self, meta, children):
-        return NodeRef(str(children[0]), 1, self._pos(meta))
-
-    def endpoint_prev(self, meta, children):
-        return NodeRef(str(children[0]), -1, self._pos(meta))
+    endpoint_var = _endpoint(0)
+    endpoint_next = _endpoint(1)
+    endpoint_prev = _endpoint(-1)
 
     def attr_inits(self, meta, children):
         return tuple(children)
@@ -690,11 +675,8 @@ class _ToAst(Transformer_NonRecursive):
         name, value = children
         return (str(name), value)
 
-    def mode_once(self, meta, children):
-        return ("once", None)
-
-    def mode_all(self, meta, children):
-        return ("all", None)
+    mode_once = _constant(("once", None))  # (mode, max_steps)
+    mode_all = _constant(("all", None))
 
     def mode_fixpoint(self, meta, children):
         return ("fixpoint", int(children[0]) if children else None)
@@ -731,23 +713,14 @@ class _ToAst(Transformer_NonRecursive):
     def name(self, meta, children):
         return Name(str(children[0]), self._pos(meta))
 
-    def int_literal(self, meta, children):
-        return Literal(int(children[0]), self._pos(meta))
-
-    def float_literal(self, meta, children):
-        return Literal(float(children[0]), self._pos(meta))
+    int_literal = _literal(int)
+    float_literal = _literal(float)
+    true_literal = _literal(lambda: True)
+    false_literal = _literal(lambda: False)
+    none_literal = _literal(lambda: None)
 
     def string_literal(self, meta, children):
         return Literal(self._unescape(children[0]), self._pos(meta))
-
-    def true_literal(self, meta, children):
-        return Literal(True, self._pos(meta))
-
-    def false_literal(self, meta, children):
-        return Literal(False, self._pos(meta))
-
-    def none_literal(self, meta, children):
-        return Literal(None, self._pos(meta))
 
     def list_expr(self, meta, children):
         return ListExpr(tuple(self._present(children)), self._pos(meta))

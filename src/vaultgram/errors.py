@@ -3,57 +3,38 @@
 Every message names *where* the problem is (file:line:col for rule files, ring and vertex index for
 geometry, rule and bindings for rewriting) so that the command line can print it as one readable line
 and exit with code 2, without a traceback.
+
+The root class is the rule language's :class:`~vaultgram.grammar.errors.InputError`, named
+``VaultgramError`` here, so that ``except VaultgramError`` catches every error of the grammar and the
+engine too. The rule and rewriting errors live with the packages that raise them
+(:mod:`vaultgram.grammar.errors`, :mod:`vaultgram.engine.errors`) and are re-exported here; the
+errors of the vault pipeline are defined here.
 """
 
 from __future__ import annotations
 
-import difflib
-from dataclasses import dataclass
+from vaultgram.engine.errors import RewriteError, SchemaError
+from vaultgram.grammar.errors import InputError as VaultgramError
+from vaultgram.grammar.errors import RuleError, RuleSyntaxError, RuleTypeError, SourcePos, did_you_mean
 
-
-@dataclass(frozen=True)
-class SourcePos:
-    """A position in a rule file (1-based line and column)."""
-
-    file: str
-    line: int
-    column: int
-
-    def __str__(self) -> str:
-        return f"{self.file}:{self.line}:{self.column}"
-
-
-class VaultgramError(Exception):
-    """Base class of every error caused by input (files, options, rules), not by a bug."""
-
-
-class RuleError(VaultgramError):
-    """A problem in a rule file, reported with its source position and an optional hint."""
-
-    def __init__(self, message: str, pos: SourcePos | None = None, hint: str | None = None):
-        self.message = message
-        self.pos = pos
-        self.hint = hint
-        text = f"{pos}: {message}" if pos else message
-        if hint:
-            text += f"\n  hint: {hint}"
-        super().__init__(text)
-
-
-class RuleSyntaxError(RuleError):
-    """The rule file does not follow the grammar (grammar/rules.lark)."""
-
-
-class RuleTypeError(RuleError):
-    """The rule file parses but names unknown types, attributes, functions or variables, or mixes types."""
-
-
-class SchemaError(VaultgramError):
-    """A host graph change would break the type schema (unknown type, bad edge endpoints)."""
-
-
-class RewriteError(VaultgramError):
-    """A rule application or strategy failed (step limit breached, bad replay, failed function call)."""
+__all__ = [
+    "VaultgramError",
+    "SourcePos",
+    "RuleError",
+    "RuleSyntaxError",
+    "RuleTypeError",
+    "SchemaError",
+    "RewriteError",
+    "DomainError",
+    "MeshFoldError",
+    "FormFindingError",
+    "HorizontalEquilibriumError",
+    "ConvergenceError",
+    "TessellationError",
+    "MeshError",
+    "NonManifoldVertexError",
+    "did_you_mean",
+]
 
 
 class DomainError(VaultgramError):
@@ -86,12 +67,6 @@ class HorizontalEquilibriumError(FormFindingError):
 
 class ConvergenceError(VaultgramError):
     """An iterative method did not reach its tolerance within its iteration cap."""
-
-
-def did_you_mean(name: str, candidates) -> str | None:
-    """A hint naming the closest known name, or None."""
-    close = difflib.get_close_matches(name, [str(c) for c in candidates], n=1)
-    return f"did you mean '{close[0]}'?" if close else None
 
 
 class TessellationError(VaultgramError):

@@ -5,9 +5,10 @@ from __future__ import annotations
 
 import pytest
 
-from engine_strategies import SCHEMA, book
+from strategies.rules import SCHEMA, book
 from vaultgram.engine.expressions import Functions
-from vaultgram.errors import RuleTypeError
+from vaultgram.engine.rulebook import rulebook_from_text
+from vaultgram.engine.errors import RuleTypeError, SourcePos
 
 BASE = SCHEMA.count("\n")  # rules start on line BASE + 1
 
@@ -109,3 +110,14 @@ strategy s { ok(k = 1) once }
     assert rb.rules["ok"].priority == 3
     assert len(rb.rules["ok"].nacs) == 1
     assert rb.arguments(rb.strategies["s"].steps[0].rules[0]) == {"k": 1}
+
+
+def test_unknown_attribute_type():
+    """An attribute type that is not a value type (engine/values.py) is reported where it is written
+    (moved from the grammar tests: the parser no longer checks attribute types)."""
+    with pytest.raises(RuleTypeError) as info:
+        rulebook_from_text("schema s {\n  node A { x: vec4 }\n}", filename="t.vgr")
+    err = info.value
+    assert err.pos == SourcePos("t.vgr", 2, 15)
+    assert "vec4" in err.message and "vec3" in err.hint
+    assert str(err) == "t.vgr:2:15: unknown attribute type 'vec4'\n  hint: attribute types are: int float bool str vec2 vec3 list any"

@@ -1,4 +1,4 @@
-"""Property tests of the engine on random typed graphs (schema in tests/engine_strategies.py)."""
+"""Property tests of the engine on random typed graphs (schema in tests/strategies/rules.py)."""
 
 from __future__ import annotations
 
@@ -9,7 +9,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from networkx.algorithms import isomorphism
 
-from engine_strategies import book, build_graph, permutations, typed_graphs  # noqa: E402
+from strategies.graphs import build_graph, permutations, typed_graphs  # noqa: E402
+from strategies.rules import book  # noqa: E402
 from vaultgram.engine.incremental import MatchSet  # noqa: E402
 from vaultgram.engine.matcher import Matcher  # noqa: E402
 from vaultgram.engine.strategy import Runner  # noqa: E402

@@ -1,9 +1,4 @@
-"""Shared helpers and hypothesis strategies for the engine tests.
-
-The schema used by the property tests:
-
-    node A { w: int = 0 }     node B : A     node C { w: int = 0 }
-    edge E (A -- A) { m: int = 0 }           edge D (A -> C) { m: int = 0 }
+"""Random typed host graphs of the test schema (:mod:`strategies.rules`).
 
 ``typed_graphs()`` draws a *description* of a random host graph (node types and edge endpoints, with
 ids given explicitly) that :func:`build_graph` turns into a :class:`HostGraph`, so the same graph can
@@ -17,22 +12,6 @@ from dataclasses import dataclass
 from hypothesis import strategies as st
 
 from vaultgram.engine.graph import HostGraph
-from vaultgram.engine.rulebook import rulebook_from_text
-
-SCHEMA = """
-schema t {
-  node A { w: int = 0 }
-  node B : A
-  node C { w: int = 0 }
-  edge E (A -- A) { m: int = 0 }
-  edge D (A -> C) { m: int = 0 }
-}
-"""
-
-
-def book(rules: str = "", functions=None):
-    """A rulebook of the test schema plus ``rules``."""
-    return rulebook_from_text(SCHEMA + rules, functions)
 
 
 @dataclass(frozen=True)

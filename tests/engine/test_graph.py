@@ -8,7 +8,7 @@ import pytest
 
 from vaultgram.engine.graph import HostGraph
 from vaultgram.engine.rulebook import rulebook_from_text
-from vaultgram.errors import SchemaError
+from vaultgram.engine.errors import SchemaError
 
 SCHEMA = """
 schema s {
