@@ -18,13 +18,19 @@ from vaultgram.io.files import read_json, write_json
 
 
 class _Group(click.Group):
-    """A click group that turns VaultgramError into one line on stderr and exit code 2."""
+    """A click group that turns a VaultgramError, or a bad option of a command, into one line on
+    stderr and exit code 2."""
 
     def invoke(self, ctx):
         try:
             return super().invoke(ctx)
         except VaultgramError as exc:
             click.echo(f"error: {exc}", err=True)
+            sys.exit(2)
+        except click.UsageError as exc:
+            if isinstance(exc, click.NoSuchOption) or exc.ctx is None or exc.ctx.command is self:
+                raise  # the group's own usage (an unknown command or option): click's full message
+            click.echo(f"error: {exc.ctx.command_path}: {exc.format_message()}", err=True)
             sys.exit(2)
 
 
@@ -42,18 +48,44 @@ SMOOTH = click.option("--smooth", default=None, type=int,
 ALLOW_FOLDS = click.option("--allow-folds", is_flag=True,
                            help="Write a mesh that still has inverted faces (with a warning) instead of failing.")
 THRUST = [
-    click.option("--zmax", type=POSITIVE, default=None, help="Scale the thrust so the highest point reaches this height."),
+    click.option("--zmax", type=POSITIVE, default=None,
+                 help="Height of the highest point (default: a quarter of the plan's shorter side)."),
     click.option("--thickness", type=POSITIVE, default=1.0, show_default=True, help="Shell thickness for self-weight."),
     click.option("--density", type=POSITIVE, default=1.0, show_default=True, help="Material density (weight per volume)."),
     click.option("--point-load", type=float, default=0.0, show_default=True,
                  help="Vertical load at every point feature (a column load, a lantern...)."),
     click.option("--tol-deg", type=POSITIVE, default=0.5, show_default=True,
                  help="Horizontal equilibrium: largest angle between form and force edges."),
-    click.option("--sag", type=click.FloatRange(min=0.0), default=0.1, show_default=True,
+    click.option("--sag", type=click.FloatRange(min=0.0, min_open=True), default=0.1, show_default=True,
                  help="How far unsupported boundary edges are bent inwards before form finding (relative)."),
-    click.option("--relax-mode", type=click.Choice(["boundary", "all"]), default="boundary", show_default=True,
-                 help="Bend only the unsupported boundary ('boundary') or let every vertex move ('all')."),
+    click.option("--relax-mode", type=click.Choice(["auto", "boundary", "all"]), default="auto", show_default=True,
+                 help="Bend only the unsupported boundary ('boundary'), let every vertex move ('all'), or the "
+                      "boundary first and every vertex if that fails ('auto')."),
 ]
+
+
+SUPPORTS = click.option("--supports", "supports_path", type=click.Path(dir_okay=False), default=None,
+                        help='JSON: {"rings": [...]}, {"polylines": [...]} or {"vertices": [...]} (overrides the input).')
+DENSITIES = click.option("--densities", "densities_path", type=click.Path(dir_okay=False), default=None,
+                         help="Density file: JSON {target_length, length_mode, min_count, groups, regions}.")
+
+
+TESSELLATION = [
+    click.option("--rhythm", type=click.Choice(["2", "4"]), default="2", show_default=True,
+                 help="Keep every second or every fourth edge along a course (voussoirs of about 2 or 4 faces)."),
+    click.option("--max-concavity", type=click.FloatRange(180.0, 360.0, max_open=True), default=190.0,
+                 show_default=True, help="Largest voussoir corner (degrees, in its best-fit plane)."),
+    click.option("--flat-extrados", is_flag=True, help="Make each voussoir's top face planar (best-fit plane)."),
+    click.option("--surface-smooth", type=click.IntRange(min=0), default=0, show_default=True,
+                 help="Laplacian smoothing iterations of the voussoir outlines on the thrust surface."),
+]
+
+
+def tessellation_options(command):
+    """The tessellation options of ``tessellate`` and ``design``."""
+    for option in reversed(TESSELLATION):
+        command = option(command)
+    return command
 
 
 def thrust_options(command):
@@ -187,8 +219,7 @@ def echo_timings(timings: dict) -> None:
 @click.argument("input_path", metavar="DOMAIN|MESH", type=click.Path(dir_okay=False))
 @OUT
 @thrust_options
-@click.option("--supports", "supports_path", type=click.Path(dir_okay=False), default=None,
-              help='JSON: {"rings": [...]}, {"polylines": [...]} or {"vertices": [...]} (overrides the input).')
+@SUPPORTS
 @SPACING
 @TARGET_LENGTH
 def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, tol_deg, sag, relax_mode,
@@ -202,7 +233,7 @@ def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, 
     from vaultgram.domain import load_domain
     from vaultgram.io.meshfiles import mesh_from_json
     from vaultgram.io.outputs import write_thrust
-    from vaultgram.pipeline import mesh_domain, thrust_of_mesh
+    from vaultgram.pipeline import default_rise, mesh_domain, thrust_of_mesh
 
     domain = None
     timings: dict = {}
@@ -216,29 +247,12 @@ def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, 
         spec = domain.supports
     if supports_path:
         spec = read_json(supports_path)
+    zmax = default_rise(mesh.vertices) if zmax is None else zmax
     network = thrust_of_mesh(mesh, spec, domain, point_load, timings, zmax=zmax, thickness=thickness,
                              density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode)
     write_thrust(network, Path(out_dir))
     click.echo(network.summary_text())
     echo_timings(timings)
-
-
-TESSELLATION = [
-    click.option("--rhythm", type=click.Choice(["2", "4"]), default="2", show_default=True,
-                 help="Keep every second or every fourth edge along a course (voussoirs of about 2 or 4 faces)."),
-    click.option("--max-concavity", type=click.FloatRange(180.0, 360.0, max_open=True), default=190.0,
-                 show_default=True, help="Largest voussoir corner (degrees, in its best-fit plane)."),
-    click.option("--flat-extrados", is_flag=True, help="Make each voussoir's top face planar (best-fit plane)."),
-    click.option("--surface-smooth", type=click.IntRange(min=0), default=0, show_default=True,
-                 help="Laplacian smoothing iterations of the voussoir outlines on the thrust surface."),
-]
-
-
-def tessellation_options(command):
-    """The tessellation options of ``tessellate`` and ``design``."""
-    for option in reversed(TESSELLATION):
-        command = option(command)
-    return command
 
 
 @main.command("tessellate")
@@ -274,29 +288,42 @@ def tessellate_command(thrust_path, out_dir, thickness, rhythm, max_concavity, f
 @RULES
 @TARGET_LENGTH
 @SMOOTH
+@DENSITIES
+@ALLOW_FOLDS
+@SUPPORTS
 @thrust_options
-def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smooth, zmax, thickness, density,
-                   point_load, tol_deg, sag, relax_mode) -> None:
-    """The whole pipeline on a DOMAIN: decomposition (3.1, 4), mesh (3.2) and thrust network (5).
+@tessellation_options
+def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smooth, densities_path, allow_folds,
+                   supports_path, zmax, thickness, density, point_load, tol_deg, sag, relax_mode, rhythm,
+                   max_concavity, flat_extrados, surface_smooth) -> None:
+    """The whole pipeline on a DOMAIN: decomposition (3.1, 4), mesh (3.2), thrust network and voussoirs (5).
 
     Everything is computed before anything is written, so a failing stage leaves no output.
     """
     from vaultgram.domain import load_domain
-    from vaultgram.io.outputs import write_decomposition, write_mesh_files, write_thrust
+    from vaultgram.io.outputs import write_decomposition, write_mesh_files, write_tessellation, write_thrust
+    from vaultgram.meshing.densities import load_densities
     from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
-    from vaultgram.pipeline import design
+    from vaultgram.pipeline import TessellationOptions, design
+    from vaultgram.tessellation.metrics import format_summary
 
-    result = design(load_domain(domain_path), spacing, rules_dir, target_length,
-                    DEFAULT_ITERATIONS if smooth is None else smooth, point_load=point_load, zmax=zmax,
-                    thickness=thickness, density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode)
+    result = design(
+        load_domain(domain_path), spacing, rules_dir, target_length, DEFAULT_ITERATIONS if smooth is None else smooth,
+        load_densities(densities_path) if densities_path else None, allow_folds,
+        read_json(supports_path) if supports_path else None, point_load, zmax, thickness,
+        TessellationOptions(int(rhythm), max_concavity, flat_extrados, surface_smooth),
+        density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode)
     out = Path(out_dir)
     write_decomposition(result.decomposition, out)
     echo_decomposition(result.decomposition, out)
-    write_mesh_files(result.mesh, out)
+    write_mesh_files(result.mesh, out, result.supports)
     click.echo(f"mesh: {len(result.mesh.vertices)} vertices, {len(result.mesh.faces)} faces; "
                "wrote mesh.json and mesh.obj")
     write_thrust(result.network, out, plot=True)
     click.echo(result.network.summary_text())
+    write_tessellation(result.tessellation, out)
+    click.echo(format_summary(result.tessellation.summary))
+    write_json(out / "summary.json", result.summary())
     echo_timings(result.timings)
 
 
@@ -306,15 +333,18 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
 @SPACING
 @TARGET_LENGTH
 @SMOOTH
-@click.option("--densities", "densities_path", type=click.Path(dir_okay=False), default=None,
-              help="Density file: JSON {target_length, length_mode, min_count, groups, regions}.")
+@DENSITIES
 @ALLOW_FOLDS
-def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities_path, allow_folds) -> None:
+@SUPPORTS
+def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities_path, allow_folds,
+                 supports_path) -> None:
     """Quad-mesh a DOMAIN (paper 3): decompose, mesh the patches, weld, smooth.
 
-    Writes mesh.json (vertices, faces, vertex labels, edge groups) and mesh.obj to --out.
+    Writes mesh.json (vertices, faces, vertex labels, edge groups, the vertices that bear thrust) and
+    mesh.obj to --out; `vaultgram formfind mesh.json` then gives the thrust network `design` gives.
     """
     from vaultgram.domain import load_domain
+    from vaultgram.formfinding.supports import support_vertices
     from vaultgram.io.meshfiles import write_mesh
     from vaultgram.meshing.densities import load_densities
     from vaultgram.meshing.quality import mesh_stats
@@ -325,7 +355,11 @@ def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities
     spec = load_densities(densities_path) if densities_path else None
     mesh = mesh_domain(domain, spacing, target_length, DEFAULT_ITERATIONS if smooth is None else smooth, spec,
                        allow_folds=allow_folds)
-    json_path, obj_path = write_mesh(mesh, Path(out_dir))
+    supports = read_json(supports_path) if supports_path else domain.supports
+    if isinstance(supports, list):
+        supports = {"vertices": supports}
+    anchors = support_vertices(mesh.vertices, mesh.faces, supports, domain)
+    json_path, obj_path = write_mesh(mesh, Path(out_dir), anchors)
     stats = mesh_stats(mesh, domain)
     click.echo(
         f"wrote {json_path} and {obj_path}: {stats['vertices']} vertices, {stats['quads']} quads, "

@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from vaultgram.domain import Domain, check_feature_spacing
-from vaultgram.errors import TessellationError, VaultgramError
+from vaultgram.errors import ConvergenceError, FormFindingError, TessellationError, VaultgramError
 from vaultgram.formfinding.forcediagram import force_diagram
 from vaultgram.formfinding.formdiagram import form_diagram
 from vaultgram.formfinding.horizontal import horizontal
@@ -57,7 +57,7 @@ from vaultgram.tessellation.smoothing import smooth_on_surface
 from vaultgram.tessellation.solids import solid_volumes, voussoir_solids
 from vaultgram.tessellation.stagger import staggered_bond
 from vaultgram.tessellation.strips import quad_strips
-from vaultgram.tessellation.surface import ThrustSurface
+from vaultgram.tessellation.surface import ThrustSurface, surface_from_network
 from vaultgram.tessellation.voussoirs import MAX_CONCAVITY, face_groups, fill_meeting_points, without_concavities
 from vaultgram.topology.decomposition import Decomposition, block_decomposition
 from vaultgram.topology.discretise import discretise
@@ -66,7 +66,7 @@ from vaultgram.topology.skeleton import skeleton
 from vaultgram.topology.triangulation import triangulate
 
 __all__ = ["decompose", "mesh_decomposition", "mesh_domain", "form_find", "thrust_of_mesh", "tessellate", "design",
-           "Design"]
+           "Design", "TessellationOptions", "default_rise"]
 
 
 @contextmanager
@@ -186,7 +186,7 @@ def mesh_domain(domain: Domain, spacing: float = 0.02, target_length: float | No
 
 def form_find(mesh_vertices, faces, supports=None, *, zmax: float | None = None, scale: float = 1.0,
               thickness=1.0, density: float = 1.0, point_loads=None, tol_deg: float = 0.5,
-              alpha: float = 100.0, relax: bool = True, sag: float = 0.1, relax_mode: str = "boundary",
+              alpha: float = 100.0, relax: bool = True, sag: float = 0.1, relax_mode: str = "auto",
               update_boundaries: bool = True, kmax_horizontal: int = 1000, kmax_vertical: int = 500,
               vertical_tol: float = 1e-12, timings: dict | None = None) -> ThrustNetwork:
     """Form-find a funicular vault over a planar mesh by Thrust Network Analysis (§5).
@@ -207,8 +207,11 @@ def form_find(mesh_vertices, faces, supports=None, *, zmax: float | None = None,
     alpha : float
         Form weight (percent) in horizontal equilibrium; 100 keeps the form diagram.
     relax, sag, relax_mode
-        Relax open edges (:func:`vaultgram.formfinding.horizontal.relax_openings`) before horizontal
-        equilibrium.
+        Relax open edges (:func:`vaultgram.formfinding.relaxation.relax_openings`) before horizontal
+        equilibrium: only the unsupported boundary (``"boundary"``), every free vertex (``"all"``),
+        or the boundary first and every free vertex if that admits no compression-only equilibrium
+        (``"auto"``, the default). The summary's ``relax_mode`` says which was used, and
+        ``relax_fallback`` why the first failed.
     update_boundaries : bool
         See :func:`vaultgram.formfinding.formdiagram.form_diagram`.
 
@@ -225,20 +228,44 @@ def form_find(mesh_vertices, faces, supports=None, *, zmax: float | None = None,
     >>> round(float(tn.vertices[:, 2].max()), 9), tn.summary["max_angle_deg"] < 0.5
     (2.0, True)
     """
+    if relax_mode not in RELAX_MODES:
+        raise FormFindingError(f"unknown relax mode {relax_mode!r}; use one of {', '.join(RELAX_MODES)}")
     with _timed(timings, "form"):
         form = form_diagram(mesh_vertices, faces, supports, update_boundaries=update_boundaries)
     n_open = int((~form.loaded).sum())
+    modes = (("boundary", "all") if relax_mode == "auto" else (relax_mode,)) if relax and n_open else (None,)
+    loads = dict(scale=scale, zmax=zmax, thickness=thickness, density=density, kmax=kmax_vertical, tol=vertical_tol,
+                 point_loads=mesh_point_loads(point_loads, len(mesh_vertices)))
+    fallback = None
+    for mode in modes:
+        try:
+            network = _equilibrium(form, n_open, mode, sag, alpha, kmax_horizontal, tol_deg, timings, loads)
+            break
+        except (FormFindingError, ConvergenceError) as exc:
+            if mode == modes[-1]:
+                raise
+            fallback = str(exc)
+    summary = {**network.summary, "relax_mode": mode or "none", "relax_fallback": fallback}
+    return dataclasses.replace(network, summary=summary)
+
+
+#: How ``form_find`` relaxes the openings (see its ``relax_mode``).
+RELAX_MODES = ("auto", "boundary", "all")
+
+
+def _equilibrium(form, n_open: int, mode: str | None, sag: float, alpha: float, kmax: int, tol_deg: float,
+                 timings: dict | None, vertical_options: dict) -> ThrustNetwork:
+    """Relaxation of the openings (``mode``, None for none), force diagram, horizontal and vertical
+    equilibrium of a form diagram."""
     with _timed(timings, "relax"):
-        if relax and n_open:
-            form = relax_openings(form, sag, mode=relax_mode)
+        if mode is not None:
+            form = relax_openings(form, sag, mode=mode)
     with _timed(timings, "force"):
         force = force_diagram(form)
     with _timed(timings, "horizontal"):
-        h = horizontal(form, force, alpha=alpha, kmax=kmax_horizontal, tol_deg=tol_deg)
+        h = horizontal(form, force, alpha=alpha, kmax=kmax, tol_deg=tol_deg)
     with _timed(timings, "vertical"):
-        v = vertical(h.form, h.q, scale=scale, zmax=zmax, thickness=thickness, density=density,
-                     point_loads=mesh_point_loads(point_loads, len(mesh_vertices)), kmax=kmax_vertical,
-                     tol=vertical_tol)
+        v = vertical(h.form, h.q, **vertical_options)
     return thrust_network(h, v, n_open)
 
 
@@ -295,8 +322,9 @@ def tessellate(surface: ThrustSurface, rhythm: int = 2, thickness: float = 1.0,
         me = mesh_edges(cut.faces, len(cut.vertices))
     with _timed(timings, "stagger"):
         face_areas = np.linalg.norm(area_vectors(cut.vertices, cut.faces), axis=1)
+        rings = np.unique(np.concatenate([me.face_edges(k) for k in cut.keystones])) if len(cut.keystones) else ()
         bond = staggered_bond(cut.vertices, me, quad_strips(me, cut.faces), supported, face_areas, rhythm,
-                              pinwheel(cut, me))
+                              pinwheel(cut, me), rings)
         removed, restored = without_concavities(cut.vertices, me, bond.removed, max_concavity)
         inner = ~np.isin(np.arange(len(cut.vertices)), me.edges[me.boundary])
         largest = UPPER * bond.target
@@ -358,6 +386,16 @@ def _courses(layout, supported: np.ndarray, me) -> tuple[np.ndarray, np.ndarray]
 # --------------------------------------------------------------------------------------------
 
 
+@dataclass(frozen=True)
+class TessellationOptions:
+    """The tessellation's options (:func:`tessellate`; the thickness is the form finding's)."""
+
+    rhythm: int = 2
+    max_concavity: float = MAX_CONCAVITY
+    flat_extrados: bool = False
+    surface_smooth: int = 0
+
+
 @dataclass(frozen=True, eq=False)
 class Design:
     """Every stage's value for one domain, and the seconds each stage took."""
@@ -365,22 +403,57 @@ class Design:
     domain: Domain
     decomposition: Decomposition
     mesh: QuadMesh
+    supports: np.ndarray
     network: ThrustNetwork
+    tessellation: Tessellation | None
     timings: dict = field(default_factory=dict)
+
+    def summary(self) -> dict:
+        """What ``summary.json`` holds for a whole design: the mesh, the thrust network, the voussoirs."""
+        return {"mesh": self.mesh.info, "thrust": self.network.summary,
+                "tessellation": self.tessellation.summary if self.tessellation is not None else None}
+
+
+#: The default height of a vault: this fraction of the shorter side of its plan's bounding box.
+RISE = 0.25
+
+
+def default_rise(vertices: np.ndarray) -> float:
+    """The height a vault over ``vertices`` gets when none is given: :data:`RISE` times the shorter
+    side of the plan's bounding box (a quarter of the span, a usual rise for a masonry vault).
+
+    >>> default_rise(np.array([[0.0, 0.0], [10.0, 0.0], [10.0, 6.0]]))
+    1.5
+    """
+    extent = np.ptp(np.asarray(vertices, dtype=float)[:, :2], axis=0)
+    return float(RISE * extent.min())
 
 
 def design(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None = None,
            target_length: float | None = None, smooth: int = DEFAULT_ITERATIONS,
            densities: DensitySpec | None = None, allow_folds: bool = False, supports=None,
-           point_load: float = 0.0, **options) -> Design:
-    """The whole pipeline on a domain: decomposition (§3.1, §4), mesh (§3.2) and thrust network (§5).
+           point_load: float = 0.0, zmax: float | None = None, thickness: float = 1.0,
+           tessellation: TessellationOptions | None = TessellationOptions(), **options) -> Design:
+    """The whole pipeline on a domain: decomposition (§3.1, §4), mesh (§3.2), thrust network (§5) and
+    tessellation (§5).
 
-    ``supports`` overrides the domain's own; ``options`` are those of :func:`form_find`.
+    ``supports`` overrides the domain's own; ``zmax`` defaults to :func:`default_rise`; ``thickness``
+    is the shell's, for its self-weight and its voussoirs; ``tessellation`` None stops at the thrust
+    network; ``options`` are those of :func:`form_find`.
     """
     timings: dict = {}
     check_feature_spacing(domain, spacing)
     dec = decompose(domain, spacing, rules_dir, timings=timings)
     mesh = mesh_decomposition(dec, target_length, smooth, densities, allow_folds, timings)
     spec = domain.supports if supports is None else supports
-    network = thrust_of_mesh(mesh, spec, domain, point_load, timings, **options)
-    return Design(domain, dec, mesh, network, timings)
+    anchors = support_vertices(mesh.vertices, mesh.faces, {"vertices": spec} if isinstance(spec, list) else spec,
+                               domain)
+    zmax = default_rise(mesh.vertices) if zmax is None else zmax
+    network = thrust_of_mesh(mesh, {"vertices": anchors.tolist()}, domain, point_load, timings, zmax=zmax,
+                             thickness=thickness, **options)
+    voussoirs = None
+    if tessellation is not None:
+        t = tessellation
+        voussoirs = tessellate(surface_from_network(network), t.rhythm, thickness, t.max_concavity,
+                               t.flat_extrados, t.surface_smooth, rules_dir, timings)
+    return Design(domain, dec, mesh, anchors, network, voussoirs, timings)

@@ -475,11 +475,11 @@ def _no_compression(res: HorizontalResult, act: np.ndarray, force_lengths: np.nd
             f"horizontal equilibrium stalled at a max angle deviation of {amax:.3g} deg > {tol_deg} deg after "
             f"{k} iterations, with every force edge in compression; this form diagram has no exactly "
             f"parallel compression-only reciprocal{proof}, so the tolerance is below what it allows "
-            f"(worst: {desc}); raise tol_deg or relax the form diagram (relax_mode='all')")
+            f"(worst: {desc}); raise the tolerance (--tol-deg) or let every vertex move (--relax-mode all)")
     else:
         message = (
             f"no compression-only horizontal equilibrium for this form diagram{proof}: after {k} iterations "
             f"{len(flipped)} force edges flipped (tension) and {len(collapsed)} collapsed to zero length, "
-            f"e.g. {desc}. Straight unsupported edges cannot be in compression: relax the openings "
-            f"(relax_openings), move the pattern or add supports")
+            f"e.g. {desc}. Straight unsupported edges cannot be in compression: bend the openings more "
+            f"(--sag, --relax-mode all), move the pattern or support more of the boundary (--supports)")
     return HorizontalEquilibriumError(message, edges=act[bad].tolist(), angles=angles[bad].tolist(), result=res)

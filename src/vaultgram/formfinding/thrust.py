@@ -112,7 +112,19 @@ def format_summary(summary: dict) -> str:
         f"vertical:   residual {s['vertical_residual']:.3g} after {s['vertical_iterations']} iterations; "
         f"scale {s['scale']:.6g}, z max {s['zmax']:.6g}",
         f"loads:      total {s['total_load']:.6g}, reactions {s['reaction_sum']:.6g}",
+        *_relaxation_line(s),
     ])
+
+
+def _relaxation_line(s: dict) -> list[str]:
+    """How the openings were relaxed, when the summary says (:func:`vaultgram.pipeline.form_find`)."""
+    mode = s.get("relax_mode")
+    if mode is None or mode == "none":
+        return []
+    if s.get("relax_fallback"):
+        return [f"relaxed:    every free vertex ('all'): bending only the unsupported boundary failed "
+                f"({s['relax_fallback'].split(':')[0]})"]
+    return [f"relaxed:    {'the unsupported boundary' if mode == 'boundary' else 'every free vertex'} ('{mode}')"]
 
 
 def thrust_network(h: HorizontalResult, v: VerticalResult, n_openings: int) -> ThrustNetwork:

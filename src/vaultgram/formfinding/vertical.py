@@ -192,7 +192,7 @@ def vertical(form: FormDiagram, q, *, scale: float = 1.0, zmax: float | None = N
         err = ConvergenceError(
             f"vertical equilibrium: loads{' and scale' if zmax is not None else ''} did not converge in "
             f"{kmax} iterations (last height change {history[-1]:.3g}, residual {res.residual:.3g}); "
-            f"raise kmax or lower the thrust (larger zmax or scale)")
+            f"set the height of the vault (--zmax) or lower the loads (--thickness, --density)")
         err.result = res
         raise err
     return res

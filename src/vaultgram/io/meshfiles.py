@@ -17,9 +17,11 @@ from vaultgram.meshing.quadmesh import QuadMesh
 __all__ = ["mesh_to_json", "mesh_from_json", "write_mesh", "read_mesh"]
 
 
-def mesh_to_json(mesh: QuadMesh) -> dict:
+def mesh_to_json(mesh: QuadMesh, supports=None) -> dict:
     """``{"vertices": [[x, y, z], ...], "faces": [...], "labels": {...}, "turning": [[v, deg], ...],
-    "face_patch": [...], "edge_groups": [...], "info": {...}}``."""
+    "face_patch": [...], "edge_groups": [...], "info": {...}}``, and ``"supports"`` (the indices of the
+    vertices that bear thrust) when given: ``vaultgram formfind mesh.json`` then supports the mesh as
+    the domain did."""
     x = np.asarray(mesh.vertices, dtype=float)
     if x.shape[1] == 2:
         x = np.column_stack([x, np.zeros(len(x))])
@@ -35,7 +37,8 @@ def mesh_to_json(mesh: QuadMesh) -> dict:
         "curves": [{"vertices": np.asarray(c).tolist(), "polyline": np.asarray(p).tolist()}
                    for c, p in zip(mesh.curves, mesh.curve_lines)],
         "edge_groups": list(mesh.groups),
-        "info": {k: v for k, v in mesh.info.items() if k != "seconds"},  # timings vary run to run
+        "info": dict(mesh.info),
+        **({"supports": np.asarray(supports, dtype=np.int64).tolist()} if supports is not None else {}),
     }
 
 
@@ -81,11 +84,12 @@ def mesh_from_json(data: dict, where: str = "mesh") -> QuadMesh:
                     curve, mask("curve_extremity"), chains, lines)
 
 
-def write_mesh(mesh: QuadMesh, out_dir: str | Path) -> tuple[Path, Path]:
-    """Write ``out_dir/mesh.json`` and ``out_dir/mesh.obj`` (each to a temporary file, then renamed)."""
+def write_mesh(mesh: QuadMesh, out_dir: str | Path, supports=None) -> tuple[Path, Path]:
+    """Write ``out_dir/mesh.json`` (with the supported vertices, if given) and ``out_dir/mesh.obj``
+    (each to a temporary file, then renamed)."""
     out = Path(out_dir)
     paths = out / "mesh.json", out / "mesh.obj"
-    write_json(paths[0], mesh_to_json(mesh))
+    write_json(paths[0], mesh_to_json(mesh, supports))
     write_obj(paths[1], mesh.vertices, mesh.faces)
     return paths
 

@@ -27,9 +27,9 @@ def write_decomposition(dec: Decomposition, out: Path, plot: bool = True) -> Non
         plot_decomposition(dec, out / "decomposition.png")
 
 
-def write_mesh_files(mesh: QuadMesh, out: Path, plot: bool = True) -> None:
-    """``mesh.json``, ``mesh.obj`` and, if ``plot``, ``mesh.png``."""
-    write_mesh(mesh, out)
+def write_mesh_files(mesh: QuadMesh, out: Path, supports=None, plot: bool = True) -> None:
+    """``mesh.json`` (with the supported vertices, if given), ``mesh.obj`` and, if ``plot``, ``mesh.png``."""
+    write_mesh(mesh, out, supports)
     if plot:
         plot_mesh(mesh, out / "mesh.png")
 

@@ -98,39 +98,53 @@ def network_graph(x: np.ndarray, me: MeshEdges, rulebook: Rulebook) -> HostGraph
     return graph
 
 
-def _walked_faces(graph: HostGraph, new_nodes: list[int]) -> list[list[int]]:
-    """The faces around the nodes the rules created, each once, as node loops."""
+def _walked_faces(graph: HostGraph, touched: list[int], outside: set) -> list[list[int]]:
+    """The faces around the nodes the rules touched, each once, as node loops; the outer face and
+    the openings (walks along an ``outside`` half-edge) are not faces."""
     seen: set[tuple[int, int]] = set()
     out = []
-    for n in new_nodes:
+    for n in touched:
         for e in graph.rotation(n):
             if (e, n) in seen:
                 continue
             walk = face_walk(graph, (EDGE,), (e, n))
             seen.update(walk)
-            out.append([u for _, u in walk])
+            loop = [u for _, u in walk]
+            if not any((p, q) in outside for p, q in zip(loop, loop[1:] + loop[:1])):
+                out.append(loop)
     return out
 
 
+def _outside_half_edges(faces, me: MeshEdges) -> set:
+    """The half-edges with no face on their left: the reverse of every boundary side."""
+    c = me.corners_of[me.boundary]
+    c = c[c >= 0]
+    return {(int(b), int(a)) for a, b in zip(me.corner_vertex[c].tolist(), me.corner_next[c].tolist())}
+
+
 def cut_keystones(x: np.ndarray, faces, me: MeshEdges, rulebook: Rulebook) -> CutMesh:
-    """Run the rulebook's ``tessellation`` strategy on the network's graph; the mesh it leaves."""
+    """Run the rulebook's ``tessellation`` strategy on the network's graph; the mesh it leaves.
+
+    Faces with no node the rules touched stay as they were; the faces around touched nodes are
+    walked again. A face whose nodes all carry one ``keystone`` number is a keystone.
+    """
     graph = network_graph(x, me, rulebook)
+    graph.forget()
     runner = Runner(rulebook, graph)
     runner.run(STRATEGY)
     n = len(x)
-    kept = [i for i in range(n) if graph.has_node(i)]
-    new = sorted(v for v in graph.nodes() if v >= n)
-    gone = np.ones(n, dtype=bool)
-    gone[kept] = False
-    old = [tuple(f) for f in faces if not gone[list(f)].any()]
-    walked = _walked_faces(graph, new)
-    ids = np.array(kept + new, dtype=np.int64)
+    changed = graph.changes_since(0).nodes
+    touched_ids = sorted(v for v in changed if graph.has_node(v))
+    old_touched = np.zeros(n, dtype=bool)
+    old_touched[[v for v in changed if v < n]] = True
+    old = [tuple(f) for f in faces if not old_touched[list(f)].any()]
+    walked = _walked_faces(graph, touched_ids, _outside_half_edges(faces, me))
+    ids = np.array(sorted(graph.nodes()), dtype=np.int64)
     index = {int(v): k for k, v in enumerate(ids.tolist())}
     out_faces = tuple(tuple(index[v] for v in f) for f in old + walked)
-    keystone_of = [graph.get(v, "keystone") if graph.node_type(v) == CORNER else -1 for v in new]
-    corner_key = dict(zip(new, keystone_of))
+    keystone = {v: graph.get(v, "keystone") for v in touched_ids}
     keystones = [len(old) + k for k, f in enumerate(walked)
-                 if len({corner_key.get(v, -1) for v in f}) == 1 and corner_key.get(f[0], -1) >= 0]
+                 if len({keystone.get(v, -1) for v in f}) == 1 and keystone.get(f[0], -1) >= 0]
     vertices = np.array([graph.get(int(v), "pos") for v in ids], dtype=float).reshape(-1, 3)
     source = np.where(ids < n, ids, -1)
     steps = tuple((r.step, r.applications) for r in runner.reports)

@@ -41,11 +41,14 @@ from scipy.spatial import cKDTree
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.tessellation.strips import Strip
 
-__all__ = ["Bond", "staggered_bond", "preferential_directions", "course_scores", "choose_courses", "course_joints",
-           "COURSE_ALIGNMENT"]
+__all__ = ["Bond", "staggered_bond", "preferential_directions", "quad_directions", "course_runs", "course_joints"]
 
 #: A strip starts as a course when its rungs make at most 45 degrees with the preferential direction.
 COURSE_ALIGNMENT = float(np.cos(np.radians(45.0)))
+#: A quad whose two pairs of sides are within this (in mean |cos| with the preferential direction) of
+#: each other follows its neighbours' courses, over this many rounds.
+AMBIGUITY = 0.25
+SMOOTHING = 3
 #: Cost of a kept rung meeting a kept rung of a neighbouring course (a point of four voussoirs), in
 #: units of the size cost ``log(area / target) ** 2`` of one voussoir.
 ALIGNED_COST = 2.0
@@ -82,65 +85,68 @@ def _unit(d: np.ndarray) -> np.ndarray:
     return d / np.maximum(np.linalg.norm(d, axis=1), 1e-300)[:, None]
 
 
-def preferential_directions(x: np.ndarray, me: MeshEdges, supported: np.ndarray) -> np.ndarray:
+def preferential_directions(x: np.ndarray, me: MeshEdges, supported: np.ndarray, rings=()) -> np.ndarray:
     """Per edge, the unit plan direction of the unsupported boundary edge closest to the edge's
-    midpoint (of the closest boundary edge when the whole boundary is supported)."""
+    midpoint (of the closest boundary edge when the whole boundary is supported). The edges
+    ``rings`` (the keystones' outlines) count as free edges too: courses ring a keystone as they ring
+    an opening."""
     edges = me.edges
     boundary = np.flatnonzero(me.boundary)
     free = boundary[~(supported[edges[boundary, 0]] & supported[edges[boundary, 1]])]
     ref = free if len(free) else boundary
+    ref = np.concatenate([ref, np.asarray(rings, dtype=np.int64)])
     a, b = x[edges[ref, 0], :2], x[edges[ref, 1], :2]
     _, nearest = cKDTree(0.5 * (a + b)).query(0.5 * (x[edges[:, 0], :2] + x[edges[:, 1], :2]))
     return _unit(b - a)[nearest]
 
 
-def course_scores(strips: list[Strip], x: np.ndarray, me: MeshEdges, pref: np.ndarray) -> np.ndarray:
-    """Per strip, the mean |cos| in plan between its inner rungs and the preferential direction (0 for
-    a strip of one quad)."""
-    align = np.abs((_unit(x[me.edges[:, 1], :2] - x[me.edges[:, 0], :2]) * pref).sum(axis=1))
-    return np.array([float(align[s.rungs[1:-1]].mean()) if len(s) > 1 else 0.0 for s in strips])
+def _strip_directions(me: MeshEdges, s: Strip) -> np.ndarray:
+    """For each quad of a strip, the direction (0: sides 0 and 2 are its rungs, 1: sides 1 and 3)."""
+    start = me.face_start[s.quads]
+    even = (me.corner_edge[start] == s.rungs[:-1]) | (me.corner_edge[start + 2] == s.rungs[:-1])
+    return np.where(even, 0, 1)
 
 
-def _quad_strips(strips: list[Strip], n_faces: int) -> np.ndarray:
-    """Per face, the (up to two) strips crossing it, -1 where there is none."""
-    out = np.full((n_faces, 2), -1, dtype=np.int64)
-    for k, s in enumerate(strips):
-        for q in s.quads.tolist():
-            out[q, 0 if out[q, 0] < 0 else 1] = k
+def quad_directions(x: np.ndarray, me: MeshEdges, pref: np.ndarray, is_quad: np.ndarray) -> np.ndarray:
+    """Per face, the direction of its course (0: sides 0 and 2 are rungs, 1: sides 1 and 3; -1 for a
+    face that is not a quad): the pair of opposite sides that runs closer to the preferential
+    direction. Where both run about as close (within :data:`AMBIGUITY`), the quad follows the
+    majority of its neighbours, :data:`SMOOTHING` times, so courses do not fray along the diagonals."""
+    d = x[me.edges[:, 1], :2] - x[me.edges[:, 0], :2]
+    align = np.abs((_unit(d) * pref).sum(axis=1))
+    quad_corner = is_quad[me.corner_face]
+    c = np.flatnonzero(quad_corner)
+    f, side = me.corner_face[c], me.corner_side[c]
+    score = np.zeros((len(is_quad), 2))
+    np.add.at(score, (f, side % 2), align[me.corner_edge[c]])
+    choice = np.where(is_quad, np.argmax(score, axis=1), -1)
+    ambiguous = is_quad & (np.abs(score[:, 0] - score[:, 1]) < 2 * AMBIGUITY)
+    twin = me.corner_twin[c]
+    ok = (twin >= 0) & quad_corner[np.maximum(twin, 0)]
+    c, f, side, twin = c[ok], f[ok], side[ok], twin[ok]
+    g, other_side = me.corner_face[twin], me.corner_side[twin]
+    for _ in range(SMOOTHING):
+        # the neighbour's course, seen from this quad: the same strip if it runs through the shared side
+        seen = np.where(choice[g] == other_side % 2, side % 2, 1 - side % 2)
+        votes = np.zeros((len(is_quad), 2))
+        np.add.at(votes, (f, seen), 1.0)
+        flip = ambiguous & (votes.max(axis=1) > votes.min(axis=1))
+        choice = np.where(flip, np.argmax(votes, axis=1), choice)
+    return choice
+
+
+def course_runs(me: MeshEdges, strips: list[Strip], choice: np.ndarray) -> list[Strip]:
+    """The courses: the runs of consecutive quads of each strip whose chosen direction is the strip's."""
+    out = []
+    for s in strips:
+        along = choice[s.quads] == _strip_directions(me, s)
+        if s.cyclic and along.all():
+            out.append(s)
+            continue
+        edges = np.diff(np.concatenate([[0], along.astype(np.int8), [0]]))
+        for i, j in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)):
+            out.append(Strip(s.quads[i:j], s.rungs[i:j + 1], False))
     return out
-
-
-def choose_courses(strips: list[Strip], score: np.ndarray, n_faces: int) -> np.ndarray:
-    """Which strips are courses: start from the aligned ones, then flip the strip that gains most
-    (quads on exactly one course, plus the strip's alignment above 45 degrees per quad) while any
-    gains."""
-    crossing = _quad_strips(strips, n_faces)
-    pairs = crossing[(crossing >= 0).all(axis=1) & (crossing[:, 0] != crossing[:, 1])]
-    n = len(strips)
-    course = score >= COURSE_ALIGNMENT
-    if not n:
-        return course
-    bonus = (score - COURSE_ALIGNMENT) * np.array([len(s) for s in strips])
-    partner = np.concatenate([pairs[:, 1], pairs[:, 0]])
-    owner = np.concatenate([pairs[:, 0], pairs[:, 1]])
-    order = np.argsort(owner, kind="stable")
-    partner, start = partner[order], np.searchsorted(owner[order], np.arange(n + 1))
-
-    def gain(k: int) -> float:
-        """Flipping strip k: quads it shares with a strip of the same kind become once-covered, the
-        others stop being; the alignment bonus is won (turned on) or lost (turned off)."""
-        same = course[partner[start[k]:start[k + 1]]] == course[k]
-        return float(2 * same.sum() - len(same)) + (-bonus[k] if course[k] else bonus[k])
-
-    gains = np.array([gain(k) for k in range(n)])
-    for _ in range(4 * n):
-        best = int(np.argmax(gains))
-        if gains[best] <= 1e-9:
-            break
-        course[best] = ~course[best]
-        for k in {best, *partner[start[best]:start[best + 1]].tolist()}:
-            gains[k] = gain(k)
-    return course
 
 
 def course_joints(areas: np.ndarray, forced: np.ndarray, aligned: np.ndarray, target: float, longest: int
@@ -193,9 +199,9 @@ def course_joints(areas: np.ndarray, forced: np.ndarray, aligned: np.ndarray, ta
     return keep
 
 
-def _course_order(strips: list[Strip], course: np.ndarray, me: MeshEdges) -> list[int]:
+def _course_order(strips: list[Strip], me: MeshEdges) -> list[int]:
     """Courses in the order they are laid: the longest first, then always one beside a laid one."""
-    beside: dict[int, set] = {k: set() for k in np.flatnonzero(course).tolist()}
+    beside: dict[int, set] = {k: set() for k in range(len(strips))}
     owner = np.full(len(me.face_start) - 1, -1, dtype=np.int64)
     for k in beside:
         owner[strips[k].quads] = k  # a quad on two courses: either will do for adjacency
@@ -265,21 +271,26 @@ class _Laying:
         return int((keep[inner] & forced[inner]).sum()), int((keep[inner] & lined_up[inner] & ~forced[inner]).sum())
 
 
+#: A voussoir of a course is at most this many times ``rhythm`` quads long (small faces make longer ones).
+LONGEST = 2
+
 #: Sweeps over the courses after the first laying, each course laid again beside all its neighbours.
 SWEEPS = 2
 
 
 def staggered_bond(x: np.ndarray, me: MeshEdges, strips: list[Strip], supported: np.ndarray, areas: np.ndarray,
-                   rhythm: int = 2, joined: np.ndarray | None = None) -> Bond:
+                   rhythm: int = 2, joined: np.ndarray | None = None, rings=()) -> Bond:
     """The rungs a staggered bond of about ``rhythm`` quads per voussoir removes (module docstring),
-    besides the edges ``joined`` already (whose faces no course takes again)."""
-    pref = preferential_directions(x, me, supported)
-    course = choose_courses(strips, course_scores(strips, x, me, pref), len(me.face_start) - 1)
+    besides the edges ``joined`` already (whose faces no course takes again); ``rings`` are the
+    keystones' outline edges (see :func:`preferential_directions`)."""
+    pref = preferential_directions(x, me, supported, rings)
+    is_quad = np.diff(me.face_start) == 4
+    strips = course_runs(me, strips, quad_directions(x, me, pref, is_quad))
     quads = np.concatenate([s.quads for s in strips]) if strips else np.zeros(0, dtype=np.int64)
     target = rhythm * float(np.median(areas[quads])) if len(quads) else 1.0
     joined = np.zeros(me.n_edges, dtype=bool) if joined is None else joined
-    laying = _Laying(me, strips, areas, joined, target, 2 * rhythm)
-    order = _course_order(strips, course, me)
+    laying = _Laying(me, strips, areas, joined, target, LONGEST * rhythm)
+    order = _course_order(strips, me)
     for k in order:
         laying.lay(k)
     for _ in range(SWEEPS):
@@ -291,4 +302,4 @@ def staggered_bond(x: np.ndarray, me: MeshEdges, strips: list[Strip], supported:
         laying.lift(k)
         t, a = laying.lay(k)
         kept_taken, aligned = kept_taken + t, aligned + a
-    return Bond(laying.removed, int(course.sum()), kept_taken, aligned, target)
+    return Bond(laying.removed, len(strips), kept_taken, aligned, target)

@@ -84,7 +84,8 @@ def max_corner_angles(x: np.ndarray, loops: list[np.ndarray]) -> tuple[np.ndarra
 def without_concavities(x: np.ndarray, me: MeshEdges, removed: np.ndarray, max_angle: float = MAX_CONCAVITY
                         ) -> tuple[np.ndarray, int]:
     """Put back removed edges at voussoir corners above ``max_angle`` until there are none; returns
-    the removed edges left and how many were put back."""
+    the removed edges left and how many were put back. A voussoir whose corner is a corner of one of
+    its faces (no removed edge there) is taken apart into its faces."""
     removed = removed.copy()
     restored = 0
     while True:
@@ -100,8 +101,11 @@ def without_concavities(x: np.ndarray, me: MeshEdges, removed: np.ndarray, max_a
         bad_group[multi[bad]] = True
         bad_vertex = np.zeros(len(x), dtype=bool)
         bad_vertex[vertex[bad]] = True
-        inside = removed & bad_group[group[np.maximum(me.faces_of[:, 0], 0)]]
+        owner = group[np.maximum(me.faces_of[:, 0], 0)]
+        inside = removed & bad_group[owner]
         back = inside & (bad_vertex[me.edges[:, 0]] | bad_vertex[me.edges[:, 1]])
+        stuck = np.setdiff1d(multi[bad], owner[back])  # nothing to put back at the corner itself
+        back |= inside & np.isin(owner, stuck)
         restored += int(back.sum())
         removed &= ~back
 
