@@ -219,7 +219,7 @@ class ExpressionCompiler:
                     expr.pos,
                     did_you_mean(attr, self.schema.attrs(ttype.name)),
                 )
-            getter = (lambda g, b: g.nx.nodes[target(g, b)][attr]) if ttype.kind == "node" else (
+            getter = (lambda g, b: g.node_attrs(target(g, b))[attr]) if ttype.kind == "node" else (
                 lambda g, b: g.get_edge(target(g, b), attr)
             )
             return Typed(getter, VType("value", spec.type), reads)

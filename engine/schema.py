@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from typing import Mapping
 
 from .errors import RuleTypeError, SchemaError, did_you_mean
-from .values import check_type_name, normalise_value, value_conforms
+from .values import check_type_name, normalise_column, normalise_value, value_conforms
 
 ROOT_NODE = "Node"
 ROOT_EDGE = "Edge"
@@ -113,6 +113,27 @@ class TypeSchema:
                 if spec.required:
                     raise SchemaError(f"{where}: {type_name} needs attribute '{name}' ({spec.type})")
                 out[name] = spec.default
+        return out
+
+    def filled_columns(self, type_name: str, columns: Mapping[str, object], n: int, what: str) -> dict[str, list]:
+        """Attribute values of ``n`` elements by column, checked (each column as a whole, or value by
+        value to name the first bad one) and with the defaults of the columns not given."""
+        out = {}
+        for name, values in columns.items():
+            spec = self.attrs(type_name).get(name)
+            if spec is None:
+                raise SchemaError(f"{what}: type {type_name} has no attribute '{name}'")
+            column = normalise_column(values, spec.type)
+            if column is None:
+                column = [self.checked_value(type_name, name, v, f"{what} {k}") for k, v in enumerate(values)]
+            if len(column) != n:
+                raise SchemaError(f"{what}: attribute '{name}' has {len(column)} values for {n} elements")
+            out[name] = column
+        for name, spec in self.attrs(type_name).items():
+            if name not in out:
+                if spec.required:
+                    raise SchemaError(f"{what}: {type_name} needs attribute '{name}' ({spec.type})")
+                out[name] = [spec.default] * n
         return out
 
     def checked_value(self, type_name: str, name: str, value: object, where: str) -> object:

@@ -22,6 +22,8 @@ from __future__ import annotations
 import math
 from typing import Callable, NamedTuple
 
+import numpy as np
+
 from .errors import RuleTypeError
 
 NUMERIC = ("int", "float")
@@ -98,6 +100,30 @@ def normalise_value(value: object) -> object:
     if isinstance(value, (list, tuple)):
         return tuple(normalise_value(v) for v in value)
     return value
+
+
+def normalise_column(values, type_name: str) -> list | None:
+    """Many values of one declared type at once, made plain (as :func:`normalise_value` does each):
+    a numpy array of the type's shape is checked as a whole (finite numbers of the right kind and
+    count) and turned into a list of plain values; None when ``values`` does not fit (the caller
+    then names the first bad value)."""
+    array = np.asarray(values)
+    kind = array.dtype.kind
+    if type_name in VECTORS:
+        size = int(type_name[-1])
+        if array.ndim != 2 or array.shape[1] != size or kind not in "iuf" or not np.isfinite(array).all():
+            return None
+        return [tuple(row) for row in array.astype(float).tolist()]
+    if array.ndim != 1:
+        return None
+    if type_name == "bool":
+        return array.tolist() if kind == "b" else None
+    if type_name == "int":
+        return array.astype(int).tolist() if kind in "iu" else None
+    if type_name == "float":
+        return array.astype(float).tolist() if kind in "iuf" and np.isfinite(array).all() else None
+    return [normalise_value(v) for v in values] if all(value_conforms(normalise_value(v), type_name)
+                                                       for v in values) else None
 
 
 def storable(static: str, declared: str) -> bool:

@@ -233,7 +233,7 @@ def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, 
     from vaultgram.domain import load_domain
     from vaultgram.io.meshfiles import mesh_from_json
     from vaultgram.io.outputs import write_thrust
-    from vaultgram.pipeline import default_rise, mesh_domain, thrust_of_mesh
+    from vaultgram.pipeline import mesh_domain, thrust_of_mesh
 
     domain = None
     timings: dict = {}
@@ -247,7 +247,6 @@ def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, 
         spec = domain.supports
     if supports_path:
         spec = read_json(supports_path)
-    zmax = default_rise(mesh.vertices) if zmax is None else zmax
     network = thrust_of_mesh(mesh, spec, domain, point_load, timings, zmax=zmax, thickness=thickness,
                              density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode)
     write_thrust(network, Path(out_dir))

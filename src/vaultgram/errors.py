@@ -30,6 +30,7 @@ __all__ = [
     "FormFindingError",
     "HorizontalEquilibriumError",
     "ConvergenceError",
+    "VerticalEquilibriumError",
     "TessellationError",
     "MeshError",
     "NonManifoldVertexError",
@@ -67,6 +68,11 @@ class HorizontalEquilibriumError(FormFindingError):
 
 class ConvergenceError(VaultgramError):
     """An iterative method did not reach its tolerance within its iteration cap."""
+
+
+class VerticalEquilibriumError(ConvergenceError):
+    """Vertical equilibrium did not converge: the heights and the self-weight on them (or the scale for
+    a given height) kept changing; a lower vault converges sooner."""
 
 
 class TessellationError(VaultgramError):

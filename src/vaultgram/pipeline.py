@@ -21,6 +21,7 @@ Example
 from __future__ import annotations
 
 import dataclasses
+import json
 import time
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -29,7 +30,8 @@ from pathlib import Path
 import numpy as np
 
 from vaultgram.domain import Domain, check_feature_spacing
-from vaultgram.errors import ConvergenceError, FormFindingError, TessellationError, VaultgramError
+from vaultgram.errors import (ConvergenceError, FormFindingError, HorizontalEquilibriumError, TessellationError,
+                              VaultgramError, VerticalEquilibriumError)
 from vaultgram.formfinding.forcediagram import force_diagram
 from vaultgram.formfinding.formdiagram import form_diagram
 from vaultgram.formfinding.horizontal import horizontal
@@ -46,6 +48,7 @@ from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS, laplacian_smooth
 from vaultgram.meshing.untangle import untangle
 from vaultgram.meshing.weld import weld
 from vaultgram.geometry.halfedges import mesh_edges
+from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.surfaces import area_vectors, vertex_normals
 from vaultgram.tessellation.courses import support_zones, voussoir_courses, voussoir_names
 from vaultgram.tessellation.keystones import CutMesh, cut_keystones, load_tessellation_rulebook, pinwheel
@@ -270,14 +273,45 @@ def _equilibrium(form, n_open: int, mode: str | None, sag: float, alpha: float, 
 
 
 def thrust_of_mesh(mesh: QuadMesh, supports=None, domain: Domain | None = None, point_load: float = 0.0,
-                   timings: dict | None = None, **options) -> ThrustNetwork:
+                   timings: dict | None = None, zmax: float | None = None, **options) -> ThrustNetwork:
     """Form finding of a quad mesh with a support specification (:mod:`vaultgram.formfinding.supports`),
-    ``point_load`` at each of its point features; ``options`` are those of :func:`form_find`."""
+    ``point_load`` at each of its point features; ``options`` are those of :func:`form_find`.
+
+    Without ``zmax`` the vault gets the rises of :data:`RISES` in turn, the first whose vertical
+    equilibrium converges (a steep vault on a narrow plan may not); the summary's ``zmax`` says which.
+    """
     if isinstance(supports, list):
         supports = {"vertices": supports}
     anchors = support_vertices(mesh.vertices, mesh.faces, supports, domain)
     loads = {int(v): point_load for v in np.flatnonzero(mesh.feature)} if point_load else None
-    return form_find(mesh.vertices, mesh.faces, anchors, point_loads=loads, timings=timings, **options)
+    heights = [zmax] if zmax is not None else [default_rise(mesh.vertices, rise) for rise in RISES]
+    for k, height in enumerate(heights):
+        try:
+            return form_find(mesh.vertices, mesh.faces, anchors, point_loads=loads, timings=timings, zmax=height,
+                             **options)
+        except VerticalEquilibriumError:
+            if k == len(heights) - 1:
+                raise
+        except HorizontalEquilibriumError as exc:
+            raise HorizontalEquilibriumError(f"{exc}{_support_hint(domain, supports)}", exc.edges, exc.angles,
+                                             exc.result) from None
+        except FormFindingError as exc:
+            raise FormFindingError(f"{exc}{_support_hint(domain, supports)}") from None
+
+
+def _support_hint(domain: Domain | None, supports) -> str:
+    """Which supports to try when the openings admit no compression-only vault: the largest holes the
+    support specification leaves open, as a ``--supports`` file's content."""
+    if domain is None or not domain.holes or (supports is not None and "rings" not in supports):
+        return ""
+    held = set(supports["rings"]) if supports is not None else {"outer"}
+    open_holes = [k for k in range(len(domain.holes)) if k not in held]
+    if not open_holes:
+        return ""
+    largest = sorted(open_holes, key=lambda k: -abs(signed_area(domain.holes[k])))[:3]
+    rings = json.dumps({"rings": sorted(held, key=str) + largest})
+    return (f"; {len(open_holes)} of the {len(domain.holes)} holes are open: try supporting the largest, "
+            f"--supports with {rings}")
 
 
 # --------------------------------------------------------------------------------------------
@@ -414,19 +448,20 @@ class Design:
                 "tessellation": self.tessellation.summary if self.tessellation is not None else None}
 
 
-#: The default height of a vault: this fraction of the shorter side of its plan's bounding box.
-RISE = 0.25
+#: The default heights of a vault, tried in turn: these fractions of the shorter side of its plan's
+#: bounding box (a quarter of the span is a usual rise for a masonry vault).
+RISES = (0.25, 0.15, 0.1)
 
 
-def default_rise(vertices: np.ndarray) -> float:
-    """The height a vault over ``vertices`` gets when none is given: :data:`RISE` times the shorter
-    side of the plan's bounding box (a quarter of the span, a usual rise for a masonry vault).
+def default_rise(vertices: np.ndarray, rise: float = RISES[0]) -> float:
+    """A height for a vault over ``vertices``: ``rise`` times the shorter side of the plan's
+    bounding box.
 
     >>> default_rise(np.array([[0.0, 0.0], [10.0, 0.0], [10.0, 6.0]]))
     1.5
     """
     extent = np.ptp(np.asarray(vertices, dtype=float)[:, :2], axis=0)
-    return float(RISE * extent.min())
+    return float(rise * extent.min())
 
 
 def design(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None = None,
@@ -437,7 +472,7 @@ def design(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None =
     """The whole pipeline on a domain: decomposition (§3.1, §4), mesh (§3.2), thrust network (§5) and
     tessellation (§5).
 
-    ``supports`` overrides the domain's own; ``zmax`` defaults to :func:`default_rise`; ``thickness``
+    ``supports`` overrides the domain's own; ``zmax`` defaults to a rise (:func:`thrust_of_mesh`); ``thickness``
     is the shell's, for its self-weight and its voussoirs; ``tessellation`` None stops at the thrust
     network; ``options`` are those of :func:`form_find`.
     """
@@ -448,7 +483,6 @@ def design(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None =
     spec = domain.supports if supports is None else supports
     anchors = support_vertices(mesh.vertices, mesh.faces, {"vertices": spec} if isinstance(spec, list) else spec,
                                domain)
-    zmax = default_rise(mesh.vertices) if zmax is None else zmax
     network = thrust_of_mesh(mesh, {"vertices": anchors.tolist()}, domain, point_load, timings, zmax=zmax,
                              thickness=thickness, **options)
     voussoirs = None

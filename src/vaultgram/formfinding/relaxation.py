@@ -22,6 +22,7 @@ from scipy.sparse.linalg import splu
 
 from vaultgram.errors import FormFindingError
 from vaultgram.formfinding.formdiagram import FormDiagram
+from vaultgram.geometry.meshes import face_areas
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.polylines import polyline_length
 
@@ -110,6 +111,7 @@ def relax_openings(form: FormDiagram, sag: float = 0.1, *, mode: str = "boundary
     logq = _bisect_sag(system, arches, sag, iterations)
     out = form.with_xy(system.solve(logq))
     _check_not_collapsed(form, out)
+    _check_not_folded(out)
     return out
 
 
@@ -218,3 +220,16 @@ def _check_not_collapsed(form: FormDiagram, out: FormDiagram) -> None:
             f"relaxing the openings collapsed {len(short)} edges, e.g. {form.edge_name(int(short[0]))} "
             f"(length {l0[short[0]]:.3g} -> {l1[short[0]]:.3g}): the supports cannot hold the open edges "
             f"apart; add supports or relax with a larger sag")
+
+
+def _check_not_folded(out: FormDiagram) -> None:
+    """Every loaded face is still counter-clockwise: the relaxation did not fold the form diagram."""
+    loaded = [f for f, load in zip(out.faces, out.loaded) if load]
+    area = face_areas(out.xy, loaded)
+    folded = np.flatnonzero(area <= 0)
+    if len(folded):
+        face = [int(out.vertex_ids[v]) for v in loaded[int(folded[0])]]
+        raise FormFindingError(
+            f"relaxing the openings folded {len(folded)} face(s) of the form diagram, e.g. the face of mesh "
+            f"vertices {face}: the supports cannot hold the open edges apart there; add supports (--supports) "
+            f"or relax less (a smaller --sag)")

@@ -28,7 +28,7 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 
-from vaultgram.errors import ConvergenceError, FormFindingError
+from vaultgram.errors import ConvergenceError, FormFindingError, VerticalEquilibriumError
 from vaultgram.formfinding.formdiagram import FormDiagram
 from vaultgram.formfinding.loads import TributaryAreas
 
@@ -189,7 +189,7 @@ def vertical(form: FormDiagram, q, *, scale: float = 1.0, zmax: float | None = N
     xyz, t, history, converged = _iterate_heights(form, system, loads, 1.0 / scale, zmax, kmax, tol)
     res = _equilibrium(form, q0, xyz, t, loads(xyz), history)
     if not converged:
-        err = ConvergenceError(
+        err = VerticalEquilibriumError(
             f"vertical equilibrium: loads{' and scale' if zmax is not None else ''} did not converge in "
             f"{kmax} iterations (last height change {history[-1]:.3g}, residual {res.residual:.3g}); "
             f"set the height of the vault (--zmax) or lower the loads (--thickness, --density)")

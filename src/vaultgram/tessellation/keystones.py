@@ -91,10 +91,11 @@ def network_graph(x: np.ndarray, me: MeshEdges, rulebook: Rulebook) -> HostGraph
     graph = HostGraph(rulebook.schema, angle=_plan_angle)
     on_boundary = np.zeros(len(x), dtype=bool)
     on_boundary[me.edges[me.boundary].ravel()] = True
-    for i, (p, b) in enumerate(zip(x.tolist(), on_boundary.tolist())):
-        graph.add_node(NODE, {"pos": tuple(p), "index": i, "boundary": b}, id=i)
-    for a, b in me.edges.tolist():
-        graph.add_edge(EDGE, a, b)
+    graph.add_nodes(NODE, range(len(x)), {"pos": x, "index": np.arange(len(x)), "boundary": on_boundary})
+    a, b = x[me.edges[:, 0], :2], x[me.edges[:, 1], :2]
+    angles = np.column_stack([np.arctan2(b[:, 1] - a[:, 1], b[:, 0] - a[:, 0]),
+                              np.arctan2(a[:, 1] - b[:, 1], a[:, 0] - b[:, 0])])  # as _plan_angle gives them
+    graph.add_edges(EDGE, me.edges, angles=angles)
     return graph
 
 
