@@ -12,12 +12,12 @@ reads, and how far from a change a match can be affected (its *radius*).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import NamedTuple
+from typing import Callable, NamedTuple
 
 from vaultgram.grammar import ast
 
 from .errors import RewriteError, RuleTypeError, did_you_mean
-from .expressions import ANY, TYPE, Compiled, ExpressionCompiler, Symbol, VType, walk
+from .expressions import _COMPARISONS, ANY, TYPE, Compiled, ExpressionCompiler, Symbol, VType, graph_degree, walk
 from .schema import TypeSchema
 from .values import VALUE_TYPES, storable, value_conforms
 
@@ -26,14 +26,29 @@ from .values import VALUE_TYPES, storable, value_conforms
 # ----------------------------------------------------------------------------------------------
 
 
+class ColumnTest(NamedTuple):
+    """A condition ``degree(var, Types) op rhs`` or ``var.attr op rhs`` (``rhs`` reading only
+    parameters and literals), in the form the whole-graph matcher evaluates for a whole column of
+    matches at once: ``types`` for a degree, ``attr`` (and ``kind``, node or edge) for an attribute."""
+
+    var: str
+    op: Callable[[object, object], object]
+    rhs: Compiled
+    types: frozenset | None = None
+    attr: str | None = None
+    kind: str = "node"
+
+
 @dataclass(frozen=True)
 class Condition:
-    """A compiled boolean test with the variables it reads and where it was written."""
+    """A compiled boolean test with the variables it reads and where it was written; ``column`` is
+    its vectorised form when it has one."""
 
     fn: Compiled
     reads: frozenset[str]
     text: str
     pos: object
+    column: ColumnTest | None = None
 
     def failure(self, rule: str, exc: Exception) -> RewriteError:
         """The error to raise when evaluating the test raised ``exc`` (a host function or arithmetic
@@ -259,7 +274,7 @@ class RuleChecker:
                     scope[scope_var] = Symbol(VType("edge", e.type))
                 checks = tuple(self._constraint(c, scope_var, scope) for c in e.constraints)
                 edges[i] = PatternEdge(**{**edges[i].__dict__, "checks": checks})
-        conditions = [self._condition(c, scope) for c in pat.conditions]
+        conditions = [self._condition(c, scope) for expr in pat.conditions for c in _conjuncts(expr)]
         return CompiledPattern(nodes, edges, conditions, outer, pat.pos)
 
     def _pattern_edge(self, e: ast.EdgePattern, anonymous: str, scope: dict) -> PatternEdge:
@@ -308,7 +323,31 @@ class RuleChecker:
 
     def _condition(self, expr, scope, text: str | None = None) -> Condition:
         compiled = self.compiler.compile(expr, scope)
-        return Condition(compiled.fn, compiled.reads, text or describe(expr), expr.pos)
+        return Condition(compiled.fn, compiled.reads, text or describe(expr), expr.pos, self._column_test(expr, scope))
+
+    def _column_test(self, expr, scope) -> ColumnTest | None:
+        """The vectorised form of ``degree(var, Types) op rhs`` or ``var.attr op rhs``, if ``expr`` is
+        one (``rhs`` reading parameters and literals only, ``degree`` the builtin)."""
+        if not (isinstance(expr, ast.Binary) and expr.op in _COMPARISONS):
+            return None
+        rhs = self.compiler.compile(expr.right, scope)
+        if any(scope[name].type.kind != "value" for name in rhs.reads):
+            return None
+        left, op = expr.left, _COMPARISONS[expr.op]
+        if isinstance(left, ast.Attr) and isinstance(left.target, ast.Name):
+            sym = scope.get(left.target.name)
+            if sym is None or sym.type.kind not in ("node", "edge"):
+                return None
+            return ColumnTest(left.target.name, op, rhs.fn, attr=left.attr, kind=sym.type.kind)
+        builtin = self.compiler.functions.table.get("degree")
+        if not isinstance(left, ast.Call) or left.func != "degree" or builtin is None or \
+                builtin.fn is not graph_degree or len(left.args) != 2 or \
+                not all(isinstance(a, ast.Name) for a in left.args):
+            return None
+        node, types = (scope.get(a.name) for a in left.args)
+        if node is None or types is None or node.type.kind != "node" or types.type.kind != "type":
+            return None
+        return ColumnTest(left.args[0].name, op, rhs.fn, types=frozenset(types.types))
 
     # -- statements ------------------------------------------------------------------------------
 
@@ -627,3 +666,10 @@ _DESCRIBE = {
     ast.Unary: lambda e: f"not {describe(e.operand)}" if e.op == "not" else f"-{describe(e.operand)}",
     ast.Binary: lambda e: f"{_operand(e.left)} {e.op} {_operand(e.right)}",
 }
+
+
+def _conjuncts(expr) -> list:
+    """The operands of a chain of ``and`` (each a condition of its own, tested in order)."""
+    if isinstance(expr, ast.Binary) and expr.op == "and":
+        return _conjuncts(expr.left) + _conjuncts(expr.right)
+    return [expr]

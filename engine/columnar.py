@@ -196,8 +196,42 @@ def _extend(arrays: GraphArrays, step: Extend, table: Table) -> Table:
     return out
 
 
+def _degrees(g: HostGraph, types: frozenset) -> np.ndarray:
+    """Per node id, its number of edges of ``types``, from the incidence arrays."""
+    arrays = graph_arrays(g)
+    counts = np.diff(arrays.he_ptr)
+    owner = np.repeat(np.arange(len(counts)), counts)
+    return np.bincount(owner[_type_mask(arrays, types)[arrays.he_code]], minlength=len(counts))
+
+
+def _column_mask(g: HostGraph, test, ids: np.ndarray, rhs) -> np.ndarray:
+    """Where a column test holds for the elements ``ids``: on their degrees (numpy), or on their
+    attribute (the values compared one by one, as plain Python values)."""
+    if test.types is not None:
+        return np.asarray(test.op(_degrees(g, test.types)[ids], rhs), dtype=bool)
+    attrs, op, attr = (g.node_attrs if test.kind == "node" else g.edge_attrs), test.op, test.attr
+    return np.fromiter((bool(op(attrs(i)[attr], rhs)) for i in ids.tolist()), dtype=bool, count=len(ids))
+
+
+def _check_columns(g: HostGraph, table: Table, conditions: tuple[Condition, ...], values: dict, rule: str) -> Table:
+    """Evaluate the conditions that have a vectorised form, for every row at once, in order."""
+    for c in conditions:
+        test = c.column
+        try:
+            keep = _column_mask(g, test, table.column(test.var), test.rhs(g, values))
+        except Exception as exc:  # e.g. a comparison with a value of the wrong kind
+            raise c.failure(rule, exc) from None
+        table = table.filter(keep)
+    return table
+
+
 def _check_rows(g: HostGraph, table: Table, conditions: tuple[Condition, ...], values: dict, rule: str) -> Table:
-    """Evaluate conditions row by row (they are arbitrary expressions) and keep the rows where all hold."""
+    """Keep the rows where all conditions hold: first those with a vectorised form, on every row at
+    once, then the others row by row (they are arbitrary expressions), in their written order."""
+    lead = next((k for k, c in enumerate(conditions) if c.column is None), len(conditions))
+    if lead and table.rows:
+        table = _check_columns(g, table, conditions[:lead], values, rule)
+        conditions = conditions[lead:]
     if not conditions or table.rows == 0:
         return table
     names = [*table.nodes, *table.edges]

@@ -105,10 +105,12 @@ def _vector(*components):
     return tuple(float(c) for c in components)
 
 
-def _builtins() -> list[Function]:
-    def degree(g, n, types=None):
-        return g.degree(n, types)
+def graph_degree(g, n, types=None) -> int:
+    """The builtin ``degree``: edges at node ``n`` (of ``types``, a type and its subtypes)."""
+    return g.degree(n, types)
 
+
+def _builtins() -> list[Function]:
     def indegree(g, n, types=None):
         return sum(1 for e in g.incident(n, types) if g.is_directed(e) and g.ends(e)[1] == n)
 
@@ -116,7 +118,7 @@ def _builtins() -> list[Function]:
         return sum(1 for e in g.incident(n, types) if g.is_directed(e) and g.ends(e)[0] == n)
 
     return [
-        Function("degree", degree, ("node", "type?"), "int", True),
+        Function("degree", graph_degree, ("node", "type?"), "int", True),
         Function("indegree", indegree, ("node", "type?"), "int", True),
         Function("outdegree", outdegree, ("node", "type?"), "int", True),
         Function("other", lambda g, e, n: g.other(e, n), ("edge", "node"), "node", True),

@@ -186,6 +186,33 @@ class _AddMany(NamedTuple):
             (_touch_node if self.kind == "node" else _touch_edge)(g, i, nodes, types)
 
 
+class _Lazy(dict):
+    """A dictionary whose missing entries are made on first use by ``make(key)``: the per-node
+    tables of nodes and edges added in bulk are built only for the nodes a search or a rewrite
+    reaches (``make`` raises KeyError for an unknown key)."""
+
+    def __init__(self, make: Callable[[int], object]):
+        super().__init__()
+        self.make = make
+
+    def __missing__(self, key):
+        value = self[key] = self.make(key)
+        return value
+
+
+class _Block(NamedTuple):
+    """Edges added in bulk, as half-edges sorted by node (then rotation key): for a node ``n`` its
+    half-edges are ``[start(n), stop(n))``."""
+
+    type_name: str
+    node: np.ndarray
+    edge: np.ndarray
+    key: np.ndarray
+
+    def span(self, n: int) -> tuple[int, int]:
+        return int(np.searchsorted(self.node, n)), int(np.searchsorted(self.node, n, side="right"))
+
+
 class _Rotation(NamedTuple):
     n: int
     order: list[int]
@@ -211,9 +238,11 @@ class HostGraph:
         self._edge_type: dict[int, str] = {}
         self._ends: dict[int, tuple[int, int]] = {}
         self._by_type: dict[str, set[int]] = {t: set() for t in (*schema.node_types, *schema.edge_types)}
-        self._inc: dict[int, dict[str, set[int]]] = {}
-        self._rot: dict[int, list[int]] = {}
-        self._rot_keys: dict[int, list[tuple[float, int]]] = {}
+        self._blocks: list[_Block] = []  # edges added in bulk, indexed per node on first use
+        self._inc: dict[int, dict[str, set[int]]] = _Lazy(self._bulk_incidence)
+        # a node's rotation and its keys are made together, from the bulk blocks, on first use
+        self._rot_keys: dict[int, list[tuple[float, int]]] = _Lazy(lambda n: self._bulk_rotation(n)[0])
+        self._rot: dict[int, list[int]] = _Lazy(lambda n: self._bulk_rotation(n)[1])
         self._next_node = 0
         self._next_edge = 0
         self._journal: list = []  # of the records above
@@ -372,7 +401,7 @@ class HostGraph:
             raise SchemaError(f"node type '{type_name}' is unknown or abstract and cannot be instantiated")
         ids = [int(i) for i in ids]
         if len(set(ids)) != len(ids) or any(i < 0 or i in self._node_type for i in ids):
-            raise SchemaError(f"add_nodes: node ids must be new, distinct and non-negative")
+            raise SchemaError("add_nodes: node ids must be new, distinct and non-negative")
         columns = self.schema.filled_columns(type_name, attrs or {}, len(ids), f"{type_name} nodes")
         names = list(columns)
         rows = [dict(zip(names, values)) for values in zip(*columns.values())] if names else [{} for _ in ids]
@@ -384,9 +413,7 @@ class HostGraph:
         self._by_type[type_name].update(ids)
         self._node_codes = _fit(self._node_codes, max(ids, default=0))
         self._node_codes[ids] = self.type_code[type_name]
-        for i in ids:
-            self._inc[i], self._rot[i], self._rot_keys[i] = {}, [], []
-        return ids
+        return ids  # their incidence and rotations are made on first use (_Lazy)
 
     def add_edges(self, type_name: str, ends, attrs: Mapping[str, object] | None = None, angles=None) -> list[int]:
         """Add many edges of one type at once, between the node pairs ``ends`` ((k, 2)), with new ids
@@ -397,19 +424,19 @@ class HostGraph:
         if info is None or info.abstract:
             raise SchemaError(f"edge type '{type_name}' is unknown or abstract and cannot be instantiated")
         ends = np.asarray(ends, dtype=np.int64).reshape(-1, 2)
-        pairs = ends.tolist()
-        missing = [n for n in set(ends.ravel().tolist()) if n not in self._node_type]
-        if missing:
-            raise SchemaError(f"edge {type_name}: node {min(missing)} does not exist")
+        codes = np.where((ends >= 0) & (ends < len(self._node_codes)), self._node_codes[np.clip(ends, 0, len(
+            self._node_codes) - 1)], -1) if len(ends) else ends
+        if (codes < 0).any():
+            raise SchemaError(f"edge {type_name}: node {int(ends[codes < 0].min())} does not exist")
         if (ends[:, 0] == ends[:, 1]).any():
             raise SchemaError(f"edge {type_name}: a self-loop at node {int(ends[ends[:, 0] == ends[:, 1]][0, 0])}")
-        for tu, tv in {(self._node_type[u], self._node_type[v]) for u, v in pairs}:
-            u, v = next((a, b) for a, b in pairs if (self._node_type[a], self._node_type[b]) == (tu, tv))
-            self._check_endpoints(type_name, u, v)
-        columns = self.schema.filled_columns(type_name, attrs or {}, len(pairs), f"{type_name} edges")
-        ids = list(range(self._next_edge, self._next_edge + len(pairs)))
+        _, first = np.unique(codes, axis=0, return_index=True) if len(ends) else ((), [])
+        for k in np.asarray(first, dtype=np.int64).tolist():  # one check per pair of endpoint types
+            self._check_endpoints(type_name, int(ends[k, 0]), int(ends[k, 1]))
+        columns = self.schema.filled_columns(type_name, attrs or {}, len(ends), f"{type_name} edges")
+        ids = list(range(self._next_edge, self._next_edge + len(ends)))
         self._journal.append(_AddMany("edge", tuple(ids), self._next_edge))
-        self._next_edge += len(pairs)
+        self._next_edge += len(ends)
         names = list(columns)
         rows = [dict(zip(names, values)) for values in zip(*columns.values())] if names else [{} for _ in ids]
         self._edge_data.update(zip(ids, rows))
@@ -426,16 +453,52 @@ class HostGraph:
         self._edge_codes, self._edge_ends = _fit(self._edge_codes, last), _fit(self._edge_ends, last)
         self._edge_codes[ids] = self.type_code[type_name]
         self._edge_ends[ids] = ends
-        touched = set()
-        for k, (e, (u, v)) in enumerate(zip(ids, ends.tolist())):
-            for side, n in enumerate((u, v)):
-                self._inc[n].setdefault(type_name, set()).add(e)
-                key = (float(angles[k][side]), e) if angles is not None else self._rotation_key(e, n)
-                self._rot_keys[n].append(key)
-                touched.add(n)
-        for n in touched:
-            self._rot_keys[n].sort()
-            self._rot[n] = [e for _, e in self._rot_keys[n]]
+        node = ends.ravel()
+        edge = np.repeat(np.asarray(ids, dtype=np.int64), 2)
+        if angles is not None:
+            key = np.asarray(angles, dtype=float).ravel()
+        else:
+            key = np.array([self._rotation_key(e, n)[0] for e, n in zip(edge.tolist(), node.tolist())])
+        order = np.lexsort((edge, key, node))  # by node, then as the rotation sorts its keys
+        block = _Block(type_name, node[order], edge[order], key[order])
+        # nodes whose tables exist already get the new edges now; the others when first used
+        for n in set(block.node.tolist()) & (self._inc.keys() | self._rot_keys.keys()):
+            self._merge_block(n, block)
+        self._blocks.append(block)
+
+    def _merge_block(self, n: int, block: "_Block") -> None:
+        """Add a bulk block's half-edges at node ``n`` to its existing tables."""
+        lo, hi = block.span(n)
+        edges, keys = block.edge[lo:hi].tolist(), block.key[lo:hi].tolist()
+        self._inc[n].setdefault(block.type_name, set()).update(edges)
+        merged = sorted(self._rot_keys[n] + list(zip(keys, edges)))
+        self._rot_keys[n] = merged
+        self._rot[n] = [e for _, e in merged]
+
+    def _bulk_incidence(self, n: int) -> dict[str, set[int]]:
+        """The typed incidence of a node never indexed one edge at a time (from the bulk blocks)."""
+        if n not in self._node_type:
+            raise KeyError(n)
+        out: dict[str, set[int]] = {}
+        for block in self._blocks:
+            lo, hi = block.span(n)
+            if hi > lo:
+                out.setdefault(block.type_name, set()).update(block.edge[lo:hi].tolist())
+        return out
+
+    def _bulk_rotation(self, n: int) -> tuple[list[tuple[float, int]], list[int]]:
+        """The rotation keys and rotation of a node never indexed one edge at a time (from the bulk
+        blocks), stored in both tables at once so that they never disagree."""
+        if n not in self._node_type:
+            raise KeyError(n)
+        keys: list[tuple[float, int]] = []
+        for block in self._blocks:
+            lo, hi = block.span(n)
+            keys += zip(block.key[lo:hi].tolist(), block.edge[lo:hi].tolist())
+        keys = sorted(keys) if len(self._blocks) > 1 else keys
+        dict.__setitem__(self._rot_keys, n, keys)
+        dict.__setitem__(self._rot, n, [e for _, e in keys])
+        return keys, self._rot[n]
 
     def remove_edge(self, e: int) -> None:
         u, v = self._ends[e]
@@ -616,7 +679,8 @@ class HostGraph:
         del self._node_data[n]
         self._by_type[self._node_type.pop(n)].discard(n)
         self._node_codes[n] = -1
-        del self._inc[n], self._rot[n], self._rot_keys[n]
+        for table in (self._inc, self._rot, self._rot_keys):
+            dict.pop(table, n, None)
 
     def _insert_edge(self, e: int, type_name: str, u: int, v: int, attrs: dict, positions) -> None:
         self.version += 1

@@ -46,7 +46,6 @@ from lark.exceptions import (
     VisitError,
 )
 
-from vaultgram.grammar.errors import RuleSyntaxError, SourcePos
 from vaultgram.grammar.ast import (
     Attr,
     AttrDecl,
@@ -62,8 +61,8 @@ from vaultgram.grammar.ast import (
     Foreach,
     Include,
     Index,
-    Literal,
     ListExpr,
+    Literal,
     Merge,
     Name,
     NodePattern,
@@ -82,6 +81,7 @@ from vaultgram.grammar.ast import (
     Strategy,
     Unary,
 )
+from vaultgram.grammar.errors import RuleSyntaxError, SourcePos
 
 __all__ = ["parse_text", "parse_file", "load_files", "KEYWORDS"]
 

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import pytest
 from hypothesis import settings
+
 from paths import ARCHITECTURE, EXAMPLES
 
 # In CI (CI=true) property tests draw the same examples every run: a landing never depends on luck.

@@ -9,6 +9,7 @@ import ast
 from pathlib import Path
 
 import networkx as nx
+
 from paths import REPO
 
 ROOTS = {"vaultgram": REPO / "src" / "vaultgram", "vaultgram.engine": REPO / "engine",

@@ -30,8 +30,14 @@ from pathlib import Path
 import numpy as np
 
 from vaultgram.domain import Domain, check_feature_spacing
-from vaultgram.errors import (ConvergenceError, FormFindingError, HorizontalEquilibriumError, TessellationError,
-                              VaultgramError, VerticalEquilibriumError)
+from vaultgram.errors import (
+    ConvergenceError,
+    FormFindingError,
+    HorizontalEquilibriumError,
+    TessellationError,
+    VaultgramError,
+    VerticalEquilibriumError,
+)
 from vaultgram.formfinding.forcediagram import force_diagram
 from vaultgram.formfinding.formdiagram import form_diagram
 from vaultgram.formfinding.horizontal import horizontal
@@ -40,6 +46,9 @@ from vaultgram.formfinding.relaxation import relax_openings
 from vaultgram.formfinding.supports import support_vertices
 from vaultgram.formfinding.thrust import ThrustNetwork, thrust_network
 from vaultgram.formfinding.vertical import vertical
+from vaultgram.geometry.halfedges import mesh_edges
+from vaultgram.geometry.polygons import signed_area
+from vaultgram.geometry.surfaces import area_vectors, vertex_normals
 from vaultgram.meshing.densities import DensitySpec, group_counts
 from vaultgram.meshing.layout import Layout, edge_groups
 from vaultgram.meshing.quadmesh import QuadMesh
@@ -47,15 +56,12 @@ from vaultgram.meshing.quality import check_not_folded
 from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS, laplacian_smooth
 from vaultgram.meshing.untangle import untangle
 from vaultgram.meshing.weld import weld
-from vaultgram.geometry.halfedges import mesh_edges
-from vaultgram.geometry.polygons import signed_area
-from vaultgram.geometry.surfaces import area_vectors, vertex_normals
 from vaultgram.tessellation.courses import support_zones, voussoir_courses, voussoir_names
 from vaultgram.tessellation.keystones import CutMesh, cut_keystones, load_tessellation_rulebook, pinwheel
-from vaultgram.tessellation.refine import refine_large_faces
-from vaultgram.tessellation.sizes import UPPER, split_large_quads, unmerge_large
 from vaultgram.tessellation.metrics import summarise
 from vaultgram.tessellation.model import Tessellation, voussoir_layout
+from vaultgram.tessellation.refine import refine_large_faces
+from vaultgram.tessellation.sizes import UPPER, split_large_quads, unmerge_large
 from vaultgram.tessellation.smoothing import smooth_on_surface
 from vaultgram.tessellation.solids import solid_volumes, voussoir_solids
 from vaultgram.tessellation.stagger import staggered_bond
@@ -355,33 +361,42 @@ def tessellate(surface: ThrustSurface, rhythm: int = 2, thickness: float = 1.0,
         supported = np.where(cut.source >= 0, supported[np.maximum(cut.source, 0)], False)
         me = mesh_edges(cut.faces, len(cut.vertices))
     with _timed(timings, "stagger"):
-        face_areas = np.linalg.norm(area_vectors(cut.vertices, cut.faces), axis=1)
-        rings = np.unique(np.concatenate([me.face_edges(k) for k in cut.keystones])) if len(cut.keystones) else ()
-        bond = staggered_bond(cut.vertices, me, quad_strips(me, cut.faces), supported, face_areas, rhythm,
-                              pinwheel(cut, me), rings)
-        removed, restored = without_concavities(cut.vertices, me, bond.removed, max_concavity)
-        inner = ~np.isin(np.arange(len(cut.vertices)), me.edges[me.boundary])
-        largest = UPPER * bond.target
-        removed, joins = fill_meeting_points(cut.vertices, cut.faces, me, removed, inner, largest, max_concavity)
-        removed, unmerged = unmerge_large(cut.vertices, cut.faces, me, removed, inner, bond.target)
+        removed, bond, kept = _bond(cut, me, supported, rhythm, max_concavity)
     with _timed(timings, "sizes"):
-        cut, me, group, cuts = _cut_large(cut, face_groups(me, removed), bond.target)
+        cut, me, group, kept["cut"] = _cut_large(cut, face_groups(me, removed), bond.target)
         layout = voussoir_layout(cut, me, group)
-        inner = ~np.isin(np.arange(len(cut.vertices)), me.edges[me.boundary])
         supported = np.concatenate([supported, np.zeros(len(cut.vertices) - len(supported), dtype=bool)])
     with _timed(timings, "surface_smooth"):
-        x = smooth_on_surface(cut.vertices, layout.loops, ~inner | supported, surface.vertices, surface.faces,
-                              surface_smooth)
+        fixed = supported.copy()
+        fixed[me.edges[me.boundary].ravel()] = True
+        x = smooth_on_surface(cut.vertices, layout.loops, fixed, surface.vertices, surface.faces, surface_smooth)
     with _timed(timings, "solids"):
         normals = vertex_normals(x, cut.faces)
         solids = voussoir_solids(x, normals, layout.loops, thickness, flat_extrados)
     courses, zones = _courses(layout, supported, me)
-    kept = {"concavity": restored, "taken": bond.kept_taken, "aligned": bond.aligned, "filled": joins,
-            "unmerged": unmerged, "cut": cuts, "courses": bond.courses, "refined_strips": refined}
-    summary = summarise(x, normals, layout, max_concavity, kept, surface.holes,
+    summary = summarise(x, normals, layout, max_concavity, {**kept, "refined_strips": refined}, surface.holes,
                         solid_volumes(solids, layout.n_voussoirs))
     return Tessellation(layout, x, normals, solids, courses, zones, tuple(voussoir_names(courses, zones)),
                         {**summary, "rhythm": rhythm, "thickness": thickness})
+
+
+def _bond(cut: CutMesh, me, supported: np.ndarray, rhythm: int, max_concavity: float):
+    """The staggered bond (:mod:`vaultgram.tessellation.stagger`) with the pinwheels round the keystones,
+    without strong concavities, with the points of four voussoirs filled and the largest voussoirs
+    given back an edge (:mod:`vaultgram.tessellation.voussoirs`, :mod:`vaultgram.tessellation.sizes`):
+    the removed edges, the bond, and the counts of what was kept, by reason."""
+    x, faces = cut.vertices, cut.faces
+    areas = np.linalg.norm(area_vectors(x, faces), axis=1)
+    rings = np.unique(np.concatenate([me.face_edges(k) for k in cut.keystones])) if len(cut.keystones) else ()
+    bond = staggered_bond(x, me, quad_strips(me, faces), supported, areas, rhythm, pinwheel(cut, me), rings)
+    removed, restored = without_concavities(x, me, bond.removed, max_concavity)
+    inner = np.ones(len(x), dtype=bool)
+    inner[me.edges[me.boundary].ravel()] = False
+    removed, joins = fill_meeting_points(x, faces, me, removed, inner, UPPER * bond.target, max_concavity, areas)
+    removed, unmerged = unmerge_large(me, removed, inner, areas, bond.target, len(x))
+    kept = {"concavity": restored, "taken": bond.kept_taken, "aligned": bond.aligned, "filled": joins,
+            "unmerged": unmerged, "courses": bond.courses}
+    return removed, bond, kept
 
 
 def _refine(surface: ThrustSurface) -> tuple[np.ndarray, tuple, np.ndarray, int]:
@@ -406,11 +421,10 @@ def _cut_large(cut: CutMesh, group: np.ndarray, target: float):
 def _courses(layout, supported: np.ndarray, me) -> tuple[np.ndarray, np.ndarray]:
     """Construction course and support zone of every voussoir (:mod:`vaultgram.tessellation.courses`)."""
     zone_of_vertex = support_zones(me.edges, supported)
+    owner = np.repeat(np.arange(layout.n_voussoirs), [len(loop) for loop in layout.loops])
+    z = zone_of_vertex[np.concatenate(layout.loops)]
     zone = np.full(layout.n_voussoirs, np.iinfo(np.int64).max, dtype=np.int64)
-    for k, loop in enumerate(layout.loops):
-        z = zone_of_vertex[loop]
-        if (z >= 0).any():
-            zone[k] = z[z >= 0].min()
+    np.minimum.at(zone, owner[z >= 0], z[z >= 0])  # the smallest zone a voussoir rests on
     resting = np.flatnonzero(zone < np.iinfo(np.int64).max)
     return voussoir_courses(layout.joint_voussoirs(), layout.n_voussoirs, resting, zone[resting])
 

@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-
 import pytest
 
-from strategies.rules import SCHEMA, book
+from vaultgram.engine.errors import RuleTypeError, SourcePos
 from vaultgram.engine.expressions import Functions
 from vaultgram.engine.rulebook import rulebook_from_text
-from vaultgram.engine.errors import RuleTypeError, SourcePos
+
+from strategies.rules import SCHEMA, book
 
 BASE = SCHEMA.count("\n")  # rules start on line BASE + 1
 

@@ -6,9 +6,9 @@ import math
 
 import pytest
 
+from vaultgram.engine.errors import SchemaError
 from vaultgram.engine.graph import HostGraph
 from vaultgram.engine.rulebook import rulebook_from_text
-from vaultgram.engine.errors import SchemaError
 
 SCHEMA = """
 schema s {

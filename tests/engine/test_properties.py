@@ -9,12 +9,13 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from networkx.algorithms import isomorphism
 
-from strategies.graphs import build_graph, permutations, typed_graphs  # noqa: E402
-from strategies.rules import book  # noqa: E402
 from vaultgram.engine.incremental import MatchSet  # noqa: E402
 from vaultgram.engine.matcher import Matcher  # noqa: E402
 from vaultgram.engine.strategy import Runner  # noqa: E402
 from vaultgram.engine.trace import replay  # noqa: E402
+
+from strategies.graphs import build_graph, permutations, typed_graphs  # noqa: E402
+from strategies.rules import book  # noqa: E402
 
 SETTINGS = settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 FEW = settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])

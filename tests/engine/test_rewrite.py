@@ -6,7 +6,6 @@ import math
 
 import pytest
 
-from strategies.rules import book  # noqa: E402
 from vaultgram.engine.errors import RewriteError  # noqa: E402
 from vaultgram.engine.expressions import Functions  # noqa: E402
 from vaultgram.engine.graph import HostGraph  # noqa: E402
@@ -14,6 +13,8 @@ from vaultgram.engine.matcher import Matcher  # noqa: E402
 from vaultgram.engine.rewriter import apply_rule  # noqa: E402
 from vaultgram.engine.strategy import Runner  # noqa: E402
 from vaultgram.engine.whynot import why_not  # noqa: E402
+
+from strategies.rules import book  # noqa: E402
 
 
 def matches(rb, g, rule, params=None):

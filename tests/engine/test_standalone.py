@@ -11,6 +11,7 @@ import ast
 from pathlib import Path
 
 import pytest
+
 from paths import REPO
 
 ALLOWED = {"engine": ("vaultgram.engine", "vaultgram.grammar"), "grammar": ("vaultgram.grammar",)}

@@ -6,11 +6,12 @@ import json
 
 import pytest
 
-from strategies.rules import book  # noqa: E402
 from vaultgram.engine.errors import RewriteError  # noqa: E402
 from vaultgram.engine.graph import HostGraph  # noqa: E402
 from vaultgram.engine.strategy import Runner  # noqa: E402
 from vaultgram.engine.trace import load_trace, replay  # noqa: E402
+
+from strategies.rules import book  # noqa: E402
 
 RULES = """
 rule bump(k: int = 1) { match { a: A { w < 3 } } set a.w = a.w + k }

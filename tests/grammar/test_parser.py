@@ -11,9 +11,7 @@ from pathlib import Path
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from paths import REPO
 
-from vaultgram.grammar.errors import RuleSyntaxError, SourcePos
 from vaultgram.grammar.ast import (
     Attr,
     AttrDecl,
@@ -46,7 +44,10 @@ from vaultgram.grammar.ast import (
     Step,
     Unary,
 )
+from vaultgram.grammar.errors import RuleSyntaxError, SourcePos
 from vaultgram.grammar.parser import load_files, parse_file, parse_text
+
+from paths import REPO
 
 F = "t.vgr"
 

@@ -28,7 +28,7 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 
-from vaultgram.errors import ConvergenceError, FormFindingError, VerticalEquilibriumError
+from vaultgram.errors import FormFindingError, VerticalEquilibriumError
 from vaultgram.formfinding.formdiagram import FormDiagram
 from vaultgram.formfinding.loads import TributaryAreas
 

@@ -8,6 +8,7 @@ know nothing about vaults or statics.
 
 from __future__ import annotations
 
+import itertools
 from typing import Iterable, Sequence
 
 import numpy as np
@@ -113,8 +114,8 @@ def corner_arrays(faces: Sequence[Sequence[int]]) -> tuple[np.ndarray, np.ndarra
     if len(faces) == 0:
         e = np.zeros(0, dtype=np.int64)
         return e, e, e, e
-    lens = np.fromiter((len(f) for f in faces), dtype=np.int64, count=len(faces))
-    vert = np.fromiter((v for f in faces for v in f), dtype=np.int64, count=int(lens.sum()))
+    lens = np.fromiter(map(len, faces), dtype=np.int64, count=len(faces))
+    vert = np.fromiter(itertools.chain.from_iterable(faces), dtype=np.int64, count=int(lens.sum()))
     face = np.repeat(np.arange(len(faces)), lens)
     start = np.concatenate([[0], np.cumsum(lens)[:-1]])
     pos = np.arange(len(vert)) - np.repeat(start, lens)

@@ -116,6 +116,22 @@ def _walked_faces(graph: HostGraph, touched: list[int], outside: set) -> list[li
     return out
 
 
+def _renumbered(faces: list, ids: np.ndarray) -> tuple:
+    """The faces with node ids replaced by their positions in the sorted ``ids`` (vectorised by face
+    size: most faces have four)."""
+    position = np.full(int(ids.max()) + 1 if len(ids) else 0, -1, dtype=np.int64)
+    position[ids] = np.arange(len(ids))
+    out: list = [None] * len(faces)
+    by_size: dict[int, list[int]] = {}
+    for k, f in enumerate(faces):
+        by_size.setdefault(len(f), []).append(k)
+    for size, which in by_size.items():
+        rows = position[np.array([faces[k] for k in which], dtype=np.int64).reshape(-1, size)]
+        for k, row in zip(which, map(tuple, rows.tolist())):
+            out[k] = row
+    return tuple(out)
+
+
 def _outside_half_edges(faces, me: MeshEdges) -> set:
     """The half-edges with no face on their left: the reverse of every boundary side."""
     c = me.corners_of[me.boundary]
@@ -141,12 +157,12 @@ def cut_keystones(x: np.ndarray, faces, me: MeshEdges, rulebook: Rulebook) -> Cu
     old = [tuple(f) for f in faces if not old_touched[list(f)].any()]
     walked = _walked_faces(graph, touched_ids, _outside_half_edges(faces, me))
     ids = np.array(sorted(graph.nodes()), dtype=np.int64)
-    index = {int(v): k for k, v in enumerate(ids.tolist())}
-    out_faces = tuple(tuple(index[v] for v in f) for f in old + walked)
+    out_faces = _renumbered(old + walked, ids)
     keystone = {v: graph.get(v, "keystone") for v in touched_ids}
     keystones = [len(old) + k for k, f in enumerate(walked)
                  if len({keystone.get(v, -1) for v in f}) == 1 and keystone.get(f[0], -1) >= 0]
-    vertices = np.array([graph.get(int(v), "pos") for v in ids], dtype=float).reshape(-1, 3)
+    vertices = np.vstack([x[ids[ids < n]], np.array([graph.get(int(v), "pos") for v in ids[ids >= n]],
+                                                    dtype=float).reshape(-1, 3)])
     source = np.where(ids < n, ids, -1)
     steps = tuple((r.step, r.applications) for r in runner.reports)
     return CutMesh(vertices, out_faces, np.array(keystones, dtype=np.int64), source, steps)
@@ -164,21 +180,18 @@ def pinwheel(mesh: CutMesh, me: MeshEdges) -> np.ndarray:
     removed = np.zeros(me.n_edges, dtype=bool)
     used = np.zeros(len(mesh.faces), dtype=bool)
     used[mesh.keystones] = True
-    edge_of = {tuple(e): k for k, e in enumerate(me.edges.tolist())}
+    size = np.diff(me.face_start)
     for key in mesh.keystones.tolist():
-        ring = list(mesh.faces[key])
-        for a, b in zip(ring, ring[1:] + ring[:1]):
-            e = edge_of[(min(a, b), max(a, b))]
-            neighbour = int(me.other_face(np.array([e]), np.array([key]))[0])
-            if neighbour < 0 or used[neighbour]:
+        for c in range(me.face_start[key], me.face_start[key + 1]):
+            t = int(me.corner_twin[c])  # the neighbour's corner at b, its side running b -> a
+            if t < 0 or used[me.corner_face[t]]:
                 continue
-            loop = list(mesh.faces[neighbour])
-            i = loop.index(a)  # the neighbour runs b -> a along the keystone, then a -> w (the spoke)
-            w, c = loop[(i + 1) % len(loop)], loop[(i + 2) % len(loop)]
-            side = edge_of[(min(w, c), max(w, c))]
-            across = int(me.other_face(np.array([side]), np.array([neighbour]))[0])
-            if across < 0 or used[across]:
+            neighbour = int(me.corner_face[t])
+            start, n = int(me.face_start[neighbour]), int(size[neighbour])
+            side = start + (int(me.corner_side[t]) + 2) % n  # after a -> w (the spoke): the side w -> c
+            across = int(me.corner_twin[side])
+            if across < 0 or used[me.corner_face[across]]:
                 continue
-            removed[side] = True
-            used[[neighbour, across]] = True
+            removed[me.corner_edge[side]] = True
+            used[[neighbour, me.corner_face[across]]] = True
     return removed

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.geometry.surfaces import area_vectors
 from vaultgram.tessellation.model import VoussoirLayout
 from vaultgram.tessellation.voussoirs import max_corner_angles, voussoirs_at_vertices
@@ -38,6 +39,10 @@ def inner_vertices(layout: VoussoirLayout, n: int) -> np.ndarray:
 def meeting_points(layout: VoussoirLayout, n: int) -> dict:
     """``{voussoirs meeting: number of inner vertices}`` for 3 or more, keys as strings."""
     count = voussoirs_at_vertices(layout.edges, layout.group, n)[inner_vertices(layout, n)]
+    return _histogram(count)
+
+
+def _histogram(count: np.ndarray) -> dict:
     values, freq = np.unique(count[count >= 3], return_counts=True)
     return {str(int(v)): int(f) for v, f in zip(values, freq)}
 
@@ -86,13 +91,10 @@ def joint_tilts(x: np.ndarray, normals: np.ndarray, layout: VoussoirLayout) -> n
 
 def euler_characteristic(layout: VoussoirLayout) -> int:
     """``V - E + F`` of the voussoir outlines: their vertices, their edges, the voussoirs."""
-    edges = set()
-    vertices = set()
-    for loop in layout.loops:
-        lp = loop.tolist()
-        vertices.update(lp)
-        edges.update((min(p, q), max(p, q)) for p, q in zip(lp, lp[1:] + lp[:1]))
-    return len(vertices) - len(edges) + len(layout.loops)
+    _, u, v, _ = corner_arrays(layout.loops)
+    n = int(max(u.max(), v.max())) + 1 if len(u) else 0
+    edges = np.unique(np.minimum(u, v) * n + np.maximum(u, v))
+    return len(np.unique(u)) - len(edges) + len(layout.loops)
 
 
 def spread(values: np.ndarray) -> dict:

@@ -16,7 +16,7 @@ import numpy as np
 
 from vaultgram.geometry.halfedges import MeshEdges, mesh_edges
 from vaultgram.geometry.surfaces import area_vectors
-from vaultgram.tessellation.strips import Strip, quad_strips
+from vaultgram.tessellation.strips import Strip, node_strips, quad_strips, strip_directions
 
 __all__ = ["refine_large_faces", "LARGE", "PASSES"]
 
@@ -32,22 +32,12 @@ def _face_areas(x: np.ndarray, faces) -> np.ndarray:
 
 def _strips_to_refine(x: np.ndarray, faces, me: MeshEdges, strips: list[Strip], limit: float) -> set[int]:
     """The strips through the longer sides of every quad larger than ``limit``."""
-    area = _face_areas(x, faces)
-    strip_of = {}
-    for k, s in enumerate(strips):
-        for q, rung in zip(s.quads.tolist(), s.rungs[:-1].tolist()):
-            d = 0 if rung in (me.corner_edge[me.face_start[q]], me.corner_edge[me.face_start[q] + 2]) else 1
-            strip_of[(q, d)] = k
-    chosen = set()
-    for q in np.flatnonzero(area > limit).tolist():
-        if len(faces[q]) != 4:
-            continue
-        p = x[list(faces[q])]
-        side = np.linalg.norm(np.roll(p, -1, axis=0) - p, axis=1)
-        d = 0 if side[0] + side[2] >= side[1] + side[3] else 1
-        if (q, d) in strip_of:
-            chosen.add(strip_of[(q, d)])
-    return chosen
+    big = np.flatnonzero((_face_areas(x, faces) > limit) & (np.diff(me.face_start) == 4))
+    corners = me.face_start[big][:, None] + np.arange(4)
+    length = np.linalg.norm(x[me.corner_next[corners]] - x[me.corner_vertex[corners]], axis=2)
+    d = np.where(length[:, 0] + length[:, 2] >= length[:, 1] + length[:, 3], 0, 1)
+    strip = node_strips(me, strips)[2 * big + d]
+    return set(strip[strip >= 0].tolist())
 
 
 def _cut_directions(faces, me: MeshEdges, strips: list[Strip], chosen: set[int]) -> dict[int, set[int]]:
@@ -55,8 +45,7 @@ def _cut_directions(faces, me: MeshEdges, strips: list[Strip], chosen: set[int])
     cuts: dict[int, set[int]] = {}
     for k in sorted(chosen):
         s = strips[k]
-        for q, rung in zip(s.quads.tolist(), s.rungs[:-1].tolist()):
-            d = 0 if rung in (me.corner_edge[me.face_start[q]], me.corner_edge[me.face_start[q] + 2]) else 1
+        for q, d in zip(s.quads.tolist(), strip_directions(me, s).tolist()):
             cuts.setdefault(q, set()).add(d)
     return cuts
 

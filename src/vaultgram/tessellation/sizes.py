@@ -31,15 +31,17 @@ def _face_areas(x: np.ndarray, faces) -> np.ndarray:
     return np.linalg.norm(area_vectors(x, faces), axis=1)
 
 
-def unmerge_large(x: np.ndarray, faces, me: MeshEdges, removed: np.ndarray, inner: np.ndarray, target: float
-                  ) -> tuple[np.ndarray, int]:
-    """Give the voussoirs larger than ``UPPER * target`` back the removed edge that halves them best,
-    where no point of four voussoirs results; returns the removed edges and how many came back."""
+def unmerge_large(me: MeshEdges, removed: np.ndarray, inner: np.ndarray, area: np.ndarray, target: float,
+                  n_vertices: int) -> tuple[np.ndarray, int]:
+    """Give the voussoirs larger than ``UPPER * target`` (faces of ``area``) back the removed edge
+    that halves them best, where no point of four voussoirs results; returns the removed edges and how
+    many came back."""
     removed = removed.copy()
-    area = _face_areas(x, faces)
     group = face_groups(me, removed)
     size = np.bincount(group, weights=area)
-    count = voussoirs_at_vertices(me, group, len(x))
+    if not (size > UPPER * target).any():
+        return removed, 0
+    count = voussoirs_at_vertices(me, group, n_vertices)
     links = np.flatnonzero(removed)
     owner = group[me.faces_of[links, 0]]
     order = np.argsort(owner, kind="stable")

@@ -33,13 +33,14 @@ Concavities are checked afterwards, on the voussoirs (:mod:`vaultgram.tessellati
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.spatial import cKDTree
 
 from vaultgram.geometry.halfedges import MeshEdges
-from vaultgram.tessellation.strips import Strip
+from vaultgram.tessellation.strips import Strip, strip_directions
 
 __all__ = ["Bond", "staggered_bond", "preferential_directions", "quad_directions", "course_runs", "course_joints"]
 
@@ -100,13 +101,6 @@ def preferential_directions(x: np.ndarray, me: MeshEdges, supported: np.ndarray,
     return _unit(b - a)[nearest]
 
 
-def _strip_directions(me: MeshEdges, s: Strip) -> np.ndarray:
-    """For each quad of a strip, the direction (0: sides 0 and 2 are its rungs, 1: sides 1 and 3)."""
-    start = me.face_start[s.quads]
-    even = (me.corner_edge[start] == s.rungs[:-1]) | (me.corner_edge[start + 2] == s.rungs[:-1])
-    return np.where(even, 0, 1)
-
-
 def quad_directions(x: np.ndarray, me: MeshEdges, pref: np.ndarray, is_quad: np.ndarray) -> np.ndarray:
     """Per face, the direction of its course (0: sides 0 and 2 are rungs, 1: sides 1 and 3; -1 for a
     face that is not a quad): the pair of opposite sides that runs closer to the preferential
@@ -139,7 +133,7 @@ def course_runs(me: MeshEdges, strips: list[Strip], choice: np.ndarray) -> list[
     """The courses: the runs of consecutive quads of each strip whose chosen direction is the strip's."""
     out = []
     for s in strips:
-        along = choice[s.quads] == _strip_directions(me, s)
+        along = choice[s.quads] == strip_directions(me, s)
         if s.cyclic and along.all():
             out.append(s)
             continue
@@ -176,20 +170,23 @@ def course_joints(areas: np.ndarray, forced: np.ndarray, aligned: np.ndarray, ta
     [1, 0, 1, 0, 1, 0, 1]
     """
     k = len(areas)
-    prefix = np.concatenate([[0.0], np.cumsum(areas)])
-    best = np.full(k + 1, np.inf)
-    back = np.zeros(k + 1, dtype=np.int64)
+    run = _run_costs(areas, forced, target, longest).tolist()  # run[b][d]: quads b-d..b-1 (plain floats)
+    forced = forced.tolist()
+    penalty = np.where(aligned, ALIGNED_COST, 0.0)
+    penalty[-1] = 0.0
+    penalty = penalty.tolist()
+    best = [math.inf] * (k + 1)
+    back = [0] * (k + 1)
     best[0] = 0.0
     for b in range(1, k + 1):
-        lo = max(0, b - longest)
-        for a in range(b - 1, lo - 1, -1):  # a run of quads a..b-1, from the kept rung a
-            run = np.log(max(prefix[b] - prefix[a], 1e-300) / target) ** 2
-            lone = b - a == 1 and not (forced[a] and forced[b])  # a single quad breaks the bond
-            cost = best[a] + run + (ALIGNED_COST if aligned[b] and b < k else 0.0) + (SINGLE_COST if lone else 0.0)
-            if cost < best[b]:
-                best[b], back[b] = cost, a
-            if forced[a]:
+        row, here = run[b], best[b]
+        for d in range(1, min(longest, b) + 1):  # a run of quads b-d..b-1, from the kept rung b-d
+            cost = best[b - d] + row[d]
+            if cost < here:
+                here, back[b] = cost, b - d
+            if forced[b - d]:
                 break  # a run cannot pass a forced rung
+        best[b] = here + penalty[b]
     keep = np.zeros(k + 1, dtype=bool)
     b = k
     while b > 0:
@@ -197,6 +194,20 @@ def course_joints(areas: np.ndarray, forced: np.ndarray, aligned: np.ndarray, ta
         b = back[b]
     keep[0] = True
     return keep
+
+
+def _run_costs(areas: np.ndarray, forced: np.ndarray, target: float, longest: int) -> np.ndarray:
+    """``cost[b, d]``: the size cost of a voussoir of the ``d`` quads before rung ``b``, plus
+    :data:`SINGLE_COST` for a single quad not held alone by forced rungs on both sides."""
+    k = len(areas)
+    prefix = np.concatenate([[0.0], np.cumsum(areas)])
+    b = np.arange(k + 1)[:, None]
+    d = np.arange(longest + 1)[None, :]
+    a = np.maximum(b - d, 0)
+    with np.errstate(divide="ignore"):
+        cost = (np.log(np.maximum(prefix[b] - prefix[a], 1e-300)) - np.log(target)) ** 2
+    lone = (d == 1) & ~(forced[a] & forced[np.minimum(b, k)])
+    return cost + np.where(lone, SINGLE_COST, 0.0)
 
 
 def _course_order(strips: list[Strip], me: MeshEdges) -> list[int]:
@@ -275,7 +286,7 @@ class _Laying:
 LONGEST = 2
 
 #: Sweeps over the courses after the first laying, each course laid again beside all its neighbours.
-SWEEPS = 2
+SWEEPS = 1
 
 
 def staggered_bond(x: np.ndarray, me: MeshEdges, strips: list[Strip], supported: np.ndarray, areas: np.ndarray,
@@ -291,15 +302,11 @@ def staggered_bond(x: np.ndarray, me: MeshEdges, strips: list[Strip], supported:
     joined = np.zeros(me.n_edges, dtype=bool) if joined is None else joined
     laying = _Laying(me, strips, areas, joined, target, LONGEST * rhythm)
     order = _course_order(strips, me)
-    for k in order:
-        laying.lay(k)
+    counts = [laying.lay(k) for k in order]
     for _ in range(SWEEPS):
+        counts = []
         for k in order:
             laying.lift(k)
-            laying.lay(k)
-    kept_taken = aligned = 0
-    for k in order:  # what the last laying could not do
-        laying.lift(k)
-        t, a = laying.lay(k)
-        kept_taken, aligned = kept_taken + t, aligned + a
+            counts.append(laying.lay(k))
+    kept_taken, aligned = (sum(c[i] for c in counts) for i in (0, 1))  # what the last sweep could not do
     return Bond(laying.removed, len(strips), kept_taken, aligned, target)

@@ -16,7 +16,7 @@ import numpy as np
 
 from vaultgram.geometry.halfedges import MeshEdges
 
-__all__ = ["Strip", "quad_strips"]
+__all__ = ["Strip", "quad_strips", "strip_directions", "node_strips"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -55,29 +55,22 @@ def _strip_links(me: MeshEdges, is_quad: np.ndarray) -> np.ndarray:
     return link
 
 
-def _walk(me: MeshEdges, link: np.ndarray, start: int, entry: int, seen: np.ndarray) -> Strip:
-    """Follow a strip from node ``start``, entered through its side ``entry`` (0 or 1)."""
-    quads, rungs = [], []
+def _walk(link: list, rungs: list, start: int, entry: int, seen: list) -> Strip:
+    """Follow a strip from node ``start``, entered through its side ``entry`` (0 or 1); ``link[2 n + j]``
+    and ``rungs[2 n + j]`` are the node and the edge across side ``j`` of node ``n`` (flat plain
+    lists: the walk is scalar)."""
+    quads, path = [], []
     node, j = start, entry
     while True:
-        q, d = divmod(node, 2)
         seen[node] = True
-        sides = me.face_edges(q)
-        quads.append(q)
-        rungs.append(int(sides[d + 2 * j]))
-        nxt = int(link[node, 1 - j])
+        quads.append(node >> 1)
+        path.append(rungs[2 * node + j])
+        nxt, exit_edge = link[2 * node + 1 - j], rungs[2 * node + 1 - j]
         if nxt < 0 or nxt == start:
-            rungs.append(int(sides[d + 2 * (1 - j)]))
-            return Strip(np.array(quads, dtype=np.int64), np.array(rungs, dtype=np.int64), nxt == start)
-        j = int(np.flatnonzero(link[nxt] == node)[0]) if link[nxt, 0] != link[nxt, 1] else \
-            _entry_side(me, nxt, int(sides[d + 2 * (1 - j)]))
+            path.append(exit_edge)
+            return Strip(np.array(quads, dtype=np.int64), np.array(path, dtype=np.int64), nxt == start)
+        j = 0 if rungs[2 * nxt] == exit_edge else 1  # the side of the next quad we enter through
         node = nxt
-
-
-def _entry_side(me: MeshEdges, node: int, edge: int) -> int:
-    """Which side (0 or 1) of strip node ``node`` is ``edge`` (when both sides lead to one neighbour)."""
-    q, d = divmod(node, 2)
-    return 0 if int(me.face_edges(q)[d]) == edge else 1
 
 
 def quad_strips(me: MeshEdges, faces) -> list[Strip]:
@@ -91,14 +84,41 @@ def quad_strips(me: MeshEdges, faces) -> list[Strip]:
     >>> sorted(len(s) for s in strips), sum(len(s.rungs) - 1 for s in strips) == 2 * len(f)
     ([2, 2, 2, 3, 3], True)
     """
-    is_quad = np.array([len(f) == 4 for f in faces], dtype=bool)
+    is_quad = np.diff(me.face_start) == 4
     link = _strip_links(me, is_quad)
-    seen = ~np.repeat(is_quad, 2)
+    rungs = _strip_rungs(me, is_quad)
+    seen = (~np.repeat(is_quad, 2)).tolist()
+    ends = np.flatnonzero(np.repeat(is_quad, 2) & (link < 0).any(axis=1)).tolist()
+    link_list, rung_list = link.ravel().tolist(), rungs.ravel().tolist()
     strips = []
-    for node in np.flatnonzero(~seen & (link < 0).any(axis=1)).tolist():  # open strips, from an end
+    for node in ends:  # open strips, from an end
         if not seen[node]:
-            strips.append(_walk(me, link, node, int(np.flatnonzero(link[node] < 0)[0]), seen))
-    for node in np.flatnonzero(~seen).tolist():  # what is left closes on itself
+            strips.append(_walk(link_list, rung_list, node, 0 if link_list[2 * node] < 0 else 1, seen))
+    for node in range(len(seen)):  # what is left closes on itself
         if not seen[node]:
-            strips.append(_walk(me, link, node, 0, seen))
+            strips.append(_walk(link_list, rung_list, node, 0, seen))
     return strips
+
+
+def _strip_rungs(me: MeshEdges, is_quad: np.ndarray) -> np.ndarray:
+    """``rungs[2 * quad + direction, j]``: the edge of the quad's side ``direction + 2 j``."""
+    out = np.full((2 * len(is_quad), 2), -1, dtype=np.int64)
+    c = np.flatnonzero(is_quad[me.corner_face])
+    side = me.corner_side[c]
+    out[2 * me.corner_face[c] + side % 2, side // 2] = me.corner_edge[c]
+    return out
+
+
+def strip_directions(me: MeshEdges, s: Strip) -> np.ndarray:
+    """For each quad of a strip, its direction there (0: sides 0 and 2 are the rungs, 1: sides 1, 3)."""
+    start = me.face_start[s.quads]
+    even = (me.corner_edge[start] == s.rungs[:-1]) | (me.corner_edge[start + 2] == s.rungs[:-1])
+    return np.where(even, 0, 1)
+
+
+def node_strips(me: MeshEdges, strips: list[Strip]) -> np.ndarray:
+    """Per strip node ``2 * quad + direction``, the strip through it (-1 for faces that are not quads)."""
+    out = np.full(2 * (len(me.face_start) - 1), -1, dtype=np.int64)
+    for k, s in enumerate(strips):
+        out[2 * s.quads + strip_directions(me, s)] = k
+    return out

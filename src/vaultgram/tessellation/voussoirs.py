@@ -56,17 +56,33 @@ def outlines(me: MeshEdges, group: np.ndarray) -> list[np.ndarray]:
     order = np.argsort(key, kind="stable")
     sorted_key = key[order]
     successor = order[np.searchsorted(sorted_key, g[on_outline] * n + me.corner_next[on_outline])]
-    loops: list[list[int]] = [[] for _ in range(int(group.max()) + 1 if len(group) else 0)]
-    seen = np.zeros(len(on_outline), dtype=bool)
-    for start in np.argsort(g[on_outline], kind="stable").tolist():
-        if seen[start] or loops[g[on_outline[start]]]:
-            continue
-        k = start
-        while not seen[k]:
-            seen[k] = True
-            loops[g[on_outline[k]]].append(int(me.corner_vertex[on_outline[k]]))
-            k = int(successor[k])
-    return [np.array(loop, dtype=np.int64) for loop in loops]
+    owner = g[on_outline]
+    rank, on_loop = _ranks_from_start(successor, owner)
+    keep = np.lexsort((rank, owner))
+    keep = keep[on_loop[keep]]
+    vertices = me.corner_vertex[on_outline[keep]]
+    count = np.bincount(owner[keep], minlength=int(group.max()) + 1 if len(group) else 0)
+    return np.split(vertices, np.cumsum(count)[:-1])
+
+
+def _ranks_from_start(successor: np.ndarray, owner: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For cycles given by ``successor``, each element's distance along its cycle from the cycle's
+    start (the first element of each ``owner``), by pointer jumping; and whether it lies on that
+    start's cycle (an owner with more cycles keeps only the first, as a disk has one outline)."""
+    m = len(successor)
+    pred = np.empty(m, dtype=np.int64)
+    pred[successor] = np.arange(m)
+    start = np.full(int(owner.max()) + 1 if m else 0, m, dtype=np.int64)
+    np.minimum.at(start, owner, np.arange(m))
+    pred[start[owner] == np.arange(m)] = -1  # each owner's cycle starts at its first element
+    rank = (pred >= 0).astype(np.int64)
+    for _ in range(max(1, int(np.ceil(np.log2(max(m, 2))))) + 1):
+        live = pred >= 0
+        if not live.any():
+            break
+        rank[live] += rank[pred[live]]
+        pred[live] = pred[pred[live]]
+    return rank, pred < 0
 
 
 def max_corner_angles(x: np.ndarray, loops: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
@@ -75,10 +91,13 @@ def max_corner_angles(x: np.ndarray, loops: list[np.ndarray]) -> tuple[np.ndarra
         return np.zeros(0), np.zeros(0, dtype=np.int64)
     _, normals = loop_planes(x, loops)
     angles = loop_corner_angles(x, loops, normals)
-    lens = np.array([len(lp) for lp in loops])
+    lens = np.fromiter(map(len, loops), dtype=np.int64, count=len(loops))
     start = np.concatenate([[0], np.cumsum(lens)[:-1]])
-    worst = np.array([start[k] + int(np.argmax(angles[start[k]:start[k] + lens[k]])) for k in range(len(loops))])
-    return angles[worst], np.concatenate(loops)[worst]
+    largest = np.maximum.reduceat(angles, start)
+    owner = np.repeat(np.arange(len(loops)), lens)
+    at = np.flatnonzero(angles == largest[owner])  # the first corner of each loop at its largest angle
+    first = at[np.searchsorted(owner[at], np.arange(len(loops)))]
+    return largest, np.concatenate(loops)[first]
 
 
 def without_concavities(x: np.ndarray, me: MeshEdges, removed: np.ndarray, max_angle: float = MAX_CONCAVITY
@@ -125,7 +144,8 @@ def _merged_loop(faces, me: MeshEdges, e: int) -> list[int]:
 
 
 def fill_meeting_points(x: np.ndarray, faces, me: MeshEdges, removed: np.ndarray, interior: np.ndarray,
-                        largest: float, max_angle: float = MAX_CONCAVITY) -> tuple[np.ndarray, int]:
+                        largest: float, max_angle: float = MAX_CONCAVITY, area: np.ndarray | None = None
+                        ) -> tuple[np.ndarray, int]:
     """Where four or more voussoirs still meet at an inner vertex, join two single faces across one
     of its edges (the first, by vertex and edge order, whose outline stays within ``max_angle`` and
     whose area within ``largest``). Returns the removed edges and the number of joins."""
@@ -135,7 +155,7 @@ def fill_meeting_points(x: np.ndarray, faces, me: MeshEdges, removed: np.ndarray
     inner = (me.faces_of >= 0).all(axis=1) & ~removed
     cand = np.flatnonzero(inner & (crowded[me.edges[:, 0]] | crowded[me.edges[:, 1]]))
     cand = cand[single[me.faces_of[cand, 0]] & single[me.faces_of[cand, 1]]]
-    area = np.linalg.norm(area_vectors(x, faces), axis=1)
+    area = np.linalg.norm(area_vectors(x, faces), axis=1) if area is None else area
     cand = cand[area[me.faces_of[cand]].sum(axis=1) <= largest]
     if not len(cand):
         return removed, 0
