@@ -40,7 +40,7 @@ OUT = click.option("--out", "out_dir", required=True, type=click.Path(file_okay=
 SPACING = click.option("--spacing", default=0.02, show_default=True, type=float,
                        help="Boundary spacing as a fraction of the bounding-box diagonal (0.01 to 0.05 usual).")
 RULES = click.option("--rules", "rules_dir", default=None, type=click.Path(file_okay=False, exists=True),
-                     help="Directory with topology.vgr (default: the rulebook shipped with vaultgram).")
+                     help="Directory with the rule files: topology.vgr, tessellation.vgr (default: the rulebook shipped with vaultgram).")
 TARGET_LENGTH = click.option("--target-length", type=POSITIVE, default=None,
                              help="Target mesh edge length (domain units); default 2.5% of the bounding-box diagonal.")
 SMOOTH = click.option("--smooth", default=None, type=int,

@@ -58,16 +58,17 @@ from vaultgram.meshing.untangle import untangle
 from vaultgram.meshing.weld import weld
 from vaultgram.tessellation.courses import support_zones, voussoir_courses, voussoir_names
 from vaultgram.tessellation.keystones import CutMesh, cut_keystones, load_tessellation_rulebook, pinwheel
+from vaultgram.tessellation.mending import mend_meeting_points
 from vaultgram.tessellation.metrics import summarise
 from vaultgram.tessellation.model import Tessellation, voussoir_layout
 from vaultgram.tessellation.refine import refine_large_faces
-from vaultgram.tessellation.sizes import UPPER, split_large_quads, unmerge_large
+from vaultgram.tessellation.sizes import split_large_quads, unmerge_large
 from vaultgram.tessellation.smoothing import smooth_on_surface
 from vaultgram.tessellation.solids import solid_volumes, voussoir_solids
 from vaultgram.tessellation.stagger import staggered_bond
 from vaultgram.tessellation.strips import quad_strips
 from vaultgram.tessellation.surface import ThrustSurface, surface_from_network
-from vaultgram.tessellation.voussoirs import MAX_CONCAVITY, face_groups, fill_meeting_points, without_concavities
+from vaultgram.tessellation.voussoirs import MAX_CONCAVITY, face_groups, without_concavities
 from vaultgram.topology.decomposition import Decomposition, block_decomposition
 from vaultgram.topology.discretise import discretise
 from vaultgram.topology.rulebook import load_vault_rulebook
@@ -382,9 +383,10 @@ def tessellate(surface: ThrustSurface, rhythm: int = 2, thickness: float = 1.0,
 
 def _bond(cut: CutMesh, me, supported: np.ndarray, rhythm: int, max_concavity: float):
     """The staggered bond (:mod:`vaultgram.tessellation.stagger`) with the pinwheels round the keystones,
-    without strong concavities, with the points of four voussoirs filled and the largest voussoirs
-    given back an edge (:mod:`vaultgram.tessellation.voussoirs`, :mod:`vaultgram.tessellation.sizes`):
-    the removed edges, the bond, and the counts of what was kept, by reason."""
+    without strong concavities (:mod:`vaultgram.tessellation.voussoirs`), the largest voussoirs given
+    back an edge (:mod:`vaultgram.tessellation.sizes`) and the points of four voussoirs mended
+    (:mod:`vaultgram.tessellation.mending`): the removed edges, the bond, and the counts of what was
+    kept or changed, by reason."""
     x, faces = cut.vertices, cut.faces
     areas = np.linalg.norm(area_vectors(x, faces), axis=1)
     rings = np.unique(np.concatenate([me.face_edges(k) for k in cut.keystones])) if len(cut.keystones) else ()
@@ -392,10 +394,12 @@ def _bond(cut: CutMesh, me, supported: np.ndarray, rhythm: int, max_concavity: f
     removed, restored = without_concavities(x, me, bond.removed, max_concavity)
     inner = np.ones(len(x), dtype=bool)
     inner[me.edges[me.boundary].ravel()] = False
-    removed, joins = fill_meeting_points(x, faces, me, removed, inner, UPPER * bond.target, max_concavity, areas)
     removed, unmerged = unmerge_large(me, removed, inner, areas, bond.target, len(x))
-    kept = {"concavity": restored, "taken": bond.kept_taken, "aligned": bond.aligned, "filled": joins,
-            "unmerged": unmerged, "courses": bond.courses}
+    keystone = np.zeros(len(faces), dtype=bool)
+    keystone[cut.keystones] = True
+    removed, moved = mend_meeting_points(x, me, removed, inner, areas, bond.target, max_concavity, keystone)
+    kept = {"concavity": restored, "taken": bond.kept_taken, "aligned": bond.aligned, "unmerged": unmerged,
+            "moved": moved, "courses": bond.courses}
     return removed, bond, kept
 
 

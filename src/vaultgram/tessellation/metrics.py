@@ -68,7 +68,8 @@ def joint_force_angles(x: np.ndarray, layout: VoussoirLayout) -> tuple[np.ndarra
         start, size = me.face_start[f], me.face_start[f + 1] - me.face_start[f]
         prev_c = start + (me.corner_side[c] - 1) % size
         next_c = start + (me.corner_side[c] + 1) % size
-        for t in (x[me.corner_vertex[prev_c]] - x[me.corner_vertex[c]], x[me.corner_next[next_c]] - x[me.corner_next[c]]):
+        sides = (x[me.corner_vertex[prev_c]] - x[me.corner_vertex[c]], x[me.corner_next[next_c]] - x[me.corner_next[c]])
+        for t in sides:
             t = _unit(t)
             flow += t * np.sign((t * across).sum(axis=1))[:, None]
     cos = np.abs((_unit(flow) * across).sum(axis=1))
@@ -159,5 +160,6 @@ def format_summary(s: dict) -> str:
         f"({s['joint_force_angle_deg']['median']:.1f} all), tilt median {s['joint_tilt_deg']['median']:.2f} deg, "
         f"95th {s['joint_tilt_deg']['p95']:.2f}",
         f"bond:       {kept['courses']} courses; edges kept for concavity {kept['concavity']}, taken "
-        f"{kept['taken']}, in line {kept['aligned']}; V - E + F = {s['euler_characteristic']}",
+        f"{kept['taken']}, in line {kept['aligned']}; faces moved {kept['moved']}; "
+        f"V - E + F = {s['euler_characteristic']}",
     ])

@@ -65,7 +65,8 @@ def voussoir_layout(mesh: CutMesh, me: MeshEdges, group: np.ndarray) -> Voussoir
     """Voussoirs of the faces in each ``group``; joints are the inner edges between two groups."""
     loops = tuple(outlines(me, group))
     inner = (me.faces_of >= 0).all(axis=1)
-    joints = np.flatnonzero(inner & (group[np.maximum(me.faces_of[:, 0], 0)] != group[np.maximum(me.faces_of[:, 1], 0)]))
+    sides = group[np.maximum(me.faces_of, 0)]
+    joints = np.flatnonzero(inner & (sides[:, 0] != sides[:, 1]))
     keystones = np.unique(group[mesh.keystones]) if len(mesh.keystones) else np.zeros(0, dtype=np.int64)
     return VoussoirLayout(mesh, me, group, loops, keystones, joints)
 

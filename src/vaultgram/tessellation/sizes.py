@@ -3,11 +3,13 @@
 "Regarding fabrication, shape and size uniformity between the voussoirs is preferred. However, high
 differences can occur in areas with important slope." (§5) The bond aims at a target area
 (:mod:`vaultgram.tessellation.stagger`), but a voussoir cannot be smaller than its largest face, and
-the joins made where four voussoirs met may overshoot. A voussoir more than :data:`UPPER` times the
-target is therefore broken up, in this order:
+runs of large faces may overshoot. A voussoir more than :data:`UPPER` times the target is therefore
+broken up, in this order:
 
 * a voussoir of several faces gets back the removed edge that splits it most evenly, unless that
-  would make a point of four voussoirs at either end of the edge;
+  would make a point of four voussoirs at either end of the edge and the voussoir is less than
+  :data:`OVERSIZED` times the target (such points are mended afterwards,
+  :mod:`vaultgram.tessellation.mending`);
 * a voussoir of one quad is cut in two by the segment between the midpoints of its two longer
   opposite sides. The midpoints become vertices of the faces beside those sides too, so each is a
   point of exactly three voussoirs (the two halves and the neighbour) and no joint crosses another.
@@ -25,6 +27,9 @@ __all__ = ["unmerge_large", "split_large_quads", "UPPER"]
 
 #: A voussoir more than this many times the target area is broken up.
 UPPER = 1.5
+#: A voussoir more than this many times the target gets its edge back even where that makes a point
+#: of four voussoirs (:mod:`vaultgram.tessellation.mending` mends most of them afterwards).
+OVERSIZED = 2.5
 
 
 def _face_areas(x: np.ndarray, faces) -> np.ndarray:
@@ -55,7 +60,7 @@ def unmerge_large(me: MeshEdges, removed: np.ndarray, inner: np.ndarray, area: n
         if best is None:
             continue
         ends = me.edges[best]
-        if (inner[ends] & (count[ends] >= 3)).any():
+        if (inner[ends] & (count[ends] >= 3)).any() and size[k] <= OVERSIZED * target:
             continue
         removed[best] = False
         count[ends] += 1

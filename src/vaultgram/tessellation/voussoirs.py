@@ -6,8 +6,7 @@ above. "We do not remove edges when this would result in strong voussoir concavi
 L-shaped voussoirs would be more difficult to position correctly and the sharp corners would induce
 stress concentrations" (§5): :func:`without_concavities` puts back the removed edges at every
 corner above the threshold, measured in the voussoir's best-fit plane, until none is left.
-:func:`fill_meeting_points` then joins two single faces at the points where four voussoirs still
-meet (where the bond could not reach), so that joints meet three at a time, as the built vault's.
+The points where four voussoirs still meet are mended afterwards (:mod:`vaultgram.tessellation.mending`).
 """
 
 from __future__ import annotations
@@ -17,9 +16,9 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
 from vaultgram.geometry.halfedges import MeshEdges
-from vaultgram.geometry.surfaces import area_vectors, loop_corner_angles, loop_planes
+from vaultgram.geometry.surfaces import loop_corner_angles, loop_planes
 
-__all__ = ["face_groups", "outlines", "max_corner_angles", "without_concavities", "fill_meeting_points",
+__all__ = ["face_groups", "outlines", "max_corner_angles", "without_concavities",
            "voussoirs_at_vertices", "MAX_CONCAVITY"]
 
 #: Default largest corner angle of a voussoir, in degrees (a straight joint through a corner is 180).
@@ -133,48 +132,3 @@ def voussoirs_at_vertices(me: MeshEdges, group: np.ndarray, n_vertices: int) -> 
     """Per vertex, how many distinct voussoirs meet there."""
     pairs = np.unique(group[me.corner_face] * n_vertices + me.corner_vertex)
     return np.bincount(pairs % n_vertices, minlength=n_vertices)
-
-
-def _merged_loop(faces, me: MeshEdges, e: int) -> list[int]:
-    """The outline of the two faces on either side of edge ``e``, counter-clockwise."""
-    a, b = (int(v) for v in me.edges[e])
-    f1, f2 = (list(faces[int(f)]) for f in me.faces_of[e])  # f1 runs a -> b, f2 runs b -> a
-    i, j = f1.index(b), f2.index(a)
-    return (f1[i:] + f1[:i])[:-1] + (f2[j:] + f2[:j])[:-1]
-
-
-def fill_meeting_points(x: np.ndarray, faces, me: MeshEdges, removed: np.ndarray, interior: np.ndarray,
-                        largest: float, max_angle: float = MAX_CONCAVITY, area: np.ndarray | None = None
-                        ) -> tuple[np.ndarray, int]:
-    """Where four or more voussoirs still meet at an inner vertex, join two single faces across one
-    of its edges (the first, by vertex and edge order, whose outline stays within ``max_angle`` and
-    whose area within ``largest``). Returns the removed edges and the number of joins."""
-    group = face_groups(me, removed)
-    single = np.bincount(group)[group] == 1
-    crowded = interior & (voussoirs_at_vertices(me, group, len(x)) >= 4)
-    inner = (me.faces_of >= 0).all(axis=1) & ~removed
-    cand = np.flatnonzero(inner & (crowded[me.edges[:, 0]] | crowded[me.edges[:, 1]]))
-    cand = cand[single[me.faces_of[cand, 0]] & single[me.faces_of[cand, 1]]]
-    area = np.linalg.norm(area_vectors(x, faces), axis=1) if area is None else area
-    cand = cand[area[me.faces_of[cand]].sum(axis=1) <= largest]
-    if not len(cand):
-        return removed, 0
-    loops = [np.array(_merged_loop(faces, me, int(e))) for e in cand]
-    angle, _ = max_corner_angles(x, loops)
-    cand = cand[angle <= max_angle]
-    removed = removed.copy()
-    used = np.zeros(len(group), dtype=bool)
-    done = np.zeros(len(x), dtype=bool)
-    joins = 0
-    at = np.minimum(np.where(crowded[me.edges[cand, 0]], me.edges[cand, 0], len(x)),
-                    np.where(crowded[me.edges[cand, 1]], me.edges[cand, 1], len(x)))
-    for e, u in sorted(zip(cand.tolist(), at.tolist()), key=lambda t: (t[1], t[0])):
-        f1, f2 = me.faces_of[e]
-        ends = me.edges[e]
-        if used[f1] or used[f2] or (done[ends] | ~crowded[ends]).all():
-            continue
-        used[[f1, f2]] = True
-        done[ends] = True
-        removed[e] = True
-        joins += 1
-    return removed, joins

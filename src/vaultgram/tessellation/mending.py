@@ -1,0 +1,228 @@
+"""Mending the points where four or more voussoirs meet (paper §5).
+
+"Having many voussoirs coming to the same point makes the assembly task more difficult" (§5): in a
+staggered bond every inner meeting point joins three voussoirs. The bond still leaves points of four
+where its courses meet at a seam (two strips running different ways), where an edge had to be kept
+against a concavity, or where a large voussoir was given an edge back. Such a point is mended by
+moving one face across one of its joints: the joint is removed, so the face joins the voussoir on the
+other side, and the removed edges tying the face to the rest of its own voussoir are put back.
+
+A move is made when it lowers the *crowding* at the face's corners (the sum, over inner vertices,
+of the voussoirs meeting there minus three), or when the face is a small voussoir of its own and
+the crowding does not grow, and when it keeps both voussoirs within the size limit and
+without a corner above the concavity threshold, leaves each voussoir a disk in one piece around no
+vertex of its own, and touches no keystone. Moves that share no voussoir and no vertex are made
+together, in rounds, best first.
+
+Example: four single quads around a vertex; moving one of them into its neighbour leaves three
+(and the small single faces left may join a neighbour too).
+
+>>> from vaultgram.geometry.halfedges import mesh_edges
+>>> from vaultgram.geometry.meshes import grid_mesh
+>>> v, f = grid_mesh(2)
+>>> me = mesh_edges(f, len(v))
+>>> inner = np.zeros(len(v), dtype=bool); inner[4] = True
+>>> removed, moves = mend_meeting_points(v, me, np.zeros(len(me.edges), dtype=bool), inner,
+...                                      np.ones(4), target=1.0)
+>>> moves, int(voussoirs_at_vertices(me, face_groups(me, removed), len(v))[4])
+(1, 3)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from vaultgram.geometry.halfedges import MeshEdges
+from vaultgram.tessellation.voussoirs import MAX_CONCAVITY, face_groups, max_corner_angles, voussoirs_at_vertices
+
+__all__ = ["mend_meeting_points", "ROUNDS"]
+
+#: At most this many rounds of moves.
+ROUNDS = 6
+#: A move may grow a voussoir to at most this many times the target area (the bond's, about
+#: ``rhythm`` faces): a little larger voussoirs are a better price than points of four.
+GROWTH = 3.0
+#: A voussoir of one face smaller than this many times the target joins a neighbour even where that
+#: mends no meeting point (it makes none worse): the sizes even out.
+SMALL = 0.9
+
+
+@dataclass(frozen=True)
+class _Move:
+    """One face moved across one joint: the joint removed, the removed edges ``back`` put back."""
+
+    gain: int
+    area: float
+    joint: int
+    face: int
+    source: int
+    target: int
+    joins: tuple
+    back: tuple
+
+
+@dataclass(frozen=True)
+class _State:
+    """The voussoirs as they stand in a round: each face's voussoir, the faces of each voussoir and
+    around each vertex, the voussoirs meeting at each vertex."""
+
+    group: np.ndarray
+    members: list
+    around: list
+    count: np.ndarray
+
+
+def mend_meeting_points(x: np.ndarray, me: MeshEdges, removed: np.ndarray, interior: np.ndarray,
+                        area: np.ndarray, target: float, max_angle: float = MAX_CONCAVITY,
+                        frozen_faces: np.ndarray | None = None) -> tuple[np.ndarray, int]:
+    """Move faces across joints until no point of four or more voussoirs can be mended, and join the
+    small single faces to a neighbour (see the module docstring); ``interior`` marks the inner
+    vertices, ``area`` the faces' areas, ``target`` the voussoir area aimed at, ``frozen_faces`` the
+    faces that never move or take a face (the keystones). Returns the removed edges and the number
+    of moves."""
+    removed = removed.copy()
+    frozen_faces = np.zeros(len(area), dtype=bool) if frozen_faces is None else frozen_faces
+    around = _faces_around(me, len(x))
+    total = 0
+    for _ in range(ROUNDS):
+        state = _state(me, removed, around, len(x))
+        moves = _candidates(me, removed, interior, area, target, frozen_faces, state)
+        made = _apply(me, removed, _feasible(x, me, removed, state, moves, max_angle))
+        total += made
+        if not made:
+            break
+    return removed, total
+
+
+def _faces_around(me: MeshEdges, n: int) -> list:
+    """The faces at each vertex."""
+    order = np.argsort(me.corner_vertex, kind="stable")
+    start = np.searchsorted(me.corner_vertex[order], np.arange(n + 1))
+    faces = me.corner_face[order].tolist()
+    return [faces[start[v]:start[v + 1]] for v in range(n)]
+
+
+def _state(me: MeshEdges, removed: np.ndarray, around: list, n: int) -> _State:
+    group = face_groups(me, removed)
+    order = np.argsort(group, kind="stable")
+    start = np.searchsorted(group[order], np.arange(int(group.max()) + 2 if len(group) else 1))
+    members = [order[start[k]:start[k + 1]].tolist() for k in range(len(start) - 1)]
+    return _State(group, members, around, voussoirs_at_vertices(me, group, n))
+
+
+def _crowding(counts, inner) -> int:
+    return sum(max(c - 3, 0) for c, i in zip(counts, inner) if i)
+
+
+def _candidates(me: MeshEdges, removed: np.ndarray, interior: np.ndarray, area: np.ndarray, target: float,
+                frozen_faces: np.ndarray, state: _State) -> list:
+    """Every move of a face across a joint at a crowded inner vertex that lowers the crowding, and of
+    a small single face that does not raise it, keeping the receiving voussoir within
+    :data:`GROWTH` times ``target``."""
+    group = state.group
+    frozen = np.zeros(len(state.members), dtype=bool)
+    frozen[group[frozen_faces]] = True
+    size = np.bincount(group, weights=area, minlength=len(state.members))
+    largest = GROWTH * target
+    tiny = size < SMALL * target
+    crowded = interior & (state.count >= 4)
+    joint = ~removed & (me.faces_of >= 0).all(axis=1)
+    single = np.bincount(group, minlength=len(state.members)) == 1
+    lone = (tiny & single)[group[np.maximum(me.faces_of, 0)]].any(axis=1)
+    moves = []
+    for e in np.flatnonzero(joint & (crowded[me.edges[:, 0]] | crowded[me.edges[:, 1]] | lone)).tolist():
+        for face, other in (me.faces_of[e].tolist(), me.faces_of[e, ::-1].tolist()):
+            source, target = int(group[face]), int(group[other])
+            if frozen[source] or frozen[target] or size[target] + area[face] > largest:
+                continue
+            gain = _gain(me, state, interior, face, target)
+            if gain is not None and (gain > 0 or (gain == 0 and tiny[source] and single[source])):
+                sides = me.face_edges(face).tolist()
+                joins = tuple(b for b in sides if group[me.other_face(b, face)] == target and joint[b])
+                back = tuple(b for b in sides if removed[b])
+                moves.append(_Move(gain, float(size[target] + area[face]), e, face, source, target, joins, back))
+    return moves
+
+
+def _gain(me: MeshEdges, state: _State, interior: np.ndarray, face: int, target: int) -> int | None:
+    """How much the crowding at the corners of ``face`` drops when it joins voussoir ``target``;
+    None if a corner would be left inside one voussoir."""
+    corners = me.corner_vertex[me.face_start[face]:me.face_start[face + 1]].tolist()
+    after = []
+    for v in corners:
+        groups = {target if f == face else int(state.group[f]) for f in state.around[v]}
+        if len(groups) == 1 and interior[v]:
+            return None
+        after.append(len(groups))
+    inner = interior[corners].tolist()
+    return _crowding(state.count[corners].tolist(), inner) - _crowding(after, inner)
+
+
+def _feasible(x: np.ndarray, me: MeshEdges, removed: np.ndarray, state: _State, moves: list,
+              max_angle: float) -> list:
+    """The moves whose two voussoirs stay disks in one piece without a corner above ``max_angle``."""
+    kept, loops = [], []
+    for m in moves:
+        rest = [f for f in state.members[m.source] if f != m.face]
+        grown = _outline(me, state.members[m.target] + [m.face])
+        shrunk = _outline(me, rest) if rest else np.zeros(0, dtype=np.int64)
+        if grown is None or shrunk is None or (rest and not _connected(me, rest, removed)):
+            continue
+        kept.append(m)
+        loops += [grown, shrunk if len(shrunk) else grown]
+    if not kept:
+        return []
+    angle, _ = max_corner_angles(x, loops)
+    ok = (angle[0::2] <= max_angle) & (angle[1::2] <= max_angle)
+    return [m for m, good in zip(kept, ok.tolist()) if good]
+
+
+def _outline(me: MeshEdges, faces: list) -> np.ndarray | None:
+    """The counter-clockwise boundary loop of a set of faces, or None if it is not one loop."""
+    inside = set(faces)
+    twin = me.corner_twin
+    step = {}
+    for f in faces:
+        for c in range(int(me.face_start[f]), int(me.face_start[f + 1])):
+            if twin[c] < 0 or int(me.corner_face[twin[c]]) not in inside:
+                step[int(me.corner_vertex[c])] = step.get(int(me.corner_vertex[c]), []) + [int(me.corner_next[c])]
+    if any(len(s) > 1 for s in step.values()):
+        return None  # the outline touches itself at a vertex
+    start = min(step)
+    loop, v = [start], step[start][0]
+    while v != start and len(loop) <= len(step):
+        loop.append(v)
+        v = step[v][0]
+    return np.array(loop, dtype=np.int64) if len(loop) == len(step) else None
+
+
+def _connected(me: MeshEdges, faces: list, removed: np.ndarray) -> bool:
+    """Whether ``faces`` are joined into one piece by the removed edges among them."""
+    inside, seen, todo = set(faces), {faces[0]}, [faces[0]]
+    while todo:
+        f = todo.pop()
+        for e in me.face_edges(f).tolist():
+            g = int(me.other_face(e, f))
+            if removed[e] and g in inside and g not in seen:
+                seen.add(g)
+                todo.append(g)
+    return len(seen) == len(inside)
+
+
+def _apply(me: MeshEdges, removed: np.ndarray, moves: list) -> int:
+    """Make the best moves that share no voussoir and no vertex; returns how many."""
+    used_groups: set = set()
+    used_vertices: set = set()
+    made = 0
+    for m in sorted(moves, key=lambda m: (-m.gain, m.area, m.joint, m.face)):
+        corners = set(me.corner_vertex[me.face_start[m.face]:me.face_start[m.face + 1]].tolist())
+        if {m.source, m.target} & used_groups or corners & used_vertices:
+            continue
+        used_groups |= {m.source, m.target}
+        used_vertices |= corners
+        removed[list(m.back)] = False
+        removed[list(m.joins)] = True
+        made += 1
+    return made
