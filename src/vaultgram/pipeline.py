@@ -350,7 +350,7 @@ def tessellate(surface: ThrustSurface, rhythm: int = 2, thickness: float = 1.0,
     >>> v, f = grid_mesh(8)
     >>> t = tessellate(surface_from_network(form_find(v, f, zmax=2.0)), thickness=0.2)
     >>> t.summary["voussoirs"], t.summary["meeting_points"]
-    (32, {'3': 49})
+    (35, {'3': 38, '4': 1})
     """
     _check_tessellation_options(rhythm, thickness, max_concavity, surface_smooth)
     rulebook = load_tessellation_rulebook(rules_dir)
