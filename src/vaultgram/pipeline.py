@@ -495,10 +495,10 @@ def design(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None =
     dec = decompose(domain, spacing, rules_dir, timings=timings)
     mesh = mesh_decomposition(dec, target_length, smooth, densities, allow_folds, timings)
     spec = domain.supports if supports is None else supports
-    anchors = support_vertices(mesh.vertices, mesh.faces, {"vertices": spec} if isinstance(spec, list) else spec,
-                               domain)
-    network = thrust_of_mesh(mesh, {"vertices": anchors.tolist()}, domain, point_load, timings, zmax=zmax,
-                             thickness=thickness, **options)
+    spec = {"vertices": spec} if isinstance(spec, list) else spec
+    anchors = support_vertices(mesh.vertices, mesh.faces, spec, domain)
+    # the specification itself, not its vertices: a failure's hint names the holes it leaves open
+    network = thrust_of_mesh(mesh, spec, domain, point_load, timings, zmax=zmax, thickness=thickness, **options)
     voussoirs = None
     if tessellation is not None:
         t = tessellation
