@@ -351,7 +351,7 @@ def tessellate(surface: ThrustSurface, rhythm: int = 2, thickness: float = 1.0,
     >>> v, f = grid_mesh(8)
     >>> t = tessellate(surface_from_network(form_find(v, f, zmax=2.0)), thickness=0.2)
     >>> t.summary["voussoirs"], t.summary["meeting_points"]
-    (32, {'3': 49})
+    (35, {'3': 38, '4': 1})
     """
     _check_tessellation_options(rhythm, thickness, max_concavity, surface_smooth)
     rulebook = load_tessellation_rulebook(rules_dir)
@@ -499,10 +499,10 @@ def design(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None =
     dec = decompose(domain, spacing, rules_dir, timings=timings)
     mesh = mesh_decomposition(dec, target_length, smooth, densities, allow_folds, timings)
     spec = domain.supports if supports is None else supports
-    anchors = support_vertices(mesh.vertices, mesh.faces, {"vertices": spec} if isinstance(spec, list) else spec,
-                               domain)
-    network = thrust_of_mesh(mesh, {"vertices": anchors.tolist()}, domain, point_load, timings, zmax=zmax,
-                             thickness=thickness, **options)
+    spec = {"vertices": spec} if isinstance(spec, list) else spec
+    anchors = support_vertices(mesh.vertices, mesh.faces, spec, domain)
+    # the specification itself, not its vertices: a failure's hint names the holes it leaves open
+    network = thrust_of_mesh(mesh, spec, domain, point_load, timings, zmax=zmax, thickness=thickness, **options)
     voussoirs = None
     if tessellation is not None:
         t = tessellation

@@ -11,20 +11,9 @@ from vaultgram.errors import VaultgramError
 from vaultgram.formfinding.formdiagram import form_diagram
 from vaultgram.formfinding.horizontal import angle_deviations
 from vaultgram.formfinding.loads import tributary_areas
-from vaultgram.geometry.meshes import grid_mesh
 from vaultgram.pipeline import form_find
 
-
-@st.composite
-def perturbed_grids(draw):
-    n = draw(st.integers(2, 7))
-    amp = draw(st.floats(0.0, 0.3))
-    seed = draw(st.integers(0, 2**31 - 1))
-    v, f = grid_mesh(n)
-    rng = np.random.default_rng(seed)
-    inner = (v[:, 0] > 0) & (v[:, 0] < n) & (v[:, 1] > 0) & (v[:, 1] < n)
-    v[inner, :2] += rng.uniform(-amp, amp, (int(inner.sum()), 2))
-    return v, f
+from strategies.meshes import perturbed_grids
 
 
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])

@@ -11,21 +11,11 @@ from hypothesis import strategies as st
 
 from vaultgram.geometry.polygons import bbox_diagonal, cross_z, interior_angle, signed_area
 
+from strategies.domains import star_polygons
+
 coordinates = st.floats(-100, 100, allow_nan=False, allow_infinity=False)
 points = st.tuples(coordinates, coordinates)
 SETTINGS = settings(max_examples=60, deadline=None)
-
-
-@st.composite
-def star_polygons(draw):
-    """Counter-clockwise star-shaped polygons: 3 to 12 vertices at increasing angles round a centre."""
-    n = draw(st.integers(3, 12))
-    radii = np.array(draw(st.lists(st.floats(0.5, 20.0), min_size=n, max_size=n)))
-    centre = np.array(draw(points))
-    t = np.sort(np.array(draw(st.lists(st.floats(0.0, 2 * math.pi), min_size=n, max_size=n, unique=True))))
-    if np.diff(np.concatenate([t, [t[0] + 2 * math.pi]])).max() >= math.pi - 1e-3:
-        t = 2 * math.pi * np.arange(n) / n  # a gap of half a turn or more: the centre would be outside
-    return centre + np.column_stack([radii * np.cos(t), radii * np.sin(t)])
 
 
 @SETTINGS

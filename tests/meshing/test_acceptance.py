@@ -3,8 +3,6 @@ plans and random domains."""
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
@@ -16,6 +14,8 @@ from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.meshing.layout import is_feature_node
 from vaultgram.meshing.quality import mesh_stats, regular_boundary_faces
 from vaultgram.pipeline import mesh_domain
+
+from strategies.domains import convex_domains
 
 # Examples that meet every acceptance property, and for the others the property that fails (kept as
 # strict xfails so that a fix shows up). "Boundary singularities" are compared with the number the
@@ -170,23 +170,6 @@ def test_halved_target_length(meshed, name):
 # ---------------------------------------------------------------------------------------------
 # Random domains
 # ---------------------------------------------------------------------------------------------
-
-
-@st.composite
-def convex_domains(draw):
-    """Convex polygons (rectangles or perturbed regular polygons), maybe with a circular hole."""
-    n = draw(st.integers(4, 7))
-    radii = draw(st.lists(st.floats(0.85, 1.15), min_size=n, max_size=n))
-    phase = draw(st.floats(0, 2 * math.pi / n))
-    t = phase + 2 * math.pi * np.arange(n) / n
-    outer = np.column_stack([10 * np.array(radii) * np.cos(t), 10 * np.array(radii) * np.sin(t)])
-    data = {"outer": outer.tolist()}
-    if draw(st.booleans()):
-        r = draw(st.floats(1.5, 3.5))
-        c = np.array(draw(st.tuples(st.floats(-1.5, 1.5), st.floats(-1.5, 1.5))))
-        s = np.linspace(0, 2 * math.pi, 40, endpoint=False)
-        data["holes"] = [(c + r * np.column_stack([np.cos(s), np.sin(s)])).tolist()]
-    return domain_from_dict(data)
 
 
 @settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])

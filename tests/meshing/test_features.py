@@ -14,7 +14,6 @@ import re
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
 
 from vaultgram.domain import check_feature_spacing, domain_from_dict
 from vaultgram.errors import DomainError, VaultgramError
@@ -25,6 +24,7 @@ from vaultgram.pipeline import mesh_domain
 from vaultgram.topology.patches import half_edge_polyline
 
 from paths import EXAMPLES
+from strategies.domains import feature_domains
 
 FEATURE_EXAMPLES = ["fig5_boundary_points", "fig6_inner_points", "fig7_curves", "features_combined",
                     "square_point_loads"]
@@ -179,36 +179,6 @@ def test_features_touching_on_purpose_pass():
 # --------------------------------------------------------------------------------------------
 # Random domains (hypothesis)
 # --------------------------------------------------------------------------------------------
-
-
-@st.composite
-def feature_domains(draw):
-    """A rectangle, maybe with a round hole, with 0-3 inner points, 0-1 point on its sides and 0-2
-    curve features inside. (Several boundary points crowded with inner ones into one corner can
-    still leave a boundary point that is no pole: see the closing notes; two in one side are tested
-    in test_two_boundary_features_in_one_side.)"""
-    w = draw(st.floats(6.0, 14.0))
-    h = draw(st.floats(6.0, 14.0))
-    data = {"outer": [[0, 0], [w, 0], [w, h], [0, h]], "points": [], "curves": []}
-    if draw(st.booleans()):
-        t = np.linspace(0, 2 * np.pi, 24, endpoint=False)[::-1]
-        r = 0.15 * min(w, h)
-        data["holes"] = [np.column_stack([w / 2 + r * np.cos(t), h / 2 + r * np.sin(t)]).tolist()]
-    frac = st.floats(0.05, 0.95)
-    for _ in range(draw(st.integers(0, 3))):
-        data["points"].append([draw(frac) * w, draw(frac) * h])
-    for _ in range(draw(st.integers(0, 1))):  # on a side of the rectangle (§4.1 boundary features)
-        t = draw(frac)
-        data["points"].append(draw(st.sampled_from([[t * w, 0], [w, t * h], [t * w, h], [0, t * h]])))
-    for _ in range(draw(st.integers(0, 2))):
-        p = np.array([draw(st.floats(0.1, 0.9)) * w, draw(st.floats(0.1, 0.9)) * h])
-        pts = [p]
-        for _ in range(draw(st.integers(1, 2))):
-            a = draw(st.floats(0.0, 2 * np.pi))
-            length = draw(st.floats(0.1, 0.3)) * min(w, h)
-            pts.append(pts[-1] + length * np.array([np.cos(a), np.sin(a)]))
-        data["curves"].append(np.array(pts).tolist())
-    return data
 
 
 @settings(max_examples=12, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])

@@ -21,9 +21,9 @@ from vaultgram.topology.functions import curve_side
 from vaultgram.topology.rulebook import default_rules_dir
 
 from paths import ARCHITECTURE_PLANS, EXAMPLES
+from strategies.domains import polygons_with_holes, square_with, squares_with_curves
 
 SPACINGS = [0.01, 0.0125, 0.015, 0.0175, 0.02, 0.025, 0.03, 0.035, 0.04, 0.045, 0.05]
-SQUARE = [[0, 0], [10, 0], [10, 10], [0, 10]]
 
 
 def tiling_error(dec) -> float:
@@ -97,28 +97,6 @@ def test_decomposition_is_deterministic():
     assert a.to_json() == b.to_json() and a.patches_json() == b.patches_json()
 
 
-@st.composite
-def polygons_with_holes(draw):
-    """A random star-shaped outer ring with 0 to 3 random convex-ish holes placed inside it."""
-    n = draw(st.integers(4, 9))
-    radii = draw(st.lists(st.floats(6.0, 10.0), min_size=n, max_size=n))
-    angles = np.linspace(0, 2 * np.pi, n, endpoint=False) + draw(st.floats(0, 0.3))
-    outer = np.c_[np.cos(angles) * radii, np.sin(angles) * radii]
-    holes = []
-    for _ in range(draw(st.integers(0, 3))):
-        cx, cy = draw(st.floats(-4, 4)), draw(st.floats(-4, 4))
-        r = draw(st.floats(0.4, 1.5))
-        k = draw(st.integers(3, 12))
-        t = np.linspace(0, 2 * np.pi, k, endpoint=False)
-        hole = np.c_[cx + r * np.cos(t), cy + r * np.sin(t)]
-        poly = shapely.Polygon(hole)
-        if shapely.Polygon(outer).buffer(-0.5).contains(poly) and all(
-            shapely.Polygon(h).distance(poly) > 0.5 for h in holes
-        ):
-            holes.append(hole)
-    return {"name": "random", "outer": outer.tolist(), "holes": [h.tolist() for h in holes]}
-
-
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(polygons_with_holes(), st.floats(0.01, 0.05))
 def test_random_domains_decompose_or_fail_clearly(data, spacing):
@@ -173,10 +151,6 @@ def test_close_singularities_are_merged_by_the_rules():
 
 
 # --- curve features (§4.2) ---------------------------------------------------------------------
-
-
-def square_with(*curves):
-    return domain_from_dict({"outer": SQUARE, "curves": [list(c) for c in curves]})
 
 
 def plan_edges_at(dec, n):
@@ -242,19 +216,6 @@ def test_rules_drive_the_curve_repair(tmp_path):
         "  spread_t_junction fixpoint\n", ""))
     with pytest.raises(DomainError, match="5 sides|6 sides"):
         decompose(square_with([[2, 2], [5, 5], [8, 3]]), 0.02, rules_dir=rules)
-
-
-@st.composite
-def squares_with_curves(draw):
-    curves = []
-    for _ in range(draw(st.integers(1, 2))):
-        k = draw(st.integers(2, 3))
-        pts = [(draw(st.floats(1.5, 8.5)), draw(st.floats(1.5, 8.5))) for _ in range(k)]
-        line = shapely.LineString(pts)
-        if line.length < 1.5 or not line.is_simple or any(line.distance(shapely.LineString(c)) < 1.0 for c in curves):
-            continue
-        curves.append(pts)
-    return curves
 
 
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
