@@ -9,6 +9,7 @@ import ast
 from pathlib import Path
 
 import networkx as nx
+import pytest
 
 from paths import REPO
 
@@ -64,3 +65,11 @@ def test_modules_import_each_other_without_cycles():
     for name in [n for n in graph if MODULES[n].name == "__init__.py"]:
         graph.remove_edges_from([(m, name) for m in list(graph.predecessors(name)) if m.startswith(name + ".")])
     assert list(nx.simple_cycles(graph)) == []
+
+
+def test_every_package_is_installed():
+    """pyproject.toml lists every package folder, so a non-editable install (CI's) ships them all."""
+    tomllib = pytest.importorskip("tomllib")  # Python 3.11+
+    listed = set(tomllib.loads((REPO / "pyproject.toml").read_text())["tool"]["setuptools"]["packages"])
+    folders = {name for name, path in MODULES.items() if path.name == "__init__.py"}
+    assert folders == listed

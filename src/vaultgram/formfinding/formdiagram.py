@@ -35,6 +35,7 @@ import scipy.sparse as sp
 from vaultgram.errors import FormFindingError
 from vaultgram.formfinding.diagrams import Diagram, connectivity_matrix
 from vaultgram.formfinding.supports import outer_loop
+from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.meshes import boundary_halfedges, boundary_loops, corner_arrays, face_areas
 
 __all__ = ["FormDiagram", "form_diagram", "connectivity_matrix"]
@@ -264,7 +265,7 @@ def _undirected_edges(faces, anchors: np.ndarray, drop_supported: bool) -> _Edge
     """The edges of ``faces``, without those joining two anchors when ``drop_supported``."""
     n = len(anchors)
     _, u, v, _ = corner_arrays(faces)
-    codes = np.unique(np.minimum(u, v) * n + np.maximum(u, v))
+    codes = distinct(np.minimum(u, v) * n + np.maximum(u, v))
     eu, ev = codes // n, codes % n
     if drop_supported:
         keep = ~(anchors[eu] & anchors[ev])

@@ -115,7 +115,10 @@ def corner_arrays(faces: Sequence[Sequence[int]]) -> tuple[np.ndarray, np.ndarra
         e = np.zeros(0, dtype=np.int64)
         return e, e, e, e
     lens = np.fromiter(map(len, faces), dtype=np.int64, count=len(faces))
-    vert = np.fromiter(itertools.chain.from_iterable(faces), dtype=np.int64, count=int(lens.sum()))
+    if isinstance(faces[0], np.ndarray):  # loops of vertex arrays: joined whole, not element by element
+        vert = np.concatenate(faces).astype(np.int64, copy=False)
+    else:
+        vert = np.fromiter(itertools.chain.from_iterable(faces), dtype=np.int64, count=int(lens.sum()))
     face = np.repeat(np.arange(len(faces)), lens)
     start = np.concatenate([[0], np.cumsum(lens)[:-1]])
     pos = np.arange(len(vert)) - np.repeat(start, lens)

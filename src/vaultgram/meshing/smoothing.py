@@ -21,6 +21,7 @@ from typing import NamedTuple
 import numpy as np
 import scipy.sparse as sp
 
+from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.meshes import MeshError, adjacency, boundary_adjacency, corner_arrays, corner_vectors
 from vaultgram.geometry.polygons import cross_z
 from vaultgram.meshing.quadmesh import slide
@@ -134,7 +135,7 @@ def _undo_inversions(x: np.ndarray, old: np.ndarray, valid: np.ndarray, corners:
         broken = valid & ~_valid_faces(x, corners)
         if not broken.any():
             break
-        back = np.unique(corners.u[broken[corners.face_of]])
+        back = distinct(corners.u[broken[corners.face_of]])
         x[back] = old[back]
     return _valid_faces(x, corners)
 

@@ -65,13 +65,23 @@ class _Move:
 
 @dataclass(frozen=True)
 class _State:
-    """The voussoirs as they stand in a round: each face's voussoir, the faces of each voussoir and
-    around each vertex, the voussoirs meeting at each vertex."""
+    """The voussoirs as they stand in a round: each face's voussoir, the faces in voussoir order
+    (``order[start[k]:start[k + 1]]`` are voussoir ``k``'s), the faces around each vertex, the
+    voussoirs meeting at each vertex."""
 
     group: np.ndarray
-    members: list
+    order: np.ndarray
+    start: np.ndarray
     around: list
     count: np.ndarray
+
+    @property
+    def n_groups(self) -> int:
+        return len(self.start) - 1
+
+    def members(self, k: int) -> list:
+        """The faces of voussoir ``k``."""
+        return self.order[self.start[k]:self.start[k + 1]].tolist()
 
 
 def mend_meeting_points(x: np.ndarray, me: MeshEdges, removed: np.ndarray, interior: np.ndarray,
@@ -108,8 +118,7 @@ def _state(me: MeshEdges, removed: np.ndarray, around: list, n: int) -> _State:
     group = face_groups(me, removed)
     order = np.argsort(group, kind="stable")
     start = np.searchsorted(group[order], np.arange(int(group.max()) + 2 if len(group) else 1))
-    members = [order[start[k]:start[k + 1]].tolist() for k in range(len(start) - 1)]
-    return _State(group, members, around, voussoirs_at_vertices(me, group, n))
+    return _State(group, order, start, around, voussoirs_at_vertices(me, group, n))
 
 
 def _crowding(counts, inner) -> int:
@@ -122,14 +131,14 @@ def _candidates(me: MeshEdges, removed: np.ndarray, interior: np.ndarray, area: 
     a small single face that does not raise it, keeping the receiving voussoir within
     :data:`GROWTH` times ``target``."""
     group = state.group
-    frozen = np.zeros(len(state.members), dtype=bool)
+    frozen = np.zeros(state.n_groups, dtype=bool)
     frozen[group[frozen_faces]] = True
-    size = np.bincount(group, weights=area, minlength=len(state.members))
+    size = np.bincount(group, weights=area, minlength=state.n_groups)
     largest = GROWTH * target
     tiny = size < SMALL * target
     crowded = interior & (state.count >= 4)
     joint = ~removed & (me.faces_of >= 0).all(axis=1)
-    single = np.bincount(group, minlength=len(state.members)) == 1
+    single = np.bincount(group, minlength=state.n_groups) == 1
     lone = (tiny & single)[group[np.maximum(me.faces_of, 0)]].any(axis=1)
     moves = []
     for e in np.flatnonzero(joint & (crowded[me.edges[:, 0]] | crowded[me.edges[:, 1]] | lone)).tolist():
@@ -165,8 +174,8 @@ def _feasible(x: np.ndarray, me: MeshEdges, removed: np.ndarray, state: _State, 
     """The moves whose two voussoirs stay disks in one piece without a corner above ``max_angle``."""
     kept, loops = [], []
     for m in moves:
-        rest = [f for f in state.members[m.source] if f != m.face]
-        grown = _outline(me, state.members[m.target] + [m.face])
+        rest = [f for f in state.members(m.source) if f != m.face]
+        grown = _outline(me, state.members(m.target) + [m.face])
         shrunk = _outline(me, rest) if rest else np.zeros(0, dtype=np.int64)
         if grown is None or shrunk is None or (rest and not _connected(me, rest, removed)):
             continue

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.geometry.surfaces import area_vectors
 from vaultgram.tessellation.model import VoussoirLayout
@@ -94,8 +95,8 @@ def euler_characteristic(layout: VoussoirLayout) -> int:
     """``V - E + F`` of the voussoir outlines: their vertices, their edges, the voussoirs."""
     _, u, v, _ = corner_arrays(layout.loops)
     n = int(max(u.max(), v.max())) + 1 if len(u) else 0
-    edges = np.unique(np.minimum(u, v) * n + np.maximum(u, v))
-    return len(np.unique(u)) - len(edges) + len(layout.loops)
+    edges = distinct(np.minimum(u, v) * n + np.maximum(u, v))
+    return len(distinct(u)) - len(edges) + len(layout.loops)
 
 
 def spread(values: np.ndarray) -> dict:

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.geometry.surfaces import area_vectors
 from vaultgram.tessellation.keystones import CutMesh
@@ -67,7 +68,7 @@ def voussoir_layout(mesh: CutMesh, me: MeshEdges, group: np.ndarray) -> Voussoir
     inner = (me.faces_of >= 0).all(axis=1)
     sides = group[np.maximum(me.faces_of, 0)]
     joints = np.flatnonzero(inner & (sides[:, 0] != sides[:, 1]))
-    keystones = np.unique(group[mesh.keystones]) if len(mesh.keystones) else np.zeros(0, dtype=np.int64)
+    keystones = distinct(group[mesh.keystones]) if len(mesh.keystones) else np.zeros(0, dtype=np.int64)
     return VoussoirLayout(mesh, me, group, loops, keystones, joints)
 
 

@@ -15,6 +15,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
+from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.geometry.surfaces import loop_corner_angles, loop_planes
 
@@ -130,5 +131,5 @@ def without_concavities(x: np.ndarray, me: MeshEdges, removed: np.ndarray, max_a
 
 def voussoirs_at_vertices(me: MeshEdges, group: np.ndarray, n_vertices: int) -> np.ndarray:
     """Per vertex, how many distinct voussoirs meet there."""
-    pairs = np.unique(group[me.corner_face] * n_vertices + me.corner_vertex)
+    pairs = distinct(group[me.corner_face] * n_vertices + me.corner_vertex)
     return np.bincount(pairs % n_vertices, minlength=n_vertices)

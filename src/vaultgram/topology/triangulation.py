@@ -56,6 +56,7 @@ from scipy.spatial import Delaunay, QhullError
 
 from vaultgram.domain.model import ring_name
 from vaultgram.errors import DomainError
+from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.polygons import bbox_diagonal, triangle_areas
 from vaultgram.geometry.text import fmt_point
 from vaultgram.topology.discretise import Discretisation
@@ -340,7 +341,7 @@ def _check_tiling(disc: Discretisation, tri: np.ndarray, areas: np.ndarray) -> N
             f"triangulation covers area {total:.12g} but the domain has area {expect:.12g}; "
             "use a smaller spacing"
         )
-    euler = len(np.unique(tri)) - len(_undirected_edges(tri)) + len(tri)
+    euler = len(distinct(tri)) - len(_undirected_edges(tri)) + len(tri)
     if euler != 1 - len(disc.domain.holes):
         raise DomainError(
             f"triangulation is not a valid tiling of the domain (Euler characteristic {euler}, "

@@ -1,0 +1,96 @@
+"""Mending the points where four voussoirs meet (§5): a face moved across a joint lowers the crowding,
+never raises it, keeps the voussoirs disks within the size limit and the concavity threshold, and
+leaves keystones and boundary points alone."""
+
+import numpy as np
+import pytest
+
+from vaultgram.geometry.halfedges import mesh_edges
+from vaultgram.geometry.meshes import grid_mesh
+from vaultgram.tessellation.mending import GROWTH, mend_meeting_points
+from vaultgram.tessellation.voussoirs import (
+    MAX_CONCAVITY,
+    face_groups,
+    max_corner_angles,
+    outlines,
+    voussoirs_at_vertices,
+)
+
+
+def _grid(n: int):
+    """An n x n grid of unit squares, its edges and its inner vertices."""
+    v, f = grid_mesh(n)
+    me = mesh_edges(f, len(v))
+    inner = np.ones(len(v), dtype=bool)
+    inner[me.edges[me.boundary].ravel()] = False
+    return v, me, inner
+
+
+def _crowding(me, removed, inner, n) -> int:
+    count = voussoirs_at_vertices(me, face_groups(me, removed), n)
+    return int(np.maximum(count[inner] - 3, 0).sum())
+
+
+def test_a_point_of_four_single_faces_becomes_a_point_of_three():
+    v, me, inner = _grid(2)
+    removed, moves = mend_meeting_points(v, me, np.zeros(me.n_edges, dtype=bool), inner, np.ones(4), target=1.0)
+    assert moves == 1 and removed.sum() == 1 and 4 in me.edges[removed].ravel()
+    assert voussoirs_at_vertices(me, face_groups(me, removed), len(v))[4] == 3
+
+
+@pytest.mark.parametrize("target, max_angle, inner", [(0.6, MAX_CONCAVITY, True), (1.0, 170.0, True),
+                                                      (1.0, MAX_CONCAVITY, False)])
+def test_no_move_beyond_the_size_the_angle_or_the_boundary(target, max_angle, inner):
+    """Two unit squares joined have area 2 (above GROWTH x 0.6) and straight corners of 180 degrees;
+    a point on the boundary is not mended (and unit faces are not small at target 1)."""
+    v, me, interior = _grid(2)
+    interior = interior if inner else np.zeros(len(v), dtype=bool)
+    removed, moves = mend_meeting_points(v, me, np.zeros(me.n_edges, dtype=bool), interior, np.ones(4), target,
+                                         max_angle)
+    assert moves == 0 and not removed.any()
+
+
+def _bond(me, n: int) -> np.ndarray:
+    """Rows of dominoes on an n x n grid, each row in step with the one below: straight joints, so
+    every inner vertex on a vertical joint is a point of four."""
+    removed = np.zeros(me.n_edges, dtype=bool)
+    for row in range(n):
+        for col in range(0, n - 1, 2):
+            a = row * (n + 1) + col + 1
+            e = np.flatnonzero((me.edges[:, 0] == a) & (me.edges[:, 1] == a + n + 1))
+            removed[e] = True
+    return removed
+
+
+def test_mending_a_stack_bond_lowers_the_crowding_and_keeps_every_promise():
+    n = 6
+    v, me, inner = _grid(n)
+    start = _bond(me, n)
+    area = np.ones(n * n)
+    frozen = np.zeros(n * n, dtype=bool)
+    frozen[[0, 1]] = True  # the first domino is a keystone
+    removed, moves = mend_meeting_points(v, me, start, inner, area, target=2.0, frozen_faces=frozen)
+    assert moves > 0
+    assert _crowding(me, removed, inner, len(v)) < _crowding(me, start, inner, len(v))
+    group = face_groups(me, removed)
+    assert np.bincount(group, weights=area).max() <= GROWTH * 2.0
+    assert group[0] == group[1] and (group == group[0]).sum() == 2  # the keystone is untouched
+    loops = outlines(me, group)
+    assert len(loops) == len(np.unique(group))  # every voussoir one disk: one outline loop each
+    angle, _ = max_corner_angles(v, loops)
+    assert (angle <= MAX_CONCAVITY + 1e-9).all()
+
+
+def test_mending_never_makes_a_point_more_crowded():
+    """Call after call, until nothing is left to mend, the total crowding only falls."""
+    n = 8
+    v, me, inner = _grid(n)
+    removed = _bond(me, n)
+    before = _crowding(me, removed, inner, len(v))
+    while True:
+        removed, moves = mend_meeting_points(v, me, removed, inner, np.ones(n * n), target=2.0)
+        after = _crowding(me, removed, inner, len(v))
+        assert after <= before
+        if moves == 0:
+            break
+        before = after

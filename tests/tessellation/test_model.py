@@ -1,0 +1,55 @@
+"""The tessellation's values: the voussoir layout (faces, outlines, joints) and tessellation.json."""
+
+import json
+
+import numpy as np
+import pytest
+
+from vaultgram.geometry.halfedges import mesh_edges
+from vaultgram.geometry.meshes import grid_mesh
+from vaultgram.geometry.surfaces import area_vectors
+from vaultgram.pipeline import tessellate
+from vaultgram.tessellation.keystones import CutMesh
+from vaultgram.tessellation.model import voussoir_layout
+
+
+def test_joints_are_the_inner_edges_between_two_voussoirs():
+    v, f = grid_mesh(3, 2)  # faces 0 1 2 below, 3 4 5 above
+    v[:, 2] = 0.1 * v[:, 0] * v[:, 1]
+    cut = CutMesh(v, tuple(f), np.array([4]), np.arange(len(v)), ())
+    me = mesh_edges(f)
+    lay = voussoir_layout(cut, me, np.array([0, 0, 1, 2, 3, 1]))
+    assert lay.n_voussoirs == 4 and lay.keystones.tolist() == [3]
+    pairs = lay.joint_voussoirs()
+    assert (pairs[:, 0] != pairs[:, 1]).all()
+    assert sorted(map(sorted, pairs.tolist())) == [[0, 1], [0, 2], [0, 3], [1, 3], [2, 3]]
+    assert not me.boundary[lay.joints].any()
+    area = np.linalg.norm(area_vectors(v, f), axis=1)
+    assert lay.areas(v) == pytest.approx([area[0] + area[1], area[2] + area[5], area[3], area[4]])
+
+
+@pytest.fixture(scope="module")
+def tessellation(arch_grid):
+    return tessellate(arch_grid, thickness=0.3)
+
+
+def test_tessellation_json_is_plain_json_that_describes_the_layout(tessellation):
+    data = json.loads(json.dumps(tessellation.to_json()))
+    lay = tessellation.layout
+    n = lay.n_voussoirs
+    assert len(data["voussoirs"]) == len(data["names"]) == len(data["courses"]) == len(data["areas"]) == n
+    assert len(data["faces"]) == len(data["face_voussoir"]) == len(lay.mesh.faces)
+    assert np.array(data["vertices"]).shape == tessellation.vertices.shape
+    assert sum(data["areas"]) == pytest.approx(float(lay.areas(tessellation.vertices).sum()))
+    # neighbours are symmetric and are exactly the voussoirs across the joints
+    nbrs = data["neighbours"]
+    assert all(k in nbrs[o] for k in range(n) for o in nbrs[k])
+    across = {tuple(j["voussoirs"]) for j in data["joints"]}
+    assert across == {(a, b) for a in range(n) for b in nbrs[a] if a < b}
+    for j in data["joints"]:
+        a, b = j["voussoirs"]
+        for k in (a, b):  # a joint is a side of the outline of both its voussoirs
+            loop = data["voussoirs"][k]
+            sides = {frozenset(p) for p in zip(loop, loop[1:] + loop[:1])}
+            assert frozenset(j["vertices"]) in sides
+    assert data["summary"]["voussoirs"] == n

@@ -1,0 +1,110 @@
+"""Refinement of the strips of large quads before the bond (§5, "shape and size uniformity")."""
+
+import numpy as np
+import pytest
+
+from vaultgram.geometry.halfedges import mesh_edges
+from vaultgram.geometry.meshes import boundary_loops
+from vaultgram.geometry.surfaces import area_vectors
+from vaultgram.tessellation.refine import LARGE, refine_large_faces
+
+
+def rect_mesh(xs, ys):
+    """A planar quad mesh on the grid lines ``xs`` x ``ys``: vertex ``(i, j)`` is ``j * len(xs) + i``."""
+    gx, gy = np.meshgrid(np.asarray(xs, dtype=float), np.asarray(ys, dtype=float))
+    v = np.column_stack([gx.ravel(), gy.ravel(), np.zeros(gx.size)])
+    n = len(xs)
+    faces = [(j * n + i, j * n + i + 1, (j + 1) * n + i + 1, (j + 1) * n + i)
+             for j in range(len(ys) - 1) for i in range(n - 1)]
+    return v, faces
+
+
+def _areas(x, faces):
+    return np.linalg.norm(area_vectors(x, faces), axis=1)
+
+
+def _conforming(x, faces):
+    """A manifold, consistently oriented mesh with one boundary loop and no vertex in the middle of a
+    side (every vertex is a corner of each face whose sides pass through it)."""
+    me = mesh_edges(faces, len(x))
+    assert len(boundary_loops(faces)) == 1
+    a, b = x[me.edges[:, 0]], x[me.edges[:, 1]]
+    for p in x:
+        t = ((p - a) * (b - a)).sum(axis=1) / ((b - a) ** 2).sum(axis=1)
+        inside = (t > 1e-9) & (t < 1 - 1e-9)
+        assert not (np.linalg.norm(a + t[:, None] * (b - a) - p, axis=1)[inside] < 1e-9).any()
+
+
+def _aspect(x, face):
+    p = x[list(face)]
+    length = np.linalg.norm(np.roll(p, -1, axis=0) - p, axis=1)
+    return max(length[0] + length[2], length[1] + length[3]) / min(length[0] + length[2], length[1] + length[3])
+
+
+def test_a_mesh_without_large_quads_is_left_as_it_is():
+    v, f = rect_mesh(range(5), range(4))
+    x, faces, parents, origin, refined = refine_large_faces(v, f)
+    assert refined == 0 and parents == [] and x is v
+    assert list(faces) == [tuple(q) for q in f] and origin.tolist() == list(range(len(f)))
+
+
+def test_exactly_the_strip_of_the_quads_above_twice_the_median_is_cut_in_two():
+    """Columns 2 and 3 wide among unit ones: only the column of area 3 (> 2 x median 1) is refined,
+    not the one of area 2 (= 2 x median)."""
+    v, f = rect_mesh([0, 1, 2, 3, 5, 8], range(5))
+    area = _areas(v, f)
+    big = np.flatnonzero(area > LARGE * np.median(area))
+    assert len(big) == 4
+    x, faces, parents, origin, refined = refine_large_faces(v, f)
+    assert refined == 1
+    pieces = np.bincount(origin, minlength=len(f))
+    assert pieces[big].tolist() == [2] * 4 and (np.delete(pieces, big) == 1).all()
+    new_area = _areas(x, faces)
+    assert np.allclose(np.bincount(origin, weights=new_area), area)  # the pieces tile their quad
+    assert np.allclose(new_area[np.isin(origin, big)], 1.5)
+    # the cut runs between the midpoints of the long sides (the strip's rungs): squarer halves
+    for k in np.flatnonzero(np.isin(origin, big)):
+        assert _aspect(x, faces[k]) < _aspect(v, f[origin[k]])
+    for k, p in enumerate(parents):
+        assert np.allclose(x[len(v) + k], v[list(p)].mean(axis=0))
+    assert len(x) == len(v) + 5  # the midpoints of the strip's five rungs
+    assert all(len(q) == 4 for q in faces)
+    _conforming(x, faces)
+
+
+def test_a_strip_ending_at_a_triangle_puts_its_midpoint_in_the_triangle():
+    v, f = rect_mesh([0, 1, 2, 3, 6], range(3))
+    v = np.vstack([v, [4.5, 3.0, 0.0]])
+    f = f + [(13, 14, 15)]  # on top of the wide column: its top rung is the triangle's side 13-14
+    x, faces, parents, origin, refined = refine_large_faces(v, f)
+    assert refined == 1
+    (triangle,) = [q for q, o in zip(faces, origin) if o == len(f) - 1]
+    assert len(triangle) == 4 and np.allclose(x[[p for p in triangle if p >= len(v)][0]], [4.5, 2.0, 0.0])
+    _conforming(x, faces)
+    assert _areas(x, faces).sum() == pytest.approx(_areas(v, f).sum())
+
+
+def test_passes_repeat_until_no_quad_is_large():
+    """A 3 x 3 corner quad among unit ones: its row and its column are refined, then again, until no
+    quad is more than twice the median of the input."""
+    v, f = rect_mesh([0, 1, 2, 3, 6], [0, 1, 2, 3, 6])
+    median = np.median(_areas(v, f))
+    x, faces, parents, origin, refined = refine_large_faces(v, f)
+    area = _areas(x, faces)
+    assert refined > 2 and area.max() <= LARGE * median
+    assert area.sum() == pytest.approx(_areas(v, f).sum())
+    assert np.allclose(np.bincount(origin, weights=area), _areas(v, f))
+    _conforming(x, faces)
+    # one pass is not enough
+    x1, faces1, *_ = refine_large_faces(v, f, passes=1)
+    assert _areas(x1, faces1).max() > LARGE * median
+
+
+def test_refined_points_of_a_curved_surface_are_means_of_network_vertices():
+    v, f = rect_mesh([0, 1, 2, 3, 6], range(4))
+    v[:, 2] = 0.1 * v[:, 0] ** 2 + 0.05 * v[:, 1]
+    x, faces, parents, origin, refined = refine_large_faces(v, f)
+    assert refined == 1 and len(parents) == len(x) - len(v)
+    for k, p in enumerate(parents):
+        assert len(p) in (2, 4) and np.allclose(x[len(v) + k], v[list(p)].mean(axis=0))
+    _conforming(x, faces)
