@@ -144,8 +144,8 @@ def main() -> None:
     parser.add_argument("--sizes", type=int, nargs="+", default=[1_000, 10_000, 100_000])
     parser.add_argument("--no-baseline", action="store_true", help="skip the networkx baseline")
     args = parser.parse_args()
-    cols = ["nodes", "edges", "matches", "engine_s", "warm_s", "as_objects_s", "networkx_s", "speedup", "all_s", "all_applied",
-            "fixpoint_recheck_s", "fixpoint_s", "fixpoint_applied", "incremental_ms"]
+    cols = ["nodes", "edges", "matches", "engine_s", "warm_s", "as_objects_s", "networkx_s", "speedup", "all_s",
+            "all_applied", "fixpoint_recheck_s", "fixpoint_s", "fixpoint_applied", "incremental_ms"]
     print(" ".join(f"{c:>18}" for c in cols))
     for size in args.sizes:
         row = run(size, not args.no_baseline)

@@ -465,7 +465,9 @@ class RuleChecker:
         condition = self._condition(s.condition, inner) if s.condition is not None else None
         local = {s.neighbour}  # next()/prev() may name the neighbour or a node created in the body
         body = self._statements(s.body, inner, local)
-        return CForeach(edge_var, s.center, s.neighbour, self.schema.subtypes(s.type), s.direction, condition, body, s.pos)
+        return CForeach(
+            edge_var, s.center, s.neighbour, self.schema.subtypes(s.type), s.direction, condition, body, s.pos
+        )
 
     def _neighbour_type(self, info, direction: str, center_type: str) -> str:
         """The static type of a foreach neighbour: the edge type's other endpoint type."""

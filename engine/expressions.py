@@ -248,7 +248,8 @@ class ExpressionCompiler:
             raise RuleTypeError(
                 f"unknown function '{expr.func}'",
                 expr.pos,
-                did_you_mean(expr.func, self.functions.table) or "the host application registers functions rules may call",
+                did_you_mean(expr.func, self.functions.table)
+                or "the host application registers functions rules may call",
             )
         parts = [self.compile(a, scope) for a in expr.args]
         _check_arguments(func, expr, [p.type for p in parts])

@@ -653,7 +653,8 @@ class HostGraph:
             info = self.schema.edge_types[type_name]
             arrow = "->" if info.directed else "--"
             raise SchemaError(
-                f"edge {type_name} ({info.source} {arrow} {info.target}) cannot join node {u} ({tu}) and node {v} ({tv})"
+                f"edge {type_name} ({info.source} {arrow} {info.target}) "
+                f"cannot join node {u} ({tu}) and node {v} ({tv})"
             )
 
     def _set_node_type(self, n: int, type_name: str) -> None:

@@ -122,7 +122,9 @@ def _check_strategy(strategy: ast.Strategy, rules, strategies, checker: RuleChec
                     raise RuleTypeError(f"node parameter '{name}' cannot be given in a strategy", expr.pos)
                 value = constant_value(expr, checker)
                 if not value_conforms(value, param.type):
-                    raise RuleTypeError(f"parameter '{name}' of {ref.name} must be {param.type}, got {value!r}", expr.pos)
+                    raise RuleTypeError(
+                        f"parameter '{name}' of {ref.name} must be {param.type}, got {value!r}", expr.pos
+                    )
 
 
 def constant_value(expr, checker: RuleChecker):

@@ -235,7 +235,9 @@ def _declare(decl, same_kind: dict, other_kind: dict) -> None:
 
 def _check_parent(decl, parent: str, decls: dict, built: dict, kind: str) -> None:
     if parent not in decls and parent not in built:
-        raise RuleTypeError(f"{kind} {decl.name}: unknown parent {kind} type '{parent}'", decl.pos, did_you_mean(parent, decls))
+        raise RuleTypeError(
+            f"{kind} {decl.name}: unknown parent {kind} type '{parent}'", decl.pos, did_you_mean(parent, decls)
+        )
 
 
 def _check_no_cycle(decl, decls: dict) -> None:

@@ -332,7 +332,9 @@ def _parse_tree(text: str, filename: str):
     except UnexpectedCharacters as exc:
         raise _character_error(exc, text, filename, prev) from None
     except UnexpectedEOF as exc:  # pragma: no cover - LALR reports the end as an UnexpectedToken
-        raise RuleSyntaxError("unexpected end of file", _end_pos(text, filename), _expected_hint(set(exc.expected), prev)) from None
+        raise RuleSyntaxError(
+            "unexpected end of file", _end_pos(text, filename), _expected_hint(set(exc.expected), prev)
+        ) from None
     except UnexpectedInput as exc:  # pragma: no cover
         raise RuleSyntaxError(f"syntax error: {exc}", SourcePos(filename, exc.line, exc.column)) from None
 

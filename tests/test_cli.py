@@ -23,7 +23,10 @@ def test_rules_check_prints_summary():
     result = run("rules", "check", RULES)
     assert result.exit_code == 0, result.output
     assert "prune_corner_branch all; rebranch all" in result.output
-    assert "patching: split_at_boundary_feature(onto_boundary = false) fixpoint; split_at_boundary_feature fixpoint; { split_quad_at_feature_beside_boundary, split_quad_at_feature } fixpoint" in result.output
+    assert (
+        "patching: split_at_boundary_feature(onto_boundary = false) fixpoint; split_at_boundary_feature fixpoint; "
+        "{ split_quad_at_feature_beside_boundary, split_quad_at_feature } fixpoint"
+    ) in result.output
 
 
 def test_rules_check_json():
@@ -114,7 +117,10 @@ def test_design_runs_the_whole_pipeline_deterministically(tmp_path):
     for name in names:
         assert (outs[0] / name).read_bytes() == (outs[1] / name).read_bytes(), name
     summary = json.loads((outs[0] / "summary.json").read_text())["thrust"]
-    assert summary["max_angle_deg"] < 0.5 and abs(summary["reaction_sum"] - summary["total_load"]) < 1e-9 * summary["total_load"]
+    assert (
+        summary["max_angle_deg"] < 0.5
+        and abs(summary["reaction_sum"] - summary["total_load"]) < 1e-9 * summary["total_load"]
+    )
 
 
 def test_design_failing_stage_writes_nothing(tmp_path):

@@ -8,9 +8,10 @@ import re
 
 import pytest
 from click.testing import CliRunner
-from paths import REPO
 
 from vaultgram.cli import main
+
+from paths import REPO
 
 README = (REPO / "README.md").read_text()
 PYTHON_BLOCKS = re.findall(r"```python\n(.*?)```", README, flags=re.S)
@@ -35,7 +36,9 @@ def test_the_readme_has_the_pipeline_and_the_engine_examples():
 
 def test_the_pipeline_example_runs_every_stage_and_writes_the_voussoirs(tmp_path, monkeypatch):
     printed = run_block(PYTHON_BLOCKS[0], tmp_path, monkeypatch)
-    patches, quads, _, voussoirs = re.match(r"(\d+) patches, (\d+) quads, ([\d.]+) deg, (\d+) voussoirs", printed).groups()
+    patches, quads, _, voussoirs = re.match(
+        r"(\d+) patches, (\d+) quads, ([\d.]+) deg, (\d+) voussoirs", printed
+    ).groups()
     assert int(patches) == 12 and int(quads) > 500 and 0 < int(voussoirs) < int(quads)
     assert {p.name for p in (tmp_path / "out").iterdir()} == {"tessellation.json", "voussoirs.obj", "tessellation.png"}
 

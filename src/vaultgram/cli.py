@@ -40,18 +40,22 @@ OUT = click.option("--out", "out_dir", required=True, type=click.Path(file_okay=
 SPACING = click.option("--spacing", default=0.02, show_default=True, type=float,
                        help="Boundary spacing as a fraction of the bounding-box diagonal (0.01 to 0.05 usual).")
 RULES = click.option("--rules", "rules_dir", default=None, type=click.Path(file_okay=False, exists=True),
-                     help="Directory with the rule files: topology.vgr, tessellation.vgr (default: the rulebook shipped with vaultgram).")
+                     help="Directory with the rule files: topology.vgr, tessellation.vgr "
+                          "(default: the rulebook shipped with vaultgram).")
 TARGET_LENGTH = click.option("--target-length", type=POSITIVE, default=None,
-                             help="Target mesh edge length (domain units); default 2.5% of the bounding-box diagonal.")
+                             help="Target mesh edge length (domain units); "
+                                  "default 2.5% of the bounding-box diagonal.")
 SMOOTH = click.option("--smooth", default=None, type=int,
-                      help="Laplacian smoothing iterations (default 20; 0: the raw Coons patches, not untangled either).")
+                      help="Laplacian smoothing iterations "
+                           "(default 20; 0: the raw Coons patches, not untangled either).")
 ALLOW_FOLDS = click.option("--allow-folds", is_flag=True,
                            help="Write a mesh that still has inverted faces (with a warning) instead of failing.")
 THRUST = [
     click.option("--zmax", type=POSITIVE, default=None,
                  help="Height of the highest point (default: a quarter of the plan's shorter side)."),
     click.option("--thickness", type=POSITIVE, default=1.0, show_default=True, help="Shell thickness for self-weight."),
-    click.option("--density", type=POSITIVE, default=1.0, show_default=True, help="Material density (weight per volume)."),
+    click.option("--density", type=POSITIVE, default=1.0, show_default=True,
+                 help="Material density (weight per volume)."),
     click.option("--point-load", type=float, default=0.0, show_default=True,
                  help="Vertical load at every point feature (a column load, a lantern...)."),
     click.option("--tol-deg", type=POSITIVE, default=0.5, show_default=True,
@@ -65,7 +69,8 @@ THRUST = [
 
 
 SUPPORTS = click.option("--supports", "supports_path", type=click.Path(dir_okay=False), default=None,
-                        help='JSON: {"rings": [...]}, {"polylines": [...]} or {"vertices": [...]} (overrides the input).')
+                        help='JSON: {"rings": [...]}, {"polylines": [...]} or {"vertices": [...]} '
+                             '(overrides the input).')
 DENSITIES = click.option("--densities", "densities_path", type=click.Path(dir_okay=False), default=None,
                          help="Density file: JSON {target_length, length_mode, min_count, groups, regions}.")
 

@@ -56,20 +56,24 @@ CASES = [
     ("next outside foreach", "rule r {\n  match { a: A  b: A }\n  create a -E- next(b)\n}", "next()/prev()", 3, None),
     ("prev outside foreach", "rule r {\n  match { a: A  b: A }\n  create a -E- prev(b)\n}", "next()/prev()", 3, None),
     ("wrong argument type", "rule r {\n  match { a: A }\n  where dist(a.w, a.w) > 1\n}", "must be vec2", 3, None),
-    ("wrong argument count", "rule r {\n  match { a: A }\n  where dist(vec2(1, 2)) > 1\n}", "takes 2 argument(s), got 1", 3, 9),
+    ("wrong argument count", "rule r {\n  match { a: A }\n  where dist(vec2(1, 2)) > 1\n}",
+     "takes 2 argument(s), got 1", 3, 9),
     ("too many arguments", "rule r {\n  match { a: A }\n  where abs(1, 2) > 1\n}", "argument", 3, 9),
     ("set wrong type", "rule r {\n  match { a: A }\n  set a.w = \"s\"\n}", "attribute 'w' is int", 3, None),
     ("create wrong type", "rule r {\n  match { }\n  create a: A { w = 1.5 }\n}", "attribute 'w' is int", 3, None),
     ("duplicate rule", "rule r { match { } }\nrule r { match { } }", "defined twice", 2, 1),
     ("unknown rule in strategy", "rule r { match { } }\nstrategy s {\n  rr once\n}", "unknown rule 'rr'", 3, 3),
-    ("unknown param in strategy", "rule r(k: int = 1) { match { } }\nstrategy s {\n  r(kk = 2) once\n}", "no parameter 'kk'", 3, None),
-    ("param type in strategy", "rule r(k: int = 1) { match { } }\nstrategy s {\n  r(k = \"a\") once\n}", "must be int", 3, None),
+    ("unknown param in strategy", "rule r(k: int = 1) { match { } }\nstrategy s {\n  r(kk = 2) once\n}",
+     "no parameter 'kk'", 3, None),
+    ("param type in strategy", "rule r(k: int = 1) { match { } }\nstrategy s {\n  r(k = \"a\") once\n}",
+     "must be int", 3, None),
     ("strategy cycle", "strategy s1 { run s2 }\nstrategy s2 { run s1 }", "cycle: s1 -> s2 -> s1", 1, 1),
     ("strategy self cycle", "strategy s1 {\n  run s1\n}", "cycle", 1, 1),
     ("unknown strategy", "strategy s1 {\n  run s3\n}", "unknown strategy 's3'", 2, 3),
     ("duplicate type", "schema x {\n  node A\n}", "declared twice", 2, None),
     ("delete unknown var", "rule r {\n  match { a: A }\n  delete zz\n}", "zz", 3, None),
-    ("retype to abstract", "schema x { abstract node Z }\nrule r {\n  match { a: A }\n  retype a as Z\n}", "abstract", 4, 3),
+    ("retype to abstract", "schema x { abstract node Z }\nrule r {\n  match { a: A }\n  retype a as Z\n}",
+     "abstract", 4, 3),
     ("foreach center not a node", "rule r {\n  match { a: A }\n  foreach zz -E- n { }\n}", "zz", 3, None),
     ("duplicate variable", "rule r {\n  match { a: A  a: C }\n}", "'a'", 2, None),
 ]
@@ -120,4 +124,6 @@ def test_unknown_attribute_type():
     err = info.value
     assert err.pos == SourcePos("t.vgr", 2, 15)
     assert "vec4" in err.message and "vec3" in err.hint
-    assert str(err) == "t.vgr:2:15: unknown attribute type 'vec4'\n  hint: attribute types are: int float bool str vec2 vec3 list any"
+    assert str(err) == (
+        "t.vgr:2:15: unknown attribute type 'vec4'\n  hint: attribute types are: int float bool str vec2 vec3 list any"
+    )

@@ -85,7 +85,9 @@ def test_rule_then_inverse_is_isomorphic(spec, data):
         assert iso(g, original)
         # everything but the id counters is restored exactly
         s1, s0 = g.snapshot(), original.snapshot()
-        assert {k: s1[k] for k in ("nodes", "edges", "rotations")} == {k: s0[k] for k in ("nodes", "edges", "rotations")}
+        assert {k: s1[k] for k in ("nodes", "edges", "rotations")} == {
+            k: s0[k] for k in ("nodes", "edges", "rotations")
+        }
 
 
 # ------------------------------------------------------------------------------------------------
@@ -341,7 +343,10 @@ WATCHED = ["bump", "cut", "join", "promote", "tag", "nac_plain", "nac_where", "n
 
 
 @SETTINGS
-@given(typed_graphs(max_nodes=15, max_edges=30), st.lists(st.tuples(st.sampled_from(MUTATORS), st.integers(0, 1000)), max_size=10))
+@given(
+    typed_graphs(max_nodes=15, max_edges=30),
+    st.lists(st.tuples(st.sampled_from(MUTATORS), st.integers(0, 1000)), max_size=10),
+)
 def test_incremental_equals_full(spec, steps):
     g = build_graph(SCHEMA, spec)
     sets = {name: MatchSet(Matcher(RB.rules[name], g)) for name in WATCHED}

@@ -267,7 +267,9 @@ rule r {
     assert [g.get(x, "w") for x in xs] == [1, 2, 3]  # the skipped leaf (w=0) gets no iteration
     assert g.degree(leaves[1]) == 1
     for i, x in enumerate(xs):
-        assert {g.other(e, x) for e in g.incident(x)} == {[leaves[0], leaves[2], leaves[3]][i], xs[i - 1], xs[(i + 1) % 3]}
+        assert {g.other(e, x) for e in g.incident(x)} == {
+            [leaves[0], leaves[2], leaves[3]][i], xs[i - 1], xs[(i + 1) % 3]
+        }
     assert len(app.created_edges) == 6
 
 

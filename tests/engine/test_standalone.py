@@ -53,7 +53,9 @@ def test_imports_nothing_of_vaultgram_outside_itself(folder):
 def test_the_check_sees_relative_and_function_level_imports(tmp_path):
     module = tmp_path / "grammar" / "m.py"
     module.parent.mkdir()
-    module.write_text("from .ast import Rule\n\ndef f():\n    from vaultgram.errors import X\n    import vaultgram.files\n")
+    module.write_text(
+        "from .ast import Rule\n\ndef f():\n    from vaultgram.errors import X\n    import vaultgram.files\n"
+    )
     assert imported_modules(module) == [
         (1, "vaultgram.grammar.ast"),
         (4, "vaultgram.errors"),

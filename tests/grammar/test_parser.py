@@ -198,7 +198,9 @@ def test_schema_ast():
             NodeTypeDecl("Corner", "Point", (), False, None),
         ),
         edges=(
-            EdgeTypeDecl("Branch", None, "Point", "Point", False, (AttrDecl("length", "float", lit(0.0), None),), False, None),
+            EdgeTypeDecl(
+                "Branch", None, "Point", "Point", False, (AttrDecl("length", "float", lit(0.0), None),), False, None
+            ),
             EdgeTypeDecl("Dual", None, "Singularity", "Corner", True, (), False, None),
             EdgeTypeDecl("Rebranch", "Branch", None, None, None, (), False, None),
             EdgeTypeDecl("Link", None, None, None, None, (), True, None),
@@ -482,7 +484,12 @@ def test_foreach_with_next_and_prev():
         direction="--",
         condition=bn(">", at(nm("m"), "valence"), lit(0)),
         body=(
-            CreateNode("r", "Singularity", (AttrInit("pos", call("lerp", at(nm("s"), "pos"), at(nm("m"), "pos"), lit(0.3)), None),), None),
+            CreateNode(
+                "r",
+                "Singularity",
+                (AttrInit("pos", call("lerp", at(nm("s"), "pos"), at(nm("m"), "pos"), lit(0.3)), None),),
+                None,
+            ),
             CreateEdge(None, ref("r"), ref("r", 1), "Branch", False, (), None),
             CreateEdge(None, ref("r", -1), ref("r"), "Branch", True, (), None),
             Delete(("e",), False, None),
@@ -491,7 +498,14 @@ def test_foreach_with_next_and_prev():
     )
     assert _nopos(f2) == Foreach(None, "s", "v", "Dual", "->", None, (), None)
     assert _nopos(f3) == Foreach(
-        None, "s", "v", "Dual", "<-", None, (Foreach(None, "v", "w", "X", "--", None, (Merge("w", "v", None),), None),), None
+        None,
+        "s",
+        "v",
+        "Dual",
+        "<-",
+        None,
+        (Foreach(None, "v", "w", "X", "--", None, (Merge("w", "v", None),), None),),
+        None,
     )
     assert f1.pos == P(3, 1) and f2.pos == P(9, 1)
     assert f1.body[1].target.pos == P(5, 21)  # at `next`
@@ -529,7 +543,13 @@ def test_strategy_forms():
         Step((RuleRef("prune", (), None),), "all", None, False, None),
         Step((RuleRef("rebranch", (("max_len", lit(3.0)), ("k", lit(-1))), None),), "once", None, False, None),
         Step((RuleRef("split_a", (), None), RuleRef("split_b", (), None)), "fixpoint", 500, False, None),
-        Step((RuleRef("split_a", (), None), RuleRef("split_b", (), None), RuleRef("c", (), None)), "fixpoint", None, False, None),
+        Step(
+            (RuleRef("split_a", (), None), RuleRef("split_b", (), None), RuleRef("c", (), None)),
+            "fixpoint",
+            None,
+            False,
+            None,
+        ),
         Step((RuleRef("variant_a", (), None), RuleRef("variant_b", (), None)), "once", None, True, None),
         Run("other_strategy", None),
     )

@@ -154,7 +154,8 @@ def cut_keystones(x: np.ndarray, faces, me: MeshEdges, rulebook: Rulebook) -> Cu
     touched_ids = sorted(v for v in changed if graph.has_node(v))
     old_touched = np.zeros(n, dtype=bool)
     old_touched[[v for v in changed if v < n]] = True
-    old = [tuple(f) for f in faces if not old_touched[list(f)].any()]
+    hit = np.bincount(me.corner_face, weights=old_touched[me.corner_vertex], minlength=len(faces)) > 0
+    old = [tuple(faces[k]) for k in np.flatnonzero(~hit).tolist()]
     walked = _walked_faces(graph, touched_ids, _outside_half_edges(faces, me))
     ids = np.array(sorted(graph.nodes()), dtype=np.int64)
     out_faces = _renumbered(old + walked, ids)

@@ -72,7 +72,7 @@ class _State:
     group: np.ndarray
     order: np.ndarray
     start: np.ndarray
-    around: list
+    around: tuple
     count: np.ndarray
 
     @property
@@ -82,6 +82,11 @@ class _State:
     def members(self, k: int) -> list:
         """The faces of voussoir ``k``."""
         return self.order[self.start[k]:self.start[k + 1]].tolist()
+
+    def faces_at(self, v: int) -> list:
+        """The faces with a corner at vertex ``v``."""
+        faces, start = self.around
+        return faces[start[v]:start[v + 1]].tolist()
 
 
 def mend_meeting_points(x: np.ndarray, me: MeshEdges, removed: np.ndarray, interior: np.ndarray,
@@ -106,15 +111,13 @@ def mend_meeting_points(x: np.ndarray, me: MeshEdges, removed: np.ndarray, inter
     return removed, total
 
 
-def _faces_around(me: MeshEdges, n: int) -> list:
-    """The faces at each vertex."""
+def _faces_around(me: MeshEdges, n: int) -> tuple:
+    """The faces at each vertex: ``faces[start[v]:start[v + 1]]`` are vertex ``v``'s."""
     order = np.argsort(me.corner_vertex, kind="stable")
-    start = np.searchsorted(me.corner_vertex[order], np.arange(n + 1))
-    faces = me.corner_face[order].tolist()
-    return [faces[start[v]:start[v + 1]] for v in range(n)]
+    return me.corner_face[order], np.searchsorted(me.corner_vertex[order], np.arange(n + 1))
 
 
-def _state(me: MeshEdges, removed: np.ndarray, around: list, n: int) -> _State:
+def _state(me: MeshEdges, removed: np.ndarray, around: tuple, n: int) -> _State:
     group = face_groups(me, removed)
     order = np.argsort(group, kind="stable")
     start = np.searchsorted(group[order], np.arange(int(group.max()) + 2 if len(group) else 1))
@@ -140,18 +143,18 @@ def _candidates(me: MeshEdges, removed: np.ndarray, interior: np.ndarray, area: 
     joint = ~removed & (me.faces_of >= 0).all(axis=1)
     single = np.bincount(group, minlength=state.n_groups) == 1
     lone = (tiny & single)[group[np.maximum(me.faces_of, 0)]].any(axis=1)
+    e = np.flatnonzero(joint & (crowded[me.edges[:, 0]] | crowded[me.edges[:, 1]] | lone))
+    e, face, other = np.repeat(e, 2), me.faces_of[e].ravel(), me.faces_of[e, ::-1].ravel()  # both ways
+    source, into = group[face], group[other]
+    fits = ~frozen[source] & ~frozen[into] & (size[into] + area[face] <= largest)
     moves = []
-    for e in np.flatnonzero(joint & (crowded[me.edges[:, 0]] | crowded[me.edges[:, 1]] | lone)).tolist():
-        for face, other in (me.faces_of[e].tolist(), me.faces_of[e, ::-1].tolist()):
-            source, target = int(group[face]), int(group[other])
-            if frozen[source] or frozen[target] or size[target] + area[face] > largest:
-                continue
-            gain = _gain(me, state, interior, face, target)
-            if gain is not None and (gain > 0 or (gain == 0 and tiny[source] and single[source])):
-                sides = me.face_edges(face).tolist()
-                joins = tuple(b for b in sides if group[me.other_face(b, face)] == target and joint[b])
-                back = tuple(b for b in sides if removed[b])
-                moves.append(_Move(gain, float(size[target] + area[face]), e, face, source, target, joins, back))
+    for edge, face, source, target in zip(*(a[fits].tolist() for a in (e, face, source, into))):
+        gain = _gain(me, state, interior, face, target)
+        if gain is not None and (gain > 0 or (gain == 0 and tiny[source] and single[source])):
+            sides = me.face_edges(face).tolist()
+            joins = tuple(b for b in sides if group[me.other_face(b, face)] == target and joint[b])
+            back = tuple(b for b in sides if removed[b])
+            moves.append(_Move(gain, float(size[target] + area[face]), edge, face, source, target, joins, back))
     return moves
 
 
@@ -161,7 +164,7 @@ def _gain(me: MeshEdges, state: _State, interior: np.ndarray, face: int, target:
     corners = me.corner_vertex[me.face_start[face]:me.face_start[face + 1]].tolist()
     after = []
     for v in corners:
-        groups = {target if f == face else int(state.group[f]) for f in state.around[v]}
+        groups = {target if f == face else int(state.group[f]) for f in state.faces_at(v)}
         if len(groups) == 1 and interior[v]:
             return None
         after.append(len(groups))

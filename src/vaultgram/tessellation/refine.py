@@ -30,9 +30,8 @@ def _face_areas(x: np.ndarray, faces) -> np.ndarray:
     return np.linalg.norm(area_vectors(x, faces), axis=1)
 
 
-def _strips_to_refine(x: np.ndarray, faces, me: MeshEdges, strips: list[Strip], limit: float) -> set[int]:
-    """The strips through the longer sides of every quad larger than ``limit``."""
-    big = np.flatnonzero((_face_areas(x, faces) > limit) & (np.diff(me.face_start) == 4))
+def _strips_to_refine(x: np.ndarray, me: MeshEdges, strips: list[Strip], big: np.ndarray) -> set[int]:
+    """The strips through the longer sides of every quad in ``big`` (the quads too large)."""
     corners = me.face_start[big][:, None] + np.arange(4)
     length = np.linalg.norm(x[me.corner_next[corners]] - x[me.corner_vertex[corners]], axis=2)
     d = np.where(length[:, 0] + length[:, 2] >= length[:, 1] + length[:, 3], 0, 1)
@@ -120,11 +119,12 @@ def refine_large_faces(x: np.ndarray, faces, large: float = LARGE, passes: int =
     faces = tuple(tuple(f) for f in faces)
     origin = np.arange(len(faces))
     for _ in range(passes):
+        big = np.flatnonzero((_face_areas(x, faces) > limit) & np.array([len(f) == 4 for f in faces]))
+        if not len(big):
+            break  # (the strips are walked only when there is something to refine)
         me = mesh_edges(faces, len(x))
         strips = quad_strips(me, faces)
-        chosen = _strips_to_refine(x, faces, me, strips, limit)
-        if not chosen:
-            break
+        chosen = _strips_to_refine(x, me, strips, big)
         x, new_faces, new_parents, new_origin = _refined(x, faces, _cut_directions(faces, me, strips, chosen))
         faces = tuple(new_faces)
         parents += new_parents

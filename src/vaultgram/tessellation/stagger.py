@@ -34,11 +34,13 @@ Concavities are checked afterwards, on the voussoirs (:mod:`vaultgram.tessellati
 from __future__ import annotations
 
 import math
+from collections import deque
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.spatial import cKDTree
 
+from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.tessellation.strips import Strip, strip_directions
 
@@ -212,27 +214,31 @@ def _run_costs(areas: np.ndarray, forced: np.ndarray, target: float, longest: in
 
 def _course_order(strips: list[Strip], me: MeshEdges) -> list[int]:
     """Courses in the order they are laid: the longest first, then always one beside a laid one."""
-    beside: dict[int, set] = {k: set() for k in range(len(strips))}
+    n = len(strips)
     owner = np.full(len(me.face_start) - 1, -1, dtype=np.int64)
-    for k in beside:
-        owner[strips[k].quads] = k  # a quad on two courses: either will do for adjacency
-    pairs = me.faces_of[(me.faces_of >= 0).all(axis=1)]
-    for a, b in owner[pairs].tolist():
-        if a >= 0 and b >= 0 and a != b:
-            beside[a].add(b)
-            beside[b].add(a)
-    order, placed = [], set()
-    for seed in sorted(beside, key=lambda k: (-len(strips[k]), k)):
-        if seed in placed:
+    for k, s in enumerate(strips):
+        owner[s.quads] = k  # a quad on two courses: either will do for adjacency
+    a, b = owner[me.faces_of[(me.faces_of >= 0).all(axis=1)]].T
+    ok = (a >= 0) & (b >= 0) & (a != b)
+    rank = np.lexsort((np.arange(n), -np.array([len(s) for s in strips], dtype=np.int64)))  # longest first
+    position = np.empty(n, dtype=np.int64)
+    position[rank] = np.arange(n)
+    pairs = distinct(np.concatenate([position[a[ok]] * n + position[b[ok]], position[b[ok]] * n + position[a[ok]]]))
+    start = np.searchsorted(pairs // n, np.arange(n + 1)).tolist()
+    beside = rank[pairs % n].tolist()  # by position of the course, its neighbours longest first
+    position = position.tolist()
+    order, placed = [], np.zeros(n, dtype=bool)
+    for seed in rank.tolist():
+        if placed[seed]:
             continue
-        queue = [seed]
-        placed.add(seed)
+        queue = deque([seed])
+        placed[seed] = True
         while queue:
-            k = queue.pop(0)
+            k = queue.popleft()
             order.append(k)
-            for o in sorted(beside[k], key=lambda o: (-len(strips[o]), o)):
-                if o not in placed:
-                    placed.add(o)
+            for o in beside[start[position[k]]:start[position[k] + 1]]:
+                if not placed[o]:
+                    placed[o] = True
                     queue.append(o)
     return order
 

@@ -13,7 +13,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
+from scipy.sparse import csgraph
 
+from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.halfedges import MeshEdges
 
 __all__ = ["Strip", "quad_strips", "strip_directions", "node_strips"]
@@ -55,27 +58,55 @@ def _strip_links(me: MeshEdges, is_quad: np.ndarray) -> np.ndarray:
     return link
 
 
-def _walk(link: list, rungs: list, start: int, entry: int, seen: list) -> Strip:
-    """Follow a strip from node ``start``, entered through its side ``entry`` (0 or 1); ``link[2 n + j]``
-    and ``rungs[2 n + j]`` are the node and the edge across side ``j`` of node ``n`` (flat plain
-    lists: the walk is scalar)."""
-    quads, path = [], []
-    node, j = start, entry
-    while True:
-        seen[node] = True
-        quads.append(node >> 1)
-        path.append(rungs[2 * node + j])
-        nxt, exit_edge = link[2 * node + 1 - j], rungs[2 * node + 1 - j]
-        if nxt < 0 or nxt == start:
-            path.append(exit_edge)
-            return Strip(np.array(quads, dtype=np.int64), np.array(path, dtype=np.int64), nxt == start)
-        j = 0 if rungs[2 * nxt] == exit_edge else 1  # the side of the next quad we enter through
-        node = nxt
+def _successors(link: np.ndarray, rungs: np.ndarray) -> np.ndarray:
+    """``succ[2 * node + j]``: leaving ``node`` through its side ``j``, the next node entered and left
+    through its other side, as ``2 * next + side`` (-1 where the strip ends). The side entered is the
+    one on the same edge."""
+    h = np.flatnonzero(link.ravel() >= 0)
+    nxt = link.ravel()[h]
+    enter = np.where(rungs[nxt, 0] == rungs.ravel()[h], 0, 1)
+    succ = np.full(link.size, -1, dtype=np.int64)
+    succ[h] = 2 * nxt + 1 - enter
+    return succ
+
+
+def _starts(link: np.ndarray, is_node: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The half-link each strip is walked from (an open strip from its smallest end, left away from
+    the end; a cyclic one from its smallest node, entered through side 0), whether it is cyclic (open
+    strips first, each group by its start), and the strip through each node."""
+    n = len(link)
+    nodes = np.flatnonzero(is_node)
+    a, j = np.nonzero(link >= 0)
+    graph = sp.coo_matrix((np.ones(len(a)), (a, link[a, j])), shape=(n, n))
+    _, comp = csgraph.connected_components(graph, directed=False)
+    end = is_node & (link < 0).any(axis=1)
+    first, lowest = np.full(n, n, dtype=np.int64), np.full(n, n, dtype=np.int64)
+    np.minimum.at(first, comp[nodes], np.where(end[nodes], nodes, n))  # the smallest end
+    np.minimum.at(lowest, comp[nodes], nodes)
+    used = distinct(comp[nodes])
+    cyclic = first[used] == n
+    start = np.where(cyclic, lowest[used], first[used])
+    entry = np.where(cyclic | (link[start, 0] < 0), 0, 1)
+    order = np.lexsort((start, cyclic))
+    strip_of_comp = np.full(n, -1, dtype=np.int64)
+    strip_of_comp[used[order]] = np.arange(len(order))
+    return (2 * start + 1 - entry)[order], cyclic[order], strip_of_comp[comp]
+
+
+def _walked(succ: np.ndarray, start: np.ndarray) -> np.ndarray:
+    """The half-links met walking every strip from its start at once: a breadth-first order from a
+    root joined to the starts, in which each strip's half-links come in the strip's order (a cyclic
+    strip ends where its start would come round again)."""
+    h = np.flatnonzero(succ >= 0)
+    root = len(succ)
+    rows = np.concatenate([h, np.full(len(start), root)])
+    graph = sp.csr_matrix((np.ones(len(rows)), (rows, np.concatenate([succ[h], start]))), shape=(root + 1, root + 1))
+    return csgraph.breadth_first_order(graph, root, directed=True, return_predecessors=False)[1:]
 
 
 def quad_strips(me: MeshEdges, faces) -> list[Strip]:
     """Every strip of the quads of a polygon mesh, each walked from one end (a cyclic one from its
-    smallest node), in a deterministic order.
+    smallest node), in a deterministic order: open strips by their start, then cyclic ones.
 
     >>> from vaultgram.geometry.halfedges import mesh_edges
     >>> from vaultgram.geometry.meshes import grid_mesh
@@ -85,19 +116,17 @@ def quad_strips(me: MeshEdges, faces) -> list[Strip]:
     ([2, 2, 2, 3, 3], True)
     """
     is_quad = np.diff(me.face_start) == 4
-    link = _strip_links(me, is_quad)
-    rungs = _strip_rungs(me, is_quad)
-    seen = (~np.repeat(is_quad, 2)).tolist()
-    ends = np.flatnonzero(np.repeat(is_quad, 2) & (link < 0).any(axis=1)).tolist()
-    link_list, rung_list = link.ravel().tolist(), rungs.ravel().tolist()
-    strips = []
-    for node in ends:  # open strips, from an end
-        if not seen[node]:
-            strips.append(_walk(link_list, rung_list, node, 0 if link_list[2 * node] < 0 else 1, seen))
-    for node in range(len(seen)):  # what is left closes on itself
-        if not seen[node]:
-            strips.append(_walk(link_list, rung_list, node, 0, seen))
-    return strips
+    if not is_quad.any():
+        return []
+    link, rungs = _strip_links(me, is_quad), _strip_rungs(me, is_quad)
+    start, cyclic, strip_of_node = _starts(link, np.repeat(is_quad, 2))
+    h = _walked(_successors(link, rungs), start)
+    h = h[np.argsort(strip_of_node[h >> 1], kind="stable")]  # strip by strip, each in its own order
+    bounds = np.searchsorted(strip_of_node[h >> 1], np.arange(len(start) + 1)).tolist()
+    flat = rungs.ravel()
+    entered = flat[h ^ 1]
+    return [Strip(h[lo:hi] >> 2, np.append(entered[lo:hi], flat[h[hi - 1]]), c)
+            for lo, hi, c in zip(bounds[:-1], bounds[1:], cyclic.tolist())]
 
 
 def _strip_rungs(me: MeshEdges, is_quad: np.ndarray) -> np.ndarray:
