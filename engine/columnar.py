@@ -42,6 +42,8 @@ class GraphArrays:
     he_source: np.ndarray  # True where the half-edge's node is the edge's source
 
 
+#: Attribute values compared as one numpy array (Python compares them the same way).
+_NUMBERS = (bool, int, float)
 _CACHE: "weakref.WeakKeyDictionary[HostGraph, GraphArrays]" = weakref.WeakKeyDictionary()
 
 
@@ -209,8 +211,10 @@ def _column_mask(g: HostGraph, test, ids: np.ndarray, rhs) -> np.ndarray:
     attribute (the values compared one by one, as plain Python values)."""
     if test.types is not None:
         return np.asarray(test.op(_degrees(g, test.types)[ids], rhs), dtype=bool)
-    attrs, op, attr = (g.node_attrs if test.kind == "node" else g.edge_attrs), test.op, test.attr
-    return np.fromiter((bool(op(attrs(i)[attr], rhs)) for i in ids.tolist()), dtype=bool, count=len(ids))
+    op, values = test.op, g.values(test.kind, ids.tolist(), test.attr)
+    if type(rhs) in _NUMBERS and all(type(v) in _NUMBERS for v in values):  # numbers compare as numpy does
+        return np.asarray(op(np.array(values), rhs), dtype=bool).reshape(len(ids))
+    return np.fromiter((bool(op(v, rhs)) for v in values), dtype=bool, count=len(ids))
 
 
 def _check_columns(g: HostGraph, table: Table, conditions: tuple[Condition, ...], values: dict, rule: str) -> Table:

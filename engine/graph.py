@@ -305,6 +305,11 @@ class HostGraph:
     def get(self, n: int, name: str) -> object:
         return self._node_data[n][name]
 
+    def values(self, kind: str, ids: Iterable[int], name: str) -> list:
+        """Attribute ``name`` of many nodes (``kind`` "node") or edges ("edge") at once."""
+        data = self._node_data if kind == "node" else self._edge_data
+        return [data[i][name] for i in ids]
+
     def get_edge(self, e: int, name: str) -> object:
         return self._edge_data[e][name]
 
@@ -447,7 +452,7 @@ class HostGraph:
         """Type index, arrays, incidence and rotations of edges just added in bulk."""
         self.version += 1
         self._edge_type.update(dict.fromkeys(ids, type_name))
-        self._ends.update(zip(ids, map(tuple, ends.tolist())))
+        self._ends.update(zip(ids, zip(ends[:, 0].tolist(), ends[:, 1].tolist())))
         self._by_type[type_name].update(ids)
         last = max(ids, default=0)
         self._edge_codes, self._edge_ends = _fit(self._edge_codes, last), _fit(self._edge_ends, last)
@@ -462,7 +467,8 @@ class HostGraph:
         order = np.lexsort((edge, key, node))  # by node, then as the rotation sorts its keys
         block = _Block(type_name, node[order], edge[order], key[order])
         # nodes whose tables exist already get the new edges now; the others when first used
-        for n in set(block.node.tolist()) & (self._inc.keys() | self._rot_keys.keys()):
+        indexed = self._inc.keys() | self._rot_keys.keys()
+        for n in (set(block.node.tolist()) & indexed) if indexed else ():
             self._merge_block(n, block)
         self._blocks.append(block)
 

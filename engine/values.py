@@ -113,7 +113,7 @@ def normalise_column(values, type_name: str) -> list | None:
         size = int(type_name[-1])
         if array.ndim != 2 or array.shape[1] != size or kind not in "iuf" or not np.isfinite(array).all():
             return None
-        return [tuple(row) for row in array.astype(float).tolist()]
+        return list(zip(*array.astype(float).T.tolist()))  # rows as tuples, built column-wise (faster)
     if array.ndim != 1:
         return None
     if type_name == "bool":

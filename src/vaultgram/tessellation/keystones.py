@@ -12,6 +12,7 @@ the others walked again with the graph's rotation system.
 from __future__ import annotations
 
 import functools
+import itertools
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -23,6 +24,7 @@ from vaultgram.engine.graph import HostGraph
 from vaultgram.engine.rulebook import Rulebook, load_rulebook
 from vaultgram.engine.strategy import Runner
 from vaultgram.errors import RuleError
+from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.tessellation.functions import tessellation_functions
 from vaultgram.topology.rulebook import default_rules_dir
@@ -121,13 +123,14 @@ def _renumbered(faces: list, ids: np.ndarray) -> tuple:
     size: most faces have four)."""
     position = np.full(int(ids.max()) + 1 if len(ids) else 0, -1, dtype=np.int64)
     position[ids] = np.arange(len(ids))
+    lens = np.fromiter(map(len, faces), dtype=np.int64, count=len(faces))
+    flat = position[np.fromiter(itertools.chain.from_iterable(faces), dtype=np.int64, count=int(lens.sum()))]
+    start = np.concatenate([[0], np.cumsum(lens)[:-1]]).astype(np.int64)
     out: list = [None] * len(faces)
-    by_size: dict[int, list[int]] = {}
-    for k, f in enumerate(faces):
-        by_size.setdefault(len(f), []).append(k)
-    for size, which in by_size.items():
-        rows = position[np.array([faces[k] for k in which], dtype=np.int64).reshape(-1, size)]
-        for k, row in zip(which, map(tuple, rows.tolist())):
+    for size in distinct(lens).tolist():
+        which = np.flatnonzero(lens == size)
+        rows = flat[start[which][:, None] + np.arange(size)]
+        for k, row in zip(which.tolist(), map(tuple, rows.tolist())):
             out[k] = row
     return tuple(out)
 
