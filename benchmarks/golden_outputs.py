@@ -2,10 +2,10 @@
 
 Run: ``python benchmarks/golden_outputs.py record DIR`` before a refactor, then
 ``python benchmarks/golden_outputs.py compare DIR`` after it: every JSON and OBJ file and the printed
-summary must be byte-identical (timings and the temporary folder aside; PNG files are left out: \
-matplotlib embeds its version). Plans where
-the default fails are run again with ``--relax-mode all``; a plan that fails both ways records its
-error line, which must not change either. Extra ``vaultgram design`` options may follow DIR.
+summary must be byte-identical (timings and the temporary folder aside; PNG files are left out:
+matplotlib embeds its version). Plans where the default fails are run again with
+``--relax-mode all``; a plan that fails both ways records its error line, which must not change
+either. Extra ``vaultgram design`` options may follow DIR.
 
 Inputs: ``examples/*.json`` (except the graph ``skeleton_*``) and ``../shared/data/architecture``.
 """

@@ -82,7 +82,8 @@ TESSELLATION = [
                  show_default=True, help="Largest voussoir corner (degrees, in its best-fit plane)."),
     click.option("--flat-extrados", is_flag=True, help="Make each voussoir's top face planar (best-fit plane)."),
     click.option("--surface-smooth", type=click.IntRange(min=0), default=0, show_default=True,
-                 help="Laplacian smoothing iterations of the voussoir outlines on the thrust surface."),
+                 help="Laplacian smoothing iterations of the network on the thrust surface "
+                      "(no voussoir made concave)."),
 ]
 
 

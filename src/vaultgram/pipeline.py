@@ -352,7 +352,7 @@ def tessellate(surface: ThrustSurface, rhythm: int = 2, thickness: float = 1.0,
     >>> v, f = grid_mesh(8)
     >>> t = tessellate(surface_from_network(form_find(v, f, zmax=2.0)), thickness=0.2)
     >>> t.summary["voussoirs"], t.summary["meeting_points"]
-    (25, {'3': 24})
+    (29, {'3': 36})
     """
     _check_tessellation_options(rhythm, thickness, max_concavity, surface_smooth)
     rulebook = load_tessellation_rulebook(rules_dir)
@@ -371,7 +371,8 @@ def tessellate(surface: ThrustSurface, rhythm: int = 2, thickness: float = 1.0,
     with _timed(timings, "surface_smooth"):
         fixed = supported.copy()
         fixed[me.edges[me.boundary].ravel()] = True
-        x = smooth_on_surface(cut.vertices, layout.loops, fixed, surface.vertices, surface.faces, surface_smooth)
+        x = smooth_on_surface(cut.vertices, cut.faces, layout.loops, fixed, surface.vertices, surface.faces,
+                              surface_smooth, max_concavity)
     with _timed(timings, "solids"):
         normals = vertex_normals(x, cut.faces)
         solids = voussoir_solids(x, normals, layout.loops, thickness, flat_extrados)

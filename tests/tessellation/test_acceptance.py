@@ -32,22 +32,23 @@ from strategies.domains import convex_domains
 #: voussoirs, the coefficient of variation of the voussoir areas, and the median angle (degrees)
 #: between the joints in regular areas and the force flow across them.
 MEASURED = {
-    "features_combined": {"of_3": (0.973, 0.960), "cv": (0.446, 0.495), "force": (5.73, 5.93)},
-    "fig5_boundary_points": {"of_3": (0.976, 1.000), "cv": (0.426, 0.425), "force": (4.32, 4.33)},
-    "fig6_inner_points": {"of_3": (0.945, 0.955), "cv": (0.513, 0.551), "force": (2.97, 3.12)},
-    "fig7_curves": {"of_3": (0.974, 0.975), "cv": (0.504, 0.550), "force": (5.38, 5.32)},
-    "l_shape": {"of_3": (0.992, 0.988), "cv": (0.321, 0.327), "force": (6.58, 6.50)},
-    "quad_with_hole": {"of_3": (0.996, 1.000), "cv": (0.403, 0.351), "force": (1.58, 1.58)},
-    "square_point_loads": {"of_3": (0.984, 0.989), "cv": (0.463, 0.423), "force": (7.74, 7.76)},
-    "armadillo_vault": {"of_3": (0.973, 0.985), "cv": (0.404, 0.451), "force": (10.01, 9.99)},
+    "features_combined": {"of_3": (0.971, 0.961), "cv": (0.423, 0.468), "force": (5.81, 5.84)},
+    "fig5_boundary_points": {"of_3": (0.979, 1.000), "cv": (0.424, 0.383), "force": (4.43, 4.33)},
+    "fig6_inner_points": {"of_3": (0.960, 0.960), "cv": (0.480, 0.526), "force": (2.96, 3.10)},
+    "fig7_curves": {"of_3": (0.974, 0.976), "cv": (0.492, 0.533), "force": (5.36, 5.35)},
+    "l_shape": {"of_3": (0.990, 0.993), "cv": (0.311, 0.323), "force": (6.81, 6.68)},
+    "quad_with_hole": {"of_3": (1.000, 1.000), "cv": (0.308, 0.324), "force": (1.45, 1.43)},
+    "square_point_loads": {"of_3": (0.986, 0.995), "cv": (0.415, 0.380), "force": (8.32, 8.29)},
+    "armadillo_vault": {"of_3": (0.969, 0.987), "cv": (0.399, 0.422), "force": (10.04, 9.99)},
 }
 #: Margins on the measurements: share of points of three, area CV, force angle (degrees).
 OF_3_MARGIN, CV_MARGIN, FORCE_MARGIN = 0.02, 0.03, 0.75
-# The issue's targets, at least 95% of meeting points of three voussoirs and an area CV of at most
-# 0.5, are not met everywhere yet: fig6 (many point features and keystones) is at 94.5% of three,
-# fig6 and fig7 have an area CV just above 0.5.
+# The issue's targets are met at rhythm 2 on every input (at least 95% of meeting points of three
+# voussoirs, an area CV of at most 0.5), but for the Armadillo's force angle (10.04 degrees, the
+# thrust network's own quads are skewed 10.2 degrees at the median); at rhythm 4 fig6 and fig7 have
+# an area CV of 0.53. The tests assert the measured levels, so that a regression shows.
 #: rhythm 4 against rhythm 2, mean voussoir area; the issue says "about twice", measured 1.21 (fig6)
-#: to 1.57 (quad_with_hole): graded meshes give rhythm-2 voussoirs of 2.6 faces on average already,
+#: to 1.45 (quad_with_hole, fig5): graded meshes give rhythm-2 voussoirs of 2.6 faces on average already,
 #: and short courses cap rhythm 4.
 RHYTHM_4_RATIO = 1.15
 
@@ -184,8 +185,9 @@ def max_meeting(t) -> int:
 def test_meeting_points_join_at_most_four_voussoirs_mostly_three(tessellated, name, rhythm):
     _, t = tessellated(name, rhythm)
     assert max_meeting(t) <= 4
-    # the issue's floor is 95%; asserted is the level measured on each input
+    # the issue's floor is 95%, met at rhythm 2; asserted is also the level measured on each input
     assert t.summary["meeting_points_of_3"] >= MEASURED[name]["of_3"][rhythm // 4] - OF_3_MARGIN
+    assert rhythm == 4 or t.summary["meeting_points_of_3"] >= 0.95
 
 
 @pytest.mark.parametrize("rhythm", RHYTHMS)
@@ -218,6 +220,19 @@ def test_a_tighter_concavity_threshold_is_kept_too(name):
     t = tessellate(surface, thickness=1.0, max_concavity=185.0)
     assert _concave_merges(t, 185.0) == []
     assert max_meeting(t) <= 4
+
+
+@pytest.mark.parametrize("name", ["armadillo_vault", "fig6_inner_points", "quad_with_hole"])
+def test_smoothing_on_the_surface_keeps_voussoirs_convex_and_joints_normal(name):
+    """``--surface-smooth 5``: the Laplacian steps that would push a voussoir corner past the threshold
+    are undone; the joints stay normal to the surface and follow the force flow better (measured on
+    the Armadillo: 10.04 -> 9.60 degrees)."""
+    d, surface = _designed(name)
+    t = tessellate(surface, thickness=1.0, surface_smooth=5)
+    assert _concave_merges(t, MAX_CONCAVITY) == [] and solid_failures(t) == []
+    assert t.summary["joint_tilt_deg"]["p95"] <= 3.5
+    before = d.tessellation.summary["joint_force_angle_regular_deg"]["median"]
+    assert t.summary["joint_force_angle_regular_deg"]["median"] <= before + 0.1
 
 
 @pytest.mark.parametrize("rhythm", RHYTHMS)
@@ -257,12 +272,13 @@ def test_joints_follow_the_force_flow_in_regular_areas(tessellated, name, rhythm
 @pytest.mark.parametrize("rhythm", RHYTHMS)
 @pytest.mark.parametrize("name", NAMES)
 def test_voussoir_areas_are_even(tessellated, name, rhythm):
-    # the issue asks for a CV of at most 0.5; asserted is the level measured on each input
+    # the issue asks for a CV of at most 0.5, met at rhythm 2; asserted is also the level measured
     _, t = tessellated(name, rhythm)
     areas = t.layout.areas(t.vertices)
     cv = float(areas.std() / areas.mean())
     assert cv == pytest.approx(t.summary["areas"]["cv"])
     assert cv <= MEASURED[name]["cv"][rhythm // 4] + CV_MARGIN
+    assert rhythm == 4 or cv <= 0.5
 
 
 @pytest.mark.parametrize("name", NAMES)

@@ -94,3 +94,19 @@ def test_mending_never_makes_a_point_more_crowded():
         if moves == 0:
             break
         before = after
+
+
+def test_a_small_voussoir_takes_faces_from_its_larger_neighbour_until_they_are_even():
+    """A row of six quads on the boundary (no inner vertex: nothing to mend): voussoir A of two faces of
+    area 0.2 beside voussoir B of four of area 1, target 2. A is small (below SMALL x target) and
+    takes B's faces one by one while that brings the sizes closer: 0.4 | 4 -> 1.4 | 3 -> 2.4 | 2."""
+    v, f = grid_mesh(6, 1)
+    me = mesh_edges(f, len(v))
+    area = np.array([0.2, 0.2, 1.0, 1.0, 1.0, 1.0])
+    removed = (me.faces_of >= 0).all(axis=1)
+    removed[np.flatnonzero((me.edges[:, 0] == 2) & (me.edges[:, 1] == 9))] = False  # the joint A | B
+    assert np.bincount(face_groups(me, removed), weights=area).tolist() == [0.4, 4.0]
+    out, moves = mend_meeting_points(v, me, removed, np.zeros(len(v), dtype=bool), area, target=2.0)
+    group = face_groups(me, out)
+    assert moves == 2 and group.tolist() == [0, 0, 0, 0, 1, 1]
+    assert np.bincount(group, weights=area).tolist() == pytest.approx([2.4, 2.0])

@@ -8,8 +8,10 @@ moving one face across one of its joints: the joint is removed, so the face join
 other side, and the removed edges tying the face to the rest of its own voussoir are put back.
 
 A move is made when it lowers the *crowding* at the face's corners (the sum, over inner vertices,
-of the voussoirs meeting there minus three), or when the face is a small voussoir of its own and
-the crowding does not grow, and when it keeps both voussoirs within the size limit and
+of the voussoirs meeting there minus three), or when it evens out a small voussoir and the crowding
+does not grow ("shape and size uniformity between the voussoirs is preferred", §5: a small voussoir
+of one face joins its neighbour, a small one of several faces takes a face from a larger neighbour,
+bringing the two sizes closer), and when it keeps both voussoirs within the size limit and
 without a corner above the concavity threshold, leaves each voussoir a disk in one piece around no
 vertex of its own, and touches no keystone. Moves that share no voussoir and no vertex are made
 together, in rounds, best first.
@@ -35,6 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from vaultgram.geometry.halfedges import MeshEdges
+from vaultgram.tessellation.sizes import UPPER
 from vaultgram.tessellation.voussoirs import MAX_CONCAVITY, face_groups, max_corner_angles, voussoirs_at_vertices
 
 __all__ = ["mend_meeting_points", "ROUNDS"]
@@ -44,8 +47,9 @@ ROUNDS = 6
 #: A move may grow a voussoir to at most this many times the target area (the bond's, about
 #: ``rhythm`` faces): a little larger voussoirs are a better price than points of four.
 GROWTH = 3.0
-#: A voussoir of one face smaller than this many times the target joins a neighbour even where that
-#: mends no meeting point (it makes none worse): the sizes even out.
+#: A voussoir smaller than this many times the target evens out with a neighbour even where that
+#: mends no meeting point (it makes none worse): one of a single face joins the neighbour, one of
+#: several faces takes a face from a larger neighbour (small faces near features make small voussoirs).
 SMALL = 0.9
 
 
@@ -130,9 +134,9 @@ def _crowding(counts, inner) -> int:
 
 def _candidates(me: MeshEdges, removed: np.ndarray, interior: np.ndarray, area: np.ndarray, target: float,
                 frozen_faces: np.ndarray, state: _State) -> list:
-    """Every move of a face across a joint at a crowded inner vertex that lowers the crowding, and of
-    a small single face that does not raise it, keeping the receiving voussoir within
-    :data:`GROWTH` times ``target``."""
+    """Every move of a face across a joint at a crowded inner vertex that lowers the crowding, and
+    every move that evens out a small voussoir without raising it (module docstring), keeping the
+    receiving voussoir within :data:`GROWTH` times ``target``."""
     group = state.group
     frozen = np.zeros(state.n_groups, dtype=bool)
     frozen[group[frozen_faces]] = True
@@ -141,16 +145,19 @@ def _candidates(me: MeshEdges, removed: np.ndarray, interior: np.ndarray, area: 
     tiny = size < SMALL * target
     crowded = interior & (state.count >= 4)
     joint = ~removed & (me.faces_of >= 0).all(axis=1)
-    single = np.bincount(group, minlength=state.n_groups) == 1
-    lone = (tiny & single)[group[np.maximum(me.faces_of, 0)]].any(axis=1)
-    e = np.flatnonzero(joint & (crowded[me.edges[:, 0]] | crowded[me.edges[:, 1]] | lone))
+    faces_in = np.bincount(group, minlength=state.n_groups)
+    e = np.flatnonzero(joint)
+    at_crowded = np.repeat(crowded[me.edges[e, 0]] | crowded[me.edges[e, 1]], 2)
     e, face, other = np.repeat(e, 2), me.faces_of[e].ravel(), me.faces_of[e, ::-1].ravel()  # both ways
     source, into = group[face], group[other]
-    fits = ~frozen[source] & ~frozen[into] & (size[into] + area[face] <= largest)
+    left = size[source] - area[face]
+    evens = tiny[into] & (area[face] < size[source] - size[into]) & ((faces_in[source] > 2) | (left <= UPPER * target))
+    even_out = (tiny[source] & (faces_in[source] == 1)) | evens  # moves worth making that mend nothing
+    fits = ~frozen[source] & ~frozen[into] & (size[into] + area[face] <= largest) & (at_crowded | even_out)
     moves = []
-    for edge, face, source, target in zip(*(a[fits].tolist() for a in (e, face, source, into))):
+    for edge, face, source, target, even in zip(*(a[fits].tolist() for a in (e, face, source, into, even_out))):
         gain = _gain(me, state, interior, face, target)
-        if gain is not None and (gain > 0 or (gain == 0 and tiny[source] and single[source])):
+        if gain is not None and (gain > 0 or (gain == 0 and even)):
             sides = me.face_edges(face).tolist()
             joins = tuple(b for b in sides if group[me.other_face(b, face)] == target and joint[b])
             back = tuple(b for b in sides if removed[b])

@@ -289,7 +289,7 @@ class _Laying:
 
 
 #: A voussoir of a course is at most this many times ``rhythm`` quads long (small faces make longer ones).
-LONGEST = 2
+LONGEST = 4
 
 #: Sweeps over the courses after the first laying, each course laid again beside all its neighbours.
 SWEEPS = 1
