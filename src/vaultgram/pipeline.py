@@ -59,7 +59,7 @@ from vaultgram.meshing.untangle import untangle
 from vaultgram.meshing.weld import weld
 from vaultgram.tessellation.courses import support_zones, voussoir_courses, voussoir_names
 from vaultgram.tessellation.keystones import CutMesh, cut_keystones, load_tessellation_rulebook, pinwheel
-from vaultgram.tessellation.mending import mend_meeting_points
+from vaultgram.tessellation.mending import join_small_pairs, mend_meeting_points
 from vaultgram.tessellation.metrics import summarise
 from vaultgram.tessellation.model import Tessellation, voussoir_layout
 from vaultgram.tessellation.refine import refine_large_faces
@@ -386,9 +386,9 @@ def tessellate(surface: ThrustSurface, rhythm: int = 2, thickness: float = 1.0,
 def _bond(cut: CutMesh, me, supported: np.ndarray, rhythm: int, max_concavity: float):
     """The staggered bond (:mod:`vaultgram.tessellation.stagger`) with the pinwheels round the keystones,
     without strong concavities (:mod:`vaultgram.tessellation.voussoirs`), the largest voussoirs given
-    back an edge (:mod:`vaultgram.tessellation.sizes`) and the points of four voussoirs mended
-    (:mod:`vaultgram.tessellation.mending`): the removed edges, the bond, and the counts of what was
-    kept or changed, by reason."""
+    back an edge (:mod:`vaultgram.tessellation.sizes`), the points of four voussoirs mended and small
+    neighbours joined in pairs (:mod:`vaultgram.tessellation.mending`): the removed edges, the bond,
+    and the counts of what was kept or changed, by reason."""
     x, faces = cut.vertices, cut.faces
     areas = np.linalg.norm(area_vectors(x, faces), axis=1)
     rings = distinct(np.concatenate([me.face_edges(k) for k in cut.keystones])) if len(cut.keystones) else ()
@@ -400,8 +400,9 @@ def _bond(cut: CutMesh, me, supported: np.ndarray, rhythm: int, max_concavity: f
     keystone = np.zeros(len(faces), dtype=bool)
     keystone[cut.keystones] = True
     removed, moved = mend_meeting_points(x, me, removed, inner, areas, bond.target, max_concavity, keystone)
+    removed, joined = join_small_pairs(x, me, removed, areas, bond.target, max_concavity, keystone)
     kept = {"concavity": restored, "taken": bond.kept_taken, "aligned": bond.aligned, "unmerged": unmerged,
-            "moved": moved, "courses": bond.courses}
+            "moved": moved, "joined": joined, "courses": bond.courses}
     return removed, bond, kept
 
 

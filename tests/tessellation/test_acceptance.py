@@ -32,25 +32,26 @@ from strategies.domains import convex_domains
 #: voussoirs, the coefficient of variation of the voussoir areas, and the median angle (degrees)
 #: between the joints in regular areas and the force flow across them.
 MEASURED = {
-    "features_combined": {"of_3": (0.971, 0.961), "cv": (0.423, 0.468), "force": (5.81, 5.84)},
-    "fig5_boundary_points": {"of_3": (0.979, 1.000), "cv": (0.424, 0.383), "force": (4.43, 4.33)},
-    "fig6_inner_points": {"of_3": (0.960, 0.960), "cv": (0.480, 0.526), "force": (2.96, 3.10)},
-    "fig7_curves": {"of_3": (0.974, 0.976), "cv": (0.492, 0.533), "force": (5.36, 5.35)},
-    "l_shape": {"of_3": (0.990, 0.993), "cv": (0.311, 0.323), "force": (6.81, 6.68)},
-    "quad_with_hole": {"of_3": (1.000, 1.000), "cv": (0.308, 0.324), "force": (1.45, 1.43)},
-    "square_point_loads": {"of_3": (0.986, 0.995), "cv": (0.415, 0.380), "force": (8.32, 8.29)},
-    "armadillo_vault": {"of_3": (0.969, 0.987), "cv": (0.399, 0.422), "force": (10.04, 9.99)},
+    "features_combined": {"of_3": (0.971, 0.968), "cv": (0.394, 0.415), "force": (5.79, 5.77)},
+    "fig5_boundary_points": {"of_3": (0.978, 1.000), "cv": (0.378, 0.336), "force": (4.32, 4.23)},
+    "fig6_inner_points": {"of_3": (0.959, 0.956), "cv": (0.448, 0.461), "force": (2.96, 2.92)},
+    "fig7_curves": {"of_3": (0.973, 0.974), "cv": (0.433, 0.430), "force": (5.35, 5.27)},
+    "l_shape": {"of_3": (0.990, 0.992), "cv": (0.302, 0.283), "force": (6.82, 6.49)},
+    "quad_with_hole": {"of_3": (1.000, 1.000), "cv": (0.308, 0.280), "force": (1.45, 1.37)},
+    "square_point_loads": {"of_3": (0.985, 0.997), "cv": (0.369, 0.291), "force": (8.39, 8.44)},
+    "armadillo_vault": {"of_3": (0.969, 0.988), "cv": (0.393, 0.367), "force": (10.01, 9.65)},
 }
 #: Margins on the measurements: share of points of three, area CV, force angle (degrees).
 OF_3_MARGIN, CV_MARGIN, FORCE_MARGIN = 0.02, 0.03, 0.75
-# The issue's targets are met at rhythm 2 on every input (at least 95% of meeting points of three
-# voussoirs, an area CV of at most 0.5), but for the Armadillo's force angle (10.04 degrees, the
-# thrust network's own quads are skewed 10.2 degrees at the median); at rhythm 4 fig6 and fig7 have
-# an area CV of 0.53. The tests assert the measured levels, so that a regression shows.
-#: rhythm 4 against rhythm 2, mean voussoir area; the issue says "about twice", measured 1.21 (fig6)
-#: to 1.45 (quad_with_hole, fig5): graded meshes give rhythm-2 voussoirs of 2.6 faces on average already,
-#: and short courses cap rhythm 4.
-RHYTHM_4_RATIO = 1.15
+# The issue's targets, at least 95% of meeting points of three voussoirs and an area CV of at most
+# 0.5, are met on every input at both rhythms (and asserted as such); the joint-to-force angle is
+# at most 10 degrees everywhere but on the Armadillo at rhythm 2 (10.01: the thrust network's own
+# quads are skewed 10.2 degrees at the median). The tests also assert the measured levels, so that a
+# regression shows.
+#: rhythm 4 against rhythm 2, mean voussoir area; the issue says "about twice", measured 1.37 (fig6)
+#: to 1.57 (quad_with_hole): graded meshes give rhythm-2 voussoirs of more than two faces on average
+#: already, and short courses cap rhythm 4.
+RHYTHM_4_RATIO = 1.3
 
 EXAMPLE_NAMES = sorted(p.stem for p in EXAMPLES.glob("*.json") if not p.stem.startswith("skeleton_"))
 NAMES = EXAMPLE_NAMES + ["armadillo_vault"]
@@ -185,9 +186,9 @@ def max_meeting(t) -> int:
 def test_meeting_points_join_at_most_four_voussoirs_mostly_three(tessellated, name, rhythm):
     _, t = tessellated(name, rhythm)
     assert max_meeting(t) <= 4
-    # the issue's floor is 95%, met at rhythm 2; asserted is also the level measured on each input
+    # the issue's floor (95%), and the level measured on each input
     assert t.summary["meeting_points_of_3"] >= MEASURED[name]["of_3"][rhythm // 4] - OF_3_MARGIN
-    assert rhythm == 4 or t.summary["meeting_points_of_3"] >= 0.95
+    assert t.summary["meeting_points_of_3"] >= 0.95
 
 
 @pytest.mark.parametrize("rhythm", RHYTHMS)
@@ -272,13 +273,13 @@ def test_joints_follow_the_force_flow_in_regular_areas(tessellated, name, rhythm
 @pytest.mark.parametrize("rhythm", RHYTHMS)
 @pytest.mark.parametrize("name", NAMES)
 def test_voussoir_areas_are_even(tessellated, name, rhythm):
-    # the issue asks for a CV of at most 0.5, met at rhythm 2; asserted is also the level measured
+    # the issue's floor (0.5), and the level measured on each input
     _, t = tessellated(name, rhythm)
     areas = t.layout.areas(t.vertices)
     cv = float(areas.std() / areas.mean())
     assert cv == pytest.approx(t.summary["areas"]["cv"])
     assert cv <= MEASURED[name]["cv"][rhythm // 4] + CV_MARGIN
-    assert rhythm == 4 or cv <= 0.5
+    assert cv <= 0.5
 
 
 @pytest.mark.parametrize("name", NAMES)

@@ -7,7 +7,7 @@ import pytest
 
 from vaultgram.geometry.halfedges import mesh_edges
 from vaultgram.geometry.meshes import grid_mesh
-from vaultgram.tessellation.mending import GROWTH, mend_meeting_points
+from vaultgram.tessellation.mending import GROWTH, join_small_pairs, mend_meeting_points
 from vaultgram.tessellation.voussoirs import (
     MAX_CONCAVITY,
     face_groups,
@@ -110,3 +110,46 @@ def test_a_small_voussoir_takes_faces_from_its_larger_neighbour_until_they_are_e
     group = face_groups(me, out)
     assert moves == 2 and group.tolist() == [0, 0, 0, 0, 1, 1]
     assert np.bincount(group, weights=area).tolist() == pytest.approx([2.4, 2.0])
+
+
+def _joint(me, a, b):
+    return np.flatnonzero((me.edges[:, 0] == min(a, b)) & (me.edges[:, 1] == max(a, b)))
+
+
+@pytest.mark.parametrize("target, joins", [(2.0, 1), (1.2, 0)])
+def test_two_small_neighbours_become_one_within_the_size_limit(target, joins):
+    """Two unit squares side by side, each below the target: one voussoir of area 2, unless that is
+    above UPPER (1.5) times the target."""
+    v, f = grid_mesh(2, 1)
+    me = mesh_edges(f, len(v))
+    out, n = join_small_pairs(v, me, np.zeros(me.n_edges, dtype=bool), np.ones(2), target)
+    assert n == joins and out.sum() == joins and out[_joint(me, 1, 4)].all() == bool(joins)
+
+
+def test_an_l_shaped_union_is_not_made_below_its_reflex_corner():
+    """Voussoir A (faces 0 and 1, a row) and B (face 2, above face 0) would make an L with a corner of
+    270 degrees at vertex 4: refused at the threshold of 190, made at 275."""
+    v, me, _ = _grid(2)
+    removed = np.zeros(me.n_edges, dtype=bool)
+    removed[_joint(me, 1, 4)] = True
+    area = np.ones(4)
+    frozen = np.array([False, False, False, True])  # face 3 stays out of it
+    for max_angle, joins in [(190.0, 0), (275.0, 1)]:
+        out, n = join_small_pairs(v, me, removed, area, 2.1, max_angle, frozen)
+        assert n == joins
+        assert face_groups(me, out).tolist() == ([0, 0, 1, 2] if joins == 0 else [0, 0, 0, 1])
+
+
+def test_joining_pairs_never_crowds_a_vertex_and_leaves_keystones_alone():
+    n = 6
+    v, me, inner = _grid(n)
+    none = np.zeros(me.n_edges, dtype=bool)
+    frozen = np.zeros(n * n, dtype=bool)
+    frozen[7] = True
+    out, joins = join_small_pairs(v, me, none, np.ones(n * n), 2.0, frozen_faces=frozen)
+    before = voussoirs_at_vertices(me, face_groups(me, none), len(v))
+    group = face_groups(me, out)
+    after = voussoirs_at_vertices(me, group, len(v))
+    assert joins > 0 and (after <= before).all()
+    assert (group == group[7]).sum() == 1  # the keystone is still on its own
+    assert np.bincount(group).max() == 2  # pairs of unit squares: each at most 1.5 x 2 = 3

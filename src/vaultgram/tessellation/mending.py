@@ -16,6 +16,10 @@ without a corner above the concavity threshold, leaves each voussoir a disk in o
 vertex of its own, and touches no keystone. Moves that share no voussoir and no vertex are made
 together, in rounds, best first.
 
+Last, neighbouring voussoirs that are both small are joined in pairs (:func:`join_small_pairs`), so
+that short courses (between seams, keystones and the boundary) still give voussoirs of about the
+target size; a join only ever lowers the number of voussoirs at a vertex.
+
 Example: four single quads around a vertex; moving one of them into its neighbour leaves three
 (and the small single faces left may join a neighbour too).
 
@@ -40,7 +44,7 @@ from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.tessellation.sizes import UPPER
 from vaultgram.tessellation.voussoirs import MAX_CONCAVITY, face_groups, max_corner_angles, voussoirs_at_vertices
 
-__all__ = ["mend_meeting_points", "ROUNDS"]
+__all__ = ["mend_meeting_points", "join_small_pairs", "ROUNDS"]
 
 #: At most this many rounds of moves.
 ROUNDS = 6
@@ -51,6 +55,12 @@ GROWTH = 3.0
 #: mends no meeting point (it makes none worse): one of a single face joins the neighbour, one of
 #: several faces takes a face from a larger neighbour (small faces near features make small voussoirs).
 SMALL = 0.9
+
+
+#: Two neighbouring voussoirs each smaller than this many times the target become one (where the
+#: union is at most :data:`~vaultgram.tessellation.sizes.UPPER` times the target, a disk, and
+#: without a corner above the concavity threshold): two courses' short voussoirs stacked.
+PAIRED = 1.0
 
 
 @dataclass(frozen=True)
@@ -70,14 +80,15 @@ class _Move:
 @dataclass(frozen=True)
 class _State:
     """The voussoirs as they stand in a round: each face's voussoir, the faces in voussoir order
-    (``order[start[k]:start[k + 1]]`` are voussoir ``k``'s), the faces around each vertex, the
-    voussoirs meeting at each vertex."""
+    (``order[start[k]:start[k + 1]]`` are voussoir ``k``'s), the voussoirs meeting at each vertex,
+    and the sorted keys ``vertex * n_groups + voussoir`` of every face corner (to count a voussoir's
+    faces at a vertex)."""
 
     group: np.ndarray
     order: np.ndarray
     start: np.ndarray
-    around: tuple
     count: np.ndarray
+    keys: np.ndarray
 
     @property
     def n_groups(self) -> int:
@@ -87,10 +98,10 @@ class _State:
         """The faces of voussoir ``k``."""
         return self.order[self.start[k]:self.start[k + 1]].tolist()
 
-    def faces_at(self, v: int) -> list:
-        """The faces with a corner at vertex ``v``."""
-        faces, start = self.around
-        return faces[start[v]:start[v + 1]].tolist()
+    def faces_at(self, v: np.ndarray, k: np.ndarray) -> np.ndarray:
+        """How many faces of voussoir ``k[i]`` have a corner at vertex ``v[i]``."""
+        key = v * self.n_groups + k
+        return np.searchsorted(self.keys, key, side="right") - np.searchsorted(self.keys, key, side="left")
 
 
 def mend_meeting_points(x: np.ndarray, me: MeshEdges, removed: np.ndarray, interior: np.ndarray,
@@ -103,10 +114,9 @@ def mend_meeting_points(x: np.ndarray, me: MeshEdges, removed: np.ndarray, inter
     of moves."""
     removed = removed.copy()
     frozen_faces = np.zeros(len(area), dtype=bool) if frozen_faces is None else frozen_faces
-    around = _faces_around(me, len(x))
     total = 0
     for _ in range(ROUNDS):
-        state = _state(me, removed, around, len(x))
+        state = _state(me, removed, len(x))
         moves = _candidates(me, removed, interior, area, target, frozen_faces, state)
         made = _apply(me, removed, _feasible(x, me, removed, state, moves, max_angle))
         total += made
@@ -115,21 +125,13 @@ def mend_meeting_points(x: np.ndarray, me: MeshEdges, removed: np.ndarray, inter
     return removed, total
 
 
-def _faces_around(me: MeshEdges, n: int) -> tuple:
-    """The faces at each vertex: ``faces[start[v]:start[v + 1]]`` are vertex ``v``'s."""
-    order = np.argsort(me.corner_vertex, kind="stable")
-    return me.corner_face[order], np.searchsorted(me.corner_vertex[order], np.arange(n + 1))
-
-
-def _state(me: MeshEdges, removed: np.ndarray, around: tuple, n: int) -> _State:
+def _state(me: MeshEdges, removed: np.ndarray, n: int) -> _State:
     group = face_groups(me, removed)
     order = np.argsort(group, kind="stable")
-    start = np.searchsorted(group[order], np.arange(int(group.max()) + 2 if len(group) else 1))
-    return _State(group, order, start, around, voussoirs_at_vertices(me, group, n))
-
-
-def _crowding(counts, inner) -> int:
-    return sum(max(c - 3, 0) for c, i in zip(counts, inner) if i)
+    n_groups = int(group.max()) + 1 if len(group) else 0
+    start = np.searchsorted(group[order], np.arange(n_groups + 1))
+    keys = np.sort(me.corner_vertex * n_groups + group[me.corner_face])
+    return _State(group, order, start, voussoirs_at_vertices(me, group, n), keys)
 
 
 def _candidates(me: MeshEdges, removed: np.ndarray, interior: np.ndarray, area: np.ndarray, target: float,
@@ -154,29 +156,37 @@ def _candidates(me: MeshEdges, removed: np.ndarray, interior: np.ndarray, area: 
     evens = tiny[into] & (area[face] < size[source] - size[into]) & ((faces_in[source] > 2) | (left <= UPPER * target))
     even_out = (tiny[source] & (faces_in[source] == 1)) | evens  # moves worth making that mend nothing
     fits = ~frozen[source] & ~frozen[into] & (size[into] + area[face] <= largest) & (at_crowded | even_out)
+    row = np.flatnonzero(fits)
+    gain, ok = _gains(me, state, interior, face[row], into[row])
+    row, gain = row[ok], gain[ok]
+    keep = (gain > 0) | ((gain == 0) & even_out[row])
+    row = row[keep]
     moves = []
-    for edge, face, source, target, even in zip(*(a[fits].tolist() for a in (e, face, source, into, even_out))):
-        gain = _gain(me, state, interior, face, target)
-        if gain is not None and (gain > 0 or (gain == 0 and even)):
-            sides = me.face_edges(face).tolist()
-            joins = tuple(b for b in sides if group[me.other_face(b, face)] == target and joint[b])
-            back = tuple(b for b in sides if removed[b])
-            moves.append(_Move(gain, float(size[target] + area[face]), edge, face, source, target, joins, back))
+    for g, edge, f, src, dst in zip(*(a.tolist() for a in (gain[keep], e[row], face[row], source[row], into[row]))):
+        sides = me.face_edges(f).tolist()
+        joins = tuple(b for b in sides if group[me.other_face(b, f)] == dst and joint[b])
+        back = tuple(b for b in sides if removed[b])
+        moves.append(_Move(g, float(size[dst] + area[f]), edge, f, src, dst, joins, back))
     return moves
 
 
-def _gain(me: MeshEdges, state: _State, interior: np.ndarray, face: int, target: int) -> int | None:
-    """How much the crowding at the corners of ``face`` drops when it joins voussoir ``target``;
-    None if a corner would be left inside one voussoir."""
-    corners = me.corner_vertex[me.face_start[face]:me.face_start[face + 1]].tolist()
-    after = []
-    for v in corners:
-        groups = {target if f == face else int(state.group[f]) for f in state.faces_at(v)}
-        if len(groups) == 1 and interior[v]:
-            return None
-        after.append(len(groups))
-    inner = interior[corners].tolist()
-    return _crowding(state.count[corners].tolist(), inner) - _crowding(after, inner)
+def _gains(me: MeshEdges, state: _State, interior: np.ndarray, face: np.ndarray, target: np.ndarray
+           ) -> tuple[np.ndarray, np.ndarray]:
+    """For each move of ``face[i]`` into voussoir ``target[i]``: how much the crowding at the face's
+    corners drops, and whether the move is allowed (no inner corner left inside one voussoir). At a
+    corner the face's own voussoir leaves if the face was its only face there, and the target
+    arrives if it had none."""
+    lens = me.face_start[face + 1] - me.face_start[face]
+    row = np.repeat(np.arange(len(face)), lens)
+    first = np.repeat(np.cumsum(lens) - lens, lens)
+    v = me.corner_vertex[np.repeat(me.face_start[face], lens) + np.arange(int(lens.sum())) - first]
+    source, into = state.group[face][row], target[row]
+    before = state.count[v]
+    after = before - (state.faces_at(v, source) == 1) + (state.faces_at(v, into) == 0)
+    inner = interior[v]
+    drop = (np.maximum(before - 3, 0) - np.maximum(after - 3, 0)) * inner
+    enclosed = np.bincount(row, weights=(after == 1) & inner, minlength=len(face)) > 0
+    return np.bincount(row, weights=drop, minlength=len(face)).astype(np.int64), ~enclosed
 
 
 def _feasible(x: np.ndarray, me: MeshEdges, removed: np.ndarray, state: _State, moves: list,
@@ -243,5 +253,72 @@ def _apply(me: MeshEdges, removed: np.ndarray, moves: list) -> int:
         used_vertices |= corners
         removed[list(m.back)] = False
         removed[list(m.joins)] = True
+        made += 1
+    return made
+
+
+def join_small_pairs(x: np.ndarray, me: MeshEdges, removed: np.ndarray, area: np.ndarray, target: float,
+                     max_angle: float = MAX_CONCAVITY, frozen_faces: np.ndarray | None = None
+                     ) -> tuple[np.ndarray, int]:
+    """Join neighbouring voussoirs smaller than :data:`PAIRED` times ``target`` in pairs, smallest
+    unions first ("shape and size uniformity between the voussoirs is preferred", §5). A join
+    takes a voussoir away from the vertices of the joints removed, so no meeting point gets more
+    crowded. Returns the removed edges and the number of pairs joined."""
+    removed = removed.copy()
+    frozen_faces = np.zeros(len(area), dtype=bool) if frozen_faces is None else frozen_faces
+    total = 0
+    for _ in range(ROUNDS):
+        state = _state(me, removed, len(x))
+        pairs, joints = _small_pairs(me, removed, area, target, frozen_faces, state)
+        made = _join(removed, _convex_unions(x, me, state, pairs, max_angle), joints)
+        total += made
+        if not made:
+            break
+    return removed, total
+
+
+def _small_pairs(me: MeshEdges, removed: np.ndarray, area: np.ndarray, target: float, frozen_faces: np.ndarray,
+                 state: _State) -> tuple[list, dict]:
+    """The pairs of neighbouring small voussoirs whose union is within the size limit, smallest union
+    first, and the joints between each pair."""
+    group = state.group
+    size = np.bincount(group, weights=area, minlength=state.n_groups)
+    frozen = np.zeros(state.n_groups, dtype=bool)
+    frozen[group[frozen_faces]] = True
+    e = np.flatnonzero(~removed & (me.faces_of >= 0).all(axis=1))
+    a, b = np.sort(group[me.faces_of[e]], axis=1).T
+    ok = (size[a] < PAIRED * target) & (size[b] < PAIRED * target) & ~frozen[a] & ~frozen[b]
+    ok &= (size[a] + size[b] <= UPPER * target) & (a != b)
+    e, a, b = e[ok], a[ok], b[ok]
+    order = np.lexsort((b, a, size[a] + size[b]))
+    joints: dict = {}
+    for edge, pair in zip(e[order].tolist(), zip(a[order].tolist(), b[order].tolist())):
+        joints.setdefault(pair, []).append(edge)
+    return list(joints), joints
+
+
+def _convex_unions(x: np.ndarray, me: MeshEdges, state: _State, pairs: list, max_angle: float) -> list:
+    """The pairs whose union is a disk in one loop without a corner above ``max_angle``."""
+    kept, loops = [], []
+    for a, b in pairs:
+        loop = _outline(me, state.members(a) + state.members(b))
+        if loop is not None:
+            kept.append((a, b))
+            loops.append(loop)
+    if not kept:
+        return []
+    angle, _ = max_corner_angles(x, loops)
+    return [p for p, good in zip(kept, (angle <= max_angle).tolist()) if good]
+
+
+def _join(removed: np.ndarray, pairs: list, joints: dict) -> int:
+    """Join the pairs in order, each voussoir once per round; returns how many."""
+    used: set = set()
+    made = 0
+    for a, b in pairs:
+        if a in used or b in used:
+            continue
+        used |= {a, b}
+        removed[joints[(a, b)]] = True
         made += 1
     return made

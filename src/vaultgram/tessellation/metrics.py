@@ -161,6 +161,6 @@ def format_summary(s: dict) -> str:
         f"({s['joint_force_angle_deg']['median']:.1f} all), tilt median {s['joint_tilt_deg']['median']:.2f} deg, "
         f"95th {s['joint_tilt_deg']['p95']:.2f}",
         f"bond:       {kept['courses']} courses; edges kept for concavity {kept['concavity']}, taken "
-        f"{kept['taken']}, in line {kept['aligned']}; faces moved {kept['moved']}; "
+        f"{kept['taken']}, in line {kept['aligned']}; faces moved {kept['moved']}, pairs joined {kept['joined']}; "
         f"V - E + F = {s['euler_characteristic']}",
     ])
