@@ -60,7 +60,7 @@ from vaultgram.meshing.weld import weld
 from vaultgram.tessellation.courses import support_zones, voussoir_courses, voussoir_names
 from vaultgram.tessellation.keystones import CutMesh, cut_keystones, load_tessellation_rulebook, pinwheel
 from vaultgram.tessellation.mending import join_small_pairs, mend_meeting_points
-from vaultgram.tessellation.metrics import summarise
+from vaultgram.tessellation.metrics import force_angles, summarise
 from vaultgram.tessellation.model import Tessellation, voussoir_layout
 from vaultgram.tessellation.refine import refine_large_faces
 from vaultgram.tessellation.sizes import split_large_quads, unmerge_large
@@ -390,13 +390,21 @@ def _bond(cut: CutMesh, me, supported: np.ndarray, rhythm: int, max_concavity: f
     neighbours joined in pairs (:mod:`vaultgram.tessellation.mending`): the removed edges, the bond,
     and the counts of what was kept or changed, by reason."""
     x, faces = cut.vertices, cut.faces
-    areas = np.linalg.norm(area_vectors(x, faces), axis=1)
+    area_vec = area_vectors(x, faces)
+    areas = np.linalg.norm(area_vec, axis=1)
     rings = distinct(np.concatenate([me.face_edges(k) for k in cut.keystones])) if len(cut.keystones) else ()
-    bond = staggered_bond(x, me, quad_strips(me, faces), supported, areas, rhythm, pinwheel(cut, me), rings)
+    skew = np.zeros(me.n_edges)
+    inside = np.flatnonzero((me.faces_of >= 0).all(axis=1))
+    skew[inside] = force_angles(x, me, area_vec / np.maximum(areas, 1e-300)[:, None], inside)
+    bond = staggered_bond(x, me, quad_strips(me, faces), supported, areas, rhythm, pinwheel(cut, me), rings, skew)
     removed, restored = without_concavities(x, me, bond.removed, max_concavity)
     inner = np.ones(len(x), dtype=bool)
     inner[me.edges[me.boundary].ravel()] = False
+    whole = removed
     removed, unmerged = unmerge_large(me, removed, inner, areas, bond.target, len(x))
+    if unmerged:  # a piece's best-fit plane is not its voussoir's: its corners are measured again
+        removed, again = without_concavities(x, me, removed, max_concavity, me.faces_of[whole & ~removed].ravel())
+        restored += again
     keystone = np.zeros(len(faces), dtype=bool)
     keystone[cut.keystones] = True
     removed, moved = mend_meeting_points(x, me, removed, inner, areas, bond.target, max_concavity, keystone)

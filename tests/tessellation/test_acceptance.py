@@ -32,24 +32,24 @@ from strategies.domains import convex_domains
 #: voussoirs, the coefficient of variation of the voussoir areas, and the median angle (degrees)
 #: between the joints in regular areas and the force flow across them.
 MEASURED = {
-    "features_combined": {"of_3": (0.971, 0.968), "cv": (0.394, 0.415), "force": (5.79, 5.77)},
-    "fig5_boundary_points": {"of_3": (0.978, 1.000), "cv": (0.378, 0.336), "force": (4.32, 4.23)},
-    "fig6_inner_points": {"of_3": (0.959, 0.956), "cv": (0.448, 0.461), "force": (2.96, 2.92)},
-    "fig7_curves": {"of_3": (0.973, 0.974), "cv": (0.433, 0.430), "force": (5.35, 5.27)},
-    "l_shape": {"of_3": (0.990, 0.992), "cv": (0.302, 0.283), "force": (6.82, 6.49)},
-    "quad_with_hole": {"of_3": (1.000, 1.000), "cv": (0.308, 0.280), "force": (1.45, 1.37)},
-    "square_point_loads": {"of_3": (0.985, 0.997), "cv": (0.369, 0.291), "force": (8.39, 8.44)},
-    "armadillo_vault": {"of_3": (0.969, 0.988), "cv": (0.393, 0.367), "force": (10.01, 9.65)},
+    "features_combined": {"of_3": (0.967, 0.970), "cv": (0.386, 0.415), "force": (5.77, 5.80)},
+    "fig5_boundary_points": {"of_3": (0.979, 1.000), "cv": (0.382, 0.340), "force": (4.32, 4.22)},
+    "fig6_inner_points": {"of_3": (0.959, 0.956), "cv": (0.448, 0.463), "force": (2.96, 2.92)},
+    "fig7_curves": {"of_3": (0.975, 0.974), "cv": (0.435, 0.437), "force": (5.35, 5.27)},
+    "l_shape": {"of_3": (0.990, 0.996), "cv": (0.307, 0.282), "force": (6.80, 6.42)},
+    "quad_with_hole": {"of_3": (1.000, 1.000), "cv": (0.308, 0.278), "force": (1.43, 1.37)},
+    "square_point_loads": {"of_3": (0.984, 0.992), "cv": (0.352, 0.298), "force": (8.30, 8.41)},
+    "armadillo_vault": {"of_3": (0.969, 0.988), "cv": (0.391, 0.378), "force": (9.99, 9.61)},
 }
 #: Margins on the measurements: share of points of three, area CV, force angle (degrees).
 OF_3_MARGIN, CV_MARGIN, FORCE_MARGIN = 0.02, 0.03, 0.75
-# The issue's targets, at least 95% of meeting points of three voussoirs and an area CV of at most
-# 0.5, are met on every input at both rhythms (and asserted as such); the joint-to-force angle is
-# at most 10 degrees everywhere but on the Armadillo at rhythm 2 (10.01: the thrust network's own
-# quads are skewed 10.2 degrees at the median). The tests also assert the measured levels, so that a
-# regression shows.
+# The issue's targets, at least 95% of meeting points of three voussoirs, an area CV of at most 0.5
+# and a median joint-to-force angle of at most 10 degrees in regular areas, are met on every input
+# at both rhythms, and asserted as such. The Armadillo is closest on the force angle (9.99 degrees
+# at rhythm 2; its thrust network's own quads are skewed 10.2 degrees at the median). The tests also
+# assert the measured levels, so that a regression shows.
 #: rhythm 4 against rhythm 2, mean voussoir area; the issue says "about twice", measured 1.37 (fig6)
-#: to 1.57 (quad_with_hole): graded meshes give rhythm-2 voussoirs of more than two faces on average
+#: to 1.54 (quad_with_hole): graded meshes give rhythm-2 voussoirs of more than two faces on average
 #: already, and short courses cap rhythm 4.
 RHYTHM_4_RATIO = 1.3
 
@@ -227,7 +227,7 @@ def test_a_tighter_concavity_threshold_is_kept_too(name):
 def test_smoothing_on_the_surface_keeps_voussoirs_convex_and_joints_normal(name):
     """``--surface-smooth 5``: the Laplacian steps that would push a voussoir corner past the threshold
     are undone; the joints stay normal to the surface and follow the force flow better (measured on
-    the Armadillo: 10.04 -> 9.60 degrees)."""
+    the Armadillo: 9.99 -> 9.45 degrees)."""
     d, surface = _designed(name)
     t = tessellate(surface, thickness=1.0, surface_smooth=5)
     assert _concave_merges(t, MAX_CONCAVITY) == [] and solid_failures(t) == []
@@ -267,7 +267,7 @@ def test_joints_are_normal_to_the_surface(tessellated, name, rhythm):
 def test_joints_follow_the_force_flow_in_regular_areas(tessellated, name, rhythm):
     _, t = tessellated(name, rhythm)
     angle = t.summary["joint_force_angle_regular_deg"]["median"]
-    assert angle <= MEASURED[name]["force"][rhythm // 4] + FORCE_MARGIN
+    assert angle <= MEASURED[name]["force"][rhythm // 4] + FORCE_MARGIN and angle <= 10.0  # the issue's floor
 
 
 @pytest.mark.parametrize("rhythm", RHYTHMS)

@@ -15,6 +15,7 @@ from vaultgram.tessellation.metrics import inner_vertices
 from vaultgram.tessellation.stagger import (
     ALIGNED_COST,
     SINGLE_COST,
+    SKEW_COST,
     course_joints,
     course_runs,
     preferential_directions,
@@ -88,10 +89,11 @@ def test_a_forced_rung_is_kept_and_never_passed():
     assert np.diff(np.flatnonzero(keep)).max() <= 3
 
 
-def _cost(areas, forced, aligned, target, keep) -> float:
+def _cost(areas, forced, aligned, target, keep, skew) -> float:
     """The cost the bond minimises (stagger module docstring): ``log(area / target) ** 2`` per voussoir,
     SINGLE_COST per one-quad voussoir not held alone by forced rungs, ALIGNED_COST per kept inner
-    rung in line with a neighbour's joint."""
+    rung in line with a neighbour's joint, SKEW_COST x (skew - the inner rungs' mean) / 90 per kept
+    inner rung."""
     kept = np.flatnonzero(keep)
     total = 0.0
     for a, b in zip(kept[:-1], kept[1:]):
@@ -99,30 +101,41 @@ def _cost(areas, forced, aligned, target, keep) -> float:
         if b - a == 1 and not (forced[a] and forced[b]):
             total += SINGLE_COST
     inner = kept[(kept > 0) & (kept < len(areas))]
-    return total + ALIGNED_COST * aligned[inner].sum()
+    relative = skew - (skew[1:len(areas)].mean() if len(areas) > 1 else 0.0)
+    return total + ALIGNED_COST * aligned[inner].sum() + SKEW_COST * relative[inner].sum() / 90.0
 
 
 @settings(max_examples=60, deadline=None, derandomize=True)
 @given(st.integers(1, 8).flatmap(lambda k: st.tuples(
     st.lists(st.floats(0.3, 3.0), min_size=k, max_size=k),
     st.lists(st.booleans(), min_size=k + 1, max_size=k + 1),
-    st.lists(st.booleans(), min_size=k + 1, max_size=k + 1))),
+    st.lists(st.booleans(), min_size=k + 1, max_size=k + 1),
+    st.lists(st.floats(0.0, 90.0), min_size=k + 1, max_size=k + 1))),
     st.sampled_from([(2.0, 4), (4.0, 8), (1.5, 3)]))
 def test_the_cut_of_a_course_is_the_cheapest(course, target_longest):
     """Against every admissible cut (ends and forced rungs kept, runs of at most ``longest`` quads)."""
-    areas, forced, aligned = (np.array(v) for v in course)
+    areas, forced, aligned, skew = (np.array(v) for v in course)
     target, longest = target_longest
     k = len(areas)
     forced[[0, -1]] = True
-    keep = course_joints(areas, forced, aligned, target, longest)
+    keep = course_joints(areas, forced, aligned, target, longest, skew)
     assert keep[forced].all()
     assert np.diff(np.flatnonzero(keep)).max() <= longest
     best = math.inf
     for inner in itertools.product([False, True], repeat=k - 1):
         candidate = np.array([True, *inner, True])
         if candidate[forced].all() and np.diff(np.flatnonzero(candidate)).max() <= longest:
-            best = min(best, _cost(areas, forced, aligned, target, candidate))
-    assert _cost(areas, forced, aligned, target, keep) == pytest.approx(best, abs=1e-9)
+            best = min(best, _cost(areas, forced, aligned, target, candidate, skew))
+    assert _cost(areas, forced, aligned, target, keep, skew) == pytest.approx(best, abs=1e-9)
+
+
+def test_a_rung_along_the_force_flow_is_not_kept_when_another_cut_costs_little_more():
+    """Six even quads, target two: the bond cuts 2 + 2 + 2; with rung 2 along the flow (skew 90 deg,
+    cost SKEW_COST) it cuts 3 + 3 at rung 3 instead (size cost 2 log(1.5)^2 = 0.33)."""
+    none = _none(7)
+    assert course_joints(np.ones(6), none, none, 2.0, 4).astype(int).tolist() == [1, 0, 1, 0, 1, 0, 1]
+    skew = np.array([0.0, 0.0, 90.0, 0.0, 0.0, 0.0, 0.0])
+    assert course_joints(np.ones(6), none, none, 2.0, 4, skew).astype(int).tolist() == [1, 0, 0, 1, 0, 0, 1]
 
 
 # ---------------------------------------------------------------------------------------------

@@ -118,7 +118,7 @@ def mend_meeting_points(x: np.ndarray, me: MeshEdges, removed: np.ndarray, inter
     for _ in range(ROUNDS):
         state = _state(me, removed, len(x))
         moves = _candidates(me, removed, interior, area, target, frozen_faces, state)
-        made = _apply(me, removed, _feasible(x, me, removed, state, moves, max_angle))
+        made = _apply(x, me, removed, state, moves, max_angle)
         total += made
         if not made:
             break
@@ -191,21 +191,19 @@ def _gains(me: MeshEdges, state: _State, interior: np.ndarray, face: np.ndarray,
 
 def _feasible(x: np.ndarray, me: MeshEdges, removed: np.ndarray, state: _State, moves: list,
               max_angle: float) -> list:
-    """The moves whose two voussoirs stay disks in one piece without a corner above ``max_angle``."""
-    kept, loops = [], []
+    """Per move, whether both its voussoirs stay disks in one piece without a corner above
+    ``max_angle``."""
+    ok, loops = [], []
     for m in moves:
         rest = [f for f in state.members(m.source) if f != m.face]
         grown = _outline(me, state.members(m.target) + [m.face])
-        shrunk = _outline(me, rest) if rest else np.zeros(0, dtype=np.int64)
-        if grown is None or shrunk is None or (rest and not _connected(me, rest, removed)):
-            continue
-        kept.append(m)
-        loops += [grown, shrunk if len(shrunk) else grown]
-    if not kept:
-        return []
-    angle, _ = max_corner_angles(x, loops)
-    ok = (angle[0::2] <= max_angle) & (angle[1::2] <= max_angle)
-    return [m for m, good in zip(kept, ok.tolist()) if good]
+        shrunk = _outline(me, rest) if rest else grown
+        ok.append(not (grown is None or shrunk is None or (rest and not _connected(me, rest, removed))))
+        if ok[-1]:
+            loops += [grown, shrunk]
+    angle = max_corner_angles(x, loops)[0].reshape(-1, 2) if loops else np.zeros((0, 2))
+    good = iter((angle <= max_angle).all(axis=1).tolist())
+    return [bool(o and next(good)) for o in ok]
 
 
 def _outline(me: MeshEdges, faces: list) -> np.ndarray | None:
@@ -240,20 +238,30 @@ def _connected(me: MeshEdges, faces: list, removed: np.ndarray) -> bool:
     return len(seen) == len(inside)
 
 
-def _apply(me: MeshEdges, removed: np.ndarray, moves: list) -> int:
-    """Make the best moves that share no voussoir and no vertex; returns how many."""
+def _apply(x: np.ndarray, me: MeshEdges, removed: np.ndarray, state: _State, moves: list, max_angle: float) -> int:
+    """Make the best feasible moves that share no voussoir and no vertex; returns how many. Moves
+    are checked in batches: the best ones free of each other, then those they had kept waiting."""
+    order = sorted(moves, key=lambda m: (-m.gain, m.area, m.joint, m.face))
+    corners = [set(me.corner_vertex[me.face_start[m.face]:me.face_start[m.face + 1]].tolist()) for m in order]
     used_groups: set = set()
     used_vertices: set = set()
     made = 0
-    for m in sorted(moves, key=lambda m: (-m.gain, m.area, m.joint, m.face)):
-        corners = set(me.corner_vertex[me.face_start[m.face]:me.face_start[m.face + 1]].tolist())
-        if {m.source, m.target} & used_groups or corners & used_vertices:
-            continue
-        used_groups |= {m.source, m.target}
-        used_vertices |= corners
-        removed[list(m.back)] = False
-        removed[list(m.joins)] = True
-        made += 1
+    while order:
+        batch, later, groups, vertices = [], [], set(used_groups), set(used_vertices)
+        for m, c in zip(order, corners):
+            if {m.source, m.target} & used_groups or c & used_vertices:
+                continue  # beside a move made: never
+            (later if {m.source, m.target} & groups or c & vertices else batch).append((m, c))
+            groups |= {m.source, m.target}
+            vertices |= c
+        for (m, c), good in zip(batch, _feasible(x, me, removed, state, [m for m, _ in batch], max_angle)):
+            if good:
+                used_groups |= {m.source, m.target}
+                used_vertices |= c
+                removed[list(m.back)] = False
+                removed[list(m.joins)] = True
+                made += 1
+        order, corners = [m for m, _ in later], [c for _, c in later]
     return made
 
 

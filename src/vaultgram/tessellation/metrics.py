@@ -18,12 +18,14 @@ from __future__ import annotations
 import numpy as np
 
 from vaultgram.geometry.arrays import distinct
+from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.geometry.surfaces import area_vectors
 from vaultgram.tessellation.model import VoussoirLayout
 from vaultgram.tessellation.voussoirs import max_corner_angles, voussoirs_at_vertices
 
-__all__ = ["summarise", "format_summary", "meeting_points", "joint_force_angles", "joint_tilts", "euler_characteristic"]
+__all__ = ["force_angles", "summarise", "format_summary", "meeting_points", "joint_force_angles", "joint_tilts",
+           "euler_characteristic"]
 
 
 def _unit(v: np.ndarray) -> np.ndarray:
@@ -52,19 +54,17 @@ def _face_normals(x: np.ndarray, layout: VoussoirLayout) -> np.ndarray:
     return _unit(area_vectors(x, layout.mesh.faces))
 
 
-def joint_force_angles(x: np.ndarray, layout: VoussoirLayout) -> tuple[np.ndarray, np.ndarray]:
-    """Per joint, the angle (degrees) between the joint's normal in the surface and the local force
-    flow across it: the mean direction of the network edges crossing it (the sides leaving the joint's
-    ends in the faces on both sides, turned to point the same way across); and whether the joint is
-    regular (see the module docstring)."""
-    me, j = layout.edges, layout.joints
-    a, b = me.edges[j, 0], me.edges[j, 1]
+def force_angles(x: np.ndarray, me: MeshEdges, face_normals: np.ndarray, edges: np.ndarray) -> np.ndarray:
+    """Per inner edge, the angle (degrees) between its normal in the surface and the local force flow
+    across it: the mean direction of the network edges crossing it (the sides leaving the edge's
+    ends in the faces on both sides, turned to point the same way across)."""
+    a, b = me.edges[edges, 0], me.edges[edges, 1]
     d = _unit(x[b] - x[a])
-    normal = _unit(_face_normals(x, layout)[me.faces_of[j]].sum(axis=1))
+    normal = _unit(face_normals[me.faces_of[edges]].sum(axis=1))
     across = _unit(np.cross(normal, d))
     flow = np.zeros_like(across)
     for side in (0, 1):
-        c = me.corners_of[j, side]
+        c = me.corners_of[edges, side]
         f = me.corner_face[c]
         start, size = me.face_start[f], me.face_start[f + 1] - me.face_start[f]
         prev_c = start + (me.corner_side[c] - 1) % size
@@ -74,7 +74,15 @@ def joint_force_angles(x: np.ndarray, layout: VoussoirLayout) -> tuple[np.ndarra
             t = _unit(t)
             flow += t * np.sign((t * across).sum(axis=1))[:, None]
     cos = np.abs((_unit(flow) * across).sum(axis=1))
-    angles = np.degrees(np.arccos(np.clip(cos, 0.0, 1.0)))
+    return np.degrees(np.arccos(np.clip(cos, 0.0, 1.0)))
+
+
+def joint_force_angles(x: np.ndarray, layout: VoussoirLayout) -> tuple[np.ndarray, np.ndarray]:
+    """Per joint, the angle (degrees) between the joint and the force flow across it
+    (:func:`force_angles`), and whether the joint is regular (see the module docstring)."""
+    me, j = layout.edges, layout.joints
+    a, b = me.edges[j, 0], me.edges[j, 1]
+    angles = force_angles(x, me, _face_normals(x, layout), j)
     valence = np.bincount(me.edges.ravel(), minlength=len(x))
     inner = inner_vertices(layout, len(x))
     quads = np.array([len(f) == 4 for f in layout.mesh.faces])

@@ -21,7 +21,9 @@ preferential direction." (§5) The bond is laid in four steps:
    between the voussoirs is preferred" (§5). A kept rung must not meet a kept rung of a course laid
    before at the same vertex: that would be a point of four voussoirs, joints in line instead of
    staggered. The cut of each course is the cheapest by dynamic programming over its rungs
-   (:func:`course_joints`); courses are laid one after the other, each next to one already laid,
+   (:func:`course_joints`), where a kept rung also costs its angle to the force flow across it
+   (force-aware: of two cuts of about the same sizes, the one whose joints cross the thrust
+   network's flow squarely); courses are laid one after the other, each next to one already laid,
    so that the alternation runs consistently from course to course -- a two-colouring of the strips
    for rhythm 2 on an even mesh. Where no staggered choice exists the joints line up; they are
    counted.
@@ -57,6 +59,9 @@ SMOOTHING = 3
 ALIGNED_COST = 2.0
 #: Cost of a voussoir of one quad in a course (its two joints leave the neighbours no staggered choice).
 SINGLE_COST = 2.0
+#: Cost of keeping a rung at right angles to the force flow (scaled by its angle to it, over 90 deg,
+#: less the course's mean: see :func:`_skew_costs`).
+SKEW_COST = 6.0
 
 
 @dataclass(frozen=True)
@@ -145,8 +150,8 @@ def course_runs(me: MeshEdges, strips: list[Strip], choice: np.ndarray) -> list[
     return out
 
 
-def course_joints(areas: np.ndarray, forced: np.ndarray, aligned: np.ndarray, target: float, longest: int
-                  ) -> np.ndarray:
+def course_joints(areas: np.ndarray, forced: np.ndarray, aligned: np.ndarray, target: float, longest: int,
+                  skew: np.ndarray | None = None) -> np.ndarray:
     """The rungs to keep inside one course, by dynamic programming.
 
     Parameters
@@ -160,6 +165,10 @@ def course_joints(areas: np.ndarray, forced: np.ndarray, aligned: np.ndarray, ta
         The voussoir area aimed at; a run of quads costs ``log(area / target) ** 2``.
     longest : int
         At most this many quads per voussoir.
+    skew : ndarray (k + 1,), optional
+        Per rung, the angle (degrees) between it and the force flow across it; a kept rung costs
+        :data:`SKEW_COST` times its excess over the course's mean, over 90 (force-aware: keep the
+        joints that cross the flow squarely).
 
     Returns
     -------
@@ -174,7 +183,7 @@ def course_joints(areas: np.ndarray, forced: np.ndarray, aligned: np.ndarray, ta
     k = len(areas)
     run = _run_costs(areas, forced, target, longest).tolist()  # run[b][d]: quads b-d..b-1 (plain floats)
     forced = forced.tolist()
-    penalty = np.where(aligned, ALIGNED_COST, 0.0)
+    penalty = np.where(aligned, ALIGNED_COST, 0.0) + _skew_costs(skew, k)
     penalty[-1] = 0.0
     penalty = penalty.tolist()
     best = [math.inf] * (k + 1)
@@ -196,6 +205,15 @@ def course_joints(areas: np.ndarray, forced: np.ndarray, aligned: np.ndarray, ta
         b = back[b]
     keep[0] = True
     return keep
+
+
+def _skew_costs(skew: np.ndarray | None, k: int) -> np.ndarray | float:
+    """Per rung of a course of ``k`` quads, :data:`SKEW_COST` times its angle to the force flow over
+    90 degrees, less the course's mean over its inner rungs: the rungs that cross the flow more
+    squarely are kept, without favouring fewer or more rungs where every angle is the same."""
+    if skew is None or k < 2:
+        return 0.0
+    return SKEW_COST * (skew - skew[1:k].mean()) / 90.0
 
 
 def _run_costs(areas: np.ndarray, forced: np.ndarray, target: float, longest: int) -> np.ndarray:
@@ -250,8 +268,9 @@ class _Laying:
     (:meth:`lay`), which is how the sweeps after the first laying settle the joints."""
 
     def __init__(self, me: MeshEdges, strips: list[Strip], areas: np.ndarray, joined: np.ndarray,
-                 target: float, longest: int):
+                 target: float, longest: int, skew: np.ndarray):
         self.me, self.strips, self.areas, self.target, self.longest = me, strips, areas, target, longest
+        self.skew = skew
         self.removed = joined.copy()
         self.owner = np.full(len(areas), -1, dtype=np.int64)
         self.owner[me.faces_of[joined].ravel()] = len(strips)  # joined before the bond: nobody's course
@@ -277,7 +296,7 @@ class _Laying:
         forced[[0, -1]] = True
         forced[:-1] |= taken
         forced[1:] |= taken
-        keep = course_joints(self.areas[s.quads], forced, lined_up, self.target, self.longest)
+        keep = course_joints(self.areas[s.quads], forced, lined_up, self.target, self.longest, self.skew[s.rungs])
         inner = np.arange(1, len(s))
         self.removed[s.rungs[inner[~keep[inner]]]] = True
         runs = np.cumsum(keep[:-1])  # quads between kept rungs form a voussoir
@@ -296,7 +315,8 @@ SWEEPS = 1
 
 
 def staggered_bond(x: np.ndarray, me: MeshEdges, strips: list[Strip], supported: np.ndarray, areas: np.ndarray,
-                   rhythm: int = 2, joined: np.ndarray | None = None, rings=()) -> Bond:
+                   rhythm: int = 2, joined: np.ndarray | None = None, rings=(), skew: np.ndarray | None = None
+                   ) -> Bond:
     """The rungs a staggered bond of about ``rhythm`` quads per voussoir removes (module docstring),
     besides the edges ``joined`` already (whose faces no course takes again); ``rings`` are the
     keystones' outline edges (see :func:`preferential_directions`)."""
@@ -306,7 +326,8 @@ def staggered_bond(x: np.ndarray, me: MeshEdges, strips: list[Strip], supported:
     quads = np.concatenate([s.quads for s in strips]) if strips else np.zeros(0, dtype=np.int64)
     target = rhythm * float(np.median(areas[quads])) if len(quads) else 1.0
     joined = np.zeros(me.n_edges, dtype=bool) if joined is None else joined
-    laying = _Laying(me, strips, areas, joined, target, LONGEST * rhythm)
+    skew = np.zeros(me.n_edges) if skew is None else skew
+    laying = _Laying(me, strips, areas, joined, target, LONGEST * rhythm, skew)
     order = _course_order(strips, me)
     counts = [laying.lay(k) for k in order]
     for _ in range(SWEEPS):

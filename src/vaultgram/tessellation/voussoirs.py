@@ -100,11 +100,12 @@ def max_corner_angles(x: np.ndarray, loops: list[np.ndarray]) -> tuple[np.ndarra
     return largest, np.concatenate(loops)[first]
 
 
-def without_concavities(x: np.ndarray, me: MeshEdges, removed: np.ndarray, max_angle: float = MAX_CONCAVITY
-                        ) -> tuple[np.ndarray, int]:
-    """Put back removed edges at voussoir corners above ``max_angle`` until there are none; returns
-    the removed edges left and how many were put back. A voussoir whose corner is a corner of one of
-    its faces (no removed edge there) is taken apart into its faces."""
+def without_concavities(x: np.ndarray, me: MeshEdges, removed: np.ndarray, max_angle: float = MAX_CONCAVITY,
+                        faces: np.ndarray | None = None) -> tuple[np.ndarray, int]:
+    """Put back removed edges at voussoir corners above ``max_angle`` until there are none (among the
+    voussoirs of ``faces`` if given); returns the removed edges left and how many were put back. A
+    voussoir whose corner is a corner of one of its faces (no removed edge there) is taken apart
+    into its faces."""
     removed = removed.copy()
     restored = 0
     while True:
@@ -112,6 +113,7 @@ def without_concavities(x: np.ndarray, me: MeshEdges, removed: np.ndarray, max_a
         sizes = np.bincount(group)
         loops = outlines(me, group)
         multi = np.flatnonzero(sizes > 1)
+        multi = multi if faces is None else np.intersect1d(multi, group[faces])
         angle, vertex = max_corner_angles(x, [loops[k] for k in multi])
         bad = angle > max_angle
         if not bad.any():
