@@ -65,7 +65,7 @@ PAIRED = 1.0
 
 @dataclass(frozen=True)
 class _Move:
-    """One face moved across one joint: the joint removed, the removed edges ``back`` put back."""
+    """One face moved across one joint into voussoir ``target`` (:func:`_move` makes it)."""
 
     gain: int
     area: float
@@ -73,8 +73,6 @@ class _Move:
     face: int
     source: int
     target: int
-    joins: tuple
-    back: tuple
 
 
 @dataclass(frozen=True)
@@ -163,10 +161,7 @@ def _candidates(me: MeshEdges, removed: np.ndarray, interior: np.ndarray, area: 
     row = row[keep]
     moves = []
     for g, edge, f, src, dst in zip(*(a.tolist() for a in (gain[keep], e[row], face[row], source[row], into[row]))):
-        sides = me.face_edges(f).tolist()
-        joins = tuple(b for b in sides if group[me.other_face(b, f)] == dst and joint[b])
-        back = tuple(b for b in sides if removed[b])
-        moves.append(_Move(g, float(size[dst] + area[f]), edge, f, src, dst, joins, back))
+        moves.append(_Move(g, float(size[dst] + area[f]), edge, f, src, dst))
     return moves
 
 
@@ -258,11 +253,20 @@ def _apply(x: np.ndarray, me: MeshEdges, removed: np.ndarray, state: _State, mov
             if good:
                 used_groups |= {m.source, m.target}
                 used_vertices |= c
-                removed[list(m.back)] = False
-                removed[list(m.joins)] = True
+                _move(me, removed, state.group, m)
                 made += 1
         order, corners = [m for m, _ in later], [c for _, c in later]
     return made
+
+
+def _move(me: MeshEdges, removed: np.ndarray, group: np.ndarray, m: _Move) -> None:
+    """Make move ``m``: the face's joints with the target voussoir are removed, the removed edges
+    tying it to its own voussoir put back. (No move made in the round touches its sides.)"""
+    sides = me.face_edges(m.face)
+    across = me.other_face(sides, m.face)
+    joins = sides[~removed[sides] & (across >= 0) & (group[np.maximum(across, 0)] == m.target)]
+    removed[sides[removed[sides]]] = False
+    removed[joins] = True
 
 
 def join_small_pairs(x: np.ndarray, me: MeshEdges, removed: np.ndarray, area: np.ndarray, target: float,
