@@ -25,6 +25,8 @@ __all__ = [
     "boundary_loops",
     "corner_arrays",
     "corner_vectors",
+    "with_midpoints",
+    "barycentre_operator",
     "has_twin",
     "adjacency",
     "boundary_adjacency",
@@ -203,6 +205,36 @@ def _walk_loops(nxt: dict[int, int]) -> list[list[int]]:
             b = nxt[b]
         loops.append(loop)
     return loops
+
+
+def with_midpoints(face, midpoint: dict) -> tuple:
+    """A face with the midpoints of its cut sides inserted after their first vertex: ``midpoint``
+    maps a side ``(min, max)`` to its new vertex (a face beside one that was cut keeps the mesh
+    conforming).
+
+    >>> with_midpoints((0, 1, 2, 3), {(1, 2): 9})
+    (0, 1, 9, 2, 3)
+    """
+    face = list(face)
+    out = []
+    for a, b in zip(face, face[1:] + face[:1]):
+        out.append(a)
+        m = midpoint.get((min(a, b), max(a, b)))
+        if m is not None and m not in face:
+            out.append(m)
+    return tuple(out)
+
+
+def barycentre_operator(a: sp.csr_matrix) -> tuple[sp.csr_matrix, np.ndarray]:
+    """``D^-1 A`` of a vertex adjacency ``A`` (each vertex to the mean of its neighbours; a vertex
+    without any goes to the origin) and the degrees ``D``.
+
+    >>> w, deg = barycentre_operator(adjacency(3, [(0, 1, 2)]))
+    >>> (w @ np.array([[0.0], [3.0], [6.0]])).ravel().tolist(), deg.tolist()
+    ([4.5, 3.0, 1.5], [2.0, 2.0, 2.0])
+    """
+    deg = np.asarray(a.sum(axis=1)).ravel()
+    return sp.diags(1.0 / np.maximum(deg, 1)) @ a, deg
 
 
 def adjacency(n: int, faces) -> sp.csr_matrix:

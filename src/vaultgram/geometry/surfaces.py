@@ -16,6 +16,7 @@ from vaultgram.geometry.meshes import corner_arrays
 
 __all__ = [
     "area_vectors",
+    "surface_areas",
     "vertex_normals",
     "loop_planes",
     "loop_corner_angles",
@@ -38,6 +39,15 @@ def area_vectors(vertices: np.ndarray, faces) -> np.ndarray:
     for k in range(3):
         out[:, k] = 0.5 * np.bincount(face, weights=cross[:, k], minlength=len(faces))
     return out
+
+
+def surface_areas(vertices: np.ndarray, faces) -> np.ndarray:
+    """Area of each polygon in space: the length of its vector area (:func:`area_vectors`).
+
+    >>> surface_areas(np.array([[0.0, 0, 0], [2, 0, 0], [2, 1, 1], [0, 1, 1]]), [(0, 1, 2, 3)]).round(4).tolist()
+    [2.8284]
+    """
+    return np.linalg.norm(area_vectors(vertices, faces), axis=1)
 
 
 def _unit(v: np.ndarray) -> np.ndarray:

@@ -22,7 +22,14 @@ import numpy as np
 import scipy.sparse as sp
 
 from vaultgram.geometry.arrays import distinct
-from vaultgram.geometry.meshes import MeshError, adjacency, boundary_adjacency, corner_arrays, corner_vectors
+from vaultgram.geometry.meshes import (
+    MeshError,
+    adjacency,
+    barycentre_operator,
+    boundary_adjacency,
+    corner_arrays,
+    corner_vectors,
+)
 from vaultgram.geometry.polygons import cross_z
 from vaultgram.meshing.quadmesh import slide
 
@@ -114,8 +121,7 @@ def _barycentre_operator(n: int, faces, tangential: bool) -> tuple[sp.csr_matrix
         b = boundary_adjacency(n, faces)
         on_b = np.asarray(b.sum(axis=1)).ravel() > 0
         a = sp.diags((~on_b).astype(float)) @ a + sp.diags(on_b.astype(float)) @ b
-    deg = np.asarray(a.sum(axis=1)).ravel()
-    return sp.diags(1.0 / np.maximum(deg, 1)) @ a, deg
+    return barycentre_operator(a)
 
 
 class _FaceCorners(NamedTuple):

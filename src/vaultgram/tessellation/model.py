@@ -14,7 +14,7 @@ import numpy as np
 
 from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.halfedges import MeshEdges
-from vaultgram.geometry.surfaces import area_vectors
+from vaultgram.geometry.surfaces import surface_areas
 from vaultgram.tessellation.keystones import CutMesh
 from vaultgram.tessellation.solids import Solids
 from vaultgram.tessellation.voussoirs import outlines
@@ -58,7 +58,7 @@ class VoussoirLayout:
 
     def areas(self, x: np.ndarray) -> np.ndarray:
         """Mid-surface area of each voussoir: the areas of its faces, on the surface ``x``."""
-        a = np.linalg.norm(area_vectors(x, self.mesh.faces), axis=1)
+        a = surface_areas(x, self.mesh.faces)
         return np.bincount(self.group, weights=a, minlength=self.n_voussoirs)
 
 

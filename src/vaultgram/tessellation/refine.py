@@ -15,7 +15,8 @@ from __future__ import annotations
 import numpy as np
 
 from vaultgram.geometry.halfedges import MeshEdges, mesh_edges
-from vaultgram.geometry.surfaces import area_vectors
+from vaultgram.geometry.meshes import with_midpoints
+from vaultgram.geometry.surfaces import surface_areas
 from vaultgram.tessellation.strips import Strip, node_strips, quad_strips, strip_directions
 
 __all__ = ["refine_large_faces", "LARGE", "PASSES"]
@@ -24,10 +25,6 @@ __all__ = ["refine_large_faces", "LARGE", "PASSES"]
 LARGE = 2.0
 #: At most this many refinement passes.
 PASSES = 3
-
-
-def _face_areas(x: np.ndarray, faces) -> np.ndarray:
-    return np.linalg.norm(area_vectors(x, faces), axis=1)
 
 
 def _strips_to_refine(x: np.ndarray, me: MeshEdges, strips: list[Strip], big: np.ndarray) -> set[int]:
@@ -89,19 +86,8 @@ def _refined(x: np.ndarray, faces, cuts: dict[int, set[int]]) -> tuple[np.ndarra
         pieces = _cut_quad(list(face), directions, mid, centre)
         out.extend(pieces)
         origin.extend([f] * len(pieces))
-    out = [_with_midpoints(f, index) for f in out]
+    out = [with_midpoints(f, index) for f in out]
     return np.vstack([x, *points]) if points else x, out, parents, origin
-
-
-def _with_midpoints(face: list, index: dict) -> tuple:
-    """A face with the midpoints of its cut sides inserted (a face beyond a refined strip's end)."""
-    out = []
-    for a, b in zip(face, face[1:] + face[:1]):
-        out.append(a)
-        m = index.get((min(a, b), max(a, b)))
-        if m is not None and m not in face:
-            out.append(m)
-    return tuple(out)
 
 
 def refine_large_faces(x: np.ndarray, faces, large: float = LARGE, passes: int = PASSES
@@ -111,7 +97,7 @@ def refine_large_faces(x: np.ndarray, faces, large: float = LARGE, passes: int =
     Returns the vertices, the faces, for every added vertex the vertices it is the mean of, for every
     face the input face it comes from, and the number of strips refined.
     """
-    area = _face_areas(x, faces)
+    area = surface_areas(x, faces)
     quads = np.array([len(f) == 4 for f in faces], dtype=bool)
     limit = large * float(np.median(area[quads])) if quads.any() else np.inf
     parents: list = []
@@ -119,7 +105,7 @@ def refine_large_faces(x: np.ndarray, faces, large: float = LARGE, passes: int =
     faces = tuple(tuple(f) for f in faces)
     origin = np.arange(len(faces))
     for _ in range(passes):
-        big = np.flatnonzero((_face_areas(x, faces) > limit) & np.array([len(f) == 4 for f in faces]))
+        big = np.flatnonzero((surface_areas(x, faces) > limit) & np.array([len(f) == 4 for f in faces]))
         if not len(big):
             break  # (the strips are walked only when there is something to refine)
         me = mesh_edges(faces, len(x))

@@ -20,7 +20,8 @@ from __future__ import annotations
 import numpy as np
 
 from vaultgram.geometry.halfedges import MeshEdges
-from vaultgram.geometry.surfaces import area_vectors
+from vaultgram.geometry.meshes import with_midpoints
+from vaultgram.geometry.surfaces import surface_areas
 from vaultgram.tessellation.voussoirs import face_groups, voussoirs_at_vertices
 
 __all__ = ["unmerge_large", "split_large_quads", "UPPER"]
@@ -30,10 +31,6 @@ UPPER = 1.5
 #: A voussoir more than this many times the target gets its edge back even where that makes a point
 #: of four voussoirs (:mod:`vaultgram.tessellation.mending` mends most of them afterwards).
 OVERSIZED = 2.5
-
-
-def _face_areas(x: np.ndarray, faces) -> np.ndarray:
-    return np.linalg.norm(area_vectors(x, faces), axis=1)
 
 
 def unmerge_large(me: MeshEdges, removed: np.ndarray, inner: np.ndarray, area: np.ndarray, target: float,
@@ -98,7 +95,7 @@ def split_large_quads(x: np.ndarray, faces, group: np.ndarray, target: float
     the second halves appended; neighbours with a midpoint inserted), each face's voussoir (a second
     half is a new voussoir), for each new vertex the edge it halves, and the number of cuts.
     """
-    area = _face_areas(x, faces)
+    area = surface_areas(x, faces)
     size = np.bincount(group, weights=area)
     alone = np.bincount(group)[group] == 1
     cut = [f for f in range(len(faces)) if alone[f] and len(faces[f]) == 4 and size[group[f]] > UPPER * target]
@@ -120,7 +117,7 @@ def split_large_quads(x: np.ndarray, faces, group: np.ndarray, target: float
         faces[f], half = _halves(faces[f], _split_sides(x, faces[f]), midpoint)
         faces.append(half)
         group.append(max(group) + 1)
-    faces = [_with_midpoints(f, midpoint) for f in faces]
+    faces = [with_midpoints(f, midpoint) for f in faces]
     halved = np.array(sorted(midpoint, key=midpoint.get), dtype=np.int64).reshape(-1, 2)
     return (np.vstack([x, new_points]), tuple(tuple(f) for f in faces), np.array(group, dtype=np.int64), halved,
             len(cut))
@@ -133,14 +130,3 @@ def _halves(q: list, sides: tuple[int, int], midpoint: dict) -> tuple[list, list
     n = midpoint[(min(q[t], q[(t + 1) % 4]), max(q[t], q[(t + 1) % 4]))]
     rot = q[s + 1:] + q[:s + 1]  # starts after side s: rot[0] = q[s + 1], ..., rot[3] = q[s]
     return [m, rot[0], rot[1], n], [n, rot[2], rot[3], m]
-
-
-def _with_midpoints(face: list, midpoint: dict) -> list:
-    """A face with the midpoints of its sides that were cut inserted."""
-    out = []
-    for a, b in zip(face, face[1:] + face[:1]):
-        out.append(a)
-        m = midpoint.get((min(a, b), max(a, b)))
-        if m is not None and m not in face:
-            out.append(m)
-    return out

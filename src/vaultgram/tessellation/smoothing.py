@@ -12,8 +12,8 @@ voussoir that a step makes too concave go back, until none is.
 from __future__ import annotations
 
 import numpy as np
-import scipy.sparse as sp
 
+from vaultgram.geometry.meshes import adjacency, barycentre_operator, corner_arrays
 from vaultgram.geometry.surfaces import project_to_surface
 from vaultgram.tessellation.voussoirs import MAX_CONCAVITY, max_corner_angles
 
@@ -21,18 +21,17 @@ __all__ = ["smooth_on_surface", "fan_triangles"]
 
 
 def fan_triangles(faces) -> np.ndarray:
-    """Each face split into triangles fanning from its first vertex (the surface to project on)."""
-    return np.array([(f[0], f[k], f[k + 1]) for f in faces for k in range(1, len(f) - 1)], dtype=np.int64)
+    """Each face split into triangles fanning from its first vertex (the surface to project on).
 
-
-def _edge_adjacency(faces, n: int) -> sp.csr_matrix:
-    """Row-normalised adjacency of the faces' edges (each edge counted once)."""
-    pairs = {(min(p, q), max(p, q)) for f in faces for p, q in zip(f, list(f[1:]) + [f[0]])}
-    e = np.array(sorted(pairs), dtype=np.int64).reshape(-1, 2)
-    a = sp.coo_matrix((np.ones(len(e)), (e[:, 0], e[:, 1])), shape=(n, n)).tocsr()
-    a = a + a.T
-    deg = np.asarray(a.sum(axis=1)).ravel()
-    return sp.diags(1.0 / np.maximum(deg, 1.0)) @ a
+    >>> fan_triangles([(0, 1, 2, 3), (3, 2, 4)]).tolist()
+    [[0, 1, 2], [0, 2, 3], [3, 2, 4]]
+    """
+    face, u, v, _ = corner_arrays(faces)
+    start = np.searchsorted(face, face)  # each corner's face's first corner
+    side = np.arange(len(face)) - start
+    size = np.bincount(face, minlength=len(faces))[face]
+    inner = (side >= 1) & (side <= size - 2)
+    return np.column_stack([u[start[inner]], u[inner], v[inner]]).astype(np.int64)
 
 
 def smooth_on_surface(x: np.ndarray, faces, loops, fixed: np.ndarray, surface_vertices: np.ndarray,
@@ -43,7 +42,7 @@ def smooth_on_surface(x: np.ndarray, faces, loops, fixed: np.ndarray, surface_ve
     x = np.array(x, dtype=float)
     if iterations <= 0:
         return x
-    w = _edge_adjacency(faces, len(x))
+    w, _ = barycentre_operator(adjacency(len(x), faces))
     tris = fan_triangles(surface_faces)
     free = ~fixed
     allowed = np.maximum(max_corner_angles(x, list(loops))[0], max_angle) + 1e-9
