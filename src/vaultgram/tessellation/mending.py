@@ -39,10 +39,20 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
 
+from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.tessellation.sizes import UPPER
-from vaultgram.tessellation.voussoirs import MAX_CONCAVITY, face_groups, max_corner_angles, voussoirs_at_vertices
+from vaultgram.tessellation.voussoirs import (
+    MAX_CONCAVITY,
+    face_groups,
+    max_corner_angles,
+    member_corners,
+    set_outlines,
+    voussoirs_at_vertices,
+)
 
 __all__ = ["mend_meeting_points", "join_small_pairs", "ROUNDS"]
 
@@ -64,15 +74,18 @@ PAIRED = 1.0
 
 
 @dataclass(frozen=True)
-class _Move:
-    """One face moved across one joint into voussoir ``target`` (:func:`_move` makes it)."""
+class _Moves:
+    """Candidate moves, best first: move ``i`` takes ``face[i]`` across ``joint[i]`` from voussoir
+    ``source[i]`` into voussoir ``target[i]``, lowering the crowding by ``gain[i]``."""
 
-    gain: int
-    area: float
-    joint: int
-    face: int
-    source: int
-    target: int
+    gain: np.ndarray
+    joint: np.ndarray
+    face: np.ndarray
+    source: np.ndarray
+    target: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.face)
 
 
 @dataclass(frozen=True)
@@ -158,11 +171,11 @@ def _candidates(me: MeshEdges, removed: np.ndarray, interior: np.ndarray, area: 
     gain, ok = _gains(me, state, interior, face[row], into[row])
     row, gain = row[ok], gain[ok]
     keep = (gain > 0) | ((gain == 0) & even_out[row])
-    row = row[keep]
-    moves = []
-    for g, edge, f, src, dst in zip(*(a.tolist() for a in (gain[keep], e[row], face[row], source[row], into[row]))):
-        moves.append(_Move(g, float(size[dst] + area[f]), edge, f, src, dst))
-    return moves
+    row, gain = row[keep], gain[keep]
+    grown = size[into[row]] + area[face[row]]
+    best = np.lexsort((face[row], e[row], grown, -gain))  # most gain, then smallest voussoir made
+    row = row[best]
+    return _Moves(gain[best], e[row], face[row], source[row], into[row])
 
 
 def _gains(me: MeshEdges, state: _State, interior: np.ndarray, face: np.ndarray, target: np.ndarray
@@ -184,87 +197,76 @@ def _gains(me: MeshEdges, state: _State, interior: np.ndarray, face: np.ndarray,
     return np.bincount(row, weights=drop, minlength=len(face)).astype(np.int64), ~enclosed
 
 
-def _feasible(x: np.ndarray, me: MeshEdges, removed: np.ndarray, state: _State, moves: list,
-              max_angle: float) -> list:
+def _feasible(x: np.ndarray, me: MeshEdges, removed: np.ndarray, state: _State, moves: _Moves,
+              max_angle: float) -> np.ndarray:
     """Per move, whether both its voussoirs stay disks in one piece without a corner above
-    ``max_angle``."""
-    ok, loops = [], []
-    for m in moves:
-        rest = [f for f in state.members(m.source) if f != m.face]
-        grown = _outline(me, state.members(m.target) + [m.face])
-        shrunk = _outline(me, rest) if rest else grown
-        ok.append(not (grown is None or shrunk is None or (rest and not _connected(me, rest, removed))))
-        if ok[-1]:
-            loops += [grown, shrunk]
-    angle = max_corner_angles(x, loops)[0].reshape(-1, 2) if loops else np.zeros((0, 2))
-    good = iter((angle <= max_angle).all(axis=1).tolist())
-    return [bool(o and next(good)) for o in ok]
+    ``max_angle``: set ``i`` is the target of move ``i`` grown by its face, set ``len(moves) + i``
+    the source without it (the face's own voussoir, if that was all of it)."""
+    m = len(moves)
+    t_owner, t_face = _members(state, moves.target)
+    s_owner, s_face = _members(state, moves.source)
+    rest = s_face != moves.face[s_owner]
+    owner = np.concatenate([t_owner, np.arange(m), s_owner[rest] + m])
+    face = np.concatenate([t_face, moves.face, s_face[rest]])
+    order = np.lexsort((face, owner))
+    owner, face = owner[order], face[order]
+    loops, single = set_outlines(me, owner, face, 2 * m)
+    empty = np.bincount(owner, minlength=2 * m) == 0
+    joined = _joined(me, removed, owner, face, 2 * m)
+    joined[:m] = True  # the move itself joins the face to its target
+    ok = (single & joined) | empty
+    check = np.flatnonzero(ok & ~empty)
+    angle = np.zeros(2 * m)
+    angle[check] = max_corner_angles(x, [loops[k] for k in check.tolist()])[0]
+    ok &= angle <= max_angle
+    return ok[:m] & ok[m:]
 
 
-def _outline(me: MeshEdges, faces: list) -> np.ndarray | None:
-    """The counter-clockwise boundary loop of a set of faces, or None if it is not one loop."""
-    inside = set(faces)
-    twin = me.corner_twin
-    step = {}
-    for f in faces:
-        for c in range(int(me.face_start[f]), int(me.face_start[f + 1])):
-            if twin[c] < 0 or int(me.corner_face[twin[c]]) not in inside:
-                step[int(me.corner_vertex[c])] = step.get(int(me.corner_vertex[c]), []) + [int(me.corner_next[c])]
-    if any(len(s) > 1 for s in step.values()):
-        return None  # the outline touches itself at a vertex
-    start = min(step)
-    loop, v = [start], step[start][0]
-    while v != start and len(loop) <= len(step):
-        loop.append(v)
-        v = step[v][0]
-    return np.array(loop, dtype=np.int64) if len(loop) == len(step) else None
+def _members(state: _State, groups: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The faces of voussoir ``groups[i]`` for every ``i``: ``(i, face)`` pairs, by ``i`` then by face."""
+    count = state.start[groups + 1] - state.start[groups]
+    owner = np.repeat(np.arange(len(groups)), count)
+    at = np.repeat(state.start[groups] - np.cumsum(count) + count, count) + np.arange(int(count.sum()))
+    return owner, state.order[at]
 
 
-def _connected(me: MeshEdges, faces: list, removed: np.ndarray) -> bool:
-    """Whether ``faces`` are joined into one piece by the removed edges among them."""
-    inside, seen, todo = set(faces), {faces[0]}, [faces[0]]
-    while todo:
-        f = todo.pop()
-        for e in me.face_edges(f).tolist():
-            g = int(me.other_face(e, f))
-            if removed[e] and g in inside and g not in seen:
-                seen.add(g)
-                todo.append(g)
-    return len(seen) == len(inside)
+def _joined(me: MeshEdges, removed: np.ndarray, owner: np.ndarray, face: np.ndarray, n_sets: int) -> np.ndarray:
+    """Per face set (as in :func:`~vaultgram.tessellation.voussoirs.set_outlines`), whether its faces
+    are joined into one piece by the removed edges among them."""
+    member, corner, across = member_corners(me, owner, face)
+    link = (across >= 0) & removed[me.corner_edge[corner]]
+    graph = coo_matrix((np.ones(int(link.sum())), (member[link], across[link])), shape=(len(face), len(face)))
+    n_labels, label = connected_components(graph, directed=False)
+    pieces = np.bincount(distinct(owner * n_labels + label) // max(n_labels, 1), minlength=n_sets)
+    return pieces <= 1
 
 
-def _apply(x: np.ndarray, me: MeshEdges, removed: np.ndarray, state: _State, moves: list, max_angle: float) -> int:
-    """Make the best feasible moves that share no voussoir and no vertex; returns how many. Moves
-    are checked in batches: the best ones free of each other, then those they had kept waiting."""
-    order = sorted(moves, key=lambda m: (-m.gain, m.area, m.joint, m.face))
-    corners = [set(me.corner_vertex[me.face_start[m.face]:me.face_start[m.face + 1]].tolist()) for m in order]
-    used_groups: set = set()
-    used_vertices: set = set()
+def _apply(x: np.ndarray, me: MeshEdges, removed: np.ndarray, state: _State, moves: _Moves, max_angle: float) -> int:
+    """Make the feasible moves in order (best first), each unless an earlier move made shares a
+    voussoir or a vertex with it; returns how many. (A move's feasibility depends on its two
+    voussoirs only, so it is checked once, for all moves, before any is made.)"""
+    good = _feasible(x, me, removed, state, moves, max_angle)
+    used_groups = np.zeros(state.n_groups, dtype=bool)
+    used_vertices = np.zeros(len(x), dtype=bool)
     made = 0
-    while order:
-        batch, later, groups, vertices = [], [], set(used_groups), set(used_vertices)
-        for m, c in zip(order, corners):
-            if {m.source, m.target} & used_groups or c & used_vertices:
-                continue  # beside a move made: never
-            (later if {m.source, m.target} & groups or c & vertices else batch).append((m, c))
-            groups |= {m.source, m.target}
-            vertices |= c
-        for (m, c), good in zip(batch, _feasible(x, me, removed, state, [m for m, _ in batch], max_angle)):
-            if good:
-                used_groups |= {m.source, m.target}
-                used_vertices |= c
-                _move(me, removed, state.group, m)
-                made += 1
-        order, corners = [m for m, _ in later], [c for _, c in later]
+    for i in np.flatnonzero(good).tolist():
+        src, dst, f = int(moves.source[i]), int(moves.target[i]), int(moves.face[i])
+        corners = me.corner_vertex[me.face_start[f]:me.face_start[f + 1]]
+        if used_groups[src] or used_groups[dst] or used_vertices[corners].any():
+            continue
+        used_groups[[src, dst]] = True
+        used_vertices[corners] = True
+        _move(me, removed, state.group, f, dst)
+        made += 1
     return made
 
 
-def _move(me: MeshEdges, removed: np.ndarray, group: np.ndarray, m: _Move) -> None:
-    """Make move ``m``: the face's joints with the target voussoir are removed, the removed edges
-    tying it to its own voussoir put back. (No move made in the round touches its sides.)"""
-    sides = me.face_edges(m.face)
-    across = me.other_face(sides, m.face)
-    joins = sides[~removed[sides] & (across >= 0) & (group[np.maximum(across, 0)] == m.target)]
+def _move(me: MeshEdges, removed: np.ndarray, group: np.ndarray, face: int, target: int) -> None:
+    """Move ``face`` into voussoir ``target``: its joints with the target are removed, the removed
+    edges tying it to its own voussoir put back. (No move made in the round touches its sides.)"""
+    sides = me.face_edges(face)
+    across = me.other_face(sides, face)
+    joins = sides[~removed[sides] & (across >= 0) & (group[np.maximum(across, 0)] == target)]
     removed[sides[removed[sides]]] = False
     removed[joins] = True
 
@@ -311,16 +313,16 @@ def _small_pairs(me: MeshEdges, removed: np.ndarray, area: np.ndarray, target: f
 
 def _convex_unions(x: np.ndarray, me: MeshEdges, state: _State, pairs: list, max_angle: float) -> list:
     """The pairs whose union is a disk in one loop without a corner above ``max_angle``."""
-    kept, loops = [], []
-    for a, b in pairs:
-        loop = _outline(me, state.members(a) + state.members(b))
-        if loop is not None:
-            kept.append((a, b))
-            loops.append(loop)
-    if not kept:
+    if not pairs:
         return []
-    angle, _ = max_corner_angles(x, loops)
-    return [p for p, good in zip(kept, (angle <= max_angle).tolist()) if good]
+    owner, face = _members(state, np.array(pairs, dtype=np.int64).ravel())
+    owner //= 2
+    order = np.lexsort((face, owner))
+    loops, single = set_outlines(me, owner[order], face[order], len(pairs))
+    check = np.flatnonzero(single)
+    angle = np.full(len(pairs), np.inf)
+    angle[check] = max_corner_angles(x, [loops[k] for k in check.tolist()])[0]
+    return [p for p, good in zip(pairs, (angle <= max_angle).tolist()) if good]
 
 
 def _join(removed: np.ndarray, pairs: list, joints: dict) -> int:

@@ -77,12 +77,14 @@ def force_angles(x: np.ndarray, me: MeshEdges, face_normals: np.ndarray, edges: 
     return np.degrees(np.arccos(np.clip(cos, 0.0, 1.0)))
 
 
-def joint_force_angles(x: np.ndarray, layout: VoussoirLayout) -> tuple[np.ndarray, np.ndarray]:
+def joint_force_angles(x: np.ndarray, layout: VoussoirLayout, face_normals: np.ndarray | None = None
+                       ) -> tuple[np.ndarray, np.ndarray]:
     """Per joint, the angle (degrees) between the joint and the force flow across it
-    (:func:`force_angles`), and whether the joint is regular (see the module docstring)."""
+    (:func:`force_angles`; ``face_normals`` the unit normals of the layout's faces, computed if not
+    given), and whether the joint is regular (see the module docstring)."""
     me, j = layout.edges, layout.joints
     a, b = me.edges[j, 0], me.edges[j, 1]
-    angles = force_angles(x, me, _face_normals(x, layout), j)
+    angles = force_angles(x, me, _face_normals(x, layout) if face_normals is None else face_normals, j)
     valence = np.bincount(me.edges.ravel(), minlength=len(x))
     inner = inner_vertices(layout, len(x))
     quads = np.array([len(f) == 4 for f in layout.mesh.faces])
@@ -90,12 +92,15 @@ def joint_force_angles(x: np.ndarray, layout: VoussoirLayout) -> tuple[np.ndarra
     return angles, regular
 
 
-def joint_tilts(x: np.ndarray, normals: np.ndarray, layout: VoussoirLayout) -> np.ndarray:
-    """Per joint, the angle (degrees) between its joint face and the surface normal across it."""
+def joint_tilts(x: np.ndarray, normals: np.ndarray, layout: VoussoirLayout, face_normals: np.ndarray | None = None
+                ) -> np.ndarray:
+    """Per joint, the angle (degrees) between its joint face and the surface normal across it
+    (``normals`` at the vertices, ``face_normals`` of the layout's faces, computed if not given)."""
     me, j = layout.edges, layout.joints
     a, b = me.edges[j, 0], me.edges[j, 1]
     plane = _unit(np.cross(x[b] - x[a], normals[a] + normals[b]))
-    normal = _unit(_face_normals(x, layout)[me.faces_of[j]].sum(axis=1))
+    faces = _face_normals(x, layout) if face_normals is None else face_normals
+    normal = _unit(faces[me.faces_of[j]].sum(axis=1))
     return np.degrees(np.arcsin(np.clip(np.abs((plane * normal).sum(axis=1)), 0.0, 1.0)))
 
 
@@ -133,7 +138,8 @@ def summarise(x: np.ndarray, normals: np.ndarray, layout: VoussoirLayout, max_an
     edges the bond could not remove, by reason."""
     meet = meeting_points(layout, len(x))
     total = sum(meet.values())
-    angles, regular = joint_force_angles(x, layout)
+    face_normals = _face_normals(x, layout)
+    angles, regular = joint_force_angles(x, layout, face_normals)
     concave, largest = concave_voussoirs(x, layout, max_angle)
     return {
         "voussoirs": layout.n_voussoirs,
@@ -146,7 +152,7 @@ def summarise(x: np.ndarray, normals: np.ndarray, layout: VoussoirLayout, max_an
         "areas": spread(layout.areas(x)),
         "joint_force_angle_deg": percentiles(angles),
         "joint_force_angle_regular_deg": percentiles(angles[regular]),
-        "joint_tilt_deg": percentiles(joint_tilts(x, normals, layout)),
+        "joint_tilt_deg": percentiles(joint_tilts(x, normals, layout, face_normals)),
         "euler_characteristic": euler_characteristic(layout),
         "openings": holes,
         "min_volume": float(volumes.min()) if len(volumes) else 0.0,

@@ -103,14 +103,12 @@ def _triangles(points, loop, u, v, top_u, top_v, cb, ct) -> Solids:
     side_a = np.where(low[:, None], np.column_stack([u, v, top_v]), np.column_stack([u, v, top_u]))
     side_b = np.where(low[:, None], np.column_stack([u, top_v, top_u]), np.column_stack([v, top_v, top_u]))
     tris = np.stack([bottom, top, side_a, side_b], axis=1)  # per corner: 4 triangles
-    owner = np.repeat(loop, 4)
-    joint = np.tile([False, False, True, True], len(loop))
-    order = np.argsort(owner, kind="stable")
-    return Solids(points, tris.reshape(-1, 3)[order], owner[order], joint[order])
+    # the corners come voussoir by voussoir (corner_arrays), so the triangles do too
+    return Solids(points, tris.reshape(-1, 3), np.repeat(loop, 4), np.tile([False, False, True, True], len(loop)))
 
 
 def solid_volumes(solids: Solids, n_voussoirs: int) -> np.ndarray:
     """Volume of every solid (divergence theorem): positive when closed and outward-oriented."""
-    p = solids.vertices[solids.triangles]
-    six = np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2]))
+    a, b, c = (solids.vertices[solids.triangles[:, k]].T for k in range(3))
+    six = a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0])
     return np.bincount(solids.owner, weights=six, minlength=n_voussoirs) / 6.0

@@ -35,7 +35,7 @@ Concavities are checked afterwards, on the voussoirs (:mod:`vaultgram.tessellati
 
 from __future__ import annotations
 
-import math
+import operator
 from collections import deque
 from dataclasses import dataclass
 
@@ -182,21 +182,19 @@ def course_joints(areas: np.ndarray, forced: np.ndarray, aligned: np.ndarray, ta
     """
     k = len(areas)
     run = _run_costs(areas, forced, target, longest).tolist()  # run[b][d]: quads b-d..b-1 (plain floats)
-    forced = forced.tolist()
     penalty = np.where(aligned, ALIGNED_COST, 0.0) + _skew_costs(skew, k)
     penalty[-1] = 0.0
     penalty = penalty.tolist()
-    best = [math.inf] * (k + 1)
+    # a run ending at rung b starts at most `longest` rungs back, and not before the last forced rung
+    last_forced = np.maximum.accumulate(np.where(forced, np.arange(k + 1), 0))
+    reach = np.minimum(longest, np.arange(k + 1) - np.concatenate([[0], last_forced[:-1]])).tolist()
+    best = [0.0] * (k + 1)
     back = [0] * (k + 1)
-    best[0] = 0.0
     for b in range(1, k + 1):
-        row, here = run[b], best[b]
-        for d in range(1, min(longest, b) + 1):  # a run of quads b-d..b-1, from the kept rung b-d
-            cost = best[b - d] + row[d]
-            if cost < here:
-                here, back[b] = cost, b - d
-            if forced[b - d]:
-                break  # a run cannot pass a forced rung
+        d = reach[b]
+        cost = list(map(operator.add, best[b - d:b][::-1], run[b][1:d + 1]))
+        here = min(cost)
+        back[b] = b - 1 - cost.index(here)  # the shortest of the cheapest runs
         best[b] = here + penalty[b]
     keep = np.zeros(k + 1, dtype=bool)
     b = k
