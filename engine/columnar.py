@@ -43,7 +43,7 @@ class GraphArrays:
 
 
 #: Attribute values compared as one numpy array (Python compares them the same way).
-_NUMBERS = (bool, int, float)
+_NUMBERS = frozenset((bool, int, float))
 _CACHE: "weakref.WeakKeyDictionary[HostGraph, GraphArrays]" = weakref.WeakKeyDictionary()
 
 
@@ -212,7 +212,7 @@ def _column_mask(g: HostGraph, test, ids: np.ndarray, rhs) -> np.ndarray:
     if test.types is not None:
         return np.asarray(test.op(_degrees(g, test.types)[ids], rhs), dtype=bool)
     op, values = test.op, g.values(test.kind, ids.tolist(), test.attr)
-    if type(rhs) in _NUMBERS and all(type(v) in _NUMBERS for v in values):  # numbers compare as numpy does
+    if type(rhs) in _NUMBERS and set(map(type, values)) <= _NUMBERS:  # numbers compare as numpy does
         return np.asarray(op(np.array(values), rhs), dtype=bool).reshape(len(ids))
     return np.fromiter((bool(op(v, rhs)) for v in values), dtype=bool, count=len(ids))
 

@@ -46,7 +46,8 @@ from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.tessellation.strips import Strip, strip_directions
 
-__all__ = ["Bond", "staggered_bond", "preferential_directions", "quad_directions", "course_runs", "course_joints"]
+__all__ = ["Bond", "staggered_bond", "preferential_directions", "quad_directions", "course_runs", "course_joints",
+           "cheapest_cut", "size_costs"]
 
 #: A strip starts as a course when its rungs make at most 45 degrees with the preferential direction.
 COURSE_ALIGNMENT = float(np.cos(np.radians(45.0)))
@@ -181,21 +182,28 @@ def course_joints(areas: np.ndarray, forced: np.ndarray, aligned: np.ndarray, ta
     [1, 0, 1, 0, 1, 0, 1]
     """
     k = len(areas)
-    run = _run_costs(areas, forced, target, longest).tolist()  # run[b][d]: quads b-d..b-1 (plain floats)
     penalty = np.where(aligned, ALIGNED_COST, 0.0) + _skew_costs(skew, k)
-    penalty[-1] = 0.0
-    penalty = penalty.tolist()
+    return cheapest_cut(size_costs(areas, target, longest), forced, penalty.tolist(), longest)
+
+
+def cheapest_cut(sizes: list, forced: np.ndarray, penalty: list, longest: int) -> np.ndarray:
+    """The dynamic programme of :func:`course_joints`: ``sizes[b][d]`` the size cost of the ``d``
+    quads before rung ``b`` (:func:`size_costs`), ``penalty[b]`` the cost of keeping inner rung ``b``;
+    a single quad costs :data:`SINGLE_COST` more unless forced rungs hold it on both sides."""
+    k = len(forced) - 1
+    forced_list = forced.tolist()
     # a run ending at rung b starts at most `longest` rungs back, and not before the last forced rung
     last_forced = np.maximum.accumulate(np.where(forced, np.arange(k + 1), 0))
     reach = np.minimum(longest, np.arange(k + 1) - np.concatenate([[0], last_forced[:-1]])).tolist()
     best = [0.0] * (k + 1)
     back = [0] * (k + 1)
     for b in range(1, k + 1):
-        d = reach[b]
-        cost = list(map(operator.add, best[b - d:b][::-1], run[b][1:d + 1]))
+        d, row = reach[b], sizes[b]
+        single = row[1] if forced_list[b - 1] and forced_list[b] else row[1] + SINGLE_COST
+        cost = [best[b - 1] + single] + list(map(operator.add, best[b - d:b - 1][::-1], row[2:d + 1]))
         here = min(cost)
         back[b] = b - 1 - cost.index(here)  # the shortest of the cheapest runs
-        best[b] = here + penalty[b]
+        best[b] = here + penalty[b] if b < k else here
     keep = np.zeros(k + 1, dtype=bool)
     b = k
     while b > 0:
@@ -214,18 +222,16 @@ def _skew_costs(skew: np.ndarray | None, k: int) -> np.ndarray | float:
     return SKEW_COST * (skew - skew[1:k].mean()) / 90.0
 
 
-def _run_costs(areas: np.ndarray, forced: np.ndarray, target: float, longest: int) -> np.ndarray:
-    """``cost[b, d]``: the size cost of a voussoir of the ``d`` quads before rung ``b``, plus
-    :data:`SINGLE_COST` for a single quad not held alone by forced rungs on both sides."""
+def size_costs(areas: np.ndarray, target: float, longest: int) -> list:
+    """``cost[b][d]``: the size cost ``log(area / target) ** 2`` of a voussoir of the ``d`` quads
+    before rung ``b`` of a course with quad areas ``areas`` (plain floats, for the programme)."""
     k = len(areas)
     prefix = np.concatenate([[0.0], np.cumsum(areas)])
     b = np.arange(k + 1)[:, None]
     d = np.arange(longest + 1)[None, :]
     a = np.maximum(b - d, 0)
     with np.errstate(divide="ignore"):
-        cost = (np.log(np.maximum(prefix[b] - prefix[a], 1e-300)) - np.log(target)) ** 2
-    lone = (d == 1) & ~(forced[a] & forced[np.minimum(b, k)])
-    return cost + np.where(lone, SINGLE_COST, 0.0)
+        return ((np.log(np.maximum(prefix[b] - prefix[a], 1e-300)) - np.log(target)) ** 2).tolist()
 
 
 def _course_order(strips: list[Strip], me: MeshEdges) -> list[int]:
@@ -274,6 +280,8 @@ class _Laying:
         self.owner[me.faces_of[joined].ravel()] = len(strips)  # joined before the bond: nobody's course
         self.joints = np.zeros(int(me.edges.max()) + 1 if len(me.edges) else 0, dtype=np.int64)
         self.kept: dict[int, np.ndarray] = {}
+        self.sizes: dict[int, list] = {}
+        self.skews: dict[int, np.ndarray] = {}
 
     def lift(self, k: int) -> None:
         """Take course ``k`` up: its joints, its removed rungs and its quads are free again."""
@@ -294,7 +302,11 @@ class _Laying:
         forced[[0, -1]] = True
         forced[:-1] |= taken
         forced[1:] |= taken
-        keep = course_joints(self.areas[s.quads], forced, lined_up, self.target, self.longest, self.skew[s.rungs])
+        if k not in self.sizes:  # the same for every laying of the course
+            self.sizes[k] = size_costs(self.areas[s.quads], self.target, self.longest)
+            self.skews[k] = _skew_costs(self.skew[s.rungs], len(s)) + np.zeros(len(s.rungs))
+        penalty = (np.where(lined_up, ALIGNED_COST, 0.0) + self.skews[k]).tolist()
+        keep = cheapest_cut(self.sizes[k], forced, penalty, self.longest)
         inner = np.arange(1, len(s))
         self.removed[s.rungs[inner[~keep[inner]]]] = True
         runs = np.cumsum(keep[:-1])  # quads between kept rungs form a voussoir
