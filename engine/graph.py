@@ -26,6 +26,7 @@ exposes is by id, never by hash or insertion order.
 from __future__ import annotations
 
 import bisect
+import itertools
 from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import AbstractSet, Callable, Iterable, Iterator, Mapping, NamedTuple
@@ -319,8 +320,7 @@ class HostGraph:
 
     def of_types(self, types: Iterable[str]) -> Iterator[int]:
         """Element ids of the given exact types (pass ``schema.subtypes(T)`` for T and its subtypes)."""
-        for t in types:
-            yield from self._by_type[t]
+        return itertools.chain.from_iterable(self._by_type[t] for t in types)
 
     def incident(self, n: int, types: Iterable[str] | None = None) -> Iterator[int]:
         """Edge ids incident to ``n`` whose exact type is in ``types`` (all edges when None)."""

@@ -8,6 +8,7 @@ know nothing about vaults or statics.
 
 from __future__ import annotations
 
+import functools
 import itertools
 from typing import Iterable, Sequence
 
@@ -24,6 +25,7 @@ __all__ = [
     "remove_faces",
     "boundary_loops",
     "corner_arrays",
+    "Faces",
     "corner_vectors",
     "with_midpoints",
     "barycentre_operator",
@@ -103,6 +105,24 @@ def remove_faces(vertices: np.ndarray, faces: Sequence[Sequence[int]], drop: Ite
             [tuple(int(new_of_old[v]) for v in f) for f in kept], old)
 
 
+class Faces(tuple):
+    """Faces (vertex-index sequences) that keep their corner arrays (:func:`corner_arrays`): a mesh
+    that several steps flatten in turn (the tessellation's areas, normals, edges and outlines) is
+    flattened once. The arrays are read-only, as the faces are.
+
+    >>> f = Faces([(0, 1, 2), (2, 1, 3)])
+    >>> corner_arrays(f)[1] is corner_arrays(f)[1], len(f), f[1]
+    (True, 2, (2, 1, 3))
+    """
+
+    @functools.cached_property
+    def corners(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        arrays = _flattened(self)
+        for a in arrays:
+            a.flags.writeable = False
+        return arrays
+
+
 def corner_arrays(faces: Sequence[Sequence[int]]) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Flatten faces into per-corner arrays ``(face, vertex, next vertex, previous vertex)``.
 
@@ -113,6 +133,10 @@ def corner_arrays(faces: Sequence[Sequence[int]]) -> tuple[np.ndarray, np.ndarra
     >>> [a.tolist() for a in corner_arrays([(0, 1, 2), (2, 1, 3)])]
     [[0, 0, 0, 1, 1, 1], [0, 1, 2, 2, 1, 3], [1, 2, 0, 1, 3, 2], [2, 0, 1, 3, 2, 1]]
     """
+    return faces.corners if isinstance(faces, Faces) else _flattened(faces)
+
+
+def _flattened(faces: Sequence[Sequence[int]]) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     if len(faces) == 0:
         e = np.zeros(0, dtype=np.int64)
         return e, e, e, e

@@ -26,6 +26,7 @@ from vaultgram.engine.strategy import Runner
 from vaultgram.errors import RuleError
 from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.halfedges import MeshEdges
+from vaultgram.geometry.meshes import Faces
 from vaultgram.tessellation.functions import tessellation_functions
 from vaultgram.topology.rulebook import default_rules_dir
 
@@ -132,7 +133,7 @@ def _renumbered(faces: list, ids: np.ndarray) -> tuple:
         rows = flat[start[which][:, None] + np.arange(size)]
         for k, row in zip(which.tolist(), map(tuple, rows.tolist())):
             out[k] = row
-    return tuple(out)
+    return Faces(out)
 
 
 def _outside_half_edges(faces, me: MeshEdges) -> set:

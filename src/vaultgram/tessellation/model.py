@@ -14,6 +14,7 @@ import numpy as np
 
 from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.halfedges import MeshEdges
+from vaultgram.geometry.meshes import Faces
 from vaultgram.geometry.surfaces import surface_areas
 from vaultgram.tessellation.keystones import CutMesh
 from vaultgram.tessellation.solids import Solids
@@ -64,7 +65,7 @@ class VoussoirLayout:
 
 def voussoir_layout(mesh: CutMesh, me: MeshEdges, group: np.ndarray) -> VoussoirLayout:
     """Voussoirs of the faces in each ``group``; joints are the inner edges between two groups."""
-    loops = tuple(outlines(me, group))
+    loops = Faces(outlines(me, group))
     inner = (me.faces_of >= 0).all(axis=1)
     sides = group[np.maximum(me.faces_of, 0)]
     joints = np.flatnonzero(inner & (sides[:, 0] != sides[:, 1]))

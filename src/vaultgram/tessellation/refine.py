@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from vaultgram.geometry.halfedges import MeshEdges, mesh_edges
-from vaultgram.geometry.meshes import with_midpoints
+from vaultgram.geometry.meshes import Faces, with_midpoints
 from vaultgram.geometry.surfaces import surface_areas
 from vaultgram.tessellation.strips import Strip, node_strips, quad_strips, strip_directions
 
@@ -102,7 +102,7 @@ def refine_large_faces(x: np.ndarray, faces, large: float = LARGE, passes: int =
     limit = large * float(np.median(area[quads])) if quads.any() else np.inf
     parents: list = []
     refined = 0
-    faces = tuple(tuple(f) for f in faces)
+    faces = Faces(tuple(f) for f in faces)
     origin = np.arange(len(faces))
     for _ in range(passes):
         big = np.flatnonzero((surface_areas(x, faces) > limit) & np.array([len(f) == 4 for f in faces]))
@@ -112,7 +112,7 @@ def refine_large_faces(x: np.ndarray, faces, large: float = LARGE, passes: int =
         strips = quad_strips(me, faces)
         chosen = _strips_to_refine(x, me, strips, big)
         x, new_faces, new_parents, new_origin = _refined(x, faces, _cut_directions(faces, me, strips, chosen))
-        faces = tuple(new_faces)
+        faces = Faces(new_faces)
         parents += new_parents
         origin = origin[new_origin]
         refined += len(chosen)

@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from vaultgram.geometry.halfedges import MeshEdges
-from vaultgram.geometry.meshes import with_midpoints
+from vaultgram.geometry.meshes import Faces, with_midpoints
 from vaultgram.geometry.surfaces import surface_areas
 from vaultgram.tessellation.voussoirs import face_groups, voussoirs_at_vertices
 
@@ -100,7 +100,7 @@ def split_large_quads(x: np.ndarray, faces, group: np.ndarray, target: float
     alone = np.bincount(group)[group] == 1
     cut = [f for f in range(len(faces)) if alone[f] and len(faces[f]) == 4 and size[group[f]] > UPPER * target]
     if not cut:
-        return x, tuple(faces), group, np.zeros((0, 2), dtype=np.int64), 0
+        return x, Faces(faces), group, np.zeros((0, 2), dtype=np.int64), 0
     midpoint: dict[tuple[int, int], int] = {}
     new_points = []
     for f in cut:
@@ -119,7 +119,7 @@ def split_large_quads(x: np.ndarray, faces, group: np.ndarray, target: float
         group.append(max(group) + 1)
     faces = [with_midpoints(f, midpoint) for f in faces]
     halved = np.array(sorted(midpoint, key=midpoint.get), dtype=np.int64).reshape(-1, 2)
-    return (np.vstack([x, new_points]), tuple(tuple(f) for f in faces), np.array(group, dtype=np.int64), halved,
+    return (np.vstack([x, new_points]), Faces(tuple(f) for f in faces), np.array(group, dtype=np.int64), halved,
             len(cut))
 
 

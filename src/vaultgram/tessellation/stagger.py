@@ -191,15 +191,15 @@ def cheapest_cut(sizes: list, forced: np.ndarray, penalty: list, longest: int) -
     quads before rung ``b`` (:func:`size_costs`), ``penalty[b]`` the cost of keeping inner rung ``b``;
     a single quad costs :data:`SINGLE_COST` more unless forced rungs hold it on both sides."""
     k = len(forced) - 1
-    forced_list = forced.tolist()
-    # a run ending at rung b starts at most `longest` rungs back, and not before the last forced rung
-    last_forced = np.maximum.accumulate(np.where(forced, np.arange(k + 1), 0))
-    reach = np.minimum(longest, np.arange(k + 1) - np.concatenate([[0], last_forced[:-1]])).tolist()
+    forced = forced.tolist()
     best = [0.0] * (k + 1)
     back = [0] * (k + 1)
+    last = 0  # the last forced rung before rung b: a run cannot pass it (rung 0 ends every run)
     for b in range(1, k + 1):
-        d, row = reach[b], sizes[b]
-        single = row[1] if forced_list[b - 1] and forced_list[b] else row[1] + SINGLE_COST
+        if forced[b - 1]:
+            last = b - 1
+        d, row = min(longest, b - last), sizes[b]
+        single = row[1] if forced[b - 1] and forced[b] else row[1] + SINGLE_COST
         cost = [best[b - 1] + single] + list(map(operator.add, best[b - d:b - 1][::-1], row[2:d + 1]))
         here = min(cost)
         back[b] = b - 1 - cost.index(here)  # the shortest of the cheapest runs
@@ -296,7 +296,7 @@ class _Laying:
         kept rungs lined up with a neighbour's."""
         s, me = self.strips[k], self.me
         ends = me.edges[s.rungs]
-        lined_up = (self.joints[ends] > 0).any(axis=1)
+        lined_up = (self.joints[ends[:, 0]] > 0) | (self.joints[ends[:, 1]] > 0)
         taken = (self.owner[s.quads] >= 0) & (self.owner[s.quads] != k)
         forced = np.zeros(len(s.rungs), dtype=bool)
         forced[[0, -1]] = True
@@ -310,11 +310,12 @@ class _Laying:
         inner = np.arange(1, len(s))
         self.removed[s.rungs[inner[~keep[inner]]]] = True
         runs = np.cumsum(keep[:-1])  # quads between kept rungs form a voussoir
-        joined = np.bincount(runs, minlength=runs.max() + 1)[runs] > 1
+        joined = np.bincount(runs)[runs] > 1
         self.owner[s.quads[joined]] = k
         np.add.at(self.joints, ends[keep].ravel(), 1)
         self.kept[k] = keep
-        return int((keep[inner] & forced[inner]).sum()), int((keep[inner] & lined_up[inner] & ~forced[inner]).sum())
+        kept, held = keep[inner], forced[inner]
+        return int(np.count_nonzero(kept & held)), int(np.count_nonzero(kept & lined_up[inner] & ~held))
 
 
 #: A voussoir of a course is at most this many times ``rhythm`` quads long (small faces make longer ones).
