@@ -2,12 +2,21 @@
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from vaultgram.geometry.halfedges import mesh_edges
 from vaultgram.geometry.meshes import grid_mesh
 from vaultgram.geometry.surfaces import area_vectors
 from vaultgram.pipeline import tessellate
-from vaultgram.tessellation.sizes import OVERSIZED, UPPER, split_large_quads, unmerge_large
+from vaultgram.tessellation.sizes import (
+    OVERSIZED,
+    UPPER,
+    _halving_edges,
+    _side_area,
+    split_large_quads,
+    unmerge_large,
+)
 from vaultgram.tessellation.voussoirs import face_groups, voussoirs_at_vertices
 
 
@@ -149,3 +158,40 @@ def test_every_large_single_quad_is_halved_once_sharing_midpoints_with_its_neigh
     size = np.bincount(new_group, weights=_areas(x, faces))
     assert len(size) == len(f) + 6 and size.max() == pytest.approx(1.5)
     mesh_edges(faces, len(x))  # conforming and oriented
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.booleans(), min_size=24, max_size=24), st.lists(st.integers(1, 30), min_size=16, max_size=16))
+def test_the_halving_edge_of_every_voussoir_is_the_most_even_split_edge_by_edge(removed_bits, areas):
+    """Subtree sums over each voussoir's tree of faces (and the walk for voussoirs with a cycle) pick
+    the edge that a walk over each edge's two sides picks (whole areas: ties are exact)."""
+    v, f = grid_mesh(4)
+    me = mesh_edges(f, len(v))
+    inner_edges = np.flatnonzero((me.faces_of >= 0).all(axis=1))
+    removed = np.zeros(me.n_edges, dtype=bool)
+    removed[inner_edges[np.array(removed_bits)]] = True
+    area = np.array(areas, dtype=float)
+    group = face_groups(me, removed)
+    size = np.bincount(group, weights=area)
+    large = np.bincount(group) > 1
+    expected = []
+    for k in np.flatnonzero(large).tolist():
+        inside = np.flatnonzero(removed & (group[np.maximum(me.faces_of[:, 0], 0)] == k))
+        gaps = {e: abs(size[k] - 2 * _side_area(me, inside, area, e)) for e in inside.tolist()}
+        expected.append((k, min(gaps, key=lambda e: (gaps[e], e))))
+    assert _halving_edges(me, removed, group, area, size, large) == expected
+
+
+def test_a_voussoir_around_a_vertex_is_split_by_the_walk():
+    """Four faces joined all round their common vertex close a cycle of removed edges: no edge of the
+    cycle splits them, so the edge chosen leads to the fifth face."""
+    v, f = grid_mesh(3, 2)  # faces 0 1 2 / 3 4 5; faces 0, 1, 3, 4 meet at vertex 5
+    me = mesh_edges(f, len(v))
+    removed = np.zeros(me.n_edges, dtype=bool)
+    for a, b in ((1, 5), (4, 5), (5, 6), (5, 9), (2, 6)):  # the four around vertex 5, and 1-2
+        removed[_edge(me, a, b)] = True
+    group = face_groups(me, removed)
+    area = np.ones(6)
+    size = np.bincount(group, weights=area)
+    (k, e), = _halving_edges(me, removed, group, area, size, np.bincount(group) > 1)
+    assert sorted(me.faces_of[e].tolist()) == [1, 2]

@@ -26,7 +26,7 @@ from vaultgram.engine.strategy import Runner
 from vaultgram.errors import RuleError
 from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.halfedges import MeshEdges
-from vaultgram.geometry.meshes import Faces
+from vaultgram.geometry.meshes import Faces, corner_arrays
 from vaultgram.tessellation.functions import tessellation_functions
 from vaultgram.topology.rulebook import default_rules_dir
 
@@ -119,15 +119,20 @@ def _walked_faces(graph: HostGraph, touched: list[int], outside: set) -> list[li
     return out
 
 
-def _renumbered(faces: list, ids: np.ndarray) -> tuple:
-    """The faces with node ids replaced by their positions in the sorted ``ids`` (vectorised by face
-    size: most faces have four)."""
+def _renumbered(faces, kept: np.ndarray, walked: list, ids: np.ndarray) -> Faces:
+    """The faces ``kept`` (indices into ``faces``), then the ``walked`` node loops, with node ids
+    replaced by their positions in the sorted ``ids`` (vectorised by face size: most have four)."""
     position = np.full(int(ids.max()) + 1 if len(ids) else 0, -1, dtype=np.int64)
     position[ids] = np.arange(len(ids))
-    lens = np.fromiter(map(len, faces), dtype=np.int64, count=len(faces))
-    flat = position[np.fromiter(itertools.chain.from_iterable(faces), dtype=np.int64, count=int(lens.sum()))]
+    face, vertex, _, _ = corner_arrays(faces)
+    old = np.zeros(len(faces), dtype=bool)
+    old[kept] = True
+    lens = np.concatenate([np.bincount(face, minlength=len(faces))[kept],
+                           np.fromiter(map(len, walked), dtype=np.int64, count=len(walked))])
+    new = np.fromiter(itertools.chain.from_iterable(walked), dtype=np.int64, count=int(lens[len(kept):].sum()))
+    flat = position[np.concatenate([vertex[old[face]], new])]
     start = np.concatenate([[0], np.cumsum(lens)[:-1]]).astype(np.int64)
-    out: list = [None] * len(faces)
+    out: list = [None] * len(lens)
     for size in distinct(lens).tolist():
         which = np.flatnonzero(lens == size)
         rows = flat[start[which][:, None] + np.arange(size)]
@@ -159,10 +164,10 @@ def cut_keystones(x: np.ndarray, faces, me: MeshEdges, rulebook: Rulebook) -> Cu
     old_touched = np.zeros(n, dtype=bool)
     old_touched[[v for v in changed if v < n]] = True
     hit = np.bincount(me.corner_face, weights=old_touched[me.corner_vertex], minlength=len(faces)) > 0
-    old = [tuple(faces[k]) for k in np.flatnonzero(~hit).tolist()]
+    old = np.flatnonzero(~hit)
     walked = _walked_faces(graph, touched_ids, _outside_half_edges(faces, me))
     ids = np.array(sorted(graph.nodes()), dtype=np.int64)
-    out_faces = _renumbered(old + walked, ids)
+    out_faces = _renumbered(faces, old, walked, ids)
     keystone = {v: graph.get(v, "keystone") for v in touched_ids}
     keystones = [len(old) + k for k, f in enumerate(walked)
                  if len({keystone.get(v, -1) for v in f}) == 1 and keystone.get(f[0], -1) >= 0]

@@ -18,6 +18,8 @@ broken up, in this order:
 from __future__ import annotations
 
 import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import breadth_first_order
 
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.geometry.meshes import Faces, with_midpoints
@@ -44,18 +46,8 @@ def unmerge_large(me: MeshEdges, removed: np.ndarray, inner: np.ndarray, area: n
     if not (size > UPPER * target).any():
         return removed, 0
     count = voussoirs_at_vertices(me, group, n_vertices)
-    links = np.flatnonzero(removed)
-    owner = group[me.faces_of[links, 0]]
-    order = np.argsort(owner, kind="stable")
-    links, owner = links[order], owner[order]
-    start = np.searchsorted(owner, np.arange(len(size) + 1))
     restored = 0
-    for k in np.flatnonzero(size > UPPER * target).tolist():
-        inside = links[start[k]:start[k + 1]]
-        best = min(inside.tolist(), key=lambda e: (abs(size[k] - 2 * _side_area(me, inside, area, e)), e),
-                   default=None)
-        if best is None:
-            continue
+    for k, best in _halving_edges(me, removed, group, area, size, size > UPPER * target):
         ends = me.edges[best]
         if (inner[ends] & (count[ends] >= 3)).any() and size[k] <= OVERSIZED * target:
             continue
@@ -65,9 +57,66 @@ def unmerge_large(me: MeshEdges, removed: np.ndarray, inner: np.ndarray, area: n
     return removed, restored
 
 
+def _halving_edges(me: MeshEdges, removed: np.ndarray, group: np.ndarray, area: np.ndarray, size: np.ndarray,
+                   large: np.ndarray) -> list[tuple[int, int]]:
+    """``(voussoir, edge)`` for every ``large`` voussoir of several faces: the removed edge inside it
+    that splits it most evenly (the smallest edge among equals). The faces and removed edges of a
+    voussoir mostly form a tree: one side of an edge is then the subtree below it, summed for all
+    edges at once; a voussoir whose removed edges close a cycle is walked edge by edge."""
+    inside = removed & (me.faces_of >= 0).all(axis=1)
+    links = np.flatnonzero(inside & large[group[np.maximum(me.faces_of[:, 0], 0)]])
+    a, b = me.faces_of[links].T
+    g = group[a]
+    faces = np.flatnonzero(large[group])
+    n_links = np.bincount(g, minlength=len(size))
+    tree = n_links == np.bincount(group[faces], minlength=len(size)) - 1
+    below, parent = _subtree_areas(a, b, group, area, faces)
+    gap = np.abs(size[g] - 2 * below[np.where(parent[a] == b, a, b)])  # below the end further from the root
+    order = np.lexsort((links, gap, g))
+    order = order[tree[g[order]]]
+    first = order[_firsts(g[order])]
+    found = dict(zip(g[first].tolist(), links[first].tolist()))
+    for k in np.flatnonzero(large & ~tree & (n_links > 0)).tolist():
+        mine = links[g == k]
+        found[k] = min(mine.tolist(), key=lambda e: (abs(size[k] - 2 * _side_area(me, mine, area, e)), e))
+    return sorted(found.items())
+
+
+def _firsts(keys: np.ndarray) -> np.ndarray:
+    """Where each run of equal values of the sorted ``keys`` starts."""
+    return np.concatenate([[True], keys[1:] != keys[:-1]]) if len(keys) else np.zeros(0, dtype=bool)
+
+
+def _subtree_areas(a: np.ndarray, b: np.ndarray, group: np.ndarray, area: np.ndarray, faces: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """The trees of ``faces`` joined by the pairs ``a[i]``-``b[i]``, each voussoir's rooted at its
+    first face: per face, the area of its subtree (0 outside the trees) and its parent (-1 at a root
+    and outside)."""
+    n = len(area)
+    by_group = faces[np.argsort(group[faces], kind="stable")]
+    roots = by_group[_firsts(group[by_group])]
+    top = n  # one node above every root, so that one search roots them all
+    pairs = (np.concatenate([a, np.full(len(roots), top)]), np.concatenate([b, roots]))
+    graph = coo_matrix((np.ones(len(pairs[0])), pairs), shape=(n + 1, n + 1))
+    _, parent = breadth_first_order(graph, top, directed=False, return_predecessors=True)
+    parent = parent[:n]
+    parent[(parent < 0) | (parent == top)] = -1
+    depth = np.zeros(n, dtype=np.int64)
+    up = parent.copy()
+    while (up >= 0).any():
+        depth += up >= 0
+        up = np.where(up >= 0, parent[np.maximum(up, 0)], -1)
+    below = np.zeros(n)
+    below[faces] = area[faces]
+    for level in range(int(depth.max()) if n else 0, 0, -1):  # leaves first
+        at = np.flatnonzero(depth == level)
+        np.add.at(below, parent[at], below[at])
+    return below, parent
+
+
 def _side_area(me: MeshEdges, inside: np.ndarray, area: np.ndarray, e: int) -> float:
     """Area of the faces on one side of the removed edge ``e`` of a voussoir whose removed edges are
-    ``inside`` (the faces and removed edges of a voussoir form a tree)."""
+    ``inside`` (the faces reached from one of its faces without crossing ``e``)."""
     links = [tuple(p) for p in me.faces_of[inside[inside != e]].tolist()]
     seen, stack = {int(me.faces_of[e, 0])}, [int(me.faces_of[e, 0])]
     while stack:
