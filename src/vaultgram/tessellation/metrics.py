@@ -128,7 +128,7 @@ def percentiles(values: np.ndarray) -> dict:
 
 def concave_voussoirs(x: np.ndarray, layout: VoussoirLayout, max_angle: float) -> tuple[int, float]:
     """How many voussoirs have a corner above ``max_angle``, and the largest corner of all."""
-    angle, _ = max_corner_angles(x, list(layout.loops))
+    angle, _ = max_corner_angles(x, layout.loops)
     return int((angle > max_angle).sum()), float(angle.max()) if len(angle) else 0.0
 
 

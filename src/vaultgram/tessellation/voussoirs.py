@@ -17,6 +17,7 @@ from scipy.sparse.csgraph import connected_components
 
 from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.halfedges import MeshEdges
+from vaultgram.geometry.meshes import Faces, corner_arrays
 from vaultgram.geometry.surfaces import loop_corner_angles, loop_planes
 
 __all__ = ["face_groups", "outlines", "set_outlines", "member_corners", "max_corner_angles", "without_concavities",
@@ -141,15 +142,15 @@ def max_corner_angles(x: np.ndarray, loops: list[np.ndarray]) -> tuple[np.ndarra
     """Per loop, its largest corner angle in its best-fit plane (degrees) and the vertex there."""
     if not loops:
         return np.zeros(0), np.zeros(0, dtype=np.int64)
+    loops = loops if isinstance(loops, Faces) else Faces(loops)  # flattened once for planes and angles
     _, normals = loop_planes(x, loops)
     angles = loop_corner_angles(x, loops, normals)
-    lens = np.fromiter(map(len, loops), dtype=np.int64, count=len(loops))
-    start = np.concatenate([[0], np.cumsum(lens)[:-1]])
+    owner, vertex, _, _ = corner_arrays(loops)
+    start = np.concatenate([[0], np.cumsum(np.bincount(owner, minlength=len(loops)))[:-1]])
     largest = np.maximum.reduceat(angles, start)
-    owner = np.repeat(np.arange(len(loops)), lens)
     at = np.flatnonzero(angles == largest[owner])  # the first corner of each loop at its largest angle
     first = at[np.searchsorted(owner[at], np.arange(len(loops)))]
-    return largest, np.concatenate(loops)[first]
+    return largest, vertex[first]
 
 
 def without_concavities(x: np.ndarray, me: MeshEdges, removed: np.ndarray, max_angle: float = MAX_CONCAVITY,
