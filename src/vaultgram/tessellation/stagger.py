@@ -105,7 +105,7 @@ def preferential_directions(x: np.ndarray, me: MeshEdges, supported: np.ndarray,
     ref = free if len(free) else boundary
     ref = np.concatenate([ref, np.asarray(rings, dtype=np.int64)])
     a, b = x[edges[ref, 0], :2], x[edges[ref, 1], :2]
-    _, nearest = cKDTree(0.5 * (a + b)).query(0.5 * (x[edges[:, 0], :2] + x[edges[:, 1], :2]))
+    _, nearest = cKDTree(0.5 * (a + b)).query(0.5 * (x[edges[:, 0], :2] + x[edges[:, 1], :2]), workers=-1)
     return _unit(b - a)[nearest]
 
 
@@ -282,6 +282,7 @@ class _Laying:
         self.kept: dict[int, np.ndarray] = {}
         self.sizes: dict[int, list] = {}
         self.skews: dict[int, np.ndarray] = {}
+        self.inputs: dict[int, tuple] = {}  # per course, what it was last laid with, and its cut
 
     def lift(self, k: int) -> None:
         """Take course ``k`` up: its joints, its removed rungs and its quads are free again."""
@@ -305,8 +306,13 @@ class _Laying:
         if k not in self.sizes:  # the same for every laying of the course
             self.sizes[k] = size_costs(self.areas[s.quads], self.target, self.longest)
             self.skews[k] = _skew_costs(self.skew[s.rungs], len(s)) + np.zeros(len(s.rungs))
-        penalty = (np.where(lined_up, ALIGNED_COST, 0.0) + self.skews[k]).tolist()
-        keep = cheapest_cut(self.sizes[k], forced, penalty, self.longest)
+        last = self.inputs.get(k)
+        if last is not None and np.array_equal(last[0], forced) and np.array_equal(last[1], lined_up):
+            keep = last[2].copy()  # nothing around the course changed since it was last laid
+        else:
+            penalty = (np.where(lined_up, ALIGNED_COST, 0.0) + self.skews[k]).tolist()
+            keep = cheapest_cut(self.sizes[k], forced, penalty, self.longest)
+            self.inputs[k] = (forced, lined_up, keep.copy())
         inner = np.arange(1, len(s))
         self.removed[s.rungs[inner[~keep[inner]]]] = True
         runs = np.cumsum(keep[:-1])  # quads between kept rungs form a voussoir
