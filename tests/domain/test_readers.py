@@ -105,7 +105,7 @@ def test_dxf_outer_must_enclose(tmp_path):
     msp.add_lwpolyline([(20, 0), (22, 0), (22, 2)], close=True)
     p = tmp_path / "bad.dxf"
     doc.saveas(p)
-    with pytest.raises(DomainError, match="not enclosed"):
+    with pytest.raises(DomainError, match="LWPOLYLINE #.* on layer '0' is not inside the outline"):
         load_domain(p)
 
 
