@@ -26,7 +26,8 @@ import numpy as np
 
 from vaultgram.errors import VaultgramError
 
-__all__ = ["to_compas_mesh", "to_formdiagram", "from_compas_mesh", "compas_json", "read_compas_mesh"]
+__all__ = ["to_compas_mesh", "to_formdiagram", "from_compas_mesh", "compas_json", "read_compas_mesh",
+           "require_compas"]
 
 
 def _compas(what: str = "COMPAS data"):
@@ -39,16 +40,27 @@ def _compas(what: str = "COMPAS data"):
     return compas
 
 
+def require_compas(what: str = "--format compas") -> None:
+    """Check that compas and compas_tna can be imported (before a run computes anything)."""
+    _compas(what)
+    try:
+        import compas_tna  # noqa: F401
+    except ImportError:
+        raise VaultgramError(f"{what} needs the compas_tna package: pip install 'vaultgram[compas]'") from None
+
+
 def _is_network(item) -> bool:
     return hasattr(item, "q") and hasattr(item, "anchors")
 
 
 def to_compas_mesh(item, supports=None):
-    """A pattern mesh or a thrust network as a ``compas.datastructures.Mesh``.
+    """A pattern mesh, a thrust network or voussoirs as a ``compas.datastructures.Mesh``.
 
     Parameters
     ----------
-    item : QuadMesh or ThrustNetwork
+    item : QuadMesh, ThrustNetwork or Tessellation
+        A tessellation gives its voussoirs' solids, each on its own vertices, as one mesh of triangles
+        (face attribute ``voussoir``).
     supports : sequence of int, optional
         For a pattern mesh: the vertices that bear thrust (``is_support``). A thrust network has its own.
 
@@ -71,6 +83,8 @@ def to_compas_mesh(item, supports=None):
     Mesh = _compas("a COMPAS mesh").datastructures.Mesh
     if _is_network(item):
         return _network_mesh(Mesh, item)
+    if hasattr(item, "solids"):
+        return _voussoir_mesh(Mesh, item)
     x = np.asarray(item.vertices, dtype=float)
     xyz = np.column_stack([x[:, :2], x[:, 2] if x.shape[1] == 3 else np.zeros(len(x))])
     mesh = Mesh.from_vertices_and_faces(xyz.tolist(), [list(map(int, f)) for f in item.faces])
@@ -92,6 +106,25 @@ def _network_mesh(Mesh, network):
     _vertex_equilibrium(mesh, network)
     _edge_forces(mesh, network)
     mesh.attributes.update(name="vaultgram thrust network", summary=_plain(network.summary))
+    return mesh
+
+
+def _voussoir_mesh(Mesh, tessellation):
+    """The voussoirs' closed solids, each on its own vertices, as one COMPAS mesh of triangles, each
+    face's ``voussoir`` its index."""
+    from vaultgram.io.cadfiles import voussoir_solids
+
+    solids = voussoir_solids(tessellation)
+    starts = np.cumsum([0] + [len(x) for x, _ in solids])
+    x = np.vstack([x for x, _ in solids])
+    triangles = np.vstack([t + s for (_, t), s in zip(solids, starts)])
+    mesh = Mesh.from_vertices_and_faces(x.tolist(), triangles.tolist())
+    owner = np.repeat(np.arange(len(solids)), [len(t) for _, t in solids])
+    mesh.update_default_face_attributes(voussoir=-1)
+    for face, k in zip(mesh.faces(), owner.tolist()):
+        mesh.face_attribute(face, "voussoir", k)
+    mesh.attributes.update(name="vaultgram voussoirs", names=list(tessellation.names),
+                           courses=tessellation.courses.tolist())
     return mesh
 
 
