@@ -9,9 +9,10 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from cadplans import dxf_plan, rhino_plan
-from paths import EXAMPLES
 from vaultgram.cli import main
+
+from cadplans import dxf_plan, rhino_plan  # isort: skip
+from paths import EXAMPLES  # isort: skip
 
 rhino3dm = pytest.importorskip("rhino3dm")
 ezdxf = pytest.importorskip("ezdxf")

@@ -20,9 +20,10 @@ from vaultgram.domain.dxf import domain_from_dxf
 from vaultgram.domain.model import Domain
 from vaultgram.domain.rhino import domain_from_3dm
 from vaultgram.errors import DomainError
+from vaultgram.geometry.polygons import signed_area
 
 __all__ = ["load_domain", "domain_from_dict", "domain_from_geojson", "domain_from_dxf", "domain_from_3dm",
-           "POINT_SNAP", "GEOJSON_TYPES", "FORMATS"]
+           "POINT_SNAP", "GEOJSON_TYPES", "GEOJSON_ROLES", "FORMATS"]
 
 def domain_from_dict(d: Any, source: str = "<dict>") -> Domain:
     """Build a validated :class:`Domain` from a vaultgram-JSON dictionary.
@@ -85,9 +86,13 @@ GEOJSON_TYPES = ("FeatureCollection", "Feature", "Polygon", "MultiPolygon", "Geo
 def domain_from_geojson(d: Any, source: str = "<geojson>") -> Domain:
     """Build a validated :class:`Domain` from a GeoJSON ``FeatureCollection`` or ``Feature``.
 
-    Exactly one ``Polygon`` (or single-part ``MultiPolygon``) gives the outer ring and holes;
-    ``Point``/``MultiPoint`` features give point features, ``LineString``/``MultiLineString``
-    features give curve features (in file order). A top-level ``supports`` member is kept.
+    Exactly one ``Polygon`` (or single-part ``MultiPolygon``; more parts are an error naming the
+    largest) gives the outer ring and holes; ``Point``/``MultiPoint`` features give point features,
+    ``LineString``/``MultiLineString`` features give curve features (in file order). A feature's
+    ``role`` property (:data:`GEOJSON_ROLES`) says what it is instead: ``outer`` (the polygon),
+    ``hole`` (polygons whose exterior rings are holes), ``point``, ``curve``, ``support`` (lines or
+    polygon rings whose boundary vertices bear thrust, the domain's ``{"polylines": ...}``). A
+    top-level ``supports`` member is kept.
 
     Example
     -------
@@ -103,23 +108,33 @@ def domain_from_geojson(d: Any, source: str = "<geojson>") -> Domain:
         raise prefixed(e, source) from None
 
 
+#: The ``role`` property a GeoJSON feature may carry (without one, a feature's role is its geometry's).
+GEOJSON_ROLES = ("outer", "hole", "point", "curve", "support")
+
+
 class _GeoJsonParts(NamedTuple):
     """What the features of a GeoJSON document hold, in file order."""
 
     polygons: list  # (feature index, rings)
     points: list  # [x, y]
     curves: list  # [[x, y], ...]
+    holes: list  # rings of features with the role "hole"
+    supports: list  # polylines of features with the role "support"
 
 
 def _domain_from_geojson(d: Any, source: str) -> Domain:
     """:func:`domain_from_geojson` without the ``source`` prefix on errors; the name comes from the
     document, its properties or the polygon feature's properties, else from ``source``."""
     feats = _geojson_features(d)
-    parts = _GeoJsonParts([], [], [])
+    parts = _GeoJsonParts([], [], [], [], [])
     for i, f in enumerate(feats):
         if not isinstance(f, dict) or f.get("type") != "Feature":
             raise DomainError(f"features[{i}]: expected a GeoJSON Feature")
-        _collect_geometry(f.get("geometry"), i, parts)
+        role = _properties(f).get("role")
+        if role is not None and role not in GEOJSON_ROLES:
+            raise DomainError(f"features[{i}].properties.role: expected one of {', '.join(GEOJSON_ROLES)}, "
+                              f"got {role!r}")
+        _collect_geometry(f.get("geometry"), i, parts, role)
     if len(parts.polygons) != 1:
         raise DomainError(f"expected exactly one Polygon feature (the domain), found {len(parts.polygons)}")
     i, rings = parts.polygons[0]
@@ -128,10 +143,20 @@ def _domain_from_geojson(d: Any, source: str) -> Domain:
     name = d.get("name") or _properties(d).get("name")
     name = name or _properties(feats[i]).get("name") or default_name(source)
     outer = as_coords(rings[0], "outer ring")
-    holes = [as_coords(r, f"hole {k}") for k, r in enumerate(rings[1:])]
+    holes = [as_coords(r, f"hole {k}") for k, r in enumerate([*rings[1:], *parts.holes])]
     pts = np.array([as_coords([p], f"point feature {k}")[0] for k, p in enumerate(parts.points)]).reshape(-1, 2)
     crv = [as_coords(c, f"curve feature {k}") for k, c in enumerate(parts.curves)]
-    return build_domain(str(name), outer, holes, pts, crv, d.get("supports"))
+    return build_domain(str(name), outer, holes, pts, crv, _geojson_supports(d, parts.supports))
+
+
+def _geojson_supports(d: dict, polylines: list):
+    """The document's ``supports``, or the polylines of its features with the role ``support``."""
+    if not polylines:
+        return d.get("supports")
+    if d.get("supports") is not None:
+        raise DomainError("supports: given twice, as the document's 'supports' and as features with the role "
+                          "'support'; give one")
+    return {"polylines": polylines}
 
 
 def _geojson_features(d: Any) -> list:
@@ -151,15 +176,34 @@ def _geojson_features(d: Any) -> list:
     raise DomainError(f"type: expected 'FeatureCollection' or 'Feature', got {kind!r}")
 
 
-def _collect_geometry(geom: Any, i: int, parts: _GeoJsonParts) -> None:
-    """Add the polygons, points and lines of the geometry of feature ``i`` to ``parts``."""
+#: The geometry types each role takes.
+_ROLE_TYPES = {"outer": ("Polygon", "MultiPolygon"), "hole": ("Polygon", "MultiPolygon"),
+               "point": ("Point", "MultiPoint"), "curve": ("LineString", "MultiLineString"),
+               "support": ("LineString", "MultiLineString", "Polygon", "MultiPolygon")}
+
+
+def _collect_geometry(geom: Any, i: int, parts: _GeoJsonParts, role: str | None = None) -> None:
+    """Add the polygons, points and lines of the geometry of feature ``i`` to ``parts``, by its role
+    (:data:`GEOJSON_ROLES`) or, without one, by its type."""
     if not isinstance(geom, dict):
         raise DomainError(f"features[{i}].geometry: expected a GeoJSON geometry object")
     t, coords = geom.get("type"), geom.get("coordinates")
-    if t == "Polygon":
-        parts.polygons.append((i, coords))
-    elif t == "MultiPolygon":
-        parts.polygons.extend((i, part) for part in _multi(coords, i))
+    if t == "GeometryCollection":
+        for g in _multi(geom.get("geometries"), i, "geometries"):
+            _collect_geometry(g, i, parts, role)
+        return
+    if role is not None and t not in _ROLE_TYPES[role]:
+        raise DomainError(f"features[{i}]: a {t} cannot have the role {role!r} "
+                          f"(expected {' or '.join(_ROLE_TYPES[role])})")
+    polygons = [coords] if t == "Polygon" else _multi(coords, i) if t == "MultiPolygon" else None
+    exteriors = [p[0] for p in polygons if isinstance(p, list) and p] if polygons is not None else None
+    if role == "hole":
+        parts.holes.extend(exteriors)
+    elif role == "support":
+        parts.supports.extend(exteriors if exteriors is not None else [coords] if t == "LineString"
+                              else _multi(coords, i))
+    elif polygons is not None:
+        parts.polygons.append((i, polygons[0] if t == "Polygon" else _one_polygon(polygons, i)))
     elif t == "Point":
         parts.points.append(coords)
     elif t == "MultiPoint":
@@ -168,11 +212,23 @@ def _collect_geometry(geom: Any, i: int, parts: _GeoJsonParts) -> None:
         parts.curves.append(coords)
     elif t == "MultiLineString":
         parts.curves.extend(_multi(coords, i))
-    elif t == "GeometryCollection":
-        for g in _multi(geom.get("geometries"), i, "geometries"):
-            _collect_geometry(g, i, parts)
     else:
         raise DomainError(f"features[{i}].geometry.type: unsupported geometry type {t!r}")
+
+
+def _one_polygon(polygons: list, i: int) -> list:
+    """The one part of a MultiPolygon; more parts are an error naming the largest (the domain is one
+    polygon, and the others would be lost)."""
+    if len(polygons) == 1:
+        return polygons[0]
+    if not polygons:
+        raise DomainError(f"features[{i}].geometry: a MultiPolygon without parts")
+    areas = [abs(signed_area(as_coords(p[0], f"features[{i}] part {k} exterior ring", 3)))
+             if isinstance(p, list) and p else 0.0 for k, p in enumerate(polygons)]
+    k = int(np.argmax(areas))
+    raise DomainError(f"features[{i}].geometry: a MultiPolygon of {len(polygons)} parts: the domain is one polygon; "
+                      f"the largest is part {k} (area {areas[k]:.6g}), the other {len(polygons) - 1} would be "
+                      "lost: give them as separate plans, or as holes (features with the role 'hole')")
 
 
 def _multi(parts: Any, i: int, key: str = "coordinates") -> list:
