@@ -170,3 +170,16 @@ def test_dxf_warning_is_one_line(tmp_path):
     assert result.exit_code == 0, result.output
     warned = [x for x in result.output.splitlines() if x.startswith("warning:")]
     assert len(warned) == 1 and "TEXT #" in warned[0]
+
+
+def test_tessellate_writes_voussoirs_to_dxf_and_compas(designed, tmp_path):
+    result = run("tessellate", designed / "thrust.json", "--out", tmp_path, "--format", "dxf,compas")
+    assert result.exit_code == 0, result.output
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["result.dxf", "voussoirs.compas.json"]
+    n = len(json.loads((designed / "tessellation.json").read_text())["voussoirs"])
+    msp = ezdxf.readfile(tmp_path / "result.dxf").modelspace()
+    assert len(msp.query('POLYLINE[layer=="voussoirs"]')) == len(msp.query('POLYLINE[layer=="voussoir outlines"]')) == n
+    from compas.datastructures import Mesh
+
+    solids = Mesh.from_json(str(tmp_path / "voussoirs.compas.json"))
+    assert len(set(solids.faces_attribute("voussoir"))) == n and solids.is_manifold()

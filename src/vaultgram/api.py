@@ -256,25 +256,8 @@ def save(result: Result, out: str | Path, formats=("json", "obj")) -> Path:
     >>> "thrust.json" in names, "result.dxf" in names, "thrust.obj" in names
     (True, True, False)
     """
-    from vaultgram.io.files import write_json
-    from vaultgram.io.outputs import (
-        parse_formats,
-        write_decomposition,
-        write_drawings,
-        write_mesh_files,
-        write_tessellation,
-        write_thrust,
-    )
+    from vaultgram.io.outputs import parse_formats, write_design
 
-    formats = parse_formats(",".join(formats))
     out = Path(out)
-    write_decomposition(result.decomposition, out, formats=formats)
-    write_mesh_files(result.mesh, out, result.supports, formats=formats)
-    write_thrust(result.network, out, plot=True, formats=formats)
-    if result.tessellation is not None:
-        write_tessellation(result.tessellation, out, formats=formats)
-    if "json" in formats:
-        write_json(out / "summary.json", result.summary())
-    write_drawings(out, formats, result.domain.units, decomposition=result.decomposition, mesh=result.mesh,
-                   network=result.network, tessellation=result.tessellation)
+    write_design(result, out, parse_formats(",".join(formats)))
     return out

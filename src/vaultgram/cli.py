@@ -356,14 +356,7 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
     is vaultgram JSON, GeoJSON, DXF or a Rhino .3dm; --format 3dm writes result.3dm, one layer per stage.
     """
     from vaultgram.domain import load_domain
-    from vaultgram.io.outputs import (
-        parse_formats,
-        write_decomposition,
-        write_drawings,
-        write_mesh_files,
-        write_tessellation,
-        write_thrust,
-    )
+    from vaultgram.io.outputs import parse_formats, write_design
     from vaultgram.meshing.densities import load_densities
     from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
     from vaultgram.pipeline import TessellationOptions, design
@@ -378,19 +371,12 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
         TessellationOptions(int(rhythm), max_concavity, flat_extrados, surface_smooth),
         density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode)
     out = Path(out_dir)
-    write_decomposition(result.decomposition, out, formats=formats)
+    write_design(result, out, formats)
     echo_decomposition(result.decomposition, out)
-    write_mesh_files(result.mesh, out, result.supports, formats=formats)
     click.echo(f"mesh: {len(result.mesh.vertices)} vertices, {len(result.mesh.faces)} faces; "
                f"wrote {_joined(f for f in ('mesh.json', 'mesh.obj', 'mesh.compas.json') if _written(f, formats))}")
-    write_thrust(result.network, out, plot=True, formats=formats)
     click.echo(result.network.summary_text())
-    write_tessellation(result.tessellation, out, formats=formats)
     click.echo(format_summary(result.tessellation.summary))
-    if "json" in formats:
-        write_json(out / "summary.json", result.summary())
-    write_drawings(out, formats, domain.units, decomposition=result.decomposition, mesh=result.mesh,
-                   network=result.network, tessellation=result.tessellation)
     echo_timings(result.timings)
 
 

@@ -102,7 +102,7 @@ def _network_mesh(Mesh, network):
     """The thrust network's loaded faces as a COMPAS mesh, with its equilibrium as attributes."""
     mesh = Mesh.from_vertices_and_faces(network.vertices.tolist(), [list(map(int, f)) for f in network.faces])
     mesh.update_default_vertex_attributes(is_support=False, load=0.0, pz=0.0, mesh_vertex=-1)
-    mesh.update_default_edge_attributes(q=0.0, _f=0.0, _h=0.0, _is_edge=False)
+    mesh.update_default_edge_attributes(q=0.0, _f=0.0, _h=0.0, _l=0.0, _is_edge=False)
     _vertex_equilibrium(mesh, network)
     _edge_forces(mesh, network)
     mesh.attributes.update(name="vaultgram thrust network", summary=_plain(network.summary))
@@ -140,11 +140,12 @@ def _vertex_equilibrium(mesh, network) -> None:
 
 
 def _edge_forces(mesh, network) -> None:
-    """Force densities, forces and horizontal forces of the network's edges (``_is_edge``)."""
-    names = ["q", "_f", "_h", "_is_edge"]
-    for (u, v), q, f, h in zip(network.edges.tolist(), network.q.tolist(), network.forces.tolist(),
-                               network.horizontal_forces.tolist()):
-        mesh.edge_attributes((u, v), names, [q, f, h, True])
+    """Force densities, forces, horizontal forces and lengths of the network's edges (``_is_edge``)."""
+    names = ["q", "_f", "_h", "_l", "_is_edge"]
+    lengths = np.linalg.norm(network.vertices[network.edges[:, 1]] - network.vertices[network.edges[:, 0]], axis=1)
+    for (u, v), q, f, h, length in zip(network.edges.tolist(), network.q.tolist(), network.forces.tolist(),
+                                       network.horizontal_forces.tolist(), lengths.tolist()):
+        mesh.edge_attributes((u, v), names, [q, f, h, length, True])
 
 
 def _plain(value):
@@ -185,14 +186,8 @@ def to_formdiagram(network):
     for face, loaded in zip(form.faces(), fd.loaded.tolist()):
         form.face_attribute(face, "_is_loaded", bool(loaded))
     form.edges_attribute("_is_edge", False)
-    for key, values in enumerate(zip(network.anchors.tolist(), network.loads.tolist())):
-        form.vertex_attributes(key, ["is_support", "pz"], list(values))
-    for key, r in zip(np.flatnonzero(network.anchors).tolist(), network.reactions.tolist()):
-        form.vertex_attributes(key, ["_rx", "_ry", "_rz"], r)
-    lengths = np.linalg.norm(network.vertices[network.edges[:, 1]] - network.vertices[network.edges[:, 0]], axis=1)
-    for (u, v), q, f, h, length in zip(network.edges.tolist(), network.q.tolist(), network.forces.tolist(),
-                                       network.horizontal_forces.tolist(), lengths.tolist()):
-        form.edge_attributes((u, v), ["q", "_f", "_h", "_l", "_is_edge"], [q, f, h, length, True])
+    _vertex_equilibrium(form, network)
+    _edge_forces(form, network)
     return form
 
 

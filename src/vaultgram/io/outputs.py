@@ -26,7 +26,8 @@ from vaultgram.meshing.quadmesh import QuadMesh
 from vaultgram.tessellation.model import Tessellation
 from vaultgram.topology.decomposition import Decomposition
 
-__all__ = ["write_decomposition", "write_mesh_files", "write_thrust", "write_tessellation", "write_drawings",
+__all__ = ["write_decomposition", "write_mesh_files", "write_thrust", "write_tessellation", "write_design",
+           "write_drawings",
            "parse_formats", "OUTPUT_FORMATS", "DEFAULT_FORMATS"]
 
 #: The output formats, and the ones written when none are asked for.
@@ -132,6 +133,20 @@ def _write_compas(path: Path, item, supports=None) -> None:
     from vaultgram.io.compasfiles import compas_json, to_compas_mesh
 
     write_text(path, compas_json(to_compas_mesh(item, supports)))
+
+
+def write_design(result, out: Path, formats=DEFAULT_FORMATS) -> None:
+    """Every file of a whole design (:class:`vaultgram.pipeline.Design`), as ``formats`` ask: each stage's,
+    ``summary.json`` (one section per stage) and the drawings."""
+    write_decomposition(result.decomposition, out, formats=formats)
+    write_mesh_files(result.mesh, out, result.supports, formats=formats)
+    write_thrust(result.network, out, plot=True, formats=formats)
+    if result.tessellation is not None:
+        write_tessellation(result.tessellation, out, formats=formats)
+    if "json" in formats:
+        write_json(out / "summary.json", result.summary())
+    write_drawings(out, formats, result.domain.units, decomposition=result.decomposition, mesh=result.mesh,
+                   network=result.network, tessellation=result.tessellation)
 
 
 def write_drawings(out: Path, formats, units: str | None = None, **stages) -> None:
