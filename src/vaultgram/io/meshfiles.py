@@ -141,7 +141,8 @@ def read_pattern(path: str | Path, input_format: str | None = None):
     """``(mesh, supports)`` of a pattern file for form finding, or None when the file is a domain.
 
     ``input_format`` is one of :data:`PATTERN_FORMATS`, else chosen by extension (``.obj``) and content
-    (a JSON object with ``dtype`` is COMPAS data, one with ``vertices`` and ``faces`` a mesh). The
+    (``json``, or a ``.json`` file: a JSON object with ``dtype`` is COMPAS data, one with ``vertices``
+    and ``faces`` a mesh, anything else a domain). The
     supports are the file's (``mesh.json``'s ``supports``, a COMPAS mesh's ``is_support`` vertices) or
     None (the outer boundary).
     """
@@ -151,7 +152,8 @@ def read_pattern(path: str | Path, input_format: str | None = None):
     if input_format == "obj" or (input_format is None and where.lower().endswith(".obj")):
         x, faces = read_obj(path)
         return mesh_from_json({"vertices": x.tolist(), "faces": faces}, where, polygons=True), None
-    if input_format not in PATTERN_FORMATS and not (input_format is None and where.lower().endswith(".json")):
+    by_content = input_format == "json" or (input_format is None and where.lower().endswith(".json"))
+    if input_format not in PATTERN_FORMATS and not by_content:
         return None
     data = read_json(path)
     if input_format == "compas" or (isinstance(data, dict) and "dtype" in data):
