@@ -81,6 +81,8 @@ def test_compas_tna_vertical_equilibrium_gives_vaultgrams_heights(network, tmp_p
     z = np.array([form.vertex_attribute(k, "z") for k in range(len(network.vertices))])
     assert np.abs(z - network.vertices[:, 2]).max() <= 1e-9 * network.vertices[:, 2].max()
     assert np.abs(z[free]).min() > 0  # they were recomputed
+    x, faces, supports = from_compas_mesh(form)  # as a pattern: its loaded faces, its supports
+    assert faces == [list(f) for f in network.faces] and supports == np.flatnonzero(network.anchors).tolist()
 
 
 def test_same_object_same_json(network):

@@ -198,8 +198,9 @@ def compas_json(obj) -> str:
 
 
 def from_compas_mesh(obj, where: str = "COMPAS mesh") -> tuple[np.ndarray, list, list]:
-    """The vertices ``(n, 3)``, faces (vertex-index lists, n-gons kept) and supported vertex indices
-    (``is_support``) of a COMPAS mesh, its vertices numbered in key order.
+    """The vertices ``(n, 3)``, faces (vertex-index lists, n-gons kept; a compas_tna form diagram's
+    openings, ``_is_loaded`` false, left out) and supported vertex indices (``is_support``) of a COMPAS
+    mesh, its vertices numbered in key order.
 
     ``obj`` is a ``compas.datastructures.Mesh`` (a compas_tna ``FormDiagram`` too) or COMPAS JSON data
     (a ``{"dtype", "data"}`` dict).
@@ -230,7 +231,8 @@ def from_compas_mesh(obj, where: str = "COMPAS mesh") -> tuple[np.ndarray, list,
     keys = sorted(obj.vertices())
     index = {key: i for i, key in enumerate(keys)}
     x = np.array([obj.vertex_coordinates(v) for v in keys], dtype=float).reshape(-1, 3)
-    faces = [[index[v] for v in obj.face_vertices(f)] for f in sorted(obj.faces())]
+    faces = [[index[v] for v in obj.face_vertices(f)] for f in sorted(obj.faces())
+             if obj.face_attribute(f, "_is_loaded") is not False]  # a compas_tna opening is not a face
     supports = [index[v] for v in keys if obj.vertex_attribute(v, "is_support")]
     return x, faces, supports
 
