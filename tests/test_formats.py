@@ -183,3 +183,13 @@ def test_tessellate_writes_voussoirs_to_dxf_and_compas(designed, tmp_path):
 
     solids = Mesh.from_json(str(tmp_path / "voussoirs.compas.json"))
     assert len(set(solids.faces_attribute("voussoir"))) == n and solids.is_manifold()
+
+
+def test_decompose_writes_the_patches_to_a_dxf(tmp_path):
+    plan = dxf_plan(tmp_path / "plan.dxf")
+    result = run("decompose", plan, "--out", tmp_path / "out", "--format", "json,dxf")
+    assert result.exit_code == 0, result.output
+    patches = json.loads((tmp_path / "out" / "patches.json").read_text())["patches"]
+    doc = ezdxf.readfile(tmp_path / "out" / "result.dxf")
+    assert [layer.dxf.name for layer in doc.layers if layer.dxf.name in ("patches", "mesh")] == ["patches"]
+    assert len(doc.modelspace().query('POLYLINE[layer=="patches"]')) == len(patches)

@@ -225,17 +225,24 @@ def rules_why_not(files, graph_path: str, rule_name: str) -> None:
 @RULES
 @click.option("--smooth-branches", is_flag=True, help="Smooth the skeleton branches with splines (scipy).")
 @click.option("--plot/--no-plot", default=True, show_default=True, help="Also write decomposition.png.")
+@FORMAT
 @input_options
 def decompose_command(domain_path: str, out_dir: str, spacing: float, rules_dir: str | None, smooth_branches: bool,
-                      plot: bool, input_format: str | None, layers) -> None:
-    """Block decomposition of a DOMAIN (JSON, GeoJSON, DXF or .3dm) into 3- and 4-sided patches (paper 3.1)."""
+                      plot: bool, formats, input_format: str | None, layers) -> None:
+    """Block decomposition of a DOMAIN (JSON, GeoJSON, DXF or .3dm) into 3- and 4-sided patches (paper 3.1).
+
+    Writes decomposition.json, patches.json and decomposition.png (--format 3dm or dxf: the patches
+    as closed polylines in result.3dm or result.dxf).
+    """
     from vaultgram.domain import load_domain
-    from vaultgram.io.outputs import write_decomposition
+    from vaultgram.io.outputs import parse_formats, write_decomposition, write_drawings
     from vaultgram.pipeline import decompose
 
+    formats = parse_formats(formats)
     domain = load_domain(domain_path, input_format, layer_names(layers), spacing)
     dec = decompose(domain, spacing, rules_dir, smooth=smooth_branches)
-    write_decomposition(dec, Path(out_dir), plot)
+    write_decomposition(dec, Path(out_dir), plot, formats)
+    write_drawings(Path(out_dir), formats, domain.units, decomposition=dec)
     echo_decomposition(dec, Path(out_dir))
 
 
@@ -285,13 +292,11 @@ def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, 
     formats = parse_formats(formats)
     domain = None
     timings: dict = {}
-    pattern = read_pattern(input_path, input_format) if input_format in (None, "json", "mesh", "obj",
-                                                                           "compas") else None
+    pattern = read_pattern(input_path, input_format)  # None: a domain (mesh, obj, compas always give one)
     if pattern is not None:
         mesh, spec = pattern
     else:
-        domain = load_domain(input_path, input_format if input_format != "mesh" else None, layer_names(layers),
-                             spacing)
+        domain = load_domain(input_path, input_format, layer_names(layers), spacing)
         mesh = mesh_domain(domain, spacing, target_length, timings=timings)
         spec = domain.supports
     if supports_path:
