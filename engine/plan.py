@@ -17,7 +17,7 @@ along the rarest edge type, and scans only to start a new connected component.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable
+from typing import Callable, Union
 
 from .checker import CompiledPattern, Condition, PatternEdge, PatternNode
 
@@ -89,7 +89,7 @@ class Check:
         return f"condition `{self.condition.text}` is false"
 
 
-Step = Bound | Scan | Extend | Check
+Step = Union[Bound, Scan, Extend, Check]  # not `Bound | Scan | ...`: evaluated at import, 3.10+
 
 
 def build_plan(

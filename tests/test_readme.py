@@ -30,8 +30,8 @@ def run_block(code: str, folder, monkeypatch) -> str:
     return printed.getvalue()
 
 
-def test_the_readme_has_the_pipeline_and_the_engine_examples():
-    assert len(PYTHON_BLOCKS) == 2 and "..." not in "".join(PYTHON_BLOCKS)
+def test_the_readme_has_the_pipeline_the_api_and_the_engine_examples():
+    assert len(PYTHON_BLOCKS) == 3 and "..." not in "".join(PYTHON_BLOCKS)
 
 
 def test_the_pipeline_example_runs_every_stage_and_writes_the_voussoirs(tmp_path, monkeypatch):
@@ -43,8 +43,16 @@ def test_the_pipeline_example_runs_every_stage_and_writes_the_voussoirs(tmp_path
     assert {p.name for p in (tmp_path / "out").iterdir()} == {"tessellation.json", "voussoirs.obj", "tessellation.png"}
 
 
-def test_the_engine_example_prunes_the_corner_branch(tmp_path, monkeypatch):
+def test_the_api_example_designs_and_saves_a_dxf(tmp_path, monkeypatch):
     printed = run_block(PYTHON_BLOCKS[1], tmp_path, monkeypatch)
+    faces, voussoirs = map(int, re.match(r"(\d+) faces, (\d+) voussoirs", printed).groups())
+    assert 0 < voussoirs < faces
+    names = {p.name for p in (tmp_path / "out").iterdir()}
+    assert {"result.dxf", "thrust.json", "tessellation.json"} <= names and "thrust.obj" not in names
+
+
+def test_the_engine_example_prunes_the_corner_branch(tmp_path, monkeypatch):
+    printed = run_block(PYTHON_BLOCKS[2], tmp_path, monkeypatch)
     assert printed.startswith("0 {'rule': 'prune_corner_branch'")
 
 

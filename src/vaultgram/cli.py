@@ -9,11 +9,12 @@ from __future__ import annotations
 
 import json
 import sys
+import warnings
 from pathlib import Path
 
 import click
 
-from vaultgram.errors import VaultgramError
+from vaultgram.errors import VaultgramError, VaultgramWarning
 from vaultgram.io.files import read_json, write_json
 
 
@@ -23,7 +24,10 @@ class _Group(click.Group):
 
     def invoke(self, ctx):
         try:
-            return super().invoke(ctx)
+            with warnings.catch_warnings():
+                warnings.showwarning = _show_warning
+                warnings.simplefilter("always", VaultgramWarning)
+                return super().invoke(ctx)
         except VaultgramError as exc:
             click.echo(f"error: {exc}", err=True)
             sys.exit(2)
@@ -32,6 +36,11 @@ class _Group(click.Group):
                 raise  # the group's own usage (an unknown command or option): click's full message
             click.echo(f"error: {exc.ctx.command_path}: {exc.format_message()}", err=True)
             sys.exit(2)
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    """A warning as one ``warning:`` line on stderr (what an input had that was not used)."""
+    click.echo(f"warning: {message}", err=True)
 
 
 # Options several commands share.
@@ -73,6 +82,31 @@ SUPPORTS = click.option("--supports", "supports_path", type=click.Path(dir_okay=
                              '(overrides the input).')
 DENSITIES = click.option("--densities", "densities_path", type=click.Path(dir_okay=False), default=None,
                          help="Density file: JSON {target_length, length_mode, min_count, groups, regions}.")
+
+
+FORMAT = click.option("--format", "formats", default=None, metavar="LIST",
+                      help="Output formats, comma-separated: json, obj, compas, 3dm, dxf (default: json,obj).")
+INPUT_FORMAT = click.option("--input-format", type=click.Choice(["json", "geojson", "dxf", "3dm"]), default=None,
+                            help="The input's format (default: by extension, then by content).")
+LAYERS = click.option("--layer", "layers", multiple=True, metavar="ROLE=NAME",
+                      help="A DXF or .3dm layer name for a role (outer, holes, points, curves, supports); "
+                           "repeatable. Defaults: the role's own name.")
+
+
+def layer_names(pairs) -> dict:
+    """``--layer ROLE=NAME`` options as a dict."""
+    out = {}
+    for pair in pairs:
+        role, sep, name = pair.partition("=")
+        if not sep or not name:
+            raise VaultgramError(f"--layer: expected ROLE=NAME, got {pair!r}")
+        out[role.strip()] = name.strip()
+    return out
+
+
+def input_options(command):
+    """The options of the commands that read a domain: its format and its layers."""
+    return INPUT_FORMAT(LAYERS(command))
 
 
 TESSELLATION = [
@@ -191,16 +225,24 @@ def rules_why_not(files, graph_path: str, rule_name: str) -> None:
 @RULES
 @click.option("--smooth-branches", is_flag=True, help="Smooth the skeleton branches with splines (scipy).")
 @click.option("--plot/--no-plot", default=True, show_default=True, help="Also write decomposition.png.")
-def decompose_command(
-    domain_path: str, out_dir: str, spacing: float, rules_dir: str | None, smooth_branches: bool, plot: bool
-) -> None:
-    """Block decomposition of a DOMAIN (JSON, GeoJSON or DXF) into 3- and 4-sided patches (paper 3.1)."""
+@FORMAT
+@input_options
+def decompose_command(domain_path: str, out_dir: str, spacing: float, rules_dir: str | None, smooth_branches: bool,
+                      plot: bool, formats, input_format: str | None, layers) -> None:
+    """Block decomposition of a DOMAIN (JSON, GeoJSON, DXF or .3dm) into 3- and 4-sided patches (paper 3.1).
+
+    Writes decomposition.json, patches.json and decomposition.png (--format 3dm or dxf: the patches
+    as closed polylines in result.3dm or result.dxf).
+    """
     from vaultgram.domain import load_domain
-    from vaultgram.io.outputs import write_decomposition
+    from vaultgram.io.outputs import parse_formats, write_decomposition, write_drawings
     from vaultgram.pipeline import decompose
 
-    dec = decompose(load_domain(domain_path), spacing, rules_dir, smooth=smooth_branches)
-    write_decomposition(dec, Path(out_dir), plot)
+    formats = parse_formats(formats)
+    domain = load_domain(domain_path, input_format, layer_names(layers), spacing)
+    dec = decompose(domain, spacing, rules_dir, smooth=smooth_branches)
+    write_decomposition(dec, Path(out_dir), plot, formats)
+    write_drawings(Path(out_dir), formats, domain.units, decomposition=dec)
     echo_decomposition(dec, Path(out_dir))
 
 
@@ -228,34 +270,41 @@ def echo_timings(timings: dict) -> None:
 @SUPPORTS
 @SPACING
 @TARGET_LENGTH
+@FORMAT
+@click.option("--input-format", type=click.Choice(["json", "geojson", "dxf", "3dm", "mesh", "obj", "compas"]),
+              default=None, help="The input's format (default: by extension, then by content).")
+@LAYERS
 def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, tol_deg, sag, relax_mode,
-                     supports_path, spacing, target_length) -> None:
-    """Thrust Network Analysis (paper 5) on a MESH (mesh.json, or any {"vertices", "faces"}) or a DOMAIN.
+                     supports_path, spacing, target_length, formats, input_format, layers) -> None:
+    """Thrust Network Analysis (paper 5) on a MESH or a DOMAIN.
 
-    A DOMAIN is meshed first (as `vaultgram mesh` does). Supports: --supports, else the input's own
-    (the domain's "supports", or a mesh's "supports" vertex list), else the outer boundary.
-    Writes form.json, force.json, thrust.json, thrust.obj and summary.json to --out.
+    A MESH is a mesh.json (or any {"vertices", "faces"}), a Wavefront OBJ or a COMPAS mesh JSON, faces
+    of any number of sides; a DOMAIN is meshed first (as `vaultgram mesh` does). Supports: --supports,
+    else the input's own (the domain's "supports", a mesh's "supports" vertex list, a COMPAS mesh's
+    is_support vertices), else the outer boundary. Writes form.json, force.json, thrust.json,
+    thrust.obj and summary.json to --out (see --format for the others).
     """
     from vaultgram.domain import load_domain
-    from vaultgram.io.meshfiles import mesh_from_json
-    from vaultgram.io.outputs import write_thrust
+    from vaultgram.io.meshfiles import read_pattern
+    from vaultgram.io.outputs import parse_formats, write_drawings, write_thrust
     from vaultgram.pipeline import mesh_domain, thrust_of_mesh
 
+    formats = parse_formats(formats)
     domain = None
     timings: dict = {}
-    data = read_json(input_path) if input_path.endswith(".json") else None
-    if isinstance(data, dict) and "vertices" in data and "faces" in data:
-        mesh = mesh_from_json(data, input_path)
-        spec = data.get("supports")
+    pattern = read_pattern(input_path, input_format)  # None: a domain (mesh, obj, compas always give one)
+    if pattern is not None:
+        mesh, spec = pattern
     else:
-        domain = load_domain(input_path)
+        domain = load_domain(input_path, input_format, layer_names(layers), spacing)
         mesh = mesh_domain(domain, spacing, target_length, timings=timings)
         spec = domain.supports
     if supports_path:
         spec = read_json(supports_path)
     network = thrust_of_mesh(mesh, spec, domain, point_load, timings, zmax=zmax, thickness=thickness,
                              density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode)
-    write_thrust(network, Path(out_dir))
+    write_thrust(network, Path(out_dir), formats=formats)
+    write_drawings(Path(out_dir), formats, domain.units if domain is not None else None, network=network)
     click.echo(network.summary_text())
     echo_timings(timings)
 
@@ -266,22 +315,25 @@ def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, 
 @click.option("--thickness", type=POSITIVE, default=1.0, show_default=True, help="Voussoir thickness.")
 @tessellation_options
 @RULES
+@FORMAT
 def tessellate_command(thrust_path, out_dir, thickness, rhythm, max_concavity, flat_extrados, surface_smooth,
-                       rules_dir) -> None:
+                       rules_dir, formats) -> None:
     """Voussoirs from a THRUST network (thrust.json, paper 5): keystones, staggered bond, solids, courses.
 
-    Writes tessellation.json, voussoirs.obj and summary.json to --out.
+    Writes tessellation.json, voussoirs.obj and summary.json to --out (see --format for the others).
     """
-    from vaultgram.io.outputs import write_tessellation
+    from vaultgram.io.outputs import parse_formats, write_drawings, write_tessellation
     from vaultgram.pipeline import tessellate
     from vaultgram.tessellation.metrics import format_summary
     from vaultgram.tessellation.surface import surface_from_json
 
+    formats = parse_formats(formats)
     timings: dict = {}
     surface = surface_from_json(read_json(thrust_path), thrust_path)
     result = tessellate(surface, int(rhythm), thickness, max_concavity, flat_extrados, surface_smooth, rules_dir,
                         timings)
-    write_tessellation(result, Path(out_dir), summary=True)
+    write_tessellation(result, Path(out_dir), summary=True, formats=formats)
+    write_drawings(Path(out_dir), formats, tessellation=result)
     click.echo(format_summary(result.summary))
     echo_timings(timings)
 
@@ -298,38 +350,51 @@ def tessellate_command(thrust_path, out_dir, thickness, rhythm, max_concavity, f
 @SUPPORTS
 @thrust_options
 @tessellation_options
+@FORMAT
+@input_options
 def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smooth, densities_path, allow_folds,
                    supports_path, zmax, thickness, density, point_load, tol_deg, sag, relax_mode, rhythm,
-                   max_concavity, flat_extrados, surface_smooth) -> None:
+                   max_concavity, flat_extrados, surface_smooth, formats, input_format, layers) -> None:
     """The whole pipeline on a DOMAIN: decomposition (3.1, 4), mesh (3.2), thrust network and voussoirs (5).
 
-    Everything is computed before anything is written, so a failing stage leaves no output.
+    Everything is computed before anything is written, so a failing stage leaves no output. The DOMAIN
+    is vaultgram JSON, GeoJSON, DXF or a Rhino .3dm; --format 3dm writes result.3dm, one layer per stage.
     """
     from vaultgram.domain import load_domain
-    from vaultgram.io.outputs import write_decomposition, write_mesh_files, write_tessellation, write_thrust
+    from vaultgram.io.outputs import parse_formats, write_design
     from vaultgram.meshing.densities import load_densities
     from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
     from vaultgram.pipeline import TessellationOptions, design
     from vaultgram.tessellation.metrics import format_summary
 
+    formats = parse_formats(formats)
+    domain = load_domain(domain_path, input_format, layer_names(layers), spacing)
     result = design(
-        load_domain(domain_path), spacing, rules_dir, target_length, DEFAULT_ITERATIONS if smooth is None else smooth,
+        domain, spacing, rules_dir, target_length, DEFAULT_ITERATIONS if smooth is None else smooth,
         load_densities(densities_path) if densities_path else None, allow_folds,
         read_json(supports_path) if supports_path else None, point_load, zmax, thickness,
         TessellationOptions(int(rhythm), max_concavity, flat_extrados, surface_smooth),
         density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode)
     out = Path(out_dir)
-    write_decomposition(result.decomposition, out)
+    write_design(result, out, formats)
     echo_decomposition(result.decomposition, out)
-    write_mesh_files(result.mesh, out, result.supports)
     click.echo(f"mesh: {len(result.mesh.vertices)} vertices, {len(result.mesh.faces)} faces; "
-               "wrote mesh.json and mesh.obj")
-    write_thrust(result.network, out, plot=True)
+               f"wrote {_joined(f for f in ('mesh.json', 'mesh.obj', 'mesh.compas.json') if _written(f, formats))}")
     click.echo(result.network.summary_text())
-    write_tessellation(result.tessellation, out)
     click.echo(format_summary(result.tessellation.summary))
-    write_json(out / "summary.json", result.summary())
     echo_timings(result.timings)
+
+
+def _written(name: str, formats) -> bool:
+    """Whether a file of this name is written for these formats."""
+    kind = "compas" if name.endswith(".compas.json") else Path(name).suffix.lstrip(".")
+    return kind in formats
+
+
+def _joined(names) -> str:
+    """``a``, ``a and b``, ``a, b and c``."""
+    names = list(names)
+    return " and ".join([", ".join(names[:-1]), names[-1]]) if len(names) > 1 else "".join(names)
 
 
 @main.command("mesh")
@@ -341,22 +406,26 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
 @DENSITIES
 @ALLOW_FOLDS
 @SUPPORTS
+@FORMAT
+@input_options
 def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities_path, allow_folds,
-                 supports_path) -> None:
+                 supports_path, formats, input_format, layers) -> None:
     """Quad-mesh a DOMAIN (paper 3): decompose, mesh the patches, weld, smooth.
 
     Writes mesh.json (vertices, faces, vertex labels, edge groups, the vertices that bear thrust) and
-    mesh.obj to --out; `vaultgram formfind mesh.json` then gives the thrust network `design` gives.
+    mesh.obj to --out (see --format for the others); `vaultgram formfind mesh.json` then gives the
+    thrust network `design` gives.
     """
     from vaultgram.domain import load_domain
     from vaultgram.formfinding.supports import support_vertices
-    from vaultgram.io.meshfiles import write_mesh
+    from vaultgram.io.outputs import parse_formats, write_drawings, write_mesh_files
     from vaultgram.meshing.densities import load_densities
     from vaultgram.meshing.quality import mesh_stats
     from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
     from vaultgram.pipeline import mesh_domain
 
-    domain = load_domain(domain_path)
+    formats = parse_formats(formats)
+    domain = load_domain(domain_path, input_format, layer_names(layers), spacing)
     spec = load_densities(densities_path) if densities_path else None
     mesh = mesh_domain(domain, spacing, target_length, DEFAULT_ITERATIONS if smooth is None else smooth, spec,
                        allow_folds=allow_folds)
@@ -364,10 +433,14 @@ def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities
     if isinstance(supports, list):
         supports = {"vertices": supports}
     anchors = support_vertices(mesh.vertices, mesh.faces, supports, domain)
-    json_path, obj_path = write_mesh(mesh, Path(out_dir), anchors)
+    out = Path(out_dir)
+    write_mesh_files(mesh, out, anchors, plot=False, formats=formats)
+    write_drawings(out, formats, domain.units, mesh=mesh)
+    names = [*(f for f in ("mesh.json", "mesh.obj", "mesh.compas.json") if _written(f, formats)),
+             *(f"result.{f}" for f in ("3dm", "dxf") if f in formats)]
     stats = mesh_stats(mesh, domain)
     click.echo(
-        f"wrote {json_path} and {obj_path}: {stats['vertices']} vertices, {stats['quads']} quads, "
+        f"wrote {_joined(str(out / f) for f in names)}: {stats['vertices']} vertices, {stats['quads']} quads, "
         f"{stats['triangles']} triangles; {mesh.info['patches']} patches, {mesh.info['edge_groups']} edge groups"
     )
     click.echo(

@@ -35,7 +35,13 @@ __all__ = [
     "MeshError",
     "NonManifoldVertexError",
     "did_you_mean",
+    "VaultgramWarning",
 ]
+
+
+class VaultgramWarning(UserWarning):
+    """Something in an input that vaultgram did not use (an entity of a CAD drawing it cannot place,
+    ...): the message names it. The command line prints each as one ``warning:`` line."""
 
 
 class DomainError(VaultgramError):

@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from vaultgram.domain import domain_from_dict, load_domain
+from vaultgram.domain import domain_from_dict, domain_from_geojson, load_domain
 from vaultgram.errors import DomainError
 
 SQUARE = [[0, 0], [10, 0], [10, 10], [0, 10]]
@@ -105,7 +105,7 @@ def test_dxf_outer_must_enclose(tmp_path):
     msp.add_lwpolyline([(20, 0), (22, 0), (22, 2)], close=True)
     p = tmp_path / "bad.dxf"
     doc.saveas(p)
-    with pytest.raises(DomainError, match="not enclosed"):
+    with pytest.raises(DomainError, match="LWPOLYLINE #.* on layer '0' is not inside the outline"):
         load_domain(p)
 
 
@@ -160,3 +160,39 @@ def test_schema_documents_format():
     jsonschema = pytest.importorskip("jsonschema")
     for ex in schema["examples"]:
         jsonschema.validate(ex, schema)
+
+
+# --- GeoJSON roles ---------------------------------------------------------------------------------
+
+
+def _feature(geometry, coordinates, **properties):
+    return {"type": "Feature", "properties": properties, "geometry": {"type": geometry, "coordinates": coordinates}}
+
+
+def test_geojson_roles():
+    hole = [[4, 4], [6, 4], [6, 6], [4, 6], [4, 4]]
+    d = domain_from_geojson({"type": "FeatureCollection", "features": [
+        _feature("Polygon", [SQUARE + [SQUARE[0]]], role="outer"),
+        _feature("Polygon", [hole], role="hole"),
+        _feature("LineString", [[0, 0], [10, 0]], role="support"),
+        _feature("Point", [2, 2], role="point"),
+        _feature("LineString", [[1, 8], [3, 8]], role="curve")]})
+    assert len(d.holes) == 1 and d.area == pytest.approx(96.0)
+    assert d.supports == {"polylines": [[[0, 0], [10, 0]]]}
+    assert len(d.points) == 1 and len(d.curves) == 1
+
+
+def test_geojson_role_must_fit_the_geometry():
+    with pytest.raises(DomainError, match=r"features\[1\]: a Point cannot have the role 'hole'"):
+        domain_from_geojson({"type": "FeatureCollection", "features": [
+            _feature("Polygon", [SQUARE + [SQUARE[0]]]), _feature("Point", [2, 2], role="hole")]})
+    with pytest.raises(DomainError, match=r"features\[0\].properties.role: expected one of outer, hole"):
+        domain_from_geojson(_feature("Polygon", [SQUARE + [SQUARE[0]]], role="wall"))
+
+
+def test_geojson_multipolygon_parts_other_than_the_largest_are_an_error():
+    small = [[20, 0], [21, 0], [21, 1], [20, 0]]
+    with pytest.raises(DomainError, match=r"MultiPolygon of 2 parts: .* the largest is part 1 \(area 100\), the "
+                                          r"other 1 would be lost"):
+        domain_from_geojson(_feature("MultiPolygon", [[small], [SQUARE + [SQUARE[0]]]]))
+    assert domain_from_geojson(_feature("MultiPolygon", [[SQUARE + [SQUARE[0]]]])).area == 100

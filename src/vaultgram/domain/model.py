@@ -65,6 +65,9 @@ class Domain:
         The raw ``supports`` value (validated for shape only): ``None`` means the whole outer
         boundary is supported and holes are open; ``{"rings": ["outer", 0, ...]}`` selects whole
         rings; ``{"polylines": [[[x, y], ...], ...]}`` supports the boundary parts lying on them.
+    units : str or None
+        The length unit of a CAD drawing (``"m"``, ``"mm"``, ...) as its file declares it; None when
+        the file says nothing (vaultgram JSON and GeoJSON). Written back to CAD outputs.
 
     Example
     -------
@@ -79,6 +82,7 @@ class Domain:
     points: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     curves: tuple = ()
     supports: object | None = None
+    units: str | None = None
 
     @property
     def diagonal(self) -> float:

@@ -2,6 +2,8 @@
 
 :func:`write_mesh` writes both atomically; :func:`read_mesh` reads ``mesh.json`` back, and
 :func:`mesh_from_json` accepts any ``{"vertices", "faces"}`` object (a mesh made elsewhere).
+:func:`read_pattern` reads a pattern for form finding made anywhere: a ``mesh.json``, a Wavefront OBJ
+(:func:`read_obj`, n-gon faces kept) or a COMPAS mesh (:mod:`vaultgram.io.compasfiles`).
 """
 
 from __future__ import annotations
@@ -14,7 +16,8 @@ from vaultgram.errors import VaultgramError
 from vaultgram.io.files import read_json, write_json, write_obj
 from vaultgram.meshing.quadmesh import QuadMesh
 
-__all__ = ["mesh_to_json", "mesh_from_json", "write_mesh", "read_mesh"]
+__all__ = ["mesh_to_json", "mesh_from_json", "write_mesh", "read_mesh", "read_obj", "read_pattern",
+           "PATTERN_FORMATS"]
 
 
 def mesh_to_json(mesh: QuadMesh, supports=None) -> dict:
@@ -42,8 +45,9 @@ def mesh_to_json(mesh: QuadMesh, supports=None) -> dict:
     }
 
 
-def mesh_from_json(data: dict, where: str = "mesh") -> QuadMesh:
-    """A :class:`QuadMesh` from :func:`mesh_to_json` output (or any ``{"vertices", "faces"}`` dict)."""
+def mesh_from_json(data: dict, where: str = "mesh", polygons: bool = False) -> QuadMesh:
+    """A :class:`QuadMesh` from :func:`mesh_to_json` output (or any ``{"vertices", "faces"}`` dict); with
+    ``polygons``, faces of any number of sides (a pattern for form finding), else triangles and quads."""
     try:
         x = np.asarray(data["vertices"], dtype=float)
         faces = [tuple(int(i) for i in f) for f in data["faces"]]
@@ -52,8 +56,9 @@ def mesh_from_json(data: dict, where: str = "mesh") -> QuadMesh:
     if x.ndim != 2 or x.shape[1] not in (2, 3):
         raise VaultgramError(f"{where}: vertices must be [x, y] or [x, y, z] points")
     n = len(x)
-    if any(len(f) not in (3, 4) or min(f) < 0 or max(f) >= n for f in faces):
-        raise VaultgramError(f"{where}: faces must be triangles or quads of valid vertex indices")
+    if any((len(f) < 3 if polygons else len(f) not in (3, 4)) or min(f) < 0 or max(f) >= n for f in faces):
+        kinds = "polygons" if polygons else "triangles or quads"
+        raise VaultgramError(f"{where}: faces must be {kinds} of valid vertex indices")
     labels = data.get("labels", {})
 
     def mask(name):
@@ -97,3 +102,64 @@ def write_mesh(mesh: QuadMesh, out_dir: str | Path, supports=None) -> tuple[Path
 def read_mesh(path: str | Path) -> QuadMesh:
     """Read a ``mesh.json`` (see :func:`mesh_to_json`)."""
     return mesh_from_json(read_json(path), str(path))
+
+
+#: The pattern formats ``vaultgram formfind`` reads besides a domain: vaultgram's ``mesh.json``, OBJ, COMPAS.
+PATTERN_FORMATS = ("mesh", "obj", "compas")
+
+
+def read_obj(path: str | Path) -> tuple[np.ndarray, list]:
+    """The vertices ``(n, 3)`` and faces (0-based, n-gons kept) of a Wavefront OBJ file: its ``v`` and
+    ``f`` lines (``f 1/1/1 2/2/2 ...`` and negative indices too); other lines are ignored.
+
+    Raises
+    ------
+    VaultgramError
+        A malformed ``v`` or ``f`` line (named by its line number), or no face.
+    """
+    try:
+        lines = Path(path).read_text().splitlines()
+    except (OSError, UnicodeDecodeError) as exc:
+        raise VaultgramError(f"{path}: cannot read: {exc}") from None
+    vertices, faces = [], []
+    for number, line in enumerate(lines, 1):
+        parts = line.split()
+        try:
+            if parts[:1] == ["v"]:
+                vertices.append([float(c) for c in parts[1:4]] + [0.0] * (4 - len(parts)))
+            elif parts[:1] == ["f"]:
+                refs = [int(p.split("/")[0]) for p in parts[1:]]
+                faces.append([r - 1 if r > 0 else len(vertices) + r for r in refs])
+        except ValueError as exc:
+            raise VaultgramError(f"{path}:{number}: not an OBJ '{parts[0]}' line: {exc}") from None
+    if not faces:
+        raise VaultgramError(f"{path}: no face ('f' line) in the OBJ file")
+    return np.array(vertices, dtype=float).reshape(-1, 3), faces
+
+
+def read_pattern(path: str | Path, input_format: str | None = None):
+    """``(mesh, supports)`` of a pattern file for form finding, or None when the file is a domain.
+
+    ``input_format`` is one of :data:`PATTERN_FORMATS`, else chosen by extension (``.obj``) and content
+    (``json``, or a ``.json`` file: a JSON object with ``dtype`` is COMPAS data, one with ``vertices``
+    and ``faces`` a mesh, anything else a domain). The
+    supports are the file's (``mesh.json``'s ``supports``, a COMPAS mesh's ``is_support`` vertices) or
+    None (the outer boundary).
+    """
+    from vaultgram.io.compasfiles import from_compas_mesh
+
+    where = str(path)
+    if input_format == "obj" or (input_format is None and where.lower().endswith(".obj")):
+        x, faces = read_obj(path)
+        return mesh_from_json({"vertices": x.tolist(), "faces": faces}, where, polygons=True), None
+    by_content = input_format == "json" or (input_format is None and where.lower().endswith(".json"))
+    if input_format not in PATTERN_FORMATS and not by_content:
+        return None
+    data = read_json(path)
+    if input_format == "compas" or (isinstance(data, dict) and "dtype" in data):
+        x, faces, supports = from_compas_mesh(data, where)
+        mesh = mesh_from_json({"vertices": x.tolist(), "faces": faces}, where, polygons=True)
+        return mesh, ({"vertices": supports} if supports else None)
+    if input_format == "mesh" or (isinstance(data, dict) and "vertices" in data and "faces" in data):
+        return mesh_from_json(data, where), data.get("supports") if isinstance(data, dict) else None
+    return None

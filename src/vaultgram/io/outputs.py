@@ -1,60 +1,163 @@
 """The files a run writes: one function per stage's outputs, each file written atomically.
 
 JSON is written with sorted keys and no timings, so the same input and options give byte-identical
-files (:mod:`vaultgram.io.files`).
+files (:mod:`vaultgram.io.files`). ``formats`` (:data:`OUTPUT_FORMATS`) choose the files:
+
+* ``json`` -- ``decomposition.json``, ``patches.json``, ``mesh.json``, ``form.json``, ``force.json``,
+  ``thrust.json``, ``tessellation.json``, ``summary.json`` (and the PNG figures);
+* ``obj`` -- ``mesh.obj``, ``thrust.obj``, ``voussoirs.obj``;
+* ``compas`` -- ``mesh.compas.json``, ``thrust.compas.json`` (COMPAS meshes), ``form.compas.json``
+  (a compas_tna ``FormDiagram``), ``voussoirs.compas.json`` (:mod:`vaultgram.io.compasfiles`);
+* ``3dm`` -- ``result.3dm``, ``dxf`` -- ``result.dxf``: one layer per stage (:mod:`vaultgram.io.cadfiles`).
+
+Without ``formats`` a writer writes ``json`` and ``obj`` (:data:`DEFAULT_FORMATS`), as it always has.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 
+from vaultgram.errors import VaultgramError
 from vaultgram.formfinding.thrust import ThrustNetwork
-from vaultgram.io.files import write_json, write_obj, write_obj_objects
-from vaultgram.io.meshfiles import write_mesh
+from vaultgram.io.files import write_json, write_obj, write_obj_objects, write_text
+from vaultgram.io.meshfiles import mesh_to_json
 from vaultgram.io.plots import plot_decomposition, plot_mesh, plot_tessellation, plot_thrust
 from vaultgram.meshing.quadmesh import QuadMesh
 from vaultgram.tessellation.model import Tessellation
 from vaultgram.topology.decomposition import Decomposition
 
-__all__ = ["write_decomposition", "write_mesh_files", "write_thrust", "write_tessellation"]
+__all__ = ["write_decomposition", "write_mesh_files", "write_thrust", "write_tessellation", "write_design",
+           "write_drawings",
+           "parse_formats", "OUTPUT_FORMATS", "DEFAULT_FORMATS"]
+
+#: The output formats, and the ones written when none are asked for.
+OUTPUT_FORMATS = ("json", "obj", "compas", "3dm", "dxf")
+DEFAULT_FORMATS = ("json", "obj")
 
 
-def write_decomposition(dec: Decomposition, out: Path, plot: bool = True) -> None:
+def parse_formats(text: str | None) -> tuple:
+    """The formats of a comma-separated list (:data:`DEFAULT_FORMATS` for None), each checked, and the
+    optional packages they need importable, so a run fails before it computes anything.
+
+    >>> parse_formats("json, dxf")
+    ('json', 'dxf')
+    >>> try:
+    ...     parse_formats("json,stl")
+    ... except VaultgramError as exc:
+    ...     print(exc)
+    --format: unknown format 'stl'; use a comma-separated list of json, obj, compas, 3dm, dxf
+    """
+    if text is None:
+        return DEFAULT_FORMATS
+    formats = tuple(dict.fromkeys(f.strip().lower() for f in text.split(",") if f.strip()))
+    for f in formats:
+        if f not in OUTPUT_FORMATS:
+            raise VaultgramError(f"--format: unknown format {f!r}; use a comma-separated list of "
+                                 f"{', '.join(OUTPUT_FORMATS)}")
+    if not formats:
+        raise VaultgramError(f"--format: no format given; use a comma-separated list of {', '.join(OUTPUT_FORMATS)}")
+    if "compas" in formats:
+        from vaultgram.io.compasfiles import require_compas
+
+        require_compas()
+    if "3dm" in formats:
+        from vaultgram.domain.rhino import rhino3dm_module
+
+        rhino3dm_module("--format 3dm")
+    return formats
+
+
+def write_decomposition(dec: Decomposition, out: Path, plot: bool = True, formats=DEFAULT_FORMATS) -> None:
     """``decomposition.json`` (the typed graph), ``patches.json`` and, if ``plot``, ``decomposition.png``."""
-    write_json(out / "decomposition.json", dec.to_json())
-    write_json(out / "patches.json", dec.patches_json())
-    if plot:
-        plot_decomposition(dec, out / "decomposition.png")
+    if "json" in formats:
+        write_json(out / "decomposition.json", dec.to_json())
+        write_json(out / "patches.json", dec.patches_json())
+        if plot:
+            plot_decomposition(dec, out / "decomposition.png")
 
 
-def write_mesh_files(mesh: QuadMesh, out: Path, supports=None, plot: bool = True) -> None:
-    """``mesh.json`` (with the supported vertices, if given), ``mesh.obj`` and, if ``plot``, ``mesh.png``."""
-    write_mesh(mesh, out, supports)
-    if plot:
-        plot_mesh(mesh, out / "mesh.png")
+def write_mesh_files(mesh: QuadMesh, out: Path, supports=None, plot: bool = True, formats=DEFAULT_FORMATS) -> None:
+    """``mesh.json`` (with the supported vertices, if given), ``mesh.obj``, ``mesh.compas.json`` and, if
+    ``plot``, ``mesh.png``, as ``formats`` ask."""
+    if "json" in formats:
+        write_json(out / "mesh.json", mesh_to_json(mesh, supports))
+        if plot:
+            plot_mesh(mesh, out / "mesh.png")
+    if "obj" in formats:
+        write_obj(out / "mesh.obj", mesh.vertices, mesh.faces)
+    if "compas" in formats:
+        _write_compas(out / "mesh.compas.json", mesh, supports)
 
 
-def write_thrust(network: ThrustNetwork, out: Path, plot: bool = False) -> None:
-    """``form.json``, ``force.json``, ``thrust.json``, ``thrust.obj``, ``summary.json`` and, if ``plot``,
-    ``thrust.png``."""
-    write_json(out / "form.json", network.form.to_json())
-    write_json(out / "force.json", network.force.to_json())
-    write_json(out / "thrust.json", network.to_json())
-    write_obj(out / "thrust.obj", network.vertices, network.faces)
-    write_json(out / "summary.json", network.summary)
-    if plot:
-        plot_thrust(network, out / "thrust.png")
+def write_thrust(network: ThrustNetwork, out: Path, plot: bool = False, formats=DEFAULT_FORMATS) -> None:
+    """``form.json``, ``force.json``, ``thrust.json``, ``summary.json`` and, if ``plot``, ``thrust.png``;
+    ``thrust.obj``; ``thrust.compas.json`` and ``form.compas.json``, as ``formats`` ask."""
+    if "json" in formats:
+        write_json(out / "form.json", network.form.to_json())
+        write_json(out / "force.json", network.force.to_json())
+        write_json(out / "thrust.json", network.to_json())
+    if "obj" in formats:
+        write_obj(out / "thrust.obj", network.vertices, network.faces)
+    if "json" in formats:
+        write_json(out / "summary.json", network.summary)
+        if plot:
+            plot_thrust(network, out / "thrust.png")
+    if "compas" in formats:
+        from vaultgram.io.compasfiles import compas_json, to_formdiagram
+
+        _write_compas(out / "thrust.compas.json", network)
+        write_text(out / "form.compas.json", compas_json(to_formdiagram(network)))
 
 
-def write_tessellation(tessellation: Tessellation, out: Path, summary: bool = False, plot: bool = True) -> None:
+def write_tessellation(tessellation: Tessellation, out: Path, summary: bool = False, plot: bool = True,
+                       formats=DEFAULT_FORMATS) -> None:
     """``tessellation.json``, ``voussoirs.obj`` (one closed solid ``o voussoir_N`` per voussoir, in the
-    order of ``voussoirs``) and, if ``plot``, ``tessellation.png``; with ``summary``, also
-    ``summary.json`` (the tessellation's alone)."""
-    write_json(out / "tessellation.json", tessellation.to_json())
-    solids = tessellation.solids
-    objects = [(f"voussoir_{k}", solids.of(k)) for k in range(tessellation.layout.n_voussoirs)]
-    write_obj_objects(out / "voussoirs.obj", solids.vertices, objects)
-    if summary:
-        write_json(out / "summary.json", tessellation.summary)
-    if plot:
-        plot_tessellation(tessellation, out / "tessellation.png")
+    order of ``voussoirs``), ``voussoirs.compas.json`` and, if ``plot``, ``tessellation.png``; with
+    ``summary``, also ``summary.json`` (the tessellation's alone); as ``formats`` ask."""
+    if "json" in formats:
+        write_json(out / "tessellation.json", tessellation.to_json())
+    if "obj" in formats:
+        solids = tessellation.solids
+        objects = [(f"voussoir_{k}", solids.of(k)) for k in range(tessellation.layout.n_voussoirs)]
+        write_obj_objects(out / "voussoirs.obj", solids.vertices, objects)
+    if "json" in formats:
+        if summary:
+            write_json(out / "summary.json", tessellation.summary)
+        if plot:
+            plot_tessellation(tessellation, out / "tessellation.png")
+    if "compas" in formats:
+        _write_compas(out / "voussoirs.compas.json", tessellation)
+
+
+def _write_compas(path: Path, item, supports=None) -> None:
+    from vaultgram.io.compasfiles import compas_json, to_compas_mesh
+
+    write_text(path, compas_json(to_compas_mesh(item, supports)))
+
+
+def write_design(result, out: Path, formats=DEFAULT_FORMATS) -> None:
+    """Every file of a whole design (:class:`vaultgram.pipeline.Design`), as ``formats`` ask: each stage's,
+    ``summary.json`` (one section per stage) and the drawings."""
+    write_decomposition(result.decomposition, out, formats=formats)
+    write_mesh_files(result.mesh, out, result.supports, formats=formats)
+    write_thrust(result.network, out, plot=True, formats=formats)
+    if result.tessellation is not None:
+        write_tessellation(result.tessellation, out, formats=formats)
+    if "json" in formats:
+        write_json(out / "summary.json", result.summary())
+    write_drawings(out, formats, result.domain.units, decomposition=result.decomposition, mesh=result.mesh,
+                   network=result.network, tessellation=result.tessellation)
+
+
+def write_drawings(out: Path, formats, units: str | None = None, **stages) -> None:
+    """``result.3dm`` and ``result.dxf``, as ``formats`` ask: the ``stages`` given (``decomposition``,
+    ``mesh``, ``network``, ``tessellation``) on one layer each (:func:`vaultgram.io.cadfiles.drawing`)."""
+    if "3dm" not in formats and "dxf" not in formats:
+        return
+    from vaultgram.io.cadfiles import drawing, write_3dm, write_dxf
+
+    layers = drawing(**stages)
+    if "3dm" in formats:
+        write_3dm(out / "result.3dm", layers, units)
+    if "dxf" in formats:
+        write_dxf(out / "result.dxf", layers, units)

@@ -1,0 +1,152 @@
+"""Normalising and validating what a reader found into a :class:`~vaultgram.domain.model.Domain`.
+
+Every reader (:mod:`vaultgram.domain.readers`, :mod:`vaultgram.domain.cad`) ends in
+:func:`build_domain`: closing vertices dropped, the outer ring counter-clockwise and the holes
+clockwise, point features digitised just outside the boundary projected onto it, the supports'
+shape checked, then :func:`~vaultgram.domain.validation.validate_domain`.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any, Iterable
+
+import numpy as np
+import shapely
+
+from vaultgram.domain.model import REL_TOL, Domain
+from vaultgram.domain.validation import check_finite, validate_domain
+from vaultgram.errors import DomainError
+from vaultgram.geometry.polygons import bbox_diagonal, signed_area
+
+__all__ = ["build_domain", "as_coords", "prefixed", "default_name", "POINT_SNAP"]
+
+
+#: Point features lying *outside* the domain but closer than ``POINT_SNAP * bbox diagonal`` to its
+#: boundary are boundary point features (§4.1) digitised against the true curve rather than against
+#: its polyline: they are projected onto the boundary. ``POINT_SNAP`` equals the default
+#: discretisation spacing, below which the boundary is not resolved anyway. Farther points are an
+#: error.
+POINT_SNAP = 0.02
+
+
+def as_coords(value: Any, what: str, min_len: int = 0) -> np.ndarray:
+    """Turn a JSON list of ``[x, y]`` pairs into an (n, 2) float array, naming bad entries."""
+    if not isinstance(value, (list, tuple)):
+        raise DomainError(f"{what}: expected a list of [x, y] pairs, got {type(value).__name__}")
+    out = np.empty((len(value), 2), dtype=np.float64)
+    for i, p in enumerate(value):
+        if (
+            not isinstance(p, (list, tuple))
+            or len(p) < 2
+            or not all(isinstance(c, (int, float)) and not isinstance(c, bool) for c in p[:2])
+        ):
+            raise DomainError(f"{what}, vertex {i}: expected [x, y] with two numbers, got {p!r}")
+        out[i] = (float(p[0]), float(p[1]))
+    if len(out) < min_len:
+        raise DomainError(f"{what}: expected at least {min_len} vertices, got {len(out)}")
+    return out
+
+
+def normalise_ring(ring: np.ndarray, what: str, ccw: bool, tol: float) -> np.ndarray:
+    """Drop the closing vertex and fix the orientation (outer ccw, holes cw)."""
+    check_finite(ring, what)
+    if len(ring) >= 2 and np.hypot(*(ring[0] - ring[-1])) <= tol:
+        ring = ring[:-1]
+    area = signed_area(ring) if len(ring) >= 3 else 0.0
+    if (area < 0) == ccw and area != 0:
+        ring = np.roll(ring[::-1], 1, axis=0)  # reversed, but vertex 0 stays vertex 0
+    return np.ascontiguousarray(ring, dtype=np.float64)
+
+
+def normalise_supports(value: Any) -> Any:
+    """Check the shape of ``supports`` (semantics are applied later in the pipeline)."""
+    if value is None:
+        return None
+    if not isinstance(value, dict):
+        raise DomainError(
+            'supports: expected null, {"rings": [...]} or {"polylines": [...]}, '
+            f"got {type(value).__name__}"
+        )
+    keys = set(value) - {"comment"}
+    if keys == {"rings"}:
+        for i, r in enumerate(non_empty_list(value["rings"], "supports.rings", '"outer" or hole indices')):
+            if not (r == "outer" or (isinstance(r, int) and not isinstance(r, bool) and r >= 0)):
+                raise DomainError(
+                    f'supports.rings[{i}]: expected "outer" or a hole index (integer >= 0), got {r!r}'
+                )
+        return value
+    if keys == {"polylines"}:
+        for i, pl in enumerate(non_empty_list(value["polylines"], "supports.polylines", "polylines")):
+            check_finite(as_coords(pl, f"supports.polylines[{i}]", min_len=2), f"supports.polylines[{i}]")
+        return value
+    raise DomainError(
+        f'supports: expected exactly one of the keys "rings" or "polylines", got {sorted(value)}'
+    )
+
+
+def non_empty_list(value: Any, what: str, items: str) -> list:
+    """``value`` if it is a non-empty list, else an error saying what ``items`` it should hold."""
+    if not isinstance(value, list) or not value:
+        raise DomainError(f"{what}: expected a non-empty list of {items}")
+    return value
+
+
+def build_domain(
+    name: str,
+    outer: np.ndarray,
+    holes: Iterable[np.ndarray],
+    points: np.ndarray,
+    curves: Iterable[np.ndarray],
+    supports: Any,
+    units: str | None = None,
+) -> Domain:
+    """Normalise raw arrays into a validated Domain (every reader ends here)."""
+    check_finite(outer, "outer ring")
+    tol = REL_TOL * bbox_diagonal(outer)
+    outer = normalise_ring(outer, "outer ring", ccw=True, tol=tol)
+    holes = tuple(
+        normalise_ring(h, f"hole {i}", ccw=False, tol=tol) for i, h in enumerate(holes)
+    )
+    points = np.ascontiguousarray(np.asarray(points, dtype=np.float64).reshape(-1, 2))
+    curves = tuple(np.ascontiguousarray(np.asarray(c, dtype=np.float64)) for c in curves)
+    supports = normalise_supports(supports)
+    points = snap_points(outer, holes, points, POINT_SNAP * bbox_diagonal(outer))
+    for arr in (outer, *holes, points, *curves):
+        arr.setflags(write=False)
+    dom = Domain(str(name), outer, holes, points, curves, supports, units)
+    validate_domain(dom)
+    return dom
+
+
+def snap_points(outer, holes, points, snap):
+    """Project point features lying just outside the domain (within ``snap``) onto its boundary."""
+    if len(points) == 0 or not np.isfinite(points).all() or len(outer) < 3:
+        return points
+    try:
+        poly = shapely.Polygon(outer, list(holes))
+        boundary = poly.boundary
+        geoms = shapely.points(points)
+        d = shapely.distance(geoms, boundary)
+        near = (~shapely.contains_xy(poly, points[:, 0], points[:, 1])) & (d <= snap) & (d > 0)
+    except (shapely.errors.GEOSException, ValueError):  # invalid rings: validation reports them
+        return points
+    if not near.any():
+        return points
+    points = points.copy()
+    lines = shapely.shortest_line(geoms[near], boundary)
+    points[near] = shapely.get_coordinates(lines).reshape(-1, 2, 2)[:, 1]
+    return points
+
+
+def prefixed(e: DomainError, source: str) -> DomainError:
+    """The same error, its message starting with the file (or other source) it is about."""
+    msg = str(e)
+    if source and not msg.startswith(source):
+        msg = f"{source}: {msg}"
+    return DomainError(msg)
+
+
+def default_name(source: str) -> str:
+    """A domain's name when its file gives none: the file's stem (``domain`` for other sources)."""
+    return Path(source).stem if source and not source.startswith("<") else "domain"
