@@ -130,3 +130,51 @@ def test_design_failing_stage_writes_nothing(tmp_path):
     result = run("design", domain, "--out", tmp_path / "out")
     assert result.exit_code == 2 and "nothing bears thrust" in result.output
     assert not (tmp_path / "out").exists()
+
+
+def _tree(folder):
+    return {p.relative_to(folder).as_posix(): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def test_a_run_that_fails_while_writing_leaves_the_output_folder_untouched(tmp_path, monkeypatch):
+    """The decomposition's files are written, then the plot fails: --out keeps what it had, no new file
+    and no staging folder is left beside it."""
+    from vaultgram.io import outputs
+
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "decomposition.json").write_text("an older run")
+    before = _tree(out)
+
+    def failing_plot(*args, **kwargs):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(outputs, "plot_decomposition", failing_plot)
+    result = run("decompose", EXAMPLES / "quad_with_hole.json", "--out", out)
+    assert result.exit_code != 0
+    assert _tree(out) == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]
+
+
+def test_an_interrupted_run_writes_nothing_and_a_finished_one_replaces_the_files(tmp_path, monkeypatch):
+    from vaultgram.io import outputs
+
+    out = tmp_path / "out"
+    real = outputs.write_tessellation
+
+    def interrupted(*args, **kwargs):
+        real(*args, **kwargs)
+        raise KeyboardInterrupt
+
+    design = run("design", EXAMPLES / "quad_with_hole.json", "--out", tmp_path / "d", "--zmax", 3)
+    assert design.exit_code == 0, design.output
+    monkeypatch.setattr(outputs, "write_tessellation", interrupted)
+    result = run("tessellate", tmp_path / "d" / "thrust.json", "--out", out)
+    assert result.exit_code != 0 and not out.exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["d"]
+    monkeypatch.setattr(outputs, "write_tessellation", real)
+    (tmp_path / "d" / "extra.txt").write_text("kept")
+    again = run("tessellate", tmp_path / "d" / "thrust.json", "--out", tmp_path / "d")
+    assert again.exit_code == 0, again.output
+    assert (tmp_path / "d" / "extra.txt").read_text() == "kept"
+    assert json.loads((tmp_path / "d" / "tessellation.json").read_text())["voussoirs"]

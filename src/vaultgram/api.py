@@ -228,7 +228,8 @@ def design(plan: PlanLike, **options) -> Result:
 
 
 def save(result: Result, out: str | Path, formats=("json", "obj")) -> Path:
-    """Write a design's files to a folder, as ``vaultgram design --format`` does.
+    """Write a design's files to a folder, as ``vaultgram design --format`` does: all of them or,
+    if writing fails, none.
 
     Parameters
     ----------
@@ -256,8 +257,10 @@ def save(result: Result, out: str | Path, formats=("json", "obj")) -> Path:
     >>> "thrust.json" in names, "result.dxf" in names, "thrust.obj" in names
     (True, True, False)
     """
+    from vaultgram.io.files import output_folder
     from vaultgram.io.outputs import parse_formats, write_design
 
     out = Path(out)
-    write_design(result, out, parse_formats(",".join(formats)))
+    with output_folder(out) as stage:  # all the files, or none
+        write_design(result, stage, parse_formats(",".join(formats)))
     return out

@@ -1,8 +1,9 @@
 """The ``vaultgram`` command line.
 
 Every user mistake (a bad rule file, an invalid graph or domain, a strategy that does not terminate)
-is printed as one line naming the problem and where it is, with exit code 2 and no traceback; output
-files are written to a temporary name and renamed, so a failed run leaves nothing half-written.
+is printed as one line naming the problem and where it is, with exit code 2 and no traceback; a
+command writes its files in a staging folder and moves them into --out only when all are written
+(:func:`vaultgram.io.files.output_folder`), so a failed or interrupted run leaves --out untouched.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from pathlib import Path
 import click
 
 from vaultgram.errors import VaultgramError, VaultgramWarning
-from vaultgram.io.files import read_json, write_json
+from vaultgram.io.files import output_folder, read_json, write_json
 
 
 class _Group(click.Group):
@@ -191,8 +192,9 @@ def rules_run(files, graph_path: str, strategy: str, out_dir: str) -> None:
     runner = Runner(book, graph)
     runner.run(strategy)
     out = Path(out_dir)
-    write_json(out / "graph.json", graph.to_json())
-    write_json(out / "trace.json", runner.trace.to_json())
+    with output_folder(out) as stage:
+        write_json(stage / "graph.json", graph.to_json())
+        write_json(stage / "trace.json", runner.trace.to_json())
     for report in runner.reports:
         click.echo(f"{report.step}: {report.applications} application(s) in {report.seconds * 1000:.1f} ms")
     click.echo(f"wrote {out / 'graph.json'} ({len(graph)} nodes, {graph.num_edges} edges) and {out / 'trace.json'}")
@@ -241,8 +243,9 @@ def decompose_command(domain_path: str, out_dir: str, spacing: float, rules_dir:
     formats = parse_formats(formats)
     domain = load_domain(domain_path, input_format, layer_names(layers), spacing)
     dec = decompose(domain, spacing, rules_dir, smooth=smooth_branches)
-    write_decomposition(dec, Path(out_dir), plot, formats)
-    write_drawings(Path(out_dir), formats, domain.units, decomposition=dec)
+    with output_folder(out_dir) as stage:
+        write_decomposition(dec, stage, plot, formats)
+        write_drawings(stage, formats, domain.units, decomposition=dec)
     echo_decomposition(dec, Path(out_dir))
 
 
@@ -303,8 +306,9 @@ def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, 
         spec = read_json(supports_path)
     network = thrust_of_mesh(mesh, spec, domain, point_load, timings, zmax=zmax, thickness=thickness,
                              density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode)
-    write_thrust(network, Path(out_dir), formats=formats)
-    write_drawings(Path(out_dir), formats, domain.units if domain is not None else None, network=network)
+    with output_folder(out_dir) as stage:
+        write_thrust(network, stage, formats=formats)
+        write_drawings(stage, formats, domain.units if domain is not None else None, network=network)
     click.echo(network.summary_text())
     echo_timings(timings)
 
@@ -332,8 +336,9 @@ def tessellate_command(thrust_path, out_dir, thickness, rhythm, max_concavity, f
     surface = surface_from_json(read_json(thrust_path), thrust_path)
     result = tessellate(surface, int(rhythm), thickness, max_concavity, flat_extrados, surface_smooth, rules_dir,
                         timings)
-    write_tessellation(result, Path(out_dir), summary=True, formats=formats)
-    write_drawings(Path(out_dir), formats, tessellation=result)
+    with output_folder(out_dir) as stage:
+        write_tessellation(result, stage, summary=True, formats=formats)
+        write_drawings(stage, formats, tessellation=result)
     click.echo(format_summary(result.summary))
     echo_timings(timings)
 
@@ -376,7 +381,8 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
         TessellationOptions(int(rhythm), max_concavity, flat_extrados, surface_smooth),
         density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode)
     out = Path(out_dir)
-    write_design(result, out, formats)
+    with output_folder(out) as stage:
+        write_design(result, stage, formats)
     echo_decomposition(result.decomposition, out)
     click.echo(f"mesh: {len(result.mesh.vertices)} vertices, {len(result.mesh.faces)} faces; "
                f"wrote {_joined(f for f in ('mesh.json', 'mesh.obj', 'mesh.compas.json') if _written(f, formats))}")
@@ -434,8 +440,9 @@ def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities
         supports = {"vertices": supports}
     anchors = support_vertices(mesh.vertices, mesh.faces, supports, domain)
     out = Path(out_dir)
-    write_mesh_files(mesh, out, anchors, plot=False, formats=formats)
-    write_drawings(out, formats, domain.units, mesh=mesh)
+    with output_folder(out) as stage:
+        write_mesh_files(mesh, stage, anchors, plot=False, formats=formats)
+        write_drawings(stage, formats, domain.units, mesh=mesh)
     names = [*(f for f in ("mesh.json", "mesh.obj", "mesh.compas.json") if _written(f, formats)),
              *(f"result.{f}" for f in ("3dm", "dxf") if f in formats)]
     stats = mesh_stats(mesh, domain)

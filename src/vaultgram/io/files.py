@@ -2,15 +2,21 @@
 
 Outputs are written to a temporary file in the destination folder and renamed into place, so a
 failed or interrupted run never leaves a half-written file behind; JSON is written with sorted keys
-so the same result gives byte-identical files.
+so the same result gives byte-identical files. A command writes all its files in a staging folder
+(:func:`output_folder`) and moves them into the output folder only once every one is written: the
+output folder is complete or untouched.
 """
 
 from __future__ import annotations
 
 import json
 import os
+import shutil
+import signal
+import tempfile
+from contextlib import contextmanager
 from pathlib import Path
-from typing import Sequence
+from typing import Iterator, Sequence
 
 import numpy as np
 
@@ -27,6 +33,49 @@ def read_json(path: str | Path):
         return json.loads(text)
     except json.JSONDecodeError as exc:
         raise VaultgramError(f"{path}:{exc.lineno}:{exc.colno}: invalid JSON: {exc.msg}") from None
+
+
+@contextmanager
+def output_folder(path: str | Path) -> Iterator[Path]:
+    """A staging folder beside ``path`` to write a run's files in; when the block ends normally they
+    are moved into ``path`` (made if need be; files of the same names replaced), with interrupts
+    held off while they move. If the block fails or is interrupted, the staging folder is removed
+    and ``path`` is untouched.
+
+    >>> import tempfile
+    >>> out = Path(tempfile.mkdtemp()) / "out"
+    >>> with output_folder(out) as stage:
+    ...     write_text(stage / "a.txt", "a")
+    ...     out.exists()
+    False
+    >>> sorted(p.name for p in out.iterdir())
+    ['a.txt']
+    """
+    path = Path(path)
+    if path.exists() and not path.is_dir():
+        raise VaultgramError(f"{path}: the output folder is a file")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    stage = Path(tempfile.mkdtemp(prefix=f".{path.name}.", dir=path.parent))
+    try:
+        yield stage
+        _move_into(stage, path)
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
+
+
+def _move_into(stage: Path, path: Path) -> None:
+    """Move the staged files into ``path`` by renames, SIGINT and SIGTERM held until all have moved."""
+    held = {signal.SIGINT, signal.SIGTERM}
+    signal.pthread_sigmask(signal.SIG_BLOCK, held)
+    try:
+        path.mkdir(exist_ok=True)
+        for item in sorted(stage.iterdir()):
+            target = path / item.name
+            if target.is_dir() and not target.is_symlink():
+                shutil.rmtree(target)
+            os.replace(item, target)
+    finally:
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, held)
 
 
 def write_text(path: str | Path, text: str) -> None:
