@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import bisect
 import itertools
+import weakref
 from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import AbstractSet, Callable, Iterable, Iterator, Mapping, NamedTuple
@@ -188,16 +189,18 @@ class _AddMany(NamedTuple):
 
 
 class _Lazy(dict):
-    """A dictionary whose missing entries are made on first use by ``make(key)``: the per-node
-    tables of nodes and edges added in bulk are built only for the nodes a search or a rewrite
-    reaches (``make`` raises KeyError for an unknown key)."""
+    """A dictionary whose missing entries are made on first use by ``make(graph, key)``: the
+    per-node tables of nodes and edges added in bulk are built only for the nodes a search or a
+    rewrite reaches (``make`` raises KeyError for an unknown key). It holds its graph weakly, so that
+    a graph is freed as soon as it is dropped, without waiting for the cyclic garbage collector."""
 
-    def __init__(self, make: Callable[[int], object]):
+    def __init__(self, graph: "HostGraph", make: Callable[["HostGraph", int], object]):
         super().__init__()
+        self.graph = weakref.ref(graph)
         self.make = make
 
     def __missing__(self, key):
-        value = self[key] = self.make(key)
+        value = self[key] = self.make(self.graph(), key)
         return value
 
 
@@ -240,10 +243,10 @@ class HostGraph:
         self._ends: dict[int, tuple[int, int]] = {}
         self._by_type: dict[str, set[int]] = {t: set() for t in (*schema.node_types, *schema.edge_types)}
         self._blocks: list[_Block] = []  # edges added in bulk, indexed per node on first use
-        self._inc: dict[int, dict[str, set[int]]] = _Lazy(self._bulk_incidence)
+        self._inc: dict[int, dict[str, set[int]]] = _Lazy(self, HostGraph._bulk_incidence)
         # a node's rotation and its keys are made together, from the bulk blocks, on first use
-        self._rot_keys: dict[int, list[tuple[float, int]]] = _Lazy(lambda n: self._bulk_rotation(n)[0])
-        self._rot: dict[int, list[int]] = _Lazy(lambda n: self._bulk_rotation(n)[1])
+        self._rot_keys: dict[int, list[tuple[float, int]]] = _Lazy(self, lambda g, n: g._bulk_rotation(n)[0])
+        self._rot: dict[int, list[int]] = _Lazy(self, lambda g, n: g._bulk_rotation(n)[1])
         self._next_node = 0
         self._next_edge = 0
         self._journal: list = []  # of the records above

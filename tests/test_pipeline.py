@@ -297,3 +297,23 @@ def test_a_plan_without_a_compression_only_vault_is_one_line_naming_edges_and_su
     assert hint == {"rings": ["outer", *sorted(range(len(areas)), key=lambda k: -areas[k])[:3]]}
     assert not (tmp_path / "out").exists()
 
+
+
+def test_the_tessellation_leaves_the_garbage_collector_as_it_found_it():
+    """It pauses the cyclic collector while it runs (a large heap of small objects) and restores it."""
+    import gc
+
+    from vaultgram.geometry.meshes import grid_mesh
+    from vaultgram.pipeline import form_find, tessellate
+    from vaultgram.tessellation.surface import surface_from_network
+
+    surface = surface_from_network(form_find(*grid_mesh(6), zmax=1.0))
+    assert gc.isenabled()
+    assert tessellate(surface, thickness=0.1).summary["voussoirs"] > 0
+    assert gc.isenabled()
+    gc.disable()
+    try:
+        tessellate(surface, thickness=0.1)
+        assert not gc.isenabled()
+    finally:
+        gc.enable()

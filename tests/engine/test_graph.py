@@ -268,3 +268,22 @@ def test_changes_since(schema):
     g.add_edge("Branch", s, b)
     ch = g.changes_since(m)
     assert ch.nodes == {s, b} and ch.types == {"Branch"}
+
+
+def test_a_dropped_graph_is_freed_without_the_cyclic_collector(schema):
+    """Bulk-built graphs hold no reference cycles (their lazy tables refer to them weakly), so a
+    graph and its tables go as soon as the last reference does, even with the collector off."""
+    import gc
+    import weakref
+
+    gc.disable()
+    try:
+        g = HostGraph(schema)
+        g.add_nodes("Bnd", range(4), {"pos": [(float(i), 0.0) for i in range(4)]})
+        g.add_edges("Branch", [(0, 1), (1, 2), (2, 3)])
+        assert sorted(g.incident(1)) == [0, 1]
+        gone = weakref.ref(g)
+        del g
+        assert gone() is None
+    finally:
+        gc.enable()

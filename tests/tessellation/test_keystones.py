@@ -86,23 +86,3 @@ def test_a_rulebook_without_the_tessellation_types_is_a_rule_error(tmp_path):
     with pytest.raises(RuleError, match="lacks the type"):
         load_tessellation_rulebook(tmp_path)
 
-
-def test_cutting_keystones_leaves_the_garbage_collector_as_it_found_it():
-    """The step pauses the cyclic collector while the host graph lives, and restores it."""
-    import gc
-
-    from vaultgram.geometry.halfedges import mesh_edges
-    from vaultgram.geometry.meshes import grid_mesh
-
-    v, f = grid_mesh(4)
-    x = np.column_stack([v[:, :2], np.zeros(len(v))])
-    book = load_tessellation_rulebook()
-    assert gc.isenabled()
-    assert len(cut_keystones(x, f, mesh_edges(f, len(x)), book).faces) == 16
-    assert gc.isenabled()
-    gc.disable()
-    try:
-        cut_keystones(x, f, mesh_edges(f, len(x)), book)
-        assert not gc.isenabled()
-    finally:
-        gc.enable()

@@ -12,10 +12,8 @@ the others walked again with the graph's rotation system.
 from __future__ import annotations
 
 import functools
-import gc
 import itertools
 import math
-from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -83,22 +81,6 @@ def _load_checked(path: Path, stamp: tuple) -> Rulebook:
     if STRATEGY not in book.strategies:
         raise RuleError(f"{path}: the rulebook has no strategy '{STRATEGY}'")
     return book
-
-
-@contextmanager
-def _collector_paused():
-    """Python's cyclic garbage collector paused for the block (and restored as it was). The host
-    graph of a network is hundreds of thousands of small dicts alive until the keystones are cut,
-    which the collector would walk again at every collection while the graph is built and the
-    faces are read back: at 10^5 faces nearly half the step's time. Reference counting frees the
-    graph when the step ends."""
-    was_enabled = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if was_enabled:
-            gc.enable()
 
 
 def _plan_angle(graph: HostGraph, e: int, n: int) -> float:
@@ -172,11 +154,6 @@ def cut_keystones(x: np.ndarray, faces, me: MeshEdges, rulebook: Rulebook) -> Cu
     Faces with no node the rules touched stay as they were; the faces around touched nodes are
     walked again. A face whose nodes all carry one ``keystone`` number is a keystone.
     """
-    with _collector_paused():
-        return _cut(x, faces, me, rulebook)
-
-
-def _cut(x: np.ndarray, faces, me: MeshEdges, rulebook: Rulebook) -> CutMesh:
     graph = network_graph(x, me, rulebook)
     graph.forget()
     runner = Runner(rulebook, graph)
