@@ -25,6 +25,7 @@ Example: four single quads around a vertex; moving one of them into its neighbou
 
 >>> from vaultgram.geometry.halfedges import mesh_edges
 >>> from vaultgram.geometry.meshes import grid_mesh
+>>> from vaultgram.tessellation.voussoirs import voussoirs_at_vertices
 >>> v, f = grid_mesh(2)
 >>> me = mesh_edges(f, len(v))
 >>> inner = np.zeros(len(v), dtype=bool); inner[4] = True
@@ -51,7 +52,6 @@ from vaultgram.tessellation.voussoirs import (
     max_corner_angles,
     member_corners,
     set_outlines,
-    voussoirs_at_vertices,
 )
 
 __all__ = ["mend_meeting_points", "join_small_pairs", "ROUNDS"]
@@ -142,7 +142,9 @@ def _state(me: MeshEdges, removed: np.ndarray, n: int) -> _State:
     n_groups = int(group.max()) + 1 if len(group) else 0
     start = np.searchsorted(group[order], np.arange(n_groups + 1))
     keys = np.sort(me.corner_vertex * n_groups + group[me.corner_face])
-    return _State(group, order, start, voussoirs_at_vertices(me, group, n), keys)
+    distinct_keys = keys[np.concatenate([[True], keys[1:] != keys[:-1]])] if len(keys) else keys
+    count = np.bincount(distinct_keys // max(n_groups, 1), minlength=n)  # the voussoirs at each vertex
+    return _State(group, order, start, count, keys)
 
 
 def _candidates(me: MeshEdges, removed: np.ndarray, interior: np.ndarray, area: np.ndarray, target: float,

@@ -265,6 +265,19 @@ def _course_order(strips: list[Strip], me: MeshEdges) -> list[int]:
     return order
 
 
+@dataclass(frozen=True)
+class _Course:
+    """What laying a course needs that never changes: its quads, the two ends of each rung, its inner
+    rungs, the size costs of its runs (:func:`size_costs`) and its rungs' skew costs."""
+
+    quads: np.ndarray
+    a: np.ndarray
+    b: np.ndarray
+    inner: np.ndarray
+    sizes: list
+    skews: np.ndarray
+
+
 class _Laying:
     """The bond being laid: who owns each quad, how many kept rungs meet at each vertex, what is removed.
 
@@ -273,55 +286,49 @@ class _Laying:
 
     def __init__(self, me: MeshEdges, strips: list[Strip], areas: np.ndarray, joined: np.ndarray,
                  target: float, longest: int, skew: np.ndarray):
-        self.me, self.strips, self.areas, self.target, self.longest = me, strips, areas, target, longest
-        self.skew = skew
+        self.courses = [_Course(s.quads, me.edges[s.rungs, 0], me.edges[s.rungs, 1], s.rungs[1:-1],
+                                size_costs(areas[s.quads], target, longest),
+                                _skew_costs(skew[s.rungs], len(s)) + np.zeros(len(s.rungs))) for s in strips]
+        self.longest = longest
         self.removed = joined.copy()
         self.owner = np.full(len(areas), -1, dtype=np.int64)
         self.owner[me.faces_of[joined].ravel()] = len(strips)  # joined before the bond: nobody's course
         self.joints = np.zeros(int(me.edges.max()) + 1 if len(me.edges) else 0, dtype=np.int64)
         self.kept: dict[int, np.ndarray] = {}
-        self.sizes: dict[int, list] = {}
-        self.skews: dict[int, np.ndarray] = {}
         self.inputs: dict[int, tuple] = {}  # per course, what it was last laid with, and its cut
 
     def lift(self, k: int) -> None:
         """Take course ``k`` up: its joints, its removed rungs and its quads are free again."""
-        s, keep = self.strips[k], self.kept.pop(k)
-        np.subtract.at(self.joints, self.me.edges[s.rungs[keep]].ravel(), 1)
-        inner = np.arange(1, len(s))
-        self.removed[s.rungs[inner[~keep[inner]]]] = False  # an inner rung is this course's alone
-        self.owner[s.quads[self.owner[s.quads] == k]] = -1
+        c, keep = self.courses[k], self.kept.pop(k)
+        np.subtract.at(self.joints, c.a[keep], 1)
+        np.subtract.at(self.joints, c.b[keep], 1)
+        self.removed[c.inner[~keep[1:-1]]] = False  # an inner rung is this course's alone
+        self.owner[c.quads[self.owner[c.quads] == k]] = -1
 
     def lay(self, k: int) -> tuple[int, int]:
         """Lay course ``k`` (:func:`course_joints`); returns rungs kept because a quad was taken, and
         kept rungs lined up with a neighbour's."""
-        s, me = self.strips[k], self.me
-        ends = me.edges[s.rungs]
-        lined_up = (self.joints[ends[:, 0]] > 0) | (self.joints[ends[:, 1]] > 0)
-        taken = (self.owner[s.quads] >= 0) & (self.owner[s.quads] != k)
-        forced = np.zeros(len(s.rungs), dtype=bool)
-        forced[[0, -1]] = True
-        forced[:-1] |= taken
-        forced[1:] |= taken
-        if k not in self.sizes:  # the same for every laying of the course
-            self.sizes[k] = size_costs(self.areas[s.quads], self.target, self.longest)
-            self.skews[k] = _skew_costs(self.skew[s.rungs], len(s)) + np.zeros(len(s.rungs))
+        c = self.courses[k]
+        lined_up = (self.joints[c.a] > 0) | (self.joints[c.b] > 0)
+        owner = self.owner[c.quads]
+        taken = (owner >= 0) & (owner != k)
+        forced = np.ones(len(c.a), dtype=bool)
+        forced[1:-1] = taken[1:] | taken[:-1]
         last = self.inputs.get(k)
         if last is not None and np.array_equal(last[0], forced) and np.array_equal(last[1], lined_up):
-            keep = last[2].copy()  # nothing around the course changed since it was last laid
+            keep = last[2]  # nothing around the course changed since it was last laid
         else:
-            penalty = (np.where(lined_up, ALIGNED_COST, 0.0) + self.skews[k]).tolist()
-            keep = cheapest_cut(self.sizes[k], forced, penalty, self.longest)
-            self.inputs[k] = (forced, lined_up, keep.copy())
-        inner = np.arange(1, len(s))
-        self.removed[s.rungs[inner[~keep[inner]]]] = True
+            penalty = (np.where(lined_up, ALIGNED_COST, 0.0) + c.skews).tolist()
+            keep = cheapest_cut(c.sizes, forced, penalty, self.longest)
+            self.inputs[k] = (forced, lined_up, keep)
+        self.removed[c.inner[~keep[1:-1]]] = True
         runs = np.cumsum(keep[:-1])  # quads between kept rungs form a voussoir
-        joined = np.bincount(runs)[runs] > 1
-        self.owner[s.quads[joined]] = k
-        np.add.at(self.joints, ends[keep].ravel(), 1)
+        self.owner[c.quads[np.bincount(runs)[runs] > 1]] = k
+        np.add.at(self.joints, c.a[keep], 1)
+        np.add.at(self.joints, c.b[keep], 1)
         self.kept[k] = keep
-        kept, held = keep[inner], forced[inner]
-        return int(np.count_nonzero(kept & held)), int(np.count_nonzero(kept & lined_up[inner] & ~held))
+        kept, held = keep[1:-1], forced[1:-1]
+        return int(np.count_nonzero(kept & held)), int(np.count_nonzero(kept & lined_up[1:-1] & ~held))
 
 
 #: A voussoir of a course is at most this many times ``rhythm`` quads long (small faces make longer ones).
