@@ -1,4 +1,4 @@
-"""Integer-array helpers the stages share.
+"""Array helpers the stages share.
 
 The meshes' bookkeeping reduces to sets of integer keys (an edge ``lo * n + hi``, a voussoir at a
 vertex ``group * n + vertex``). ``np.unique`` without ``return_*`` uses a hash table in numpy 2.3 and
@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["distinct"]
+__all__ = ["distinct", "row_dot"]
 
 
 def distinct(values) -> np.ndarray:
@@ -20,3 +20,13 @@ def distinct(values) -> np.ndarray:
     """
     s = np.sort(np.asarray(values).ravel())
     return s[np.concatenate([[True], s[1:] != s[:-1]])] if len(s) else s
+
+
+def row_dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The dot product of each row of ``a`` with the same row of ``b`` (``einsum``: about a third of
+    the time of ``(a * b).sum(axis=1)`` on 10^5 rows of three).
+
+    >>> row_dot(np.array([[1.0, 2, 3], [0, 1, 0]]), np.array([[1.0, 1, 1], [2, 5, 7]])).tolist()
+    [6.0, 5.0]
+    """
+    return np.einsum("ij,ij->i", a, b)

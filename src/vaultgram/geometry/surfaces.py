@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
+from vaultgram.geometry.arrays import row_dot
 from vaultgram.geometry.meshes import corner_arrays
 
 __all__ = [
@@ -93,7 +94,7 @@ def loop_planes(vertices: np.ndarray, loops, up=None) -> tuple[np.ndarray, np.nd
             cov[:, i, j] = cov[:, j, i] = np.bincount(loop, weights=d[:, i] * d[:, j], minlength=k)
     normal = np.linalg.eigh(cov)[1][:, :, 0]
     ref = area_vectors(vertices, loops) if up is None else np.asarray(up, dtype=float)
-    normal *= np.where((normal * ref).sum(axis=1) < 0, -1.0, 1.0)[:, None]
+    normal *= np.where(row_dot(normal, ref) < 0, -1.0, 1.0)[:, None]
     return centroid, normal
 
 
@@ -109,9 +110,9 @@ def loop_corner_angles(vertices: np.ndarray, loops, normals: np.ndarray) -> np.n
     x = np.asarray(vertices, dtype=float)
     n = np.asarray(normals, dtype=float)[loop]
     a, b = x[v] - x[u], x[w] - x[u]  # towards the next and the previous corner
-    a -= (a * n).sum(axis=1, keepdims=True) * n
-    b -= (b * n).sum(axis=1, keepdims=True) * n
-    turn = np.degrees(np.arctan2((np.cross(a, b) * n).sum(axis=1), (a * b).sum(axis=1)))
+    a -= row_dot(a, n)[:, None] * n
+    b -= row_dot(b, n)[:, None] * n
+    turn = np.degrees(np.arctan2(row_dot(np.cross(a, b), n), row_dot(a, b)))
     return np.where(turn <= 0, turn + 360.0, turn)
 
 

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from vaultgram.geometry.arrays import distinct
+from vaultgram.geometry.arrays import distinct, row_dot
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.geometry.surfaces import area_vectors
@@ -72,8 +72,8 @@ def force_angles(x: np.ndarray, me: MeshEdges, face_normals: np.ndarray, edges: 
         sides = (x[me.corner_vertex[prev_c]] - x[me.corner_vertex[c]], x[me.corner_next[next_c]] - x[me.corner_next[c]])
         for t in sides:
             t = _unit(t)
-            flow += t * np.sign((t * across).sum(axis=1))[:, None]
-    cos = np.abs((_unit(flow) * across).sum(axis=1))
+            flow += t * np.sign(row_dot(t, across))[:, None]
+    cos = np.abs(row_dot(_unit(flow), across))
     return np.degrees(np.arccos(np.clip(cos, 0.0, 1.0)))
 
 
@@ -101,7 +101,7 @@ def joint_tilts(x: np.ndarray, normals: np.ndarray, layout: VoussoirLayout, face
     plane = _unit(np.cross(x[b] - x[a], normals[a] + normals[b]))
     faces = _face_normals(x, layout) if face_normals is None else face_normals
     normal = _unit(faces[me.faces_of[j]].sum(axis=1))
-    return np.degrees(np.arcsin(np.clip(np.abs((plane * normal).sum(axis=1)), 0.0, 1.0)))
+    return np.degrees(np.arcsin(np.clip(np.abs(row_dot(plane, normal)), 0.0, 1.0)))
 
 
 def euler_characteristic(layout: VoussoirLayout) -> int:

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from vaultgram.geometry.arrays import row_dot
 from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.geometry.surfaces import loop_planes
 
@@ -63,8 +64,8 @@ def _flat_tops(x: np.ndarray, normals: np.ndarray, loops, thickness: float, base
     centre, plane = loop_planes(top, loops, up=np.tile([0.0, 0.0, 1.0], (len(loops), 1)))
     loop, u, _, _ = corner_arrays(loops)
     n, c = normals[u], centre[loop]
-    along = (plane[loop] * n).sum(axis=1)
-    s = ((c - top[u]) * plane[loop]).sum(axis=1) / np.where(np.abs(along) > 1e-9, along, 1e-9)
+    along = row_dot(plane[loop], n)
+    s = row_dot(c - top[u], plane[loop]) / np.where(np.abs(along) > 1e-9, along, 1e-9)
     return top[u] + s[:, None] * n, base + np.arange(len(u))
 
 

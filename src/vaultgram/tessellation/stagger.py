@@ -42,7 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
-from vaultgram.geometry.arrays import distinct
+from vaultgram.geometry.arrays import distinct, row_dot
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.tessellation.strips import Strip, strip_directions
 
@@ -115,7 +115,7 @@ def quad_directions(x: np.ndarray, me: MeshEdges, pref: np.ndarray, is_quad: np.
     direction. Where both run about as close (within :data:`AMBIGUITY`), the quad follows the
     majority of its neighbours, :data:`SMOOTHING` times, so courses do not fray along the diagonals."""
     d = x[me.edges[:, 1], :2] - x[me.edges[:, 0], :2]
-    align = np.abs((_unit(d) * pref).sum(axis=1))
+    align = np.abs(row_dot(_unit(d), pref))
     quad_corner = is_quad[me.corner_face]
     c = np.flatnonzero(quad_corner)
     f, side = me.corner_face[c], me.corner_side[c]
@@ -314,13 +314,13 @@ class _Laying:
         taken = (owner >= 0) & (owner != k)
         forced = np.ones(len(c.a), dtype=bool)
         forced[1:-1] = taken[1:] | taken[:-1]
-        last = self.inputs.get(k)
-        if last is not None and np.array_equal(last[0], forced) and np.array_equal(last[1], lined_up):
-            keep = last[2]  # nothing around the course changed since it was last laid
+        seen, last = forced.tobytes() + lined_up.tobytes(), self.inputs.get(k)
+        if last is not None and last[0] == seen:
+            keep = last[1]  # nothing around the course changed since it was last laid
         else:
             penalty = (np.where(lined_up, ALIGNED_COST, 0.0) + c.skews).tolist()
             keep = cheapest_cut(c.sizes, forced, penalty, self.longest)
-            self.inputs[k] = (forced, lined_up, keep)
+            self.inputs[k] = (seen, keep)
         self.removed[c.inner[~keep[1:-1]]] = True
         runs = np.cumsum(keep[:-1])  # quads between kept rungs form a voussoir
         self.owner[c.quads[np.bincount(runs)[runs] > 1]] = k
