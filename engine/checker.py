@@ -274,7 +274,7 @@ class RuleChecker:
                     scope[scope_var] = Symbol(VType("edge", e.type))
                 checks = tuple(self._constraint(c, scope_var, scope) for c in e.constraints)
                 edges[i] = PatternEdge(**{**edges[i].__dict__, "checks": checks})
-        conditions = [self._condition(c, scope) for expr in pat.conditions for c in _conjuncts(expr)]
+        conditions = [self._condition(c, scope) for expr in pat.conditions for c in conjuncts(expr)]
         return CompiledPattern(nodes, edges, conditions, outer, pat.pos)
 
     def _pattern_edge(self, e: ast.EdgePattern, anonymous: str, scope: dict) -> PatternEdge:
@@ -560,6 +560,8 @@ class RuleChecker:
             types |= all_edges
         for expr in rule_expressions(rule):
             for sub in walk(expr):
+                if isinstance(sub, ast.Quantifier):  # the body may read any element of the graph
+                    types |= frozenset(self.type_symbols)
                 if isinstance(sub, ast.Call) and self.compiler.functions.table.get(sub.func, None) is not None:
                     f = self.compiler.functions[sub.func]
                     if f.uses_graph:
@@ -667,11 +669,12 @@ _DESCRIBE = {
     ast.ListExpr: lambda e: f"[{', '.join(describe(a) for a in e.items)}]",
     ast.Unary: lambda e: f"not {describe(e.operand)}" if e.op == "not" else f"-{describe(e.operand)}",
     ast.Binary: lambda e: f"{_operand(e.left)} {e.op} {_operand(e.right)}",
+    ast.Quantifier: lambda e: f"{e.kind} {e.var}: {e.type} {{ {describe(e.body)} }}",
 }
 
 
-def _conjuncts(expr) -> list:
+def conjuncts(expr) -> list:
     """The operands of a chain of ``and`` (each a condition of its own, tested in order)."""
     if isinstance(expr, ast.Binary) and expr.op == "and":
-        return _conjuncts(expr.left) + _conjuncts(expr.right)
+        return conjuncts(expr.left) + conjuncts(expr.right)
     return [expr]

@@ -28,6 +28,7 @@ from vaultgram.grammar import ast
 from .errors import RewriteError
 from .graph import HostGraph
 from .incremental import MatchSet
+from .invariants import InvariantError
 from .matcher import Match, Matcher
 from .rewriter import Application, apply_rule, footprint
 from .rulebook import Rulebook, describe_step
@@ -64,12 +65,27 @@ class StepReport:
 class Runner:
     """Applies the rules of a rulebook to a graph, recording a trace."""
 
-    def __init__(self, rulebook: Rulebook, graph: HostGraph, chooser: Chooser = first_option):
+    def __init__(self, rulebook: Rulebook, graph: HostGraph, chooser: Chooser = first_option,
+                 check_invariants: bool = False):
         self.rulebook = rulebook
         self.graph = graph
         self.chooser = chooser
         self.trace = Trace()
         self.reports: list[StepReport] = []
+        self.check_invariants = check_invariants
+        self.invariant_checks = 0  # how many times an invariant was evaluated
+        self.running: list[str] = []  # the strategies running, outermost first
+
+    def check(self, when: str, app: Application | None = None, strategy: str | None = None) -> None:
+        """Check the invariants of kind ``when`` ("each", "end") that concern the running strategies;
+        raise :class:`InvariantError` for the first broken one (in declaration order)."""
+        running = self.running if strategy is None else [strategy]
+        for inv in self.rulebook.invariants.values():
+            if inv.when == when and inv.concerns(running):
+                self.invariant_checks += 1
+                reason = inv.failure(self.graph)
+                if reason:
+                    raise InvariantError(inv, reason, app, strategy)
 
     # -- single rules ----------------------------------------------------------------------------
 
@@ -84,6 +100,8 @@ class Runner:
         app = apply_rule(matcher.rule, self.graph, dict(match.binding), matcher.values)
         app.params = {**matcher.values, **matcher.fixed}
         self.trace.record(app)
+        if self.check_invariants:
+            self.check("each", app)
         return app
 
     def apply_once(self, rule_name: str, params=None) -> Application | None:
@@ -104,16 +122,26 @@ class Runner:
         strategy = self.rulebook.strategies.get(strategy_name)
         if strategy is None:
             raise RewriteError(f"unknown strategy '{strategy_name}'")
-        for step in strategy.steps:
-            if isinstance(step, ast.Run):
-                self.run(step.strategy)
-                continue
-            start, before = time.perf_counter(), len(self.trace)
-            self.run_step(step)
-            new = self.trace.applications[before:]
-            by_rule = dict(Counter(app.rule for app in new))
-            self.reports.append(StepReport(describe_step(step), len(new), time.perf_counter() - start, by_rule))
+        self.running.append(strategy_name)
+        try:
+            for step in strategy.steps:
+                self._run_step(step)
+        finally:
+            self.running.pop()
+        if self.check_invariants:
+            self.check("end", strategy=strategy_name)
         return self.reports
+
+    def _run_step(self, step) -> None:
+        """Run one step of a strategy (another strategy for ``run``) and report it."""
+        if isinstance(step, ast.Run):
+            self.run(step.strategy)
+            return
+        start, before = time.perf_counter(), len(self.trace)
+        self.run_step(step)
+        new = self.trace.applications[before:]
+        by_rule = dict(Counter(app.rule for app in new))
+        self.reports.append(StepReport(describe_step(step), len(new), time.perf_counter() - start, by_rule))
 
     def run_step(self, step: ast.Step) -> None:
         matchers = self._group(step)

@@ -88,7 +88,19 @@ class Binary:
     pos: SourcePos
 
 
-Expr = Union[Literal, Name, Attr, Index, Call, ListExpr, Unary, Binary]
+@dataclass(frozen=True)
+class Quantifier:
+    """``forall v: Type { body }`` (also ``exists``, ``count``, ``sum``): ``body`` evaluated with ``v``
+    bound to each element of ``Type`` (a node or edge type, with its subtypes) of the host graph."""
+
+    kind: str  # "forall", "exists", "count" or "sum"
+    var: str
+    type: str
+    body: "Expr"
+    pos: SourcePos
+
+
+Expr = Union[Literal, Name, Attr, Index, Call, ListExpr, Unary, Binary, Quantifier]
 
 # --------------------------------------------------------------------------------------------
 # Schema
@@ -378,6 +390,21 @@ class Strategy:
 
 
 @dataclass(frozen=True)
+class Invariant:
+    """``invariant name after each|at end [in strategy, ...] { condition }``.
+
+    ``when`` is ``"each"`` (after every rule application) or ``"end"`` (when a strategy has run);
+    ``strategies`` limits the check to those strategies (empty: every strategy).
+    """
+
+    name: str
+    when: str
+    strategies: tuple[str, ...]
+    condition: Expr
+    pos: SourcePos
+
+
+@dataclass(frozen=True)
 class Include:
     """``include "path"`` -- relative to the including file."""
 
@@ -394,3 +421,4 @@ class RuleFile:
     rules: tuple[Rule, ...] = field(default=())
     strategies: tuple[Strategy, ...] = field(default=())
     includes: tuple[Include, ...] = field(default=())
+    invariants: tuple[Invariant, ...] = field(default=())

@@ -95,11 +95,12 @@ def _timed(timings: dict | None, stage: str):
 
 
 def decompose(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None = None, smooth: bool = False,
-              timings: dict | None = None) -> Decomposition:
+              timings: dict | None = None, check_invariants: bool = False) -> Decomposition:
     """Topology finding (§3.1, §4): discretise, triangulate, skeletonise, rewrite with the rules, patch.
 
     ``rules_dir`` holds the rulebook (default: the one shipped with vaultgram); ``smooth`` smooths the
-    skeleton branches with splines.
+    skeleton branches with splines; ``check_invariants`` checks the rulebook's invariants while its
+    strategies run (as ``vaultgram rules test`` does).
     """
     rulebook = load_vault_rulebook(rules_dir)
     with _timed(timings, "discretise"):
@@ -109,7 +110,7 @@ def decompose(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | Non
     with _timed(timings, "skeleton"):
         sk = skeleton(tri, smooth=smooth)
     with _timed(timings, "rules"):
-        return block_decomposition(sk, rulebook)
+        return block_decomposition(sk, rulebook, check_invariants)
 
 
 # --------------------------------------------------------------------------------------------

@@ -34,7 +34,7 @@ from vaultgram.errors import DomainError, RewriteError
 from vaultgram.geometry.polylines import arc_lengths
 from vaultgram.geometry.text import fmt_point
 from vaultgram.topology.discretise import RING_POINT, Discretisation
-from vaultgram.topology.patches import Patch, find_patches, half_edge_polyline
+from vaultgram.topology.patches import Patch, check_no_enclosed_holes, find_patches, half_edge_polyline
 from vaultgram.topology.skeleton import Skeleton
 from vaultgram.topology.types import (
     BOUNDARY,
@@ -303,13 +303,15 @@ def check_patch_nodes(graph: HostGraph, patches) -> None:
         )
 
 
-def block_decomposition(sk: Skeleton, rulebook: Rulebook) -> Decomposition:
+def block_decomposition(sk: Skeleton, rulebook: Rulebook, check_invariants: bool = False) -> Decomposition:
     """The block decomposition of a skeleton by the rulebook (§3.1 pruning and rebranching, §4).
 
     The rulebook's ``topology`` strategy rewrites the skeleton graph (:func:`decomposition_graph`);
     the faces it leaves become ``Patch`` nodes and the ``curve_patching`` and ``patching`` strategies
     (when the rulebook has them) may split them (curve T-junctions, Figures 4 and 8); the patches are
-    then read off the faces again, and must all have 3 or 4 sides.
+    then read off the faces again, and must all have 3 or 4 sides and enclose no hole (whatever the
+    rules did). ``check_invariants`` checks the rulebook's invariants while its strategies run
+    (:mod:`vaultgram.engine.invariants`; ``vaultgram rules test`` does).
 
     Example
     -------
@@ -325,7 +327,7 @@ def block_decomposition(sk: Skeleton, rulebook: Rulebook) -> Decomposition:
     """
     disc = sk.triangulation.disc
     graph = decomposition_graph(sk, rulebook)
-    runner = Runner(rulebook, graph)
+    runner = Runner(rulebook, graph, check_invariants=check_invariants)
     runner.run(TOPOLOGY_STRATEGY)
     patch_strategies = [name for name in PATCH_STRATEGIES if name in rulebook.strategies]
     patches = find_patches(graph, disc, PLAN_EDGES, strict=not patch_strategies)
@@ -335,5 +337,6 @@ def block_decomposition(sk: Skeleton, rulebook: Rulebook) -> Decomposition:
             runner.run(name)
         patches = find_patches(graph, disc, PLAN_EDGES)
         check_patch_nodes(graph, patches)
+    check_no_enclosed_holes(graph, patches)
     reports = tuple(RuleStep(r.step, r.applications) for r in runner.reports)
     return Decomposition(disc, sk, graph, tuple(patches), reports, runner.trace.to_json())

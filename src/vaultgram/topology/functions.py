@@ -18,12 +18,13 @@ from vaultgram.engine.expressions import Functions
 from vaultgram.errors import RuleError
 from vaultgram.geometry.polygons import interior_angle, signed_area
 from vaultgram.geometry.polylines import arc_lengths, point_at_length
-from vaultgram.topology.patches import half_edge_polyline
-from vaultgram.topology.types import CURVE, PATCH_CORNER, PLAN_EDGES
+from vaultgram.topology.patches import enclosed_holes, half_edge_polyline, hole_rings, plan_faces
+from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE, PATCH_CORNER, PLAN_EDGES
 
 __all__ = ["vault_functions", "distance", "midpoint", "lerp", "move_end", "angle_between", "curve_side",
            "curve_neighbours", "patch_corner", "patch_chains", "patch_side_starts", "patch_angle", "diagonal_path",
-           "path_clear"]
+           "path_clear", "plan_area", "domain_area", "plan_euler", "hole_count", "holes_enclosed",
+           "curve_crossings"]
 
 
 def distance(p, q) -> float:
@@ -256,6 +257,53 @@ def _resample(chain: np.ndarray, t: np.ndarray) -> np.ndarray:
     return point_at_length(chain, t * arc_lengths(chain)[-1]).T
 
 
+# -- measures of the whole plan, for the rulebook's invariants (rules/invariants.vgr) -------------
+
+
+def plan_area(graph) -> float:
+    """The summed area of the faces of the plan (bounded, not inside a hole): the patches' area."""
+    return float(sum(signed_area(outline) for _, _, outline in plan_faces(graph, PLAN_EDGES)))
+
+
+def domain_area(graph) -> float:
+    """The area of the domain: its outer ring's less its holes' (from the boundary vertices)."""
+    rings: dict[int, list] = {}
+    for n in graph.of_types(graph.schema.subtypes(BOUNDARY_VERTEX)):
+        rings.setdefault(graph.get(n, "ring"), []).append((graph.get(n, "index"), graph.get(n, "pos")))
+    areas = {r: abs(signed_area(np.array([p for _, p in sorted(pts)]))) for r, pts in rings.items()}
+    return float(areas.get(0, 0.0) - sum(a for r, a in areas.items() if r > 0))
+
+
+def plan_euler(graph) -> int:
+    """V - E + F of the patch layout: its points, its edges and its patches (faces not inside a hole);
+    1 - holes for a layout of disks (§3.1)."""
+    edges = list(graph.of_types(PLAN_EDGES))
+    nodes = {n for e in edges for n in graph.ends(e)}
+    return len(nodes) - len(edges) + len(plan_faces(graph, PLAN_EDGES))
+
+
+def hole_count(graph) -> int:
+    """The number of holes of the domain (rings of boundary vertices other than the outer one)."""
+    return len(hole_rings(graph))
+
+
+def holes_enclosed(graph) -> int:
+    """How many (face, hole) pairs have the hole inside the face of the plan: 0 for a layout of disks."""
+    outlines = [outline for _, _, outline in plan_faces(graph, PLAN_EDGES)]
+    return len(enclosed_holes(outlines, hole_rings(graph)))
+
+
+def curve_crossings(graph) -> int:
+    """How many pieces of the skeleton, rebranches and diagonals properly cross a curve feature's
+    segment (§4.2: the skeleton does not cross a curve; meeting it at a point is no crossing)."""
+    curve = [half_edge_polyline(graph, e, graph.ends(e)[0]) for e in graph.of_types([CURVE])]
+    others = [e for e in graph.of_types(PLAN_EDGES) if graph.edge_type(e) not in (CURVE, "Boundary")]
+    if not curve or not others:
+        return 0
+    start, end = np.concatenate([c[:-1] for c in curve]), np.concatenate([c[1:] for c in curve])
+    return sum(not _clear(half_edge_polyline(graph, e, graph.ends(e)[0]), start, end) for e in others)
+
+
 def vault_functions() -> Functions:
     """A registry with the engine's builtins plus the vault pipeline's geometry (the signatures
     rules see; ``uses_graph`` functions get the host graph as their first argument)."""
@@ -274,4 +322,8 @@ def vault_functions() -> Functions:
     f.register("patch_side_starts", patch_side_starts, ("node", "node", "node"), "bool", uses_graph=True,
                local=False)
     f.register("patch_corner", patch_corner, ("node", "int"), "node", uses_graph=True, local=False)
+    for name, fn, returns in (("plan_area", plan_area, "float"), ("domain_area", domain_area, "float"),
+                              ("plan_euler", plan_euler, "int"), ("hole_count", hole_count, "int"),
+                              ("holes_enclosed", holes_enclosed, "int"), ("curve_crossings", curve_crossings, "int")):
+        f.register(name, fn, (), returns, uses_graph=True, local=False)
     return f
