@@ -667,7 +667,7 @@ _DESCRIBE = {
     ast.Index: lambda e: f"{describe(e.target)}[{describe(e.index)}]",
     ast.Call: lambda e: f"{e.func}({', '.join(describe(a) for a in e.args)})",
     ast.ListExpr: lambda e: f"[{', '.join(describe(a) for a in e.items)}]",
-    ast.Unary: lambda e: f"not {describe(e.operand)}" if e.op == "not" else f"-{describe(e.operand)}",
+    ast.Unary: lambda e: f"not {_operand(e.operand)}" if e.op == "not" else f"-{_operand(e.operand)}",
     ast.Binary: lambda e: f"{_operand(e.left)} {e.op} {_operand(e.right)}",
     ast.Quantifier: lambda e: f"{e.kind} {e.var}: {e.type} {{ {describe(e.body)} }}",
 }

@@ -284,7 +284,8 @@ class ExpressionCompiler:
         body = self.compile(expr.body, {**scope, expr.var: Symbol(VType(kind, expr.type))})
         wanted = ("float", "int") if expr.kind == "sum" else ("bool",)
         if body.type.kind != "value" or body.type.name not in (*wanted, "any"):
-            raise RuleTypeError(f"the body of {expr.kind} must be {' or '.join(wanted)}, not {body.type}", expr.body.pos)
+            raise RuleTypeError(f"the body of {expr.kind} must be {' or '.join(wanted)}, not {body.type}",
+                                expr.body.pos)
         types, var, fn = self.schema.subtypes(expr.type), expr.var, body.fn
 
         def values(g, b):

@@ -97,6 +97,8 @@ class InvariantError(RewriteError):
         self.application = application
         self.rule = application.rule if application is not None else None
         self.strategy = strategy
+        self.graph = None  # the graph it broke on, and the rules applied in the strategy (set by the runner)
+        self.rules_run: dict[str, int] = {}
         where = (f"after rule {application.rule} at {application.binding}" if application is not None
                  else f"at the end of strategy {strategy}")
         super().__init__(f"invariant {invariant.name} ({invariant.source.pos}) broken {where}: {reason}")

@@ -65,6 +65,9 @@ class Application:
     deleted_nodes: list[int]
     deleted_edges: list[int]
     mark: int  # journal position before the application: graph.rollback(mark) undoes it
+    retyped: list = field(default_factory=list)  # [node, old type, new type]
+    set: list = field(default_factory=list)  # [kind ("node" or "edge"), id, attribute, value]
+    choice: int | None = None  # the option a chooser took at a choose step
 
 
 class Iteration(NamedTuple):
@@ -167,6 +170,8 @@ class _Run:
         self.delete_edges: list[int] = []
         self.delete_nodes: list[tuple[int, bool]] = []  # (node, detach)
         self.merges: list[tuple[int, int]] = []  # (merged node, node it is merged into)
+        self.retyped: list = []
+        self.set: list = []
 
     def execute(self, statements, scope: dict, neighbours: tuple[dict, dict] | None = None) -> None:
         for s in statements:
@@ -188,11 +193,13 @@ class _Run:
             scope[s.var] = e
 
     def retype(self, s: CRetype, scope: dict, neighbours) -> None:
+        self.retyped.append([scope[s.var], self.graph.node_type(scope[s.var]), s.type])
         self.graph.retype(scope[s.var], s.type)
 
     def set_attr(self, s: CSet, scope: dict, neighbours) -> None:
         g = self.graph
         value = s.value(g, scope)
+        self.set.append([s.kind, scope[s.var], s.attr, value])
         if s.kind == "node":
             g.set_node_attr(scope[s.var], s.attr, value)
         else:
@@ -306,4 +313,6 @@ def apply_rule(rule: CompiledRule, graph: HostGraph, binding: dict, values: dict
         deleted_nodes=deleted_nodes,
         deleted_edges=deleted_edges,
         mark=mark,
+        retyped=run.retyped,
+        set=run.set,
     )

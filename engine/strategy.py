@@ -85,7 +85,10 @@ class Runner:
                 self.invariant_checks += 1
                 reason = inv.failure(self.graph)
                 if reason:
-                    raise InvariantError(inv, reason, app, strategy)
+                    exc = InvariantError(inv, reason, app, strategy)
+                    exc.graph = self.graph
+                    exc.rules_run = dict(Counter(a.rule for a in self.trace.applications))
+                    raise exc
 
     # -- single rules ----------------------------------------------------------------------------
 
@@ -126,10 +129,10 @@ class Runner:
         try:
             for step in strategy.steps:
                 self._run_step(step)
+            if self.check_invariants:
+                self.check("end", strategy=strategy_name)
         finally:
             self.running.pop()
-        if self.check_invariants:
-            self.check("end", strategy=strategy_name)
         return self.reports
 
     def _run_step(self, step) -> None:
@@ -174,8 +177,10 @@ class Runner:
     def _once(self, matchers: list[Matcher], choose: bool) -> None:
         options = self._options(matchers, first_only=not choose)
         if options:
-            rule_name, match = options[self.chooser(options) if choose else 0]
-            self.apply(next(m for m in matchers if m.rule.name == rule_name), match)
+            k = self.chooser(options) if choose else 0
+            rule_name, match = options[k]
+            app = self.apply(next(m for m in matchers if m.rule.name == rule_name), match)
+            app.choice = k if choose else None
 
     def _all(self, matchers: list[Matcher], choose: bool) -> list[Application]:
         if choose:
@@ -183,7 +188,8 @@ class Runner:
             if not candidates:
                 return []
             options = [Option(m.rule.name, m.first()) for m in candidates]
-            matchers = [candidates[self.chooser(options)]]
+            choice = self.chooser(options)
+            matchers = [candidates[choice]]
         applied: list[Application] = []
         reads: set = set()
         writes: set = set()
@@ -200,6 +206,9 @@ class Runner:
             for match in selected:
                 if matcher.check(match.binding):
                     applied.append(self.apply(matcher, match))
+        if choose:
+            for app in applied:
+                app.choice = choice
         return applied
 
     def _fixpoint(self, matchers: list[Matcher], max_steps: int, choose: bool) -> int:
@@ -224,6 +233,7 @@ class Runner:
                     f"fixpoint did not terminate within {max_steps} steps; rules still firing: {', '.join(firing)}"
                 )
             app = self.apply(chosen.matcher, match)
+            app.choice = k if choose else None
             steps += 1
             changes = self.graph.changes_since(app.mark)
             for s in sets:

@@ -495,8 +495,8 @@ class _ToAst(Transformer_NonRecursive):
     # -- file ---------------------------------------------------------------------------------
 
     def start(self, meta, children):
-        schemas, rules, strategies, includes, invariants = _by_class(children, Schema, Rule, Strategy, Include, Invariant)
-        return RuleFile(self.file, schemas, rules, strategies, includes, invariants)
+        parts = _by_class(children, Schema, Rule, Strategy, Include, Invariant)
+        return RuleFile(self.file, *parts)
 
     def include(self, meta, children):
         (path,) = children

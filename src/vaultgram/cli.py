@@ -184,6 +184,58 @@ def rules_why_not(files, graph_path: str, rule_name: str) -> None:
     click.echo(str(why_not(Matcher(book.rules[rule_name], graph))))
 
 
+@rules.command("test")
+@click.argument("rules_dirs", metavar="RULES...", nargs=-1, required=True, type=click.Path(exists=True))
+@click.option("--examples", type=click.IntRange(min=1), default=100, show_default=True,
+              help="How many random domains hypothesis draws.")
+@click.option("--seed", type=int, default=None, help="Draw other examples (default: the same ones every run).")
+@click.option("--out", "out_dir", default="rules-test-failure", show_default=True, type=click.Path(file_okay=False),
+              help="Where a counterexample is written.")
+def rules_test(rules_dirs, examples: int, seed: int | None, out_dir: str) -> None:
+    """Property-test rulebooks (folders with topology.vgr, or that file) on random domains: their
+    invariants after every rule application, the topology stage's checks. Exit 1 on a counterexample,
+    written shrunk to --out with the command that replays it."""
+    try:
+        from vaultgram.testing.rulestest import check_rulebook, write_failure
+    except ImportError as exc:  # hypothesis missing
+        raise VaultgramError(f"rules test needs hypothesis ({exc}): pip install 'vaultgram[rulestest]'") from None
+    for path in rules_dirs:
+        directory = Path(path) if Path(path).is_dir() else Path(path).parent
+        summary = check_rulebook(directory, examples, seed)
+        if summary.failure is not None:
+            for line in write_failure(summary.failure, directory, Path(out_dir)):
+                click.echo(line)
+            sys.exit(1)
+        click.echo(f"ok: {directory}: {summary.text()}")
+
+
+@rules.command("replay")
+@click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=False))
+@click.option("--graph", "graph_path", required=True, type=click.Path(dir_okay=False),
+              help="The graph the trace started from (the start_graph.json decompose --trace writes).")
+@click.option("--trace", "trace_path", required=True, type=click.Path(dir_okay=False), help="trace.json.")
+@OUT
+def rules_replay(files, graph_path: str, trace_path: str, out_dir: str) -> None:
+    """Replay a trace (rules run, decompose --trace) on its starting graph; write graph.json."""
+    from vaultgram.engine.graph import HostGraph
+    from vaultgram.engine.rulebook import load_rulebook
+    from vaultgram.engine.trace import load_trace, replay
+    from vaultgram.topology.decomposition import edge_angle
+    from vaultgram.topology.functions import vault_functions
+
+    book = load_rulebook(files, vault_functions())
+    graph = HostGraph.from_json(read_json(graph_path), book.schema, angle=edge_angle)
+    replayed = replay(load_trace(trace_path), book, graph)
+    write_json(Path(out_dir) / "graph.json", graph.to_json())
+    click.echo(f"replayed {len(replayed)} application(s); wrote {Path(out_dir) / 'graph.json'} "
+               f"({len(graph)} nodes, {graph.num_edges} edges)")
+
+
+TRACE = click.option("--trace", "with_trace", is_flag=True,
+                     help="Also write trace.json (every rule application) and start_graph.json (the graph the "
+                          "rules started from), for vaultgram rules replay.")
+
+
 @main.command("decompose")
 @click.argument("domain_path", metavar="DOMAIN", type=click.Path(dir_okay=False))
 @OUT
@@ -191,16 +243,18 @@ def rules_why_not(files, graph_path: str, rule_name: str) -> None:
 @RULES
 @click.option("--smooth-branches", is_flag=True, help="Smooth the skeleton branches with splines (scipy).")
 @click.option("--plot/--no-plot", default=True, show_default=True, help="Also write decomposition.png.")
-def decompose_command(
-    domain_path: str, out_dir: str, spacing: float, rules_dir: str | None, smooth_branches: bool, plot: bool
-) -> None:
+@click.option("--invariants", is_flag=True, help="Check the rulebook's invariants while its strategies run.")
+@TRACE
+def decompose_command(domain_path: str, out_dir: str, spacing: float, rules_dir: str | None, smooth_branches: bool,
+                      plot: bool, invariants: bool, with_trace: bool) -> None:
     """Block decomposition of a DOMAIN (JSON, GeoJSON or DXF) into 3- and 4-sided patches (paper 3.1)."""
     from vaultgram.domain import load_domain
     from vaultgram.io.outputs import write_decomposition
     from vaultgram.pipeline import decompose
 
-    dec = decompose(load_domain(domain_path), spacing, rules_dir, smooth=smooth_branches)
-    write_decomposition(dec, Path(out_dir), plot)
+    dec = decompose(load_domain(domain_path), spacing, rules_dir, smooth=smooth_branches, check_invariants=invariants,
+                    trace=with_trace)
+    write_decomposition(dec, Path(out_dir), plot, with_trace)
     echo_decomposition(dec, Path(out_dir))
 
 
@@ -298,9 +352,10 @@ def tessellate_command(thrust_path, out_dir, thickness, rhythm, max_concavity, f
 @SUPPORTS
 @thrust_options
 @tessellation_options
+@TRACE
 def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smooth, densities_path, allow_folds,
                    supports_path, zmax, thickness, density, point_load, tol_deg, sag, relax_mode, rhythm,
-                   max_concavity, flat_extrados, surface_smooth) -> None:
+                   max_concavity, flat_extrados, surface_smooth, with_trace) -> None:
     """The whole pipeline on a DOMAIN: decomposition (3.1, 4), mesh (3.2), thrust network and voussoirs (5).
 
     Everything is computed before anything is written, so a failing stage leaves no output.
@@ -316,10 +371,10 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
         load_domain(domain_path), spacing, rules_dir, target_length, DEFAULT_ITERATIONS if smooth is None else smooth,
         load_densities(densities_path) if densities_path else None, allow_folds,
         read_json(supports_path) if supports_path else None, point_load, zmax, thickness,
-        TessellationOptions(int(rhythm), max_concavity, flat_extrados, surface_smooth),
+        TessellationOptions(int(rhythm), max_concavity, flat_extrados, surface_smooth), trace=with_trace,
         density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode)
     out = Path(out_dir)
-    write_decomposition(result.decomposition, out)
+    write_decomposition(result.decomposition, out, trace=with_trace)
     echo_decomposition(result.decomposition, out)
     write_mesh_files(result.mesh, out, result.supports)
     click.echo(f"mesh: {len(result.mesh.vertices)} vertices, {len(result.mesh.faces)} faces; "

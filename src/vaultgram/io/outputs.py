@@ -19,10 +19,15 @@ from vaultgram.topology.decomposition import Decomposition
 __all__ = ["write_decomposition", "write_mesh_files", "write_thrust", "write_tessellation"]
 
 
-def write_decomposition(dec: Decomposition, out: Path, plot: bool = True) -> None:
-    """``decomposition.json`` (the typed graph), ``patches.json`` and, if ``plot``, ``decomposition.png``."""
+def write_decomposition(dec: Decomposition, out: Path, plot: bool = True, trace: bool = False) -> None:
+    """``decomposition.json`` (the typed graph), ``patches.json``, if ``plot`` ``decomposition.png`` and, if
+    ``trace``, ``trace.json`` (every rule application) and ``start_graph.json`` (the graph before the rules
+    and the patch nodes the pipeline added between strategies, as ``vaultgram rules replay`` takes them)."""
     write_json(out / "decomposition.json", dec.to_json())
     write_json(out / "patches.json", dec.patches_json())
+    if trace and dec.start_graph is not None:
+        write_json(out / "trace.json", dec.trace)
+        write_json(out / "start_graph.json", dec.start_graph)
     if plot:
         plot_decomposition(dec, out / "decomposition.png")
 

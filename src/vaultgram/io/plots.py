@@ -23,15 +23,34 @@ EDGE_STYLE = {
 }
 
 
-def plot_decomposition(decomposition, path: str | Path) -> None:
-    """Boundaries, branches, rebranches, singularities and patch numbers; written atomically as PNG."""
-    g = decomposition.graph
-    fig, ax = plt.subplots(figsize=(7, 7))
+def _plan_edges(ax, g, highlight=frozenset()) -> None:
+    """The plan's edges of a decomposition graph, in their styles; edges in ``highlight`` in red."""
     for e in g.edges():
         style = EDGE_STYLE.get(g.edge_type(e))
         if style:
             xy = half_edge_polyline(g, e, g.ends(e)[0])
-            ax.plot(xy[:, 0], xy[:, 1], **style)
+            ax.plot(xy[:, 0], xy[:, 1], **(dict(style, color="red", lw=2.5) if e in highlight else style))
+
+
+def plot_graph(g, path: str | Path, nodes=(), edges=(), title: str = "") -> None:
+    """A decomposition graph as it is (mid-rewrite, say): its plan edges, and the ``nodes`` and
+    ``edges`` given (a rule's match) in red; written atomically as PNG."""
+    fig, ax = plt.subplots(figsize=(7, 7))
+    _plan_edges(ax, g, {e for e in edges if g.has_edge(e)})
+    marked = [g.get(n, "pos") for n in nodes if g.has_node(n) and "pos" in g.node_attrs(n)]
+    if marked:
+        ax.plot(*np.array(marked).T, "o", color="red", ms=6)
+    ax.set_aspect("equal")
+    ax.set_axis_off()
+    ax.set_title(title)
+    save_figure(fig, Path(path))
+
+
+def plot_decomposition(decomposition, path: str | Path) -> None:
+    """Boundaries, branches, rebranches, singularities and patch numbers; written atomically as PNG."""
+    g = decomposition.graph
+    fig, ax = plt.subplots(figsize=(7, 7))
+    _plan_edges(ax, g)
     for n in decomposition.singularities():
         x, y = g.get(n, "pos")
         ax.plot(x, y, "o", color="tab:red", ms=5)

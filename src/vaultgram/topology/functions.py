@@ -22,7 +22,8 @@ from vaultgram.topology.patches import enclosed_holes, half_edge_polyline, hole_
 from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE, PATCH_CORNER, PLAN_EDGES
 
 __all__ = ["vault_functions", "distance", "midpoint", "lerp", "move_end", "angle_between", "curve_side",
-           "curve_neighbours", "patch_corner", "patch_chains", "patch_side_starts", "patch_angle", "diagonal_path",
+           "curve_neighbours", "patch_corner", "patch_in_plan", "patch_chains", "patch_side_starts", "patch_angle",
+           "diagonal_path",
            "path_clear", "plan_area", "domain_area", "plan_euler", "hole_count", "holes_enclosed",
            "curve_crossings"]
 
@@ -146,6 +147,13 @@ def _patch_outline(graph, patch: int, x: int) -> tuple[list, np.ndarray] | None:
         if signed_area(outline) > 0:
             return face, outline
     return None
+
+
+def patch_in_plan(graph, patch: int) -> bool:
+    """Whether a Patch node is a face of the plan: some face at its first corner has all its corners
+    (a rule that splits or merges patches must keep the Patch nodes in step with the faces)."""
+    corners = [graph.ends(e)[1] for e in sorted(graph.incident(patch, [PATCH_CORNER]))]
+    return bool(corners) and _patch_outline(graph, patch, corners[0]) is not None
 
 
 def patch_chains(graph, patch: int, x: int, o: int) -> tuple[np.ndarray, np.ndarray] | None:
@@ -322,6 +330,7 @@ def vault_functions() -> Functions:
     f.register("patch_side_starts", patch_side_starts, ("node", "node", "node"), "bool", uses_graph=True,
                local=False)
     f.register("patch_corner", patch_corner, ("node", "int"), "node", uses_graph=True, local=False)
+    f.register("patch_in_plan", patch_in_plan, ("node",), "bool", uses_graph=True, local=False)
     for name, fn, returns in (("plan_area", plan_area, "float"), ("domain_area", domain_area, "float"),
                               ("plan_euler", plan_euler, "int"), ("hole_count", hole_count, "int"),
                               ("holes_enclosed", holes_enclosed, "int"), ("curve_crossings", curve_crossings, "int")):

@@ -152,9 +152,10 @@ def check_no_enclosed_holes(graph: HostGraph, patches) -> None:
     found = enclosed_holes([p.polygon() for p in patches], hole_rings(graph))
     if found:
         k, h = found[0]
+        where = _where(patches[k].polygon())
         raise RewriteError(
-            f"patch {patches[k].id} around {_where(patches[k].polygon())} encloses hole {h + 1}: no rule "
-            "connected the hole's ring to the patch layout; check the rules (rebranching)"
+            f"patch {patches[k].id} around {where} ({patches[k].n_sides} sides) encloses hole {h + 1}: it is no "
+            "disk; no rule connected the hole's ring to the patch layout: check the rules (rebranching)"
         )
 
 

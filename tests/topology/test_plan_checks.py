@@ -1,0 +1,72 @@
+"""The vault rulebook's invariants and their host functions (rules/invariants.vgr, topology/functions.py),
+and the topology's stage check that no patch encloses a hole (topology/patches.py)."""
+
+import shutil
+
+import numpy as np
+import pytest
+
+from vaultgram.domain import load_domain
+from vaultgram.errors import RewriteError
+from vaultgram.pipeline import decompose
+from vaultgram.topology import functions as f
+from vaultgram.topology.patches import enclosed_holes
+from vaultgram.topology.rulebook import default_rules_dir, load_vault_rulebook
+
+from paths import EXAMPLES
+
+EXAMPLE_NAMES = ["l_shape", "quad_with_hole", "fig5_boundary_points", "fig6_inner_points", "fig7_curves",
+                 "features_combined", "square_point_loads"]
+
+
+@pytest.mark.parametrize("name", EXAMPLE_NAMES)
+def test_examples_keep_every_invariant(name):
+    dec = decompose(load_domain(EXAMPLES / f"{name}.json"), 0.03, check_invariants=True)
+    g = dec.graph
+    assert dec.invariant_checks > 0
+    holes = len(load_domain(EXAMPLES / f"{name}.json").holes)
+    assert f.hole_count(g) == holes and f.plan_euler(g) == 1 - holes and f.holes_enclosed(g) == 0
+    assert f.plan_area(g) == pytest.approx(sum(p.area() for p in dec.patches), rel=1e-12)
+    assert f.plan_area(g) == pytest.approx(f.domain_area(g), rel=1e-9)
+    assert f.curve_crossings(g) == 0
+    assert all(f.patch_in_plan(g, p) for p in dec.patch_nodes())
+
+
+def test_bundled_rulebook_declares_the_invariants():
+    book = load_vault_rulebook()
+    assert {"patches_in_step_with_the_plan", "patches_have_three_or_four_sides", "patches_are_disks",
+            "patches_tile_the_domain", "euler_characteristic", "features_are_patch_corners",
+            "layout_does_not_cross_curves"} <= set(book.invariants)
+
+
+def test_enclosed_holes_finds_a_hole_inside_a_face():
+    square = np.array([[0, 0], [4, 0], [4, 4], [0, 4]], float)
+    hole = np.array([[1, 1], [1, 2], [2, 2], [2, 1]], float)
+    far = hole + 10
+    assert enclosed_holes([square], [hole, far]) == [(0, 0)]
+    assert enclosed_holes([square], []) == []
+
+
+def test_curve_crossings_counts_a_branch_across_a_curve():
+    dec = decompose(load_domain(EXAMPLES / "fig7_curves.json"), 0.03)
+    g = dec.graph
+    curve = next(e for e in g.edges() if g.edge_type(e) == "Curve")
+    a, b = (np.asarray(g.get(n, "pos")) for n in g.ends(curve))
+    mid, normal = (a + b) / 2, np.array([b[1] - a[1], a[0] - b[0]])
+    s = next(n for n in g.nodes() if g.node_type(n) == "Singularity")
+    across = ((mid - normal).tolist(), (mid + normal).tolist())
+    g.add_edge("Branch", s, g.ends(curve)[0], {"polyline": (tuple(g.get(s, "pos")), *map(tuple, across),
+                                                            tuple(a))})
+    assert f.curve_crossings(g) >= 1
+
+
+def test_a_patch_around_a_hole_is_a_loud_error_whatever_the_rules(tmp_path):
+    """The stage check: a rebranch that never reaches a hole's ring leaves the ring of patches around
+    the hole as one patch; decompose fails, without any invariant checked."""
+    rules = tmp_path / "rules"
+    shutil.copytree(default_rules_dir(), rules, ignore=shutil.ignore_patterns("*.py", "__pycache__"))
+    text = (rules / "topology.vgr").read_text()
+    broken = text.replace("v: Point  s -Dual-> v", "v: BoundaryVertex { ring: 0 }  s -Dual-> v")
+    (rules / "topology.vgr").write_text(broken)
+    with pytest.raises(RewriteError, match="encloses hole 1"):
+        decompose(load_domain(EXAMPLES / "quad_with_hole.json"), 0.03, rules_dir=rules)
