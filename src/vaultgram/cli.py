@@ -137,6 +137,9 @@ def rules_check(files, as_json: bool) -> None:
     click.echo(f"strategies ({len(summary['strategies'])}):")
     for name, steps in summary["strategies"].items():
         click.echo(f"  {name}: " + "; ".join(steps))
+    click.echo(f"invariants ({len(summary['invariants'])}):")
+    for name, when in summary["invariants"].items():
+        click.echo(f"  {name}: {when}")
 
 
 @rules.command("run")
