@@ -49,6 +49,18 @@ class Condition:
     text: str
     pos: object
     column: ColumnTest | None = None
+    operands: tuple[tuple[str, Compiled], ...] = ()  # its attributes and calls, for why-not reports
+
+    def values(self, graph, binding) -> dict[str, object]:
+        """The value of each attribute and function call in the condition at ``binding`` (those that
+        cannot be evaluated there are left out): what a why-not report shows."""
+        out = {}
+        for text, fn in self.operands:
+            try:
+                out[text] = fn(graph, binding)
+            except Exception:  # noqa: BLE001 - a report must not fail where the condition itself would
+                continue
+        return out
 
     def failure(self, rule: str, exc: Exception) -> RewriteError:
         """The error to raise when evaluating the test raised ``exc`` (a host function or arithmetic
@@ -323,7 +335,10 @@ class RuleChecker:
 
     def _condition(self, expr, scope, text: str | None = None) -> Condition:
         compiled = self.compiler.compile(expr, scope)
-        return Condition(compiled.fn, compiled.reads, text or describe(expr), expr.pos, self._column_test(expr, scope))
+        operands = tuple({describe(sub): self.compiler.compile(sub, scope).fn for sub in walk(expr)
+                          if isinstance(sub, (ast.Attr, ast.Call)) and not _quantified(sub, expr)}.items())
+        return Condition(compiled.fn, compiled.reads, text or describe(expr), expr.pos, self._column_test(expr, scope),
+                         operands)
 
     def _column_test(self, expr, scope) -> ColumnTest | None:
         """The vectorised form of ``degree(var, Types) op rhs`` or ``var.attr op rhs``, if ``expr`` is
@@ -671,6 +686,12 @@ _DESCRIBE = {
     ast.Binary: lambda e: f"{_operand(e.left)} {e.op} {_operand(e.right)}",
     ast.Quantifier: lambda e: f"{e.kind} {e.var}: {e.type} {{ {describe(e.body)} }}",
 }
+
+
+def _quantified(sub, expr) -> bool:
+    """Whether ``sub`` lies inside a quantifier of ``expr`` (its variable is not bound outside)."""
+    return any(isinstance(q, ast.Quantifier) and sub is not q and any(s is sub for s in walk(q.body))
+               for q in walk(expr))
 
 
 def conjuncts(expr) -> list:

@@ -6,6 +6,7 @@ import json
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 from click.testing import CliRunner
 
@@ -161,3 +162,65 @@ def test_design_trace_is_written(tmp_path):
     run = CliRunner().invoke(main, ["design", str(EXAMPLES / "l_shape.json"), "--out", str(out), "--trace"])
     assert run.exit_code == 0, run.output
     assert json.loads((out / "trace.json").read_text()) and (out / "start_graph.json").is_file()
+
+
+STAR = """
+schema star { node P { pos: vec2, w: int = 0 }  edge L (P -- P) }
+rule explode {
+  match { s: P { w: 1 } }
+  foreach s -L- m {
+    create r: P { pos = lerp(s.pos, m.pos, 0.5) }
+    create r -L- m
+    create r -L- next(r)
+  }
+  detach delete s
+}
+strategy go { explode once }
+"""
+
+
+def star_graph(tmp_path):
+    """A centre with 6 neighbours on a circle, their edge ids out of angular order."""
+    angles = [0, 3, 1, 4, 2, 5]  # edge k reaches the neighbour at 60 * angles[k] degrees
+    nodes = [{"id": 0, "type": "P", "pos": [0.0, 0.0], "w": 1}]
+    nodes += [{"id": k + 1, "type": "P", "pos": [float(np.cos(a * np.pi / 3)), float(np.sin(a * np.pi / 3))]}
+              for k, a in enumerate(angles)]
+    edges = [{"id": k, "type": "L", "source": 0, "target": k + 1} for k in range(6)]
+    (tmp_path / "star.vgr").write_text(STAR)
+    (tmp_path / "g.json").write_text(json.dumps({"nodes": nodes, "edges": edges}))
+    return tmp_path / "star.vgr", tmp_path / "g.json"
+
+
+def test_rules_run_orders_edges_by_position(tmp_path):
+    """With node positions the rotation follows the geometry: the ring built by foreach/next joins
+    angular neighbours (in edge-id order it would cross itself)."""
+    rules, graph = star_graph(tmp_path)
+    result = run("rules", "run", rules, "--graph", graph, "--strategy", "go", "--out", tmp_path / "out")
+    assert result.exit_code == 0, result.output
+    out = json.loads((tmp_path / "out" / "graph.json").read_text())
+    pos = {n["id"]: np.array(n["pos"]) for n in out["nodes"]}
+    ring = [(e["source"], e["target"]) for e in out["edges"] if e["source"] > 6 and e["target"] > 6]
+    assert len(ring) == 6
+    for u, v in ring:  # neighbours on the ring of radius 0.5: 60 degrees apart
+        assert np.linalg.norm(pos[u] - pos[v]) == pytest.approx(0.5, rel=1e-9)
+
+
+def test_rules_matches_lists_every_match(tmp_path):
+    rules, graph = star_graph(tmp_path)
+    result = run("rules", "matches", rules, "--graph", graph, "--rule", "explode", "--json")
+    assert result.exit_code == 0, result.output
+    assert json.loads(result.output) == [{"s": 0}]
+    text = run("rules", "matches", rules, "--graph", graph, "--rule", "explode").output
+    assert text.splitlines() == ["0: s=0", "1 match(es) of explode"]
+
+
+def test_why_not_lists_reasons_with_values(tmp_path):
+    rules, graph = star_graph(tmp_path)
+    (tmp_path / "far.vgr").write_text(STAR + """
+rule far { match { s: P { w: 1 }  m: P  s -L- m } where distance(s.pos, m.pos) > 2 delete s }""")
+    result = run("rules", "why-not", tmp_path / "far.vgr", "--graph", graph, "--rule", "far", "--limit", "4")
+    assert result.exit_code == 0, result.output
+    lines = result.output.splitlines()
+    assert "4 nearest partial match(es)" in lines[0] and len(lines) == 5
+    assert all("condition `distance(s.pos, m.pos) > 2` is false" in ln and "distance(s.pos, m.pos) = 1" in ln
+               and "s.pos = (0, 0)" in ln for ln in lines[1:])

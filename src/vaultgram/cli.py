@@ -116,11 +116,8 @@ def rules() -> None:
 @click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=False))
 @click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
 def rules_check(files, as_json: bool) -> None:
-    """Parse and type-check rule FILES; print their types, rules and strategies."""
-    from vaultgram.engine.rulebook import load_rulebook
-    from vaultgram.topology.functions import vault_functions
-
-    book = load_rulebook(files, vault_functions())
+    """Parse and type-check rule FILES; print their types, rules, strategies and invariants."""
+    book = _load_rules(files)
     summary = book.summary()
     if as_json:
         click.echo(json.dumps(summary, indent=2))
@@ -142,6 +139,24 @@ def rules_check(files, as_json: bool) -> None:
         click.echo(f"  {name}: {when}")
 
 
+def _load_graph(path: str, book):
+    """A host graph from JSON; where nodes carry positions (``pos``), the cyclic order of the edges
+    around each node follows the geometry (counter-clockwise, along an edge's ``polyline`` if it has
+    one), as in the pipeline; elsewhere it is the order of the edge ids."""
+    from vaultgram.engine.graph import HostGraph
+    from vaultgram.topology.decomposition import edge_angle
+
+    return HostGraph.from_json(read_json(path), book.schema, angle=edge_angle)
+
+
+def _load_rules(files):
+    """The rulebook of rule FILES, with the vault pipeline's functions."""
+    from vaultgram.engine.rulebook import load_rulebook
+    from vaultgram.topology.functions import vault_functions
+
+    return load_rulebook(files, vault_functions())
+
+
 @rules.command("run")
 @click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=False))
 @click.option("--graph", "graph_path", required=True, type=click.Path(dir_okay=False),
@@ -150,13 +165,10 @@ def rules_check(files, as_json: bool) -> None:
 @OUT
 def rules_run(files, graph_path: str, strategy: str, out_dir: str) -> None:
     """Run a STRATEGY of rule FILES on a host graph; write graph.json and trace.json to --out."""
-    from vaultgram.engine.graph import HostGraph
-    from vaultgram.engine.rulebook import load_rulebook
     from vaultgram.engine.strategy import Runner
-    from vaultgram.topology.functions import vault_functions
 
-    book = load_rulebook(files, vault_functions())
-    graph = HostGraph.from_json(read_json(graph_path), book.schema)
+    book = _load_rules(files)
+    graph = _load_graph(graph_path, book)
     runner = Runner(book, graph)
     runner.run(strategy)
     out = Path(out_dir)
@@ -171,20 +183,42 @@ def rules_run(files, graph_path: str, strategy: str, out_dir: str) -> None:
 @click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=False))
 @click.option("--graph", "graph_path", required=True, type=click.Path(dir_okay=False))
 @click.option("--rule", "rule_name", required=True, help="The rule to explain.")
-def rules_why_not(files, graph_path: str, rule_name: str) -> None:
-    """Explain why a rule does not match a graph: its largest partial match and what failed."""
-    from vaultgram.engine.graph import HostGraph
-    from vaultgram.engine.matcher import Matcher
-    from vaultgram.engine.rulebook import load_rulebook
+@click.option("--limit", type=click.IntRange(min=1), default=10, show_default=True,
+              help="How many near matches to list.")
+def rules_why_not(files, graph_path: str, rule_name: str, limit: int) -> None:
+    """Explain why a rule does not match a graph: its nearest partial matches (up to --limit), what
+    failed in each, and the values of the attributes and calls in a failed condition."""
     from vaultgram.engine.whynot import why_not
-    from vaultgram.errors import RewriteError
-    from vaultgram.topology.functions import vault_functions
 
-    book = load_rulebook(files, vault_functions())
+    matcher = _matcher(files, graph_path, rule_name)
+    click.echo(str(why_not(matcher, limit)))
+
+
+def _matcher(files, graph_path: str, rule_name: str):
+    """A matcher of rule ``rule_name`` of FILES on the graph at ``graph_path``."""
+    from vaultgram.engine.matcher import Matcher
+    from vaultgram.errors import RewriteError
+
+    book = _load_rules(files)
     if rule_name not in book.rules:
         raise RewriteError(f"unknown rule '{rule_name}'")
-    graph = HostGraph.from_json(read_json(graph_path), book.schema)
-    click.echo(str(why_not(Matcher(book.rules[rule_name], graph))))
+    return Matcher(book.rules[rule_name], _load_graph(graph_path, book))
+
+
+@rules.command("matches")
+@click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=False))
+@click.option("--graph", "graph_path", required=True, type=click.Path(dir_okay=False))
+@click.option("--rule", "rule_name", required=True, help="The rule whose matches to list.")
+@click.option("--json", "as_json", is_flag=True, help="Print the matches as JSON (a list of bindings).")
+def rules_matches(files, graph_path: str, rule_name: str, as_json: bool) -> None:
+    """List every match of a rule in a graph (in the engine's match order), one binding a line."""
+    matches = [dict(m.binding) for m in _matcher(files, graph_path, rule_name).all()]
+    if as_json:
+        click.echo(json.dumps(matches))
+        return
+    for k, binding in enumerate(matches):
+        click.echo(f"{k}: " + ", ".join(f"{v}={i}" for v, i in binding.items() if not v.startswith("_")))
+    click.echo(f"{len(matches)} match(es) of {rule_name}")
 
 
 @rules.command("test")
@@ -220,14 +254,10 @@ def rules_test(rules_dirs, examples: int, seed: int | None, out_dir: str) -> Non
 @OUT
 def rules_replay(files, graph_path: str, trace_path: str, out_dir: str) -> None:
     """Replay a trace (rules run, decompose --trace) on its starting graph; write graph.json."""
-    from vaultgram.engine.graph import HostGraph
-    from vaultgram.engine.rulebook import load_rulebook
     from vaultgram.engine.trace import load_trace, replay
-    from vaultgram.topology.decomposition import edge_angle
-    from vaultgram.topology.functions import vault_functions
 
-    book = load_rulebook(files, vault_functions())
-    graph = HostGraph.from_json(read_json(graph_path), book.schema, angle=edge_angle)
+    book = _load_rules(files)
+    graph = _load_graph(graph_path, book)
     replayed = replay(load_trace(trace_path), book, graph)
     write_json(Path(out_dir) / "graph.json", graph.to_json())
     click.echo(f"replayed {len(replayed)} application(s); wrote {Path(out_dir) / 'graph.json'} "
