@@ -173,6 +173,7 @@ class CForeach:
     condition: Condition | None
     body: tuple
     pos: object
+    neighbour_types: frozenset | None = None  # `foreach c -T- n: Type`: only neighbours of these types
 
 
 @dataclass
@@ -400,6 +401,7 @@ class RuleChecker:
             raise RuleTypeError(f"only nodes can be retyped; '{s.var}' is an edge", s.pos)
         if info.abstract:
             raise RuleTypeError(f"cannot retype to abstract type {s.type}", s.pos)
+        scope[s.var] = Symbol(VType("node", s.type))  # later statements see the new type's attributes
         return CRetype(s.var, s.type, s.pos)
 
     def _set(self, s: ast.SetAttr, scope: dict, foreach_created) -> CSet:
@@ -476,12 +478,20 @@ class RuleChecker:
         self._fresh(s.neighbour, inner, s.pos)
         inner[edge_var] = Symbol(VType("edge", s.type))
         other = self._neighbour_type(info, s.direction, center.type.name)
+        narrowed = None
+        if s.neighbour_type is not None:
+            self._node_type(s.neighbour_type, s.pos)
+            if not self.schema.compatible(s.neighbour_type, other):
+                raise RuleTypeError(f"foreach: a neighbour along {s.type} is a {other}, never a {s.neighbour_type}",
+                                    s.pos)
+            other, narrowed = s.neighbour_type, self.schema.subtypes(s.neighbour_type)
         inner[s.neighbour] = Symbol(VType("node", other))
         condition = self._condition(s.condition, inner) if s.condition is not None else None
         local = {s.neighbour}  # next()/prev() may name the neighbour or a node created in the body
         body = self._statements(s.body, inner, local)
         return CForeach(
-            edge_var, s.center, s.neighbour, self.schema.subtypes(s.type), s.direction, condition, body, s.pos
+            edge_var, s.center, s.neighbour, self.schema.subtypes(s.type), s.direction, condition, body, s.pos,
+            narrowed,
         )
 
     def _neighbour_type(self, info, direction: str, center_type: str) -> str:

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 from typing import NamedTuple
 
 from .checker import CCreateEdge, CCreateNode, CDelete, CForeach, CMerge, CompiledRule, CRetype, CSet, End
-from .errors import RewriteError, SchemaError
+from .errors import RewriteError, SchemaError, SelfLoop
 from .graph import HostGraph
 
 
@@ -88,6 +88,8 @@ def foreach_iterations(graph: HostGraph, stmt: CForeach, scope: dict) -> list[It
         if stmt.direction == "->" and u != center or stmt.direction == "<-" and v != center:
             continue
         n = v if u == center else u
+        if stmt.neighbour_types is not None and graph.node_type(n) not in stmt.neighbour_types:
+            continue
         if stmt.condition is not None:
             inner = {**scope, stmt.edge_var: e, stmt.neighbour: n}
             if not stmt.condition.fn(graph, inner):
@@ -187,6 +189,8 @@ class _Run:
         g = self.graph
         u = self.endpoint(s.source, scope, neighbours)
         v = self.endpoint(s.target, scope, neighbours)
+        if u == v:  # next(r) of a foreach with one iteration, say: the rule does not apply here
+            raise SelfLoop(f"rule {self.rule.name} ({s.pos}): would join node {u} to itself; not applied")
         e = g.add_edge(s.type, u, v, {name: fn(g, scope) for name, fn in s.attrs})
         self.created_edges.append(e)
         if s.var:
@@ -291,7 +295,9 @@ def apply_rule(rule: CompiledRule, graph: HostGraph, binding: dict, values: dict
     """Apply ``rule`` at a match (``binding``: pattern variable -> element id) with parameter ``values``.
 
     The caller is responsible for the match being valid (see :class:`~.matcher.Matcher`). On any
-    failure the graph is left exactly as it was and a :class:`RewriteError` is raised.
+    failure the graph is left exactly as it was and a :class:`RewriteError` is raised; a
+    :class:`SelfLoop` when the application would join a node to itself (the rule does not apply at
+    that match).
     """
     mark = graph.mark()
     run = _Run(rule, graph)
@@ -300,6 +306,8 @@ def apply_rule(rule: CompiledRule, graph: HostGraph, binding: dict, values: dict
         with graph.transaction():
             run.execute(rule.statements, scope)
             deleted_nodes, deleted_edges = run.finish()
+    except SelfLoop:
+        raise
     except SchemaError as exc:
         raise RewriteError(f"rule {rule.name} ({rule.source.pos}): {exc}") from None
     except (ArithmeticError, TypeError, ValueError, KeyError, IndexError) as exc:

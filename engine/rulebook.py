@@ -136,6 +136,11 @@ def _check_strategy(strategy: ast.Strategy, rules, strategies, checker: RuleChec
             rule = rules.get(ref.name)
             if rule is None:
                 raise RuleTypeError(f"unknown rule '{ref.name}'", ref.pos, did_you_mean(ref.name, rules))
+            given = {name for name, _ in ref.args}
+            missing = [p for p in rule.params if p not in given | set(rule.defaults) | set(rule.node_params)]
+            if missing:
+                raise RuleTypeError(f"rule {ref.name} needs parameter(s) {', '.join(missing)} (no default)", ref.pos,
+                                    f"give them in the strategy: {ref.name}({missing[0]} = ...)")
             for name, expr in ref.args:
                 param = rule.params.get(name)
                 if param is None:

@@ -25,7 +25,7 @@ from typing import Callable, Mapping, NamedTuple, Sequence
 
 from vaultgram.grammar import ast
 
-from .errors import RewriteError
+from .errors import RewriteError, SelfLoop
 from .graph import HostGraph
 from .incremental import MatchSet
 from .invariants import InvariantError
@@ -74,6 +74,7 @@ class Runner:
         self.reports: list[StepReport] = []
         self.check_invariants = check_invariants
         self.invariant_checks = 0  # how many times an invariant was evaluated
+        self.self_loops = 0  # matches skipped because applying them would create a self-loop
         self.running: list[str] = []  # the strategies running, outermost first
 
     def check(self, when: str, app: Application | None = None, strategy: str | None = None) -> None:
@@ -98,9 +99,14 @@ class Runner:
             raise RewriteError(f"unknown rule '{rule_name}'")
         return Matcher(rule, self.graph, params)
 
-    def apply(self, matcher: Matcher, match: Match) -> Application:
-        """Apply one match and record it in the trace."""
-        app = apply_rule(matcher.rule, self.graph, dict(match.binding), matcher.values)
+    def apply(self, matcher: Matcher, match: Match) -> Application | None:
+        """Apply one match and record it in the trace; None (counted in ``self_loops``) when the
+        application would create a self-loop, so the rule does not apply there."""
+        try:
+            app = apply_rule(matcher.rule, self.graph, dict(match.binding), matcher.values)
+        except SelfLoop:
+            self.self_loops += 1
+            return None
         app.params = {**matcher.values, **matcher.fixed}
         self.trace.record(app)
         if self.check_invariants:
@@ -180,7 +186,8 @@ class Runner:
             k = self.chooser(options) if choose else 0
             rule_name, match = options[k]
             app = self.apply(next(m for m in matchers if m.rule.name == rule_name), match)
-            app.choice = k if choose else None
+            if app is not None:
+                app.choice = k if choose else None
 
     def _all(self, matchers: list[Matcher], choose: bool) -> list[Application]:
         if choose:
@@ -205,7 +212,9 @@ class Runner:
                 writes |= w
             for match in selected:
                 if matcher.check(match.binding):
-                    applied.append(self.apply(matcher, match))
+                    app = self.apply(matcher, match)
+                    if app is not None:
+                        applied.append(app)
         if choose:
             for app in applied:
                 app.choice = choice
@@ -233,6 +242,9 @@ class Runner:
                     f"fixpoint did not terminate within {max_steps} steps; rules still firing: {', '.join(firing)}"
                 )
             app = self.apply(chosen.matcher, match)
+            if app is None:  # a self-loop: the match is dropped until a change near it re-matches it
+                chosen.discard(match)
+                continue
             app.choice = k if choose else None
             steps += 1
             changes = self.graph.changes_since(app.mark)

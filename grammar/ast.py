@@ -305,7 +305,8 @@ class Foreach:
 
     Iterates over the edges of ``Type`` around the matched node ``center`` in their cyclic order
     (the host graph's rotation system) and runs ``body`` once for each, with ``e`` bound to the edge
-    and ``n`` to the neighbour. ``direction`` is ``"--"`` (any), ``"->"`` (out) or ``"<-"`` (in).
+    and ``n`` to the neighbour. ``direction`` is ``"--"`` (any), ``"->"`` (out) or ``"<-"`` (in);
+    ``n: Type`` narrows the iterations to the neighbours of that type (and its subtypes).
     """
 
     edge_var: str | None
@@ -316,6 +317,7 @@ class Foreach:
     condition: Expr | None
     body: tuple["Statement", ...]
     pos: SourcePos
+    neighbour_type: str | None = None  # `foreach c -T- n: Type`: only neighbours of that type
 
 
 Statement = Union[Delete, CreateNode, CreateEdge, Retype, SetAttr, Merge, Foreach]

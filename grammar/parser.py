@@ -639,7 +639,8 @@ class _ToAst(Transformer_NonRecursive):
     def foreach(self, meta, children):
         i = next(k for k, c in enumerate(children) if isinstance(c, Token) and c.type in _EDGES)
         edge_var = str(children[0]) if i == 2 else None
-        center, arrow, neighbour, condition = children[i - 1], children[i], children[i + 1], children[i + 2]
+        center, arrow, neighbour = children[i - 1], children[i], children[i + 1]
+        narrowed, condition = children[i + 2], children[i + 3]
         type_, direction = self._arrow(arrow)
         return Foreach(
             edge_var=edge_var,
@@ -648,9 +649,13 @@ class _ToAst(Transformer_NonRecursive):
             type=type_,
             direction=direction,
             condition=condition,
-            body=tuple(children[i + 3 :]),
+            body=tuple(children[i + 4 :]),
             pos=self._pos(meta),
+            neighbour_type=narrowed,
         )
+
+    def foreach_type(self, meta, children):
+        return str(children[0]) if children else None
 
     def foreach_where(self, meta, children):
         return children[0] if children else None
