@@ -224,3 +224,23 @@ rule far { match { s: P { w: 1 }  m: P  s -L- m } where distance(s.pos, m.pos) >
     assert "4 nearest partial match(es)" in lines[0] and len(lines) == 5
     assert all("condition `distance(s.pos, m.pos) > 2` is false" in ln and "distance(s.pos, m.pos) = 1" in ln
                and "s.pos = (0, 0)" in ln for ln in lines[1:])
+
+
+@pytest.mark.parametrize("each", [False, True])
+def test_trace_command_draws_each_step(tmp_path, each):
+    from vaultgram.domain import load_domain
+    from vaultgram.io.traceview import trace_frames
+    from vaultgram.pipeline import decompose
+
+    out = tmp_path / "t"
+    args = ["trace", EXAMPLES / "fig5_boundary_points.json", "--out", out, "--spacing", "0.04"]
+    result = run(*args, *(["--each"] if each else []))
+    assert result.exit_code == 0, result.output
+    dec = decompose(load_domain(EXAMPLES / "fig5_boundary_points.json"), 0.04, trace=True)
+    frames = trace_frames(dec, each)
+    applications = sum(r.applications for r in dec.reports)
+    assert len(frames) == (applications if each else sum(1 for r in dec.reports if r.applications))
+    assert sum(1 for _, records in frames for r in records if r.get("edit") is None) == applications
+    assert len(list(out.glob("step_*.png"))) == len(frames) and (out / "start.png").is_file()
+    page = (out / "index.html").read_text()
+    assert page.count("step_") == len(frames) and all(json.dumps(c)[1:-1] in page for c, _ in frames)

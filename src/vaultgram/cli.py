@@ -308,6 +308,25 @@ def echo_timings(timings: dict) -> None:
     click.echo("time:       " + ", ".join(f"{k} {v * 1000:.1f} ms" for k, v in timings.items()))
 
 
+@main.command("trace")
+@click.argument("domain_path", metavar="DOMAIN", type=click.Path(dir_okay=False))
+@OUT
+@SPACING
+@RULES
+@click.option("--each", is_flag=True, help="A figure after each rule application, not each strategy step.")
+def trace_command(domain_path: str, out_dir: str, spacing: float, rules_dir: str | None, each: bool) -> None:
+    """Figures of the decomposition graph of a DOMAIN after each strategy step (or application) of the
+    rules, matched elements red and created ones green, and index.html stepping through them."""
+    from vaultgram.domain import load_domain
+    from vaultgram.io.traceview import write_trace_view
+    from vaultgram.pipeline import decompose
+    from vaultgram.topology.rulebook import load_vault_rulebook
+
+    dec = decompose(load_domain(domain_path), spacing, rules_dir, trace=True)
+    count = write_trace_view(dec, load_vault_rulebook(rules_dir), Path(out_dir), each)
+    click.echo(f"wrote {count + 1} figure(s) and {Path(out_dir) / 'index.html'}")
+
+
 @main.command("formfind")
 @click.argument("input_path", metavar="DOMAIN|MESH", type=click.Path(dir_okay=False))
 @OUT
