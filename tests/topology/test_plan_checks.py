@@ -70,3 +70,26 @@ def test_a_patch_around_a_hole_is_a_loud_error_whatever_the_rules(tmp_path):
     (rules / "topology.vgr").write_text(broken)
     with pytest.raises(RewriteError, match="encloses hole 1"):
         decompose(load_domain(EXAMPLES / "quad_with_hole.json"), 0.03, rules_dir=rules)
+
+
+#: Found by `vaultgram rules test` with outlines notched deeper than vault_domains draws (radii from 4
+#: instead of 5): a point feature near a reflex corner; at spacing 0.02 a straight rebranch crosses the
+#: skeleton branch that bends across it, the layout is not planar and a face has 10 sides.
+NOTCHED = {"outer": [[3.876, 0.990], [4.592, 7.741], [-2.227, 8.720], [-4.945, 2.934], [-3.876, -0.990],
+                     [-2.041, -3.440], [0.990, -3.876], [6.881, -4.081]], "points": [[1.0, 0.0]]}
+
+
+def test_the_planarity_invariant_names_the_notched_octagon():
+    from vaultgram.domain import domain_from_dict
+    from vaultgram.engine.invariants import InvariantError
+
+    with pytest.raises(InvariantError, match="layout_is_planar"):
+        decompose(domain_from_dict(NOTCHED), 0.02, check_invariants=True)
+
+
+@pytest.mark.xfail(strict=True, reason="known bug: straight rebranches can cross a bent skeleton branch")
+def test_a_notched_octagon_with_a_point_decomposes():
+    from vaultgram.domain import domain_from_dict
+
+    dec = decompose(domain_from_dict(NOTCHED), 0.02)
+    assert {p.n_sides for p in dec.patches} <= {3, 4}

@@ -16,7 +16,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from hypothesis import HealthCheck, given, reject, settings
+from hypothesis import HealthCheck, Phase, given, reject, settings
 from hypothesis import seed as hypothesis_seed
 
 from vaultgram.domain import check_feature_spacing, domain_from_dict
@@ -105,7 +105,8 @@ def check_rulebook(rules_dir, examples: int = 100, seed: int | None = None) -> S
     start = time.perf_counter()
 
     @settings(max_examples=examples, deadline=None, database=None, derandomize=seed is None,
-              suppress_health_check=list(HealthCheck), report_multiple_bugs=False, print_blob=False)
+              suppress_health_check=list(HealthCheck), report_multiple_bugs=False, print_blob=False,
+              phases=(Phase.explicit, Phase.reuse, Phase.generate, Phase.shrink))
     @given(vault_domains())
     def check(drawn):
         data, spacing = drawn

@@ -10,8 +10,10 @@ registered non-local. None of them changes the graph.
 from __future__ import annotations
 
 import math
+import weakref
 
 import numpy as np
+import shapely
 
 from vaultgram.engine.embedding import face_walk
 from vaultgram.engine.expressions import Functions
@@ -25,7 +27,7 @@ __all__ = ["vault_functions", "distance", "midpoint", "lerp", "move_end", "angle
            "curve_neighbours", "patch_corner", "patch_in_plan", "patch_chains", "patch_side_starts", "patch_angle",
            "diagonal_path",
            "path_clear", "plan_area", "domain_area", "plan_euler", "hole_count", "holes_enclosed",
-           "curve_crossings"]
+           "curve_crossings", "plan_crossings"]
 
 
 def distance(p, q) -> float:
@@ -267,10 +269,22 @@ def _resample(chain: np.ndarray, t: np.ndarray) -> np.ndarray:
 
 # -- measures of the whole plan, for the rulebook's invariants (rules/invariants.vgr) -------------
 
+_FACES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> (its changes count, its faces)
+
+
+def _faces(graph) -> list:
+    """:func:`plan_faces` of the graph as it is now, computed once per state (several invariants ask
+    for them in one check; ``graph.changes`` tells a state from every other)."""
+    cached = _FACES.get(graph)
+    if cached is None or cached[0] != graph.changes:
+        cached = (graph.changes, plan_faces(graph, PLAN_EDGES))
+        _FACES[graph] = cached
+    return cached[1]
+
 
 def plan_area(graph) -> float:
     """The summed area of the faces of the plan (bounded, not inside a hole): the patches' area."""
-    return float(sum(signed_area(outline) for _, _, outline in plan_faces(graph, PLAN_EDGES)))
+    return float(sum(signed_area(outline) for _, _, outline in _faces(graph)))
 
 
 def domain_area(graph) -> float:
@@ -287,7 +301,7 @@ def plan_euler(graph) -> int:
     1 - holes for a layout of disks (§3.1)."""
     edges = list(graph.of_types(PLAN_EDGES))
     nodes = {n for e in edges for n in graph.ends(e)}
-    return len(nodes) - len(edges) + len(plan_faces(graph, PLAN_EDGES))
+    return len(nodes) - len(edges) + len(_faces(graph))
 
 
 def hole_count(graph) -> int:
@@ -297,8 +311,19 @@ def hole_count(graph) -> int:
 
 def holes_enclosed(graph) -> int:
     """How many (face, hole) pairs have the hole inside the face of the plan: 0 for a layout of disks."""
-    outlines = [outline for _, _, outline in plan_faces(graph, PLAN_EDGES)]
+    outlines = [outline for _, _, outline in _faces(graph)]
     return len(enclosed_holes(outlines, hole_rings(graph)))
+
+
+def plan_crossings(graph) -> int:
+    """How many pairs of plan edges properly cross (meeting at a shared end is no crossing): 0 for a
+    planar layout, which the faces of the plan need. A straight rebranch can cross a skeleton branch
+    that bends across it where the discretisation is too coarse for the domain."""
+    lines = [shapely.LineString(half_edge_polyline(graph, e, graph.ends(e)[0])) for e in graph.of_types(PLAN_EDGES)]
+    if len(lines) < 2:
+        return 0
+    pairs = shapely.STRtree(lines).query(lines, predicate="crosses")
+    return int(np.count_nonzero(pairs[0] < pairs[1]))
 
 
 def curve_crossings(graph) -> int:
@@ -333,6 +358,7 @@ def vault_functions() -> Functions:
     f.register("patch_in_plan", patch_in_plan, ("node",), "bool", uses_graph=True, local=False)
     for name, fn, returns in (("plan_area", plan_area, "float"), ("domain_area", domain_area, "float"),
                               ("plan_euler", plan_euler, "int"), ("hole_count", hole_count, "int"),
-                              ("holes_enclosed", holes_enclosed, "int"), ("curve_crossings", curve_crossings, "int")):
+                              ("holes_enclosed", holes_enclosed, "int"), ("curve_crossings", curve_crossings, "int"),
+                              ("plan_crossings", plan_crossings, "int")):
         f.register(name, fn, (), returns, uses_graph=True, local=False)
     return f
