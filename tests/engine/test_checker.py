@@ -170,3 +170,23 @@ def test_a_missing_rule_parameter_is_a_load_time_error():
     with pytest.raises(RuleTypeError, match=r"rule r needs parameter\(s\) k \(no default\)") as info:
         book("rule r(k: int) { match { a: A { w < k } } set a.w = k }\nstrategy s { r all }")
     assert info.value.pos.line == 10 and info.value.pos.column == 14
+
+
+def test_every_language_reference_example_type_checks(tmp_path):
+    """docs/language.md's complete examples (a block that starts with its schema, and the §9 files
+    that include one another) load without a type error, with the vault's functions."""
+    from paths import REPO
+
+    from vaultgram.engine.rulebook import load_rulebook
+    from vaultgram.topology.functions import vault_functions
+
+    doc = (REPO / "docs" / "language.md").read_text(encoding="utf-8")
+    blocks = [b for b in doc.split("```")[1::2] if b.split() and b.split()[0] == "schema" and "..." not in b]
+    assert len(blocks) >= 3
+    for block in blocks:
+        rulebook_from_text(block, vault_functions())
+    examples = doc.split("## 9. Examples")[1].split("```")[1::2]
+    (tmp_path / "skeleton.vgr").write_text(examples[0])
+    (tmp_path / "main.vgr").write_text(examples[1] + "\n" + examples[2])
+    book = load_rulebook([tmp_path / "main.vgr"], vault_functions())
+    assert set(book.rules) == {"prune", "contract", "explode"} and set(book.strategies) == {"clean", "refine"}
