@@ -175,10 +175,10 @@ def test_a_missing_rule_parameter_is_a_load_time_error():
 def test_every_language_reference_example_type_checks(tmp_path):
     """docs/language.md's complete examples (a block that starts with its schema, and the §9 files
     that include one another) load without a type error, with the vault's functions."""
-    from paths import REPO
-
     from vaultgram.engine.rulebook import load_rulebook
     from vaultgram.topology.functions import vault_functions
+
+    from paths import REPO
 
     doc = (REPO / "docs" / "language.md").read_text(encoding="utf-8")
     blocks = [b for b in doc.split("```")[1::2] if b.split() and b.split()[0] == "schema" and "..." not in b]
