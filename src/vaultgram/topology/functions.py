@@ -21,9 +21,10 @@ from vaultgram.errors import RuleError
 from vaultgram.geometry.polygons import interior_angle, signed_area
 from vaultgram.geometry.polylines import arc_lengths, point_at_length
 from vaultgram.topology.patches import enclosed_holes, half_edge_polyline, hole_rings, plan_faces
-from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE, PATCH_CORNER, PLAN_EDGES
+from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE, DUAL, PATCH_CORNER, PLAN_EDGES
 
-__all__ = ["vault_functions", "distance", "midpoint", "lerp", "move_end", "angle_between", "curve_side",
+__all__ = ["vault_functions", "distance", "midpoint", "lerp", "move_end", "move_branch_end", "angle_between",
+           "curve_side",
            "curve_neighbours", "patch_corner", "patch_in_plan", "patch_chains", "patch_side_starts", "patch_angle",
            "diagonal_path",
            "path_clear", "plan_area", "domain_area", "plan_euler", "hole_count", "holes_enclosed",
@@ -69,6 +70,29 @@ def move_end(polyline, old, new) -> tuple:
     k = 0 if math.dist(points[0], old) <= math.dist(points[-1], old) else -1
     points[k] = tuple(new)
     return tuple(points)
+
+
+def move_branch_end(graph, polyline, old, new, s: int, t: int) -> tuple:
+    """:func:`move_end` for a branch of skeleton vertices ``s`` and ``t`` being merged at ``new``, its
+    points next to the moved end dropped where they hook round a radius of the merged circle (from
+    ``new`` to a point either circle touches: what the rebranching rule draws, Figure 2e) -- the
+    junction the merge collapses; with no hook, exactly ``move_end``."""
+    moved = move_end(polyline, old, new)
+    ends = [graph.get(graph.ends(e)[1], "pos") for n in (s, t) for e in graph.incident(n, [DUAL])]
+    if len(moved) < 3 or not ends:
+        return moved
+    start = np.repeat(np.asarray([new], dtype=float), len(ends), axis=0)
+    end = np.asarray(ends, dtype=float)
+    points = np.asarray(moved, dtype=float)
+    at_start = math.dist(points[0], new) <= math.dist(points[-1], new)
+    points = points if at_start else points[::-1]
+    if _clear(points, start, end):
+        return moved
+    for k in range(2, len(points) - 1):
+        candidate = np.vstack([points[:1], points[k:]])
+        if _clear(candidate, start, end):
+            return _points(candidate if at_start else candidate[::-1])
+    return moved
 
 
 def angle_between(p, centre, q) -> float:
@@ -346,6 +370,8 @@ def vault_functions() -> Functions:
     f.register("lerp", lerp, ("vec2", "vec2", "number"), "vec2")
     f.register("angle_between", angle_between, ("vec2", "vec2", "vec2"), "float")
     f.register("move_end", move_end, ("list", "vec2", "vec2"), "list")
+    f.register("move_branch_end", move_branch_end, ("list", "vec2", "vec2", "node", "node"), "list", uses_graph=True,
+               local=False)
     f.register("interior_angle", interior_angle, ("vec2", "vec2", "vec2"), "float")
     f.register("curve_side", curve_side, ("node",), "int", uses_graph=True, local=False)
     f.register("curve_neighbours", curve_neighbours, ("node", "node"), "bool", uses_graph=True, local=False)
