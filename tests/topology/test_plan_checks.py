@@ -116,3 +116,18 @@ def test_the_planarity_invariant_names_a_non_planar_layout():
 def test_the_heptagon_decomposes():
     dec = decompose(domain_from_dict(HEPTAGON), 0.04)
     assert {p.n_sides for p in dec.patches} <= {3, 4}
+
+
+#: Found by `vaultgram rules test --seed 1` with holes the spacing does not resolve (vault_domains keeps
+#: only holes of circumradius and clearance >= 2 h): an octagon with a triangular hole and a boundary
+#: point; at spacing 0.04 the layout after patching is not a map of disks (a face of 10 sides).
+OCTAGON_WITH_TRIANGLE = {
+    "outer": [[9.0, 0.0], [5.657, 5.657], [0.0, 5.5], [-4.243, 4.243], [-7.0, 0.0], [-4.243, -4.243], [0.0, -5.0],
+              [4.243, -4.243]],
+    "holes": [[[-2.0, 0.0], [-4.25, -1.299], [-4.25, 1.299]]], "points": [[-2.121, 4.871]]}
+
+
+@pytest.mark.xfail(strict=True, reason="known bug found by rules test: a face of 10 sides after patching")
+def test_the_octagon_with_a_small_triangular_hole_decomposes():
+    dec = decompose(domain_from_dict(OCTAGON_WITH_TRIANGLE), 0.04)
+    assert {p.n_sides for p in dec.patches} <= {3, 4}
