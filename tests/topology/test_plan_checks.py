@@ -121,10 +121,24 @@ def test_the_heptagon_decomposes():
 #: Found by `vaultgram rules test --seed 1` with holes the spacing does not resolve (vault_domains keeps
 #: only holes of circumradius and clearance >= 2 h): an octagon with a triangular hole and a boundary
 #: point; at spacing 0.04 the layout after patching is not a map of disks (a face of 10 sides).
-OCTAGON_WITH_TRIANGLE = {
-    "outer": [[9.0, 0.0], [5.657, 5.657], [0.0, 5.5], [-4.243, 4.243], [-7.0, 0.0], [-4.243, -4.243], [0.0, -5.0],
-              [4.243, -4.243]],
-    "holes": [[[-2.0, 0.0], [-4.25, -1.299], [-4.25, 1.299]]], "points": [[-2.121, 4.871]]}
+OCTAGON_WITH_TRIANGLE = {  # the exact coordinates: rounded to 3 decimals it decomposes
+    "outer": [
+        [9.0, 0.0],
+        [5.656854249492381, 5.65685424949238],
+        [3.3677786976552215e-16, 5.5],
+        [-4.242640687119285, 4.242640687119286],
+        [-7.0, 8.572527594031472e-16],
+        [-4.242640687119286, -4.242640687119285],
+        [-9.184850993605148e-16, -5.0],
+        [4.242640687119284, -4.242640687119286],
+    ],
+    "holes": [[
+        [-2.0, 0.0],
+        [-4.25, -1.299038105676658],
+        [-4.250000000000001, 1.2990381056766576],
+    ]],
+    "points": [[-2.121320343559642, 4.871320343559643]],
+}
 
 
 @pytest.mark.xfail(strict=True, reason="known bug found by rules test: a face of 10 sides after patching")
