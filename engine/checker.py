@@ -49,6 +49,18 @@ class Condition:
     text: str
     pos: object
     column: ColumnTest | None = None
+    operands: tuple[tuple[str, Compiled], ...] = ()  # its attributes and calls, for why-not reports
+
+    def values(self, graph, binding) -> dict[str, object]:
+        """The value of each attribute and function call in the condition at ``binding`` (those that
+        cannot be evaluated there are left out): what a why-not report shows."""
+        out = {}
+        for text, fn in self.operands:
+            try:
+                out[text] = fn(graph, binding)
+            except Exception:  # noqa: BLE001 - a report must not fail where the condition itself would
+                continue
+        return out
 
     def failure(self, rule: str, exc: Exception) -> RewriteError:
         """The error to raise when evaluating the test raised ``exc`` (a host function or arithmetic
@@ -161,6 +173,7 @@ class CForeach:
     condition: Condition | None
     body: tuple
     pos: object
+    neighbour_types: frozenset | None = None  # `foreach c -T- n: Type`: only neighbours of these types
 
 
 @dataclass
@@ -274,7 +287,7 @@ class RuleChecker:
                     scope[scope_var] = Symbol(VType("edge", e.type))
                 checks = tuple(self._constraint(c, scope_var, scope) for c in e.constraints)
                 edges[i] = PatternEdge(**{**edges[i].__dict__, "checks": checks})
-        conditions = [self._condition(c, scope) for expr in pat.conditions for c in _conjuncts(expr)]
+        conditions = [self._condition(c, scope) for expr in pat.conditions for c in conjuncts(expr)]
         return CompiledPattern(nodes, edges, conditions, outer, pat.pos)
 
     def _pattern_edge(self, e: ast.EdgePattern, anonymous: str, scope: dict) -> PatternEdge:
@@ -323,7 +336,10 @@ class RuleChecker:
 
     def _condition(self, expr, scope, text: str | None = None) -> Condition:
         compiled = self.compiler.compile(expr, scope)
-        return Condition(compiled.fn, compiled.reads, text or describe(expr), expr.pos, self._column_test(expr, scope))
+        operands = tuple({describe(sub): self.compiler.compile(sub, scope).fn for sub in walk(expr)
+                          if isinstance(sub, (ast.Attr, ast.Call)) and not _quantified(sub, expr)}.items())
+        return Condition(compiled.fn, compiled.reads, text or describe(expr), expr.pos, self._column_test(expr, scope),
+                         operands)
 
     def _column_test(self, expr, scope) -> ColumnTest | None:
         """The vectorised form of ``degree(var, Types) op rhs`` or ``var.attr op rhs``, if ``expr`` is
@@ -385,6 +401,7 @@ class RuleChecker:
             raise RuleTypeError(f"only nodes can be retyped; '{s.var}' is an edge", s.pos)
         if info.abstract:
             raise RuleTypeError(f"cannot retype to abstract type {s.type}", s.pos)
+        scope[s.var] = Symbol(VType("node", s.type))  # later statements see the new type's attributes
         return CRetype(s.var, s.type, s.pos)
 
     def _set(self, s: ast.SetAttr, scope: dict, foreach_created) -> CSet:
@@ -461,12 +478,20 @@ class RuleChecker:
         self._fresh(s.neighbour, inner, s.pos)
         inner[edge_var] = Symbol(VType("edge", s.type))
         other = self._neighbour_type(info, s.direction, center.type.name)
+        narrowed = None
+        if s.neighbour_type is not None:
+            self._node_type(s.neighbour_type, s.pos)
+            if not self.schema.compatible(s.neighbour_type, other):
+                raise RuleTypeError(f"foreach: a neighbour along {s.type} is a {other}, never a {s.neighbour_type}",
+                                    s.pos)
+            other, narrowed = s.neighbour_type, self.schema.subtypes(s.neighbour_type)
         inner[s.neighbour] = Symbol(VType("node", other))
         condition = self._condition(s.condition, inner) if s.condition is not None else None
         local = {s.neighbour}  # next()/prev() may name the neighbour or a node created in the body
         body = self._statements(s.body, inner, local)
         return CForeach(
-            edge_var, s.center, s.neighbour, self.schema.subtypes(s.type), s.direction, condition, body, s.pos
+            edge_var, s.center, s.neighbour, self.schema.subtypes(s.type), s.direction, condition, body, s.pos,
+            narrowed,
         )
 
     def _neighbour_type(self, info, direction: str, center_type: str) -> str:
@@ -560,6 +585,8 @@ class RuleChecker:
             types |= all_edges
         for expr in rule_expressions(rule):
             for sub in walk(expr):
+                if isinstance(sub, ast.Quantifier):  # the body may read any element of the graph
+                    types |= frozenset(self.type_symbols)
                 if isinstance(sub, ast.Call) and self.compiler.functions.table.get(sub.func, None) is not None:
                     f = self.compiler.functions[sub.func]
                     if f.uses_graph:
@@ -665,13 +692,20 @@ _DESCRIBE = {
     ast.Index: lambda e: f"{describe(e.target)}[{describe(e.index)}]",
     ast.Call: lambda e: f"{e.func}({', '.join(describe(a) for a in e.args)})",
     ast.ListExpr: lambda e: f"[{', '.join(describe(a) for a in e.items)}]",
-    ast.Unary: lambda e: f"not {describe(e.operand)}" if e.op == "not" else f"-{describe(e.operand)}",
+    ast.Unary: lambda e: f"not {_operand(e.operand)}" if e.op == "not" else f"-{_operand(e.operand)}",
     ast.Binary: lambda e: f"{_operand(e.left)} {e.op} {_operand(e.right)}",
+    ast.Quantifier: lambda e: f"{e.kind} {e.var}: {e.type} {{ {describe(e.body)} }}",
 }
 
 
-def _conjuncts(expr) -> list:
+def _quantified(sub, expr) -> bool:
+    """Whether ``sub`` lies inside a quantifier of ``expr`` (its variable is not bound outside)."""
+    return any(isinstance(q, ast.Quantifier) and sub is not q and any(s is sub for s in walk(q.body))
+               for q in walk(expr))
+
+
+def conjuncts(expr) -> list:
     """The operands of a chain of ``and`` (each a condition of its own, tested in order)."""
     if isinstance(expr, ast.Binary) and expr.op == "and":
-        return _conjuncts(expr.left) + _conjuncts(expr.right)
+        return conjuncts(expr.left) + conjuncts(expr.right)
     return [expr]

@@ -19,6 +19,7 @@ __all__ = [
     "SchemaError",
     "RewriteError",
     "TraceError",
+    "SelfLoop",
 ]
 
 
@@ -28,6 +29,11 @@ class SchemaError(InputError):
 
 class RewriteError(InputError):
     """A rule application or strategy failed (step limit breached, bad replay, failed function call)."""
+
+
+class SelfLoop(RewriteError):
+    """An application would create an edge from a node to itself: the rule does not apply at that
+    match (the graph is left as it was); strategies skip the match and count it."""
 
 
 class TraceError(RewriteError):

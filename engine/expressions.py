@@ -180,7 +180,9 @@ class ExpressionCompiler:
         return self._COMPILE[type(expr)](self, expr, scope)
 
     def reads_nonlocal(self, expr) -> bool:
-        """Whether the expression calls a function declared non-local."""
+        """Whether the expression calls a function declared non-local, or quantifies over the graph."""
+        if any(isinstance(e, ast.Quantifier) for e in walk(expr)):
+            return True
         calls = [e for e in walk(expr) if isinstance(e, ast.Call)]
         return any(c.func in self.functions and not self.functions[c.func].local for c in calls)
 
@@ -259,7 +261,43 @@ class ExpressionCompiler:
             call = lambda g, b: fn(g, *[f(g, b) for f in fns])  # noqa: E731
         else:
             call = lambda g, b: fn(*[f(g, b) for f in fns])  # noqa: E731
-        return Typed(call, _return_type(func.returns), _reads(parts))
+        return Typed(call, self._result_type(func, parts), _reads(parts))
+
+    def _result_type(self, func: Function, parts: list[Typed]) -> VType:
+        """A function's static result type; ``source(e)`` and ``target(e)`` of an edge of a declared
+        type are nodes of that type's endpoint types (so ``source(e).sides`` type-checks)."""
+        if func.name in ("source", "target") and parts and parts[0].type.kind == "edge":
+            info = self.schema.edge_types.get(parts[0].type.name)
+            if info is not None and info.directed:
+                return VType("node", info.source if func.name == "source" else info.target)
+        return _return_type(func.returns)
+
+    def _quantifier(self, expr: ast.Quantifier, scope) -> Typed:
+        """``forall/exists/count/sum v: Type { body }``: the body for each element of the type (and its
+        subtypes), in id order; ``forall`` and ``exists`` stop at the first element that decides."""
+        kind = "node" if self.schema.is_node_type(expr.type) else "edge" if expr.type in self.schema.edge_types else ""
+        if not kind:
+            known = [t for t in (*self.schema.node_types, *self.schema.edge_types) if t not in ("Node", "Edge")]
+            raise RuleTypeError(f"unknown node or edge type '{expr.type}'", expr.pos, did_you_mean(expr.type, known))
+        if expr.var in scope:
+            raise RuleTypeError(f"'{expr.var}' is already a name here; quantify over a new variable", expr.pos)
+        body = self.compile(expr.body, {**scope, expr.var: Symbol(VType(kind, expr.type))})
+        wanted = ("float", "int") if expr.kind == "sum" else ("bool",)
+        if body.type.kind != "value" or body.type.name not in (*wanted, "any"):
+            raise RuleTypeError(f"the body of {expr.kind} must be {' or '.join(wanted)}, not {body.type}",
+                                expr.body.pos)
+        types, var, fn = self.schema.subtypes(expr.type), expr.var, body.fn
+
+        def values(g, b):
+            inner = dict(b)
+            for x in sorted(g.of_types(types)):
+                inner[var] = x
+                yield fn(g, inner)
+
+        result = {"forall": (all, BOOL), "exists": (any, BOOL), "count": (lambda v: sum(map(bool, v)), INT),
+                  "sum": (sum, body.type if body.type.name == "int" else FLOAT)}
+        reduce, rtype = result[expr.kind]
+        return Typed(lambda g, b: reduce(values(g, b)), rtype, body.reads - {var})
 
     # -- operators -------------------------------------------------------------------------------
 
@@ -288,6 +326,7 @@ class ExpressionCompiler:
         ast.Call: _call,
         ast.Unary: _unary,
         ast.Binary: _binary,
+        ast.Quantifier: _quantifier,
     }
 
 
@@ -357,6 +396,7 @@ _CHILDREN = {
     ast.ListExpr: lambda e: e.items,
     ast.Unary: lambda e: (e.operand,),
     ast.Binary: lambda e: (e.left, e.right),
+    ast.Quantifier: lambda e: (e.body,),
 }
 
 

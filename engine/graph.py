@@ -250,6 +250,7 @@ class HostGraph:
         self._next_node = 0
         self._next_edge = 0
         self._journal: list = []  # of the records above
+        self.changes = 0  # bumped by every change and every undo, never reset: a cache key for any state
         self.version = 0  # bumped by every change of structure or types (caches key on it)
         # the same typed structure as flat arrays indexed by id (-1: unused id), for whole-graph search
         self.type_code = {t: i for i, t in enumerate((*schema.node_types, *schema.edge_types))}
@@ -373,7 +374,7 @@ class HostGraph:
             raise SchemaError(f"node type '{type_name}' is abstract and cannot be instantiated")
         n = self._allocate(id, self._node_type, "node")
         values = self.schema.fill_attrs(type_name, attrs or {}, f"node {n}")
-        self._journal.append(_AddNode(n, self._next_node))
+        self._record(_AddNode(n, self._next_node))
         self._next_node = max(self._next_node, n + 1)
         self._insert_node(n, type_name, values)
         return n
@@ -395,7 +396,7 @@ class HostGraph:
         self._check_endpoints(type_name, u, v)
         e = self._allocate(id, self._edge_type, "edge")
         values = self.schema.fill_attrs(type_name, attrs or {}, f"edge {e}")
-        self._journal.append(_AddEdge(e, self._next_edge))
+        self._record(_AddEdge(e, self._next_edge))
         self._next_edge = max(self._next_edge, e + 1)
         self._insert_edge(e, type_name, u, v, values, None)
         return e
@@ -413,7 +414,7 @@ class HostGraph:
         columns = self.schema.filled_columns(type_name, attrs or {}, len(ids), f"{type_name} nodes")
         names = list(columns)
         rows = [dict(zip(names, values)) for values in zip(*columns.values())] if names else [{} for _ in ids]
-        self._journal.append(_AddMany("node", tuple(ids), self._next_node))
+        self._record(_AddMany("node", tuple(ids), self._next_node))
         self._next_node = max([self._next_node, *(i + 1 for i in ids)])
         self._node_data.update(zip(ids, rows))
         self.version += 1
@@ -443,7 +444,7 @@ class HostGraph:
             self._check_endpoints(type_name, int(ends[k, 0]), int(ends[k, 1]))
         columns = self.schema.filled_columns(type_name, attrs or {}, len(ends), f"{type_name} edges")
         ids = list(range(self._next_edge, self._next_edge + len(ends)))
-        self._journal.append(_AddMany("edge", tuple(ids), self._next_edge))
+        self._record(_AddMany("edge", tuple(ids), self._next_edge))
         self._next_edge += len(ends)
         names = list(columns)
         rows = [dict(zip(names, values)) for values in zip(*columns.values())] if names else [{} for _ in ids]
@@ -513,14 +514,14 @@ class HostGraph:
         u, v = self._ends[e]
         positions = (self._rot[u].index(e), self._rot[v].index(e))
         attrs = dict(self._edge_data[e])
-        self._journal.append(_RemoveEdge(e, self._edge_type[e], u, v, attrs, positions))
+        self._record(_RemoveEdge(e, self._edge_type[e], u, v, attrs, positions))
         self._delete_edge(e)
 
     def remove_node(self, n: int) -> None:
         """Remove a node that has no edges left (the dangling condition of double-pushout rewriting)."""
         if self._rot[n]:
             raise SchemaError(f"node {n} still has {len(self._rot[n])} edge(s): {sorted(self._rot[n])}")
-        self._journal.append(_RemoveNode(n, self._node_type[n], dict(self._node_data[n])))
+        self._record(_RemoveNode(n, self._node_type[n], dict(self._node_data[n])))
         self._delete_node(n)
 
     def set_node_attr(self, n: int, name: str, value: object) -> None:
@@ -549,12 +550,17 @@ class HostGraph:
             except SchemaError:
                 self._set_node_type(n, old_type)
                 raise
-        self._journal.append(_Retype(n, old_type, old_attrs))
+        self._record(_Retype(n, old_type, old_attrs))
         self._replace_attrs(n, values)
 
     # ------------------------------------------------------------------------------------------
     # Transactions and undo
     # ------------------------------------------------------------------------------------------
+
+    def _record(self, entry) -> None:
+        """Journal a change (for undo) and count it."""
+        self._journal.append(entry)
+        self.changes += 1
 
     def mark(self) -> int:
         """A point in the journal to roll back to."""
@@ -564,6 +570,7 @@ class HostGraph:
         """Undo every change made since ``mark``, restoring the graph (ids, rotations, counters) exactly."""
         while len(self._journal) > mark:
             self._journal.pop().undo(self)
+            self.changes += 1
 
     @contextmanager
     def transaction(self):
@@ -741,13 +748,13 @@ class HostGraph:
             keys = sorted(self._rotation_key(e, n) for e in self._rot[n])
             order = [e for _, e in keys]
             if order != self._rot[n]:
-                self._journal.append(_Rotation(n, self._rot[n], self._rot_keys[n]))
+                self._record(_Rotation(n, self._rot[n], self._rot_keys[n]))
                 self._rot[n] = order
                 self._rot_keys[n] = keys
 
     def _set_attr(self, kind: str, i: int, type_name: str, data: dict, name: str, value: object) -> None:
         value = self.schema.checked_value(type_name, name, value, f"{kind} {i}")
-        self._journal.append(_SetAttr(kind, i, name, data[name]))
+        self._record(_SetAttr(kind, i, name, data[name]))
         data[name] = value
 
     def _replace_attrs(self, n: int, values: Mapping[str, object]) -> None:

@@ -38,6 +38,11 @@ class MatchSet:
             heapq.heappop(self._heap)
         return self.matches[self._heap[0]] if self._heap else None
 
+    def discard(self, m: Match) -> None:
+        """Drop a match (one that cannot be applied) until a change near it finds it again."""
+        if m.key in self.matches:
+            self._remove(m.key)
+
     def rematch_all(self) -> None:
         self.matches.clear()
         self._by_node.clear()

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 from typing import NamedTuple
 
 from .checker import CCreateEdge, CCreateNode, CDelete, CForeach, CMerge, CompiledRule, CRetype, CSet, End
-from .errors import RewriteError, SchemaError
+from .errors import RewriteError, SchemaError, SelfLoop
 from .graph import HostGraph
 
 
@@ -65,6 +65,9 @@ class Application:
     deleted_nodes: list[int]
     deleted_edges: list[int]
     mark: int  # journal position before the application: graph.rollback(mark) undoes it
+    retyped: list = field(default_factory=list)  # [node, old type, new type]
+    set: list = field(default_factory=list)  # [kind ("node" or "edge"), id, attribute, value]
+    choice: int | None = None  # the option a chooser took at a choose step
 
 
 class Iteration(NamedTuple):
@@ -85,6 +88,8 @@ def foreach_iterations(graph: HostGraph, stmt: CForeach, scope: dict) -> list[It
         if stmt.direction == "->" and u != center or stmt.direction == "<-" and v != center:
             continue
         n = v if u == center else u
+        if stmt.neighbour_types is not None and graph.node_type(n) not in stmt.neighbour_types:
+            continue
         if stmt.condition is not None:
             inner = {**scope, stmt.edge_var: e, stmt.neighbour: n}
             if not stmt.condition.fn(graph, inner):
@@ -167,6 +172,8 @@ class _Run:
         self.delete_edges: list[int] = []
         self.delete_nodes: list[tuple[int, bool]] = []  # (node, detach)
         self.merges: list[tuple[int, int]] = []  # (merged node, node it is merged into)
+        self.retyped: list = []
+        self.set: list = []
 
     def execute(self, statements, scope: dict, neighbours: tuple[dict, dict] | None = None) -> None:
         for s in statements:
@@ -182,17 +189,21 @@ class _Run:
         g = self.graph
         u = self.endpoint(s.source, scope, neighbours)
         v = self.endpoint(s.target, scope, neighbours)
+        if u == v:  # next(r) of a foreach with one iteration, say: the rule does not apply here
+            raise SelfLoop(f"rule {self.rule.name} ({s.pos}): would join node {u} to itself; not applied")
         e = g.add_edge(s.type, u, v, {name: fn(g, scope) for name, fn in s.attrs})
         self.created_edges.append(e)
         if s.var:
             scope[s.var] = e
 
     def retype(self, s: CRetype, scope: dict, neighbours) -> None:
+        self.retyped.append([scope[s.var], self.graph.node_type(scope[s.var]), s.type])
         self.graph.retype(scope[s.var], s.type)
 
     def set_attr(self, s: CSet, scope: dict, neighbours) -> None:
         g = self.graph
         value = s.value(g, scope)
+        self.set.append([s.kind, scope[s.var], s.attr, value])
         if s.kind == "node":
             g.set_node_attr(scope[s.var], s.attr, value)
         else:
@@ -284,7 +295,9 @@ def apply_rule(rule: CompiledRule, graph: HostGraph, binding: dict, values: dict
     """Apply ``rule`` at a match (``binding``: pattern variable -> element id) with parameter ``values``.
 
     The caller is responsible for the match being valid (see :class:`~.matcher.Matcher`). On any
-    failure the graph is left exactly as it was and a :class:`RewriteError` is raised.
+    failure the graph is left exactly as it was and a :class:`RewriteError` is raised; a
+    :class:`SelfLoop` when the application would join a node to itself (the rule does not apply at
+    that match).
     """
     mark = graph.mark()
     run = _Run(rule, graph)
@@ -293,6 +306,8 @@ def apply_rule(rule: CompiledRule, graph: HostGraph, binding: dict, values: dict
         with graph.transaction():
             run.execute(rule.statements, scope)
             deleted_nodes, deleted_edges = run.finish()
+    except SelfLoop:
+        raise
     except SchemaError as exc:
         raise RewriteError(f"rule {rule.name} ({rule.source.pos}): {exc}") from None
     except (ArithmeticError, TypeError, ValueError, KeyError, IndexError) as exc:
@@ -306,4 +321,6 @@ def apply_rule(rule: CompiledRule, graph: HostGraph, binding: dict, values: dict
         deleted_nodes=deleted_nodes,
         deleted_edges=deleted_edges,
         mark=mark,
+        retyped=run.retyped,
+        set=run.set,
     )

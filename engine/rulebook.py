@@ -7,7 +7,7 @@ mismatches; duplicate names; strategies naming unknown rules or parameters).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Iterable
 
@@ -17,6 +17,7 @@ from vaultgram.grammar.parser import load_files, parse_text
 from .checker import CompiledRule, RuleChecker, describe
 from .errors import RuleTypeError, did_you_mean
 from .expressions import ExpressionCompiler, Functions
+from .invariants import CompiledInvariant, compile_invariant
 from .schema import TypeSchema, build_schema
 from .values import value_conforms
 
@@ -31,6 +32,7 @@ class Rulebook:
     functions: Functions
     files: list[str]
     checker: RuleChecker
+    invariants: dict[str, CompiledInvariant] = field(default_factory=dict)
 
     def arguments(self, ref: ast.RuleRef) -> dict[str, object]:
         """The parameter values a strategy step gives a rule (constants, checked at load time)."""
@@ -52,6 +54,7 @@ class Rulebook:
             "strategies": {
                 name: [describe_step(step) for step in s.steps] for name, s in self.strategies.items()
             },
+            "invariants": {name: describe_invariant(inv.source) for name, inv in self.invariants.items()},
         }
 
 
@@ -93,7 +96,28 @@ def _build(files: list[ast.RuleFile], functions: Functions) -> Rulebook:
     for strategy in strategies.values():
         _check_strategy(strategy, rules, strategies, checker)
     _check_no_recursion(strategies)
-    return Rulebook(schema, rules, strategies, functions, [f.path for f in files], checker)
+    invariants = _invariants(files, checker, rules, strategies)
+    return Rulebook(schema, rules, strategies, functions, [f.path for f in files], checker, invariants)
+
+
+def _invariants(files, checker: RuleChecker, rules, strategies) -> dict[str, CompiledInvariant]:
+    """The files' invariants, checked: unique names, strategies that exist, boolean conditions."""
+    out: dict[str, CompiledInvariant] = {}
+    for inv in (i for f in files for i in f.invariants):
+        if inv.name in out or inv.name in rules or inv.name in strategies:
+            raise RuleTypeError(f"invariant '{inv.name}' reuses a rule, strategy or invariant name", inv.pos)
+        for name in inv.strategies:
+            if name not in strategies:
+                raise RuleTypeError(f"invariant {inv.name}: unknown strategy '{name}'", inv.pos,
+                                    did_you_mean(name, strategies))
+        out[inv.name] = compile_invariant(checker, inv)
+    return out
+
+
+def describe_invariant(inv: ast.Invariant) -> str:
+    """An invariant's header written back in the language's syntax: ``after each in s``."""
+    when = "after each" if inv.when == "each" else "at end"
+    return f"{when} in {', '.join(inv.strategies)}" if inv.strategies else when
 
 
 def _check_strategy(strategy: ast.Strategy, rules, strategies, checker: RuleChecker) -> None:
@@ -112,6 +136,11 @@ def _check_strategy(strategy: ast.Strategy, rules, strategies, checker: RuleChec
             rule = rules.get(ref.name)
             if rule is None:
                 raise RuleTypeError(f"unknown rule '{ref.name}'", ref.pos, did_you_mean(ref.name, rules))
+            given = {name for name, _ in ref.args}
+            missing = [p for p in rule.params if p not in given | set(rule.defaults) | set(rule.node_params)]
+            if missing:
+                raise RuleTypeError(f"rule {ref.name} needs parameter(s) {', '.join(missing)} (no default)", ref.pos,
+                                    f"give them in the strategy: {ref.name}({missing[0]} = ...)")
             for name, expr in ref.args:
                 param = rule.params.get(name)
                 if param is None:

@@ -25,9 +25,10 @@ from typing import Callable, Mapping, NamedTuple, Sequence
 
 from vaultgram.grammar import ast
 
-from .errors import RewriteError
+from .errors import RewriteError, SelfLoop
 from .graph import HostGraph
 from .incremental import MatchSet
+from .invariants import InvariantError
 from .matcher import Match, Matcher
 from .rewriter import Application, apply_rule, footprint
 from .rulebook import Rulebook, describe_step
@@ -64,12 +65,31 @@ class StepReport:
 class Runner:
     """Applies the rules of a rulebook to a graph, recording a trace."""
 
-    def __init__(self, rulebook: Rulebook, graph: HostGraph, chooser: Chooser = first_option):
+    def __init__(self, rulebook: Rulebook, graph: HostGraph, chooser: Chooser = first_option,
+                 check_invariants: bool = False):
         self.rulebook = rulebook
         self.graph = graph
         self.chooser = chooser
         self.trace = Trace()
         self.reports: list[StepReport] = []
+        self.check_invariants = check_invariants
+        self.invariant_checks = 0  # how many times an invariant was evaluated
+        self.self_loops = 0  # matches skipped because applying them would create a self-loop
+        self.running: list[str] = []  # the strategies running, outermost first
+
+    def check(self, when: str, app: Application | None = None, strategy: str | None = None) -> None:
+        """Check the invariants of kind ``when`` ("each", "end") that concern the running strategies;
+        raise :class:`InvariantError` for the first broken one (in declaration order)."""
+        running = self.running if strategy is None else [strategy]
+        for inv in self.rulebook.invariants.values():
+            if inv.when == when and inv.concerns(running):
+                self.invariant_checks += 1
+                reason = inv.failure(self.graph)
+                if reason:
+                    exc = InvariantError(inv, reason, app, strategy)
+                    exc.graph = self.graph
+                    exc.rules_run = dict(Counter(a.rule for a in self.trace.applications))
+                    raise exc
 
     # -- single rules ----------------------------------------------------------------------------
 
@@ -79,11 +99,18 @@ class Runner:
             raise RewriteError(f"unknown rule '{rule_name}'")
         return Matcher(rule, self.graph, params)
 
-    def apply(self, matcher: Matcher, match: Match) -> Application:
-        """Apply one match and record it in the trace."""
-        app = apply_rule(matcher.rule, self.graph, dict(match.binding), matcher.values)
+    def apply(self, matcher: Matcher, match: Match) -> Application | None:
+        """Apply one match and record it in the trace; None (counted in ``self_loops``) when the
+        application would create a self-loop, so the rule does not apply there."""
+        try:
+            app = apply_rule(matcher.rule, self.graph, dict(match.binding), matcher.values)
+        except SelfLoop:
+            self.self_loops += 1
+            return None
         app.params = {**matcher.values, **matcher.fixed}
         self.trace.record(app)
+        if self.check_invariants:
+            self.check("each", app)
         return app
 
     def apply_once(self, rule_name: str, params=None) -> Application | None:
@@ -104,16 +131,26 @@ class Runner:
         strategy = self.rulebook.strategies.get(strategy_name)
         if strategy is None:
             raise RewriteError(f"unknown strategy '{strategy_name}'")
-        for step in strategy.steps:
-            if isinstance(step, ast.Run):
-                self.run(step.strategy)
-                continue
-            start, before = time.perf_counter(), len(self.trace)
-            self.run_step(step)
-            new = self.trace.applications[before:]
-            by_rule = dict(Counter(app.rule for app in new))
-            self.reports.append(StepReport(describe_step(step), len(new), time.perf_counter() - start, by_rule))
+        self.running.append(strategy_name)
+        try:
+            for step in strategy.steps:
+                self._run_step(step)
+            if self.check_invariants:
+                self.check("end", strategy=strategy_name)
+        finally:
+            self.running.pop()
         return self.reports
+
+    def _run_step(self, step) -> None:
+        """Run one step of a strategy (another strategy for ``run``) and report it."""
+        if isinstance(step, ast.Run):
+            self.run(step.strategy)
+            return
+        start, before = time.perf_counter(), len(self.trace)
+        self.run_step(step)
+        new = self.trace.applications[before:]
+        by_rule = dict(Counter(app.rule for app in new))
+        self.reports.append(StepReport(describe_step(step), len(new), time.perf_counter() - start, by_rule))
 
     def run_step(self, step: ast.Step) -> None:
         matchers = self._group(step)
@@ -146,8 +183,11 @@ class Runner:
     def _once(self, matchers: list[Matcher], choose: bool) -> None:
         options = self._options(matchers, first_only=not choose)
         if options:
-            rule_name, match = options[self.chooser(options) if choose else 0]
-            self.apply(next(m for m in matchers if m.rule.name == rule_name), match)
+            k = self.chooser(options) if choose else 0
+            rule_name, match = options[k]
+            app = self.apply(next(m for m in matchers if m.rule.name == rule_name), match)
+            if app is not None:
+                app.choice = k if choose else None
 
     def _all(self, matchers: list[Matcher], choose: bool) -> list[Application]:
         if choose:
@@ -155,7 +195,8 @@ class Runner:
             if not candidates:
                 return []
             options = [Option(m.rule.name, m.first()) for m in candidates]
-            matchers = [candidates[self.chooser(options)]]
+            choice = self.chooser(options)
+            matchers = [candidates[choice]]
         applied: list[Application] = []
         reads: set = set()
         writes: set = set()
@@ -171,7 +212,12 @@ class Runner:
                 writes |= w
             for match in selected:
                 if matcher.check(match.binding):
-                    applied.append(self.apply(matcher, match))
+                    app = self.apply(matcher, match)
+                    if app is not None:
+                        applied.append(app)
+        if choose:
+            for app in applied:
+                app.choice = choice
         return applied
 
     def _fixpoint(self, matchers: list[Matcher], max_steps: int, choose: bool) -> int:
@@ -196,6 +242,10 @@ class Runner:
                     f"fixpoint did not terminate within {max_steps} steps; rules still firing: {', '.join(firing)}"
                 )
             app = self.apply(chosen.matcher, match)
+            if app is None:  # a self-loop: the match is dropped until a change near it re-matches it
+                chosen.discard(match)
+                continue
+            app.choice = k if choose else None
             steps += 1
             changes = self.graph.changes_since(app.mark)
             for s in sets:

@@ -1,9 +1,13 @@
 """Traces: the record of every rule application, as JSON, replayable to the same graph.
 
 A trace lists, for each application, the rule, its parameter values, the binding of its pattern
-variables and the ids it created and deleted. :func:`replay` applies the same rules at the same
-bindings to a copy of the starting graph and checks that every application creates the same ids,
-so a replayed graph is identical (same ids, attributes and rotations) to the traced one.
+variables, the ids it created and deleted, the nodes it retyped (``[node, old type, new type]``),
+the attributes it set (``[kind, id, attribute, value]``) and, at a ``choose`` step, the option the
+chooser took (``choice``, its index among the options; None elsewhere). Between strategies the host
+application may add elements of its own (:meth:`Trace.record_edit`: ``{"rule": null, "edit":
+{"nodes": [...], "edges": [...]}}``). :func:`replay` applies the same rules at the same bindings,
+and the same edits, to a copy of the starting graph and checks that every application creates the
+same ids, so a replayed graph is identical (same ids, attributes and rotations) to the traced one.
 """
 
 from __future__ import annotations
@@ -19,10 +23,19 @@ from .rewriter import Application, apply_rule
 
 
 @dataclass
+class Edit:
+    """Elements the host application added between strategies, as graph JSON (ids included)."""
+
+    nodes: list[dict]
+    edges: list[dict]
+
+
+@dataclass
 class Trace:
-    """An ordered list of applications."""
+    """An ordered list of applications (and of the host's edits between strategies, by position)."""
 
     applications: list[Application] = field(default_factory=list)
+    edits: list[tuple[int, Edit]] = field(default_factory=list)  # (applications before it, edit)
 
     def __len__(self) -> int:
         return len(self.applications)
@@ -30,13 +43,21 @@ class Trace:
     def record(self, app: Application) -> None:
         self.applications.append(app)
 
+    def record_edit(self, nodes: list[dict], edges: list[dict]) -> None:
+        """Record elements the host added to the graph (not by a rule), for replay."""
+        self.edits.append((len(self.applications), Edit(nodes, edges)))
+
     def to_json(self) -> list[dict]:
         out = []
-        for app in self.applications:
+        edits = list(self.edits)
+        for i, app in enumerate(self.applications):
+            while edits and edits[0][0] == i:
+                out.append({"rule": None, "edit": asdict(edits.pop(0)[1])})
             d = asdict(app)
             d.pop("mark")
             d["params"] = {k: _plain(v) for k, v in d["params"].items()}
             out.append(d)
+        out.extend({"rule": None, "edit": asdict(edit)} for _, edit in edits)
         return out
 
 
@@ -58,6 +79,10 @@ def replay(records: list[dict], rulebook, graph: HostGraph) -> Trace:
     """Re-apply traced applications to ``graph`` (which must be the traced run's starting graph)."""
     trace = Trace()
     for i, rec in enumerate(records):
+        if rec.get("edit") is not None:
+            _apply_edit(graph, rec["edit"], i)
+            trace.record_edit(rec["edit"]["nodes"], rec["edit"]["edges"])
+            continue
         rule = rulebook.rules.get(rec["rule"])
         if rule is None:
             raise RewriteError(f"trace step {i}: unknown rule '{rec['rule']}'")
@@ -75,3 +100,15 @@ def replay(records: list[dict], rulebook, graph: HostGraph) -> Trace:
             )
         trace.record(app)
     return trace
+
+
+def _apply_edit(graph: HostGraph, edit: dict, step: int) -> None:
+    """Add a recorded edit's nodes and edges (with their ids) to ``graph``."""
+    try:
+        for item in edit["nodes"]:
+            graph.add_node(item["type"], {k: v for k, v in item.items() if k not in ("id", "type")}, item["id"])
+        for item in edit["edges"]:
+            attrs = {k: v for k, v in item.items() if k not in ("id", "type", "source", "target")}
+            graph.add_edge(item["type"], item["source"], item["target"], attrs, item["id"])
+    except (KeyError, TypeError) as exc:
+        raise TraceError(f"trace step {step}: malformed edit: {exc!r}") from None

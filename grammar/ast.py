@@ -88,7 +88,19 @@ class Binary:
     pos: SourcePos
 
 
-Expr = Union[Literal, Name, Attr, Index, Call, ListExpr, Unary, Binary]
+@dataclass(frozen=True)
+class Quantifier:
+    """``forall v: Type { body }`` (also ``exists``, ``count``, ``sum``): ``body`` evaluated with ``v``
+    bound to each element of ``Type`` (a node or edge type, with its subtypes) of the host graph."""
+
+    kind: str  # "forall", "exists", "count" or "sum"
+    var: str
+    type: str
+    body: "Expr"
+    pos: SourcePos
+
+
+Expr = Union[Literal, Name, Attr, Index, Call, ListExpr, Unary, Binary, Quantifier]
 
 # --------------------------------------------------------------------------------------------
 # Schema
@@ -293,7 +305,8 @@ class Foreach:
 
     Iterates over the edges of ``Type`` around the matched node ``center`` in their cyclic order
     (the host graph's rotation system) and runs ``body`` once for each, with ``e`` bound to the edge
-    and ``n`` to the neighbour. ``direction`` is ``"--"`` (any), ``"->"`` (out) or ``"<-"`` (in).
+    and ``n`` to the neighbour. ``direction`` is ``"--"`` (any), ``"->"`` (out) or ``"<-"`` (in);
+    ``n: Type`` narrows the iterations to the neighbours of that type (and its subtypes).
     """
 
     edge_var: str | None
@@ -304,6 +317,7 @@ class Foreach:
     condition: Expr | None
     body: tuple["Statement", ...]
     pos: SourcePos
+    neighbour_type: str | None = None  # `foreach c -T- n: Type`: only neighbours of that type
 
 
 Statement = Union[Delete, CreateNode, CreateEdge, Retype, SetAttr, Merge, Foreach]
@@ -378,6 +392,21 @@ class Strategy:
 
 
 @dataclass(frozen=True)
+class Invariant:
+    """``invariant name after each|at end [in strategy, ...] { condition }``.
+
+    ``when`` is ``"each"`` (after every rule application) or ``"end"`` (when a strategy has run);
+    ``strategies`` limits the check to those strategies (empty: every strategy).
+    """
+
+    name: str
+    when: str
+    strategies: tuple[str, ...]
+    condition: Expr
+    pos: SourcePos
+
+
+@dataclass(frozen=True)
 class Include:
     """``include "path"`` -- relative to the including file."""
 
@@ -394,3 +423,4 @@ class RuleFile:
     rules: tuple[Rule, ...] = field(default=())
     strategies: tuple[Strategy, ...] = field(default=())
     includes: tuple[Include, ...] = field(default=())
+    invariants: tuple[Invariant, ...] = field(default=())

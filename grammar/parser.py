@@ -61,6 +61,7 @@ from vaultgram.grammar.ast import (
     Foreach,
     Include,
     Index,
+    Invariant,
     ListExpr,
     Literal,
     Merge,
@@ -70,6 +71,7 @@ from vaultgram.grammar.ast import (
     NodeTypeDecl,
     Param,
     Pattern,
+    Quantifier,
     Retype,
     Rule,
     RuleFile,
@@ -88,11 +90,11 @@ __all__ = ["parse_text", "parse_file", "load_files", "KEYWORDS"]
 #: Reserved words: never a name.
 KEYWORDS = frozenset(
     "include schema abstract node edge rule priority match where not and or in delete detach create "
-    "retype as set merge into foreach strategy choose run true false none".split()
+    "retype as set merge into foreach strategy choose run true false none invariant forall exists count sum".split()
 )
 
 #: Words that are keywords only where the grammar expects them.
-CONTEXTUAL_KEYWORDS = frozenset("once all fixpoint max next prev".split())
+CONTEXTUAL_KEYWORDS = frozenset("once all fixpoint max next prev after each at end".split())
 
 _GRAMMAR_FILE = Path(__file__).with_name("rules.lark")
 
@@ -493,7 +495,8 @@ class _ToAst(Transformer_NonRecursive):
     # -- file ---------------------------------------------------------------------------------
 
     def start(self, meta, children):
-        return RuleFile(self.file, *_by_class(children, Schema, Rule, Strategy, Include))
+        parts = _by_class(children, Schema, Rule, Strategy, Include, Invariant)
+        return RuleFile(self.file, *parts)
 
     def include(self, meta, children):
         (path,) = children
@@ -636,7 +639,8 @@ class _ToAst(Transformer_NonRecursive):
     def foreach(self, meta, children):
         i = next(k for k, c in enumerate(children) if isinstance(c, Token) and c.type in _EDGES)
         edge_var = str(children[0]) if i == 2 else None
-        center, arrow, neighbour, condition = children[i - 1], children[i], children[i + 1], children[i + 2]
+        center, arrow, neighbour = children[i - 1], children[i], children[i + 1]
+        narrowed, condition = children[i + 2], children[i + 3]
         type_, direction = self._arrow(arrow)
         return Foreach(
             edge_var=edge_var,
@@ -645,12 +649,32 @@ class _ToAst(Transformer_NonRecursive):
             type=type_,
             direction=direction,
             condition=condition,
-            body=tuple(children[i + 3 :]),
+            body=tuple(children[i + 4 :]),
             pos=self._pos(meta),
+            neighbour_type=narrowed,
         )
+
+    def foreach_type(self, meta, children):
+        return str(children[0]) if children else None
 
     def foreach_where(self, meta, children):
         return children[0] if children else None
+
+    # -- invariants ---------------------------------------------------------------------------
+
+    def invariant(self, meta, children):
+        name, when, strategies, condition = children
+        return Invariant(str(name), when, strategies, condition, self._pos(meta))
+
+    after_each = _constant("each")
+    at_end = _constant("end")
+
+    def invariant_scope(self, meta, children):
+        return tuple(str(c) for c in children if c is not None and c.type == "NAME")
+
+    def quantifier(self, meta, children):
+        kind, var, type_, body = children
+        return Quantifier(str(kind), str(var), str(type_), body, self._pos(meta))
 
     # -- strategies ---------------------------------------------------------------------------
 

@@ -6,6 +6,8 @@ import json
 import subprocess
 import sys
 
+import numpy as np
+import pytest
 from click.testing import CliRunner
 
 from vaultgram.cli import main
@@ -178,3 +180,115 @@ def test_an_interrupted_run_writes_nothing_and_a_finished_one_replaces_the_files
     assert again.exit_code == 0, again.output
     assert (tmp_path / "d" / "extra.txt").read_text() == "kept"
     assert json.loads((tmp_path / "d" / "tessellation.json").read_text())["voussoirs"]
+
+
+@pytest.mark.parametrize("name", ["l_shape", "quad_with_hole", "fig5_boundary_points", "fig6_inner_points",
+                                  "fig7_curves", "features_combined", "square_point_loads"])
+def test_decompose_trace_replays_to_the_same_decomposition(tmp_path, name):
+    """decompose --trace writes trace.json (rule, bindings, created, deleted, retyped, set, choice) and the
+    starting graph; rules replay gives the decomposition's graph again, element for element."""
+    out = tmp_path / "d"
+    run = CliRunner().invoke(main, ["decompose", str(EXAMPLES / f"{name}.json"), "--out", str(out), "--trace",
+                                    "--no-plot", "--spacing", "0.03"])
+    assert run.exit_code == 0, run.output
+    trace = json.loads((out / "trace.json").read_text())
+    assert {"rule", "binding", "created_nodes", "deleted_edges", "retyped", "set", "choice"} <= set(trace[0])
+    assert sum(1 for r in trace if r.get("edit")) == 1  # the Patch nodes the pipeline adds
+    again = CliRunner().invoke(main, ["rules", "replay", str(RULES), "--graph", str(out / "start_graph.json"),
+                                      "--trace", str(out / "trace.json"), "--out", str(tmp_path / "r")])
+    assert again.exit_code == 0, again.output
+    replayed = json.loads((tmp_path / "r" / "graph.json").read_text())
+    graph = json.loads((out / "decomposition.json").read_text())
+    assert [n["id"] for n in replayed["nodes"]] == [n["id"] for n in graph["nodes"]]
+    assert [(e["id"], e["type"], e["source"], e["target"]) for e in replayed["edges"]] == [
+        (e["id"], e["type"], e["source"], e["target"]) for e in graph["edges"]]
+    assert [{k: v for k, v in n.items()} for n in replayed["nodes"]] == graph["nodes"]
+
+
+def test_design_trace_is_written(tmp_path):
+    out = tmp_path / "d"
+    run = CliRunner().invoke(main, ["design", str(EXAMPLES / "l_shape.json"), "--out", str(out), "--trace"])
+    assert run.exit_code == 0, run.output
+    assert json.loads((out / "trace.json").read_text()) and (out / "start_graph.json").is_file()
+
+
+STAR = """
+schema star { node P { pos: vec2, w: int = 0 }  edge L (P -- P) }
+rule explode {
+  match { s: P { w: 1 } }
+  foreach s -L- m {
+    create r: P { pos = lerp(s.pos, m.pos, 0.5) }
+    create r -L- m
+    create r -L- next(r)
+  }
+  detach delete s
+}
+strategy go { explode once }
+"""
+
+
+def star_graph(tmp_path):
+    """A centre with 6 neighbours on a circle, their edge ids out of angular order."""
+    angles = [0, 3, 1, 4, 2, 5]  # edge k reaches the neighbour at 60 * angles[k] degrees
+    nodes = [{"id": 0, "type": "P", "pos": [0.0, 0.0], "w": 1}]
+    nodes += [{"id": k + 1, "type": "P", "pos": [float(np.cos(a * np.pi / 3)), float(np.sin(a * np.pi / 3))]}
+              for k, a in enumerate(angles)]
+    edges = [{"id": k, "type": "L", "source": 0, "target": k + 1} for k in range(6)]
+    (tmp_path / "star.vgr").write_text(STAR)
+    (tmp_path / "g.json").write_text(json.dumps({"nodes": nodes, "edges": edges}))
+    return tmp_path / "star.vgr", tmp_path / "g.json"
+
+
+def test_rules_run_orders_edges_by_position(tmp_path):
+    """With node positions the rotation follows the geometry: the ring built by foreach/next joins
+    angular neighbours (in edge-id order it would cross itself)."""
+    rules, graph = star_graph(tmp_path)
+    result = run("rules", "run", rules, "--graph", graph, "--strategy", "go", "--out", tmp_path / "out")
+    assert result.exit_code == 0, result.output
+    out = json.loads((tmp_path / "out" / "graph.json").read_text())
+    pos = {n["id"]: np.array(n["pos"]) for n in out["nodes"]}
+    ring = [(e["source"], e["target"]) for e in out["edges"] if e["source"] > 6 and e["target"] > 6]
+    assert len(ring) == 6
+    for u, v in ring:  # neighbours on the ring of radius 0.5: 60 degrees apart
+        assert np.linalg.norm(pos[u] - pos[v]) == pytest.approx(0.5, rel=1e-9)
+
+
+def test_rules_matches_lists_every_match(tmp_path):
+    rules, graph = star_graph(tmp_path)
+    result = run("rules", "matches", rules, "--graph", graph, "--rule", "explode", "--json")
+    assert result.exit_code == 0, result.output
+    assert json.loads(result.output) == [{"s": 0}]
+    text = run("rules", "matches", rules, "--graph", graph, "--rule", "explode").output
+    assert text.splitlines() == ["0: s=0", "1 match(es) of explode"]
+
+
+def test_why_not_lists_reasons_with_values(tmp_path):
+    rules, graph = star_graph(tmp_path)
+    (tmp_path / "far.vgr").write_text(STAR + """
+rule far { match { s: P { w: 1 }  m: P  s -L- m } where distance(s.pos, m.pos) > 2 delete s }""")
+    result = run("rules", "why-not", tmp_path / "far.vgr", "--graph", graph, "--rule", "far", "--limit", "4")
+    assert result.exit_code == 0, result.output
+    lines = result.output.splitlines()
+    assert "4 nearest partial match(es)" in lines[0] and len(lines) == 5
+    assert all("condition `distance(s.pos, m.pos) > 2` is false" in ln and "distance(s.pos, m.pos) = 1" in ln
+               and "s.pos = (0, 0)" in ln for ln in lines[1:])
+
+
+@pytest.mark.parametrize("each", [False, True])
+def test_trace_command_draws_each_step(tmp_path, each):
+    from vaultgram.domain import load_domain
+    from vaultgram.io.traceview import trace_frames
+    from vaultgram.pipeline import decompose
+
+    out = tmp_path / "t"
+    args = ["trace", EXAMPLES / "fig5_boundary_points.json", "--out", out, "--spacing", "0.04"]
+    result = run(*args, *(["--each"] if each else []))
+    assert result.exit_code == 0, result.output
+    dec = decompose(load_domain(EXAMPLES / "fig5_boundary_points.json"), 0.04, trace=True)
+    frames = trace_frames(dec, each)
+    applications = sum(r.applications for r in dec.reports)
+    assert len(frames) == (applications if each else sum(1 for r in dec.reports if r.applications))
+    assert sum(1 for _, records in frames for r in records if r.get("edit") is None) == applications
+    assert len(list(out.glob("step_*.png"))) == len(frames) and (out / "start.png").is_file()
+    page = (out / "index.html").read_text()
+    assert page.count("step_") == len(frames) and all(json.dumps(c)[1:-1] in page for c, _ in frames)

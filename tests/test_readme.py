@@ -16,7 +16,8 @@ from paths import REPO
 README = (REPO / "README.md").read_text()
 PYTHON_BLOCKS = re.findall(r"```python\n(.*?)```", README, flags=re.S)
 SHELL = "".join(re.findall(r"```sh\n(.*?)```", README, flags=re.S))
-COMMANDS = sorted(set(re.findall(r"^vaultgram (\w+(?: (?:check|run|why-not))?)", SHELL, flags=re.M)))
+RULES_COMMANDS = "check|run|why-not|matches|test|replay"
+COMMANDS = sorted(set(re.findall(rf"^vaultgram (\w+(?: (?:{RULES_COMMANDS}))?)", SHELL, flags=re.M)))
 
 
 def run_block(code: str, folder, monkeypatch) -> str:

@@ -151,11 +151,8 @@ def rules() -> None:
 @click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=False))
 @click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
 def rules_check(files, as_json: bool) -> None:
-    """Parse and type-check rule FILES; print their types, rules and strategies."""
-    from vaultgram.engine.rulebook import load_rulebook
-    from vaultgram.topology.functions import vault_functions
-
-    book = load_rulebook(files, vault_functions())
+    """Parse and type-check rule FILES; print their types, rules, strategies and invariants."""
+    book = _load_rules(files)
     summary = book.summary()
     if as_json:
         click.echo(json.dumps(summary, indent=2))
@@ -172,6 +169,27 @@ def rules_check(files, as_json: bool) -> None:
     click.echo(f"strategies ({len(summary['strategies'])}):")
     for name, steps in summary["strategies"].items():
         click.echo(f"  {name}: " + "; ".join(steps))
+    click.echo(f"invariants ({len(summary['invariants'])}):")
+    for name, when in summary["invariants"].items():
+        click.echo(f"  {name}: {when}")
+
+
+def _load_graph(path: str, book):
+    """A host graph from JSON; where nodes carry positions (``pos``), the cyclic order of the edges
+    around each node follows the geometry (counter-clockwise, along an edge's ``polyline`` if it has
+    one), as in the pipeline; elsewhere it is the order of the edge ids."""
+    from vaultgram.engine.graph import HostGraph
+    from vaultgram.topology.decomposition import edge_angle
+
+    return HostGraph.from_json(read_json(path), book.schema, angle=edge_angle)
+
+
+def _load_rules(files):
+    """The rulebook of rule FILES, with the vault pipeline's functions."""
+    from vaultgram.engine.rulebook import load_rulebook
+    from vaultgram.topology.functions import vault_functions
+
+    return load_rulebook(files, vault_functions())
 
 
 @rules.command("run")
@@ -182,13 +200,10 @@ def rules_check(files, as_json: bool) -> None:
 @OUT
 def rules_run(files, graph_path: str, strategy: str, out_dir: str) -> None:
     """Run a STRATEGY of rule FILES on a host graph; write graph.json and trace.json to --out."""
-    from vaultgram.engine.graph import HostGraph
-    from vaultgram.engine.rulebook import load_rulebook
     from vaultgram.engine.strategy import Runner
-    from vaultgram.topology.functions import vault_functions
 
-    book = load_rulebook(files, vault_functions())
-    graph = HostGraph.from_json(read_json(graph_path), book.schema)
+    book = _load_rules(files)
+    graph = _load_graph(graph_path, book)
     runner = Runner(book, graph)
     runner.run(strategy)
     out = Path(out_dir)
@@ -204,20 +219,93 @@ def rules_run(files, graph_path: str, strategy: str, out_dir: str) -> None:
 @click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=False))
 @click.option("--graph", "graph_path", required=True, type=click.Path(dir_okay=False))
 @click.option("--rule", "rule_name", required=True, help="The rule to explain.")
-def rules_why_not(files, graph_path: str, rule_name: str) -> None:
-    """Explain why a rule does not match a graph: its largest partial match and what failed."""
-    from vaultgram.engine.graph import HostGraph
-    from vaultgram.engine.matcher import Matcher
-    from vaultgram.engine.rulebook import load_rulebook
+@click.option("--limit", type=click.IntRange(min=1), default=10, show_default=True,
+              help="How many near matches to list.")
+def rules_why_not(files, graph_path: str, rule_name: str, limit: int) -> None:
+    """Explain why a rule does not match a graph: its nearest partial matches (up to --limit), what
+    failed in each, and the values of the attributes and calls in a failed condition."""
     from vaultgram.engine.whynot import why_not
-    from vaultgram.errors import RewriteError
-    from vaultgram.topology.functions import vault_functions
 
-    book = load_rulebook(files, vault_functions())
+    matcher = _matcher(files, graph_path, rule_name)
+    click.echo(str(why_not(matcher, limit)))
+
+
+def _matcher(files, graph_path: str, rule_name: str):
+    """A matcher of rule ``rule_name`` of FILES on the graph at ``graph_path``."""
+    from vaultgram.engine.matcher import Matcher
+    from vaultgram.errors import RewriteError
+
+    book = _load_rules(files)
     if rule_name not in book.rules:
         raise RewriteError(f"unknown rule '{rule_name}'")
-    graph = HostGraph.from_json(read_json(graph_path), book.schema)
-    click.echo(str(why_not(Matcher(book.rules[rule_name], graph))))
+    return Matcher(book.rules[rule_name], _load_graph(graph_path, book))
+
+
+@rules.command("matches")
+@click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=False))
+@click.option("--graph", "graph_path", required=True, type=click.Path(dir_okay=False))
+@click.option("--rule", "rule_name", required=True, help="The rule whose matches to list.")
+@click.option("--json", "as_json", is_flag=True, help="Print the matches as JSON (a list of bindings).")
+def rules_matches(files, graph_path: str, rule_name: str, as_json: bool) -> None:
+    """List every match of a rule in a graph (in the engine's match order), one binding a line."""
+    matches = [dict(m.binding) for m in _matcher(files, graph_path, rule_name).all()]
+    if as_json:
+        click.echo(json.dumps(matches))
+        return
+    for k, binding in enumerate(matches):
+        click.echo(f"{k}: " + ", ".join(f"{v}={i}" for v, i in binding.items() if not v.startswith("_")))
+    click.echo(f"{len(matches)} match(es) of {rule_name}")
+
+
+@rules.command("test")
+@click.argument("rules_dirs", metavar="RULES...", nargs=-1, required=True, type=click.Path(exists=True))
+@click.option("--examples", type=click.IntRange(min=1), default=100, show_default=True,
+              help="How many random domains hypothesis draws.")
+@click.option("--seed", type=int, default=None, help="Draw other examples (default: the same ones every run).")
+@click.option("--out", "out_dir", default="rules-test-failure", show_default=True, type=click.Path(file_okay=False),
+              help="Where a counterexample is written.")
+def rules_test(rules_dirs, examples: int, seed: int | None, out_dir: str) -> None:
+    """Property-test rulebooks (folders with topology.vgr, or that file) on random domains: their
+    invariants after every rule application, the topology stage's checks. Exit 1 on a counterexample,
+    written shrunk to --out with the command that replays it."""
+    try:
+        from vaultgram.testing.rulestest import check_rulebook, write_failure
+    except ImportError as exc:  # hypothesis missing
+        raise VaultgramError(f"rules test needs hypothesis ({exc}): pip install 'vaultgram[rulestest]'") from None
+    for path in rules_dirs:
+        directory = Path(path) if Path(path).is_dir() else Path(path).parent
+        summary = check_rulebook(directory, examples, seed)
+        if summary.failure is not None:
+            with output_folder(out_dir) as stage:
+                lines = write_failure(summary.failure, directory, Path(out_dir), stage)
+            for line in lines:
+                click.echo(line)
+            sys.exit(1)
+        click.echo(f"ok: {directory}: {summary.text()}")
+
+
+@rules.command("replay")
+@click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=False))
+@click.option("--graph", "graph_path", required=True, type=click.Path(dir_okay=False),
+              help="The graph the trace started from (the start_graph.json decompose --trace writes).")
+@click.option("--trace", "trace_path", required=True, type=click.Path(dir_okay=False), help="trace.json.")
+@OUT
+def rules_replay(files, graph_path: str, trace_path: str, out_dir: str) -> None:
+    """Replay a trace (rules run, decompose --trace) on its starting graph; write graph.json."""
+    from vaultgram.engine.trace import load_trace, replay
+
+    book = _load_rules(files)
+    graph = _load_graph(graph_path, book)
+    replayed = replay(load_trace(trace_path), book, graph)
+    with output_folder(out_dir) as stage:
+        write_json(stage / "graph.json", graph.to_json())
+    click.echo(f"replayed {len(replayed)} application(s); wrote {Path(out_dir) / 'graph.json'} "
+               f"({len(graph)} nodes, {graph.num_edges} edges)")
+
+
+TRACE = click.option("--trace", "with_trace", is_flag=True,
+                     help="Also write trace.json (every rule application) and start_graph.json (the graph the "
+                          "rules started from), for vaultgram rules replay.")
 
 
 @main.command("decompose")
@@ -229,12 +317,15 @@ def rules_why_not(files, graph_path: str, rule_name: str) -> None:
 @click.option("--plot/--no-plot", default=True, show_default=True, help="Also write decomposition.png.")
 @FORMAT
 @input_options
+@click.option("--invariants", is_flag=True, help="Check the rulebook's invariants while its strategies run.")
+@TRACE
 def decompose_command(domain_path: str, out_dir: str, spacing: float, rules_dir: str | None, smooth_branches: bool,
-                      plot: bool, formats, input_format: str | None, layers) -> None:
+                      plot: bool, formats, input_format: str | None, layers, invariants: bool,
+                      with_trace: bool) -> None:
     """Block decomposition of a DOMAIN (JSON, GeoJSON, DXF or .3dm) into 3- and 4-sided patches (paper 3.1).
 
     Writes decomposition.json, patches.json and decomposition.png (--format 3dm or dxf: the patches
-    as closed polylines in result.3dm or result.dxf).
+    as closed polylines in result.3dm or result.dxf; --trace: trace.json and start_graph.json).
     """
     from vaultgram.domain import load_domain
     from vaultgram.io.outputs import parse_formats, write_decomposition, write_drawings
@@ -242,9 +333,9 @@ def decompose_command(domain_path: str, out_dir: str, spacing: float, rules_dir:
 
     formats = parse_formats(formats)
     domain = load_domain(domain_path, input_format, layer_names(layers), spacing)
-    dec = decompose(domain, spacing, rules_dir, smooth=smooth_branches)
+    dec = decompose(domain, spacing, rules_dir, smooth=smooth_branches, check_invariants=invariants, trace=with_trace)
     with output_folder(out_dir) as stage:
-        write_decomposition(dec, stage, plot, formats)
+        write_decomposition(dec, stage, plot, formats, with_trace)
         write_drawings(stage, formats, domain.units, decomposition=dec)
     echo_decomposition(dec, Path(out_dir))
 
@@ -264,6 +355,26 @@ def echo_decomposition(dec, out: Path) -> None:
 def echo_timings(timings: dict) -> None:
     """One line with the seconds per stage (measured by the pipeline, never written to a file)."""
     click.echo("time:       " + ", ".join(f"{k} {v * 1000:.1f} ms" for k, v in timings.items()))
+
+
+@main.command("trace")
+@click.argument("domain_path", metavar="DOMAIN", type=click.Path(dir_okay=False))
+@OUT
+@SPACING
+@RULES
+@click.option("--each", is_flag=True, help="A figure after each rule application, not each strategy step.")
+def trace_command(domain_path: str, out_dir: str, spacing: float, rules_dir: str | None, each: bool) -> None:
+    """Figures of the decomposition graph of a DOMAIN after each strategy step (or application) of the
+    rules, matched elements red and created ones green, and index.html stepping through them."""
+    from vaultgram.domain import load_domain
+    from vaultgram.io.traceview import write_trace_view
+    from vaultgram.pipeline import decompose
+    from vaultgram.topology.rulebook import load_vault_rulebook
+
+    dec = decompose(load_domain(domain_path), spacing, rules_dir, trace=True)
+    with output_folder(out_dir) as stage:
+        count = write_trace_view(dec, load_vault_rulebook(rules_dir), stage, each)
+    click.echo(f"wrote {count + 1} figure(s) and {Path(out_dir) / 'index.html'}")
 
 
 @main.command("formfind")
@@ -357,9 +468,10 @@ def tessellate_command(thrust_path, out_dir, thickness, rhythm, max_concavity, f
 @tessellation_options
 @FORMAT
 @input_options
+@TRACE
 def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smooth, densities_path, allow_folds,
                    supports_path, zmax, thickness, density, point_load, tol_deg, sag, relax_mode, rhythm,
-                   max_concavity, flat_extrados, surface_smooth, formats, input_format, layers) -> None:
+                   max_concavity, flat_extrados, surface_smooth, formats, input_format, layers, with_trace) -> None:
     """The whole pipeline on a DOMAIN: decomposition (3.1, 4), mesh (3.2), thrust network and voussoirs (5).
 
     Everything is computed before anything is written, so a failing stage leaves no output. The DOMAIN
@@ -378,11 +490,11 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
         domain, spacing, rules_dir, target_length, DEFAULT_ITERATIONS if smooth is None else smooth,
         load_densities(densities_path) if densities_path else None, allow_folds,
         read_json(supports_path) if supports_path else None, point_load, zmax, thickness,
-        TessellationOptions(int(rhythm), max_concavity, flat_extrados, surface_smooth),
+        TessellationOptions(int(rhythm), max_concavity, flat_extrados, surface_smooth), trace=with_trace,
         density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode)
     out = Path(out_dir)
     with output_folder(out) as stage:
-        write_design(result, stage, formats)
+        write_design(result, stage, formats, trace=with_trace)
     echo_decomposition(result.decomposition, out)
     click.echo(f"mesh: {len(result.mesh.vertices)} vertices, {len(result.mesh.faces)} faces; "
                f"wrote {_joined(f for f in ('mesh.json', 'mesh.obj', 'mesh.compas.json') if _written(f, formats))}")

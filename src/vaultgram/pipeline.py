@@ -113,11 +113,13 @@ def _collector_paused():
 
 
 def decompose(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None = None, smooth: bool = False,
-              timings: dict | None = None) -> Decomposition:
+              timings: dict | None = None, check_invariants: bool = False, trace: bool = False) -> Decomposition:
     """Topology finding (§3.1, §4): discretise, triangulate, skeletonise, rewrite with the rules, patch.
 
     ``rules_dir`` holds the rulebook (default: the one shipped with vaultgram); ``smooth`` smooths the
-    skeleton branches with splines.
+    skeleton branches with splines; ``check_invariants`` checks the rulebook's invariants while its
+    strategies run (as ``vaultgram rules test`` does); ``trace`` keeps the graph the rules start from
+    for a replay (``Decomposition.start_graph``).
     """
     rulebook = load_vault_rulebook(rules_dir)
     with _timed(timings, "discretise"):
@@ -127,7 +129,7 @@ def decompose(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | Non
     with _timed(timings, "skeleton"):
         sk = skeleton(tri, smooth=smooth)
     with _timed(timings, "rules"):
-        return block_decomposition(sk, rulebook)
+        return block_decomposition(sk, rulebook, check_invariants, trace)
 
 
 # --------------------------------------------------------------------------------------------
@@ -516,17 +518,19 @@ def design(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None =
            target_length: float | None = None, smooth: int = DEFAULT_ITERATIONS,
            densities: DensitySpec | None = None, allow_folds: bool = False, supports=None,
            point_load: float = 0.0, zmax: float | None = None, thickness: float = 1.0,
-           tessellation: TessellationOptions | None = TessellationOptions(), **options) -> Design:
+           tessellation: TessellationOptions | None = TessellationOptions(), trace: bool = False,
+           **options) -> Design:
     """The whole pipeline on a domain: decomposition (§3.1, §4), mesh (§3.2), thrust network (§5) and
     tessellation (§5).
 
     ``supports`` overrides the domain's own; ``zmax`` defaults to a rise (:func:`thrust_of_mesh`); ``thickness``
     is the shell's, for its self-weight and its voussoirs; ``tessellation`` None stops at the thrust
-    network; ``options`` are those of :func:`form_find`.
+    network; ``trace`` keeps the decomposition's starting graph for a replay; ``options`` are those of
+    :func:`form_find`.
     """
     timings: dict = {}
     check_feature_spacing(domain, spacing)
-    dec = decompose(domain, spacing, rules_dir, timings=timings)
+    dec = decompose(domain, spacing, rules_dir, timings=timings, trace=trace)
     mesh = mesh_decomposition(dec, target_length, smooth, densities, allow_folds, timings)
     spec = domain.supports if supports is None else supports
     spec = {"vertices": spec} if isinstance(spec, list) else spec

@@ -127,3 +127,66 @@ def test_unknown_attribute_type():
     assert str(err) == (
         "t.vgr:2:15: unknown attribute type 'vec4'\n  hint: attribute types are: int float bool str vec2 vec3 list any"
     )
+
+
+# -- the checker and the docs agree (issue 14) ---------------------------------------------------
+
+
+def test_set_of_the_new_types_attribute_after_retype():
+    from vaultgram.engine.graph import HostGraph
+    from vaultgram.engine.strategy import Runner
+
+    rb = book("""
+schema extra { node Big : A { size: int = 0 } }
+rule grow { match { a: A { w: 1 } } retype a as Big  set a.size = 7 }
+strategy s { grow all }""")
+    g = HostGraph(rb.schema)
+    n = g.add_node("A", {"w": 1})
+    Runner(rb, g).run("s")
+    assert g.node_type(n) == "Big" and g.get(n, "size") == 7
+
+
+def test_foreach_narrows_the_neighbour_type():
+    from vaultgram.engine.graph import HostGraph
+    from vaultgram.engine.strategy import Runner
+
+    rb = book("""
+schema extra { node Big : A { size: int = 0 } }
+rule count_big { match { a: A { w: 1 } } foreach a -E- n: Big { set n.size = n.size + 1 } set a.w = 2 }
+strategy s { count_big all }""")
+    g = HostGraph(rb.schema)
+    a = g.add_node("A", {"w": 1})
+    big, plain = g.add_node("Big"), g.add_node("A")
+    g.add_edge("E", a, big)
+    g.add_edge("E", a, plain)
+    Runner(rb, g).run("s")
+    assert g.get(big, "size") == 1 and g.get(plain, "w") == 0
+    with pytest.raises(RuleTypeError, match="never a C"):
+        book("rule r { match { a: A } foreach a -E- n: C { set n.w = 1 } }")
+
+
+def test_a_missing_rule_parameter_is_a_load_time_error():
+
+    with pytest.raises(RuleTypeError, match=r"rule r needs parameter\(s\) k \(no default\)") as info:
+        book("rule r(k: int) { match { a: A { w < k } } set a.w = k }\nstrategy s { r all }")
+    assert info.value.pos.line == 10 and info.value.pos.column == 14
+
+
+def test_every_language_reference_example_type_checks(tmp_path):
+    """docs/language.md's complete examples (a block that starts with its schema, and the §9 files
+    that include one another) load without a type error, with the vault's functions."""
+    from vaultgram.engine.rulebook import load_rulebook
+    from vaultgram.topology.functions import vault_functions
+
+    from paths import REPO
+
+    doc = (REPO / "docs" / "language.md").read_text(encoding="utf-8")
+    blocks = [b for b in doc.split("```")[1::2] if b.split() and b.split()[0] == "schema" and "..." not in b]
+    assert len(blocks) >= 3
+    for block in blocks:
+        rulebook_from_text(block, vault_functions())
+    examples = doc.split("## 9. Examples")[1].split("```")[1::2]
+    (tmp_path / "skeleton.vgr").write_text(examples[0])
+    (tmp_path / "main.vgr").write_text(examples[1] + "\n" + examples[2])
+    book = load_rulebook([tmp_path / "main.vgr"], vault_functions())
+    assert set(book.rules) == {"prune", "contract", "explode"} and set(book.strategies) == {"clean", "refine"}

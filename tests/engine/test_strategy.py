@@ -214,3 +214,29 @@ def test_replay_refuses_wrong_graph(rb):
         replay(r.trace.to_json(), rb, graph(rb, ("C",)))
     with pytest.raises(RewriteError, match="unknown rule"):
         replay([{"rule": "zz"}], rb, graph(rb))
+
+
+def test_a_self_loop_does_not_apply_and_is_counted():
+    """`create r -E- next(r)` around a node with one neighbour would join r to itself: that match is
+    skipped (counted), the others apply, and a fixpoint terminates."""
+    rb = book("""
+rule ring { match { a: A { w: 1 } }
+  foreach a -E- m { create r: A { w = 5 }  create r -E- m  create r -E- next(r) }
+  set a.w = 0 }
+strategy once_ { ring once }
+strategy fix { ring fixpoint }
+strategy every { ring all }""")
+    for strategy in ("once_", "fix", "every"):
+        g = HostGraph(rb.schema)
+        lone, hub = g.add_node("A", {"w": 1}), g.add_node("A", {"w": 1})
+        g.add_edge("E", lone, g.add_node("A"))
+        for _ in range(3):
+            g.add_edge("E", hub, g.add_node("A"))
+        before = g.snapshot()
+        r = Runner(rb, g)
+        r.run(strategy)
+        assert r.self_loops >= 1 and g.get(lone, "w") == 1  # never applied at the lone node
+        if strategy != "once_":
+            assert g.get(hub, "w") == 0 and len(r.trace) == 1
+        else:
+            assert g.snapshot() == before and len(r.trace) == 0

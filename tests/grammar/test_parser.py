@@ -787,7 +787,7 @@ def test_language_reference_examples_parse():
     if not doc.exists():
         pytest.skip("docs/language.md not present")
     blocks = doc.read_text(encoding="utf-8").split("```")[1::2]
-    starts = ("schema", "rule", "include", "strategy")
+    starts = ("schema", "rule", "include", "strategy", "invariant")
     complete = [b for b in blocks if b.split() and b.split()[0] in starts and "..." not in b]
     assert len(complete) >= 5
     for block in complete:

@@ -67,13 +67,19 @@ def parse_formats(text: str | None) -> tuple:
     return formats
 
 
-def write_decomposition(dec: Decomposition, out: Path, plot: bool = True, formats=DEFAULT_FORMATS) -> None:
-    """``decomposition.json`` (the typed graph), ``patches.json`` and, if ``plot``, ``decomposition.png``."""
+def write_decomposition(dec: Decomposition, out: Path, plot: bool = True, formats=DEFAULT_FORMATS,
+                        trace: bool = False) -> None:
+    """``decomposition.json`` (the typed graph), ``patches.json``, if ``plot`` ``decomposition.png`` and, if
+    ``trace``, ``trace.json`` (every rule application) and ``start_graph.json`` (the graph before the rules
+    and the patch nodes the pipeline added between strategies, as ``vaultgram rules replay`` takes them)."""
     if "json" in formats:
         write_json(out / "decomposition.json", dec.to_json())
         write_json(out / "patches.json", dec.patches_json())
         if plot:
             plot_decomposition(dec, out / "decomposition.png")
+    if trace and dec.start_graph is not None:
+        write_json(out / "trace.json", dec.trace)
+        write_json(out / "start_graph.json", dec.start_graph)
 
 
 def write_mesh_files(mesh: QuadMesh, out: Path, supports=None, plot: bool = True, formats=DEFAULT_FORMATS) -> None:
@@ -135,10 +141,10 @@ def _write_compas(path: Path, item, supports=None) -> None:
     write_text(path, compas_json(to_compas_mesh(item, supports)))
 
 
-def write_design(result, out: Path, formats=DEFAULT_FORMATS) -> None:
+def write_design(result, out: Path, formats=DEFAULT_FORMATS, trace: bool = False) -> None:
     """Every file of a whole design (:class:`vaultgram.pipeline.Design`), as ``formats`` ask: each stage's,
-    ``summary.json`` (one section per stage) and the drawings."""
-    write_decomposition(result.decomposition, out, formats=formats)
+    ``summary.json`` (one section per stage) and the drawings; the rules' trace if ``trace``."""
+    write_decomposition(result.decomposition, out, formats=formats, trace=trace)
     write_mesh_files(result.mesh, out, result.supports, formats=formats)
     write_thrust(result.network, out, plot=True, formats=formats)
     if result.tessellation is not None:

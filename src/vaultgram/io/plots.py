@@ -23,15 +23,44 @@ EDGE_STYLE = {
 }
 
 
-def plot_decomposition(decomposition, path: str | Path) -> None:
-    """Boundaries, branches, rebranches, singularities and patch numbers; written atomically as PNG."""
-    g = decomposition.graph
-    fig, ax = plt.subplots(figsize=(7, 7))
+def _plan_edges(ax, g, highlight=frozenset(), created=frozenset()) -> None:
+    """The plan's edges of a decomposition graph, in their styles; edges in ``highlight`` in red,
+    in ``created`` in green."""
     for e in g.edges():
         style = EDGE_STYLE.get(g.edge_type(e))
         if style:
             xy = half_edge_polyline(g, e, g.ends(e)[0])
+            if e in created or e in highlight:
+                style = dict(style, color="limegreen" if e in created else "red", lw=2.5)
             ax.plot(xy[:, 0], xy[:, 1], **style)
+
+
+def _mark_nodes(ax, g, nodes, color: str) -> None:
+    """Dots at the positions of ``nodes`` (those still in the graph and placed)."""
+    marked = [g.get(n, "pos") for n in nodes if g.has_node(n) and "pos" in g.node_attrs(n)]
+    if marked:
+        ax.plot(*np.array(marked).T, "o", color=color, ms=6)
+
+
+def plot_graph(g, path: str | Path, nodes=(), edges=(), title: str = "", created=((), ())) -> None:
+    """A decomposition graph as it is (mid-rewrite, say): its plan edges, the ``nodes`` and ``edges``
+    given (a rule's match) in red and the ``created`` (nodes, edges) in green; written atomically as
+    PNG."""
+    fig, ax = plt.subplots(figsize=(7, 7))
+    _plan_edges(ax, g, {e for e in edges if g.has_edge(e)}, set(created[1]))
+    _mark_nodes(ax, g, nodes, "red")
+    _mark_nodes(ax, g, created[0], "limegreen")
+    ax.set_aspect("equal")
+    ax.set_axis_off()
+    ax.set_title(title)
+    save_figure(fig, Path(path))
+
+
+def plot_decomposition(decomposition, path: str | Path) -> None:
+    """Boundaries, branches, rebranches, singularities and patch numbers; written atomically as PNG."""
+    g = decomposition.graph
+    fig, ax = plt.subplots(figsize=(7, 7))
+    _plan_edges(ax, g)
     for n in decomposition.singularities():
         x, y = g.get(n, "pos")
         ax.plot(x, y, "o", color="tab:red", ms=5)

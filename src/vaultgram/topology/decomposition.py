@@ -34,7 +34,7 @@ from vaultgram.errors import DomainError, RewriteError
 from vaultgram.geometry.polylines import arc_lengths
 from vaultgram.geometry.text import fmt_point
 from vaultgram.topology.discretise import RING_POINT, Discretisation
-from vaultgram.topology.patches import Patch, find_patches, half_edge_polyline
+from vaultgram.topology.patches import Patch, check_no_enclosed_holes, find_patches, half_edge_polyline
 from vaultgram.topology.skeleton import Skeleton
 from vaultgram.topology.types import (
     BOUNDARY,
@@ -75,6 +75,8 @@ class Decomposition:
     patches: tuple[Patch, ...]
     reports: tuple[RuleStep, ...]
     trace: list[dict]
+    invariant_checks: int = 0  # how many invariant checks the run made (check_invariants)
+    start_graph: dict | None = None  # the graph before the rules, as JSON (block_decomposition's trace)
 
     def marked_pole(self, patch: Patch) -> int | None:
         """The corner a patching rule marked as the pole of this patch (``PatchCorner {pole = true}``)."""
@@ -281,12 +283,16 @@ def _plain(poly: np.ndarray) -> tuple:
     return tuple((float(x), float(y)) for x, y in poly)
 
 
-def add_patch_nodes(graph: HostGraph, patches) -> None:
-    """Make the patches visible to rules: a ``Patch`` node each, ``PatchCorner`` edges to its corners."""
+def add_patch_nodes(graph: HostGraph, patches) -> tuple[list[int], list[int]]:
+    """Make the patches visible to rules: a ``Patch`` node each, ``PatchCorner`` edges to its corners.
+    Returns the ids of the nodes and the edges added (for the trace)."""
+    nodes, edges = [], []
     for patch in patches:
         p = graph.add_node(PATCH, {"sides": patch.n_sides})
+        nodes.append(p)
         for k, c in enumerate(patch.corners):
-            graph.add_edge(PATCH_CORNER, p, c, {"index": k})
+            edges.append(graph.add_edge(PATCH_CORNER, p, c, {"index": k}))
+    return nodes, edges
 
 
 def check_patch_nodes(graph: HostGraph, patches) -> None:
@@ -303,13 +309,17 @@ def check_patch_nodes(graph: HostGraph, patches) -> None:
         )
 
 
-def block_decomposition(sk: Skeleton, rulebook: Rulebook) -> Decomposition:
+def block_decomposition(sk: Skeleton, rulebook: Rulebook, check_invariants: bool = False,
+                        trace: bool = False) -> Decomposition:
     """The block decomposition of a skeleton by the rulebook (§3.1 pruning and rebranching, §4).
 
     The rulebook's ``topology`` strategy rewrites the skeleton graph (:func:`decomposition_graph`);
     the faces it leaves become ``Patch`` nodes and the ``curve_patching`` and ``patching`` strategies
     (when the rulebook has them) may split them (curve T-junctions, Figures 4 and 8); the patches are
-    then read off the faces again, and must all have 3 or 4 sides.
+    then read off the faces again, and must all have 3 or 4 sides and enclose no hole (whatever the
+    rules did). ``check_invariants`` checks the rulebook's invariants while its strategies run
+    (:mod:`vaultgram.engine.invariants`; ``vaultgram rules test`` does); ``trace`` keeps the graph
+    the rules start from (``start_graph``, graph JSON) for ``vaultgram rules replay``.
 
     Example
     -------
@@ -325,15 +335,21 @@ def block_decomposition(sk: Skeleton, rulebook: Rulebook) -> Decomposition:
     """
     disc = sk.triangulation.disc
     graph = decomposition_graph(sk, rulebook)
-    runner = Runner(rulebook, graph)
+    start = graph.to_json() if trace else None
+    runner = Runner(rulebook, graph, check_invariants=check_invariants)
     runner.run(TOPOLOGY_STRATEGY)
     patch_strategies = [name for name in PATCH_STRATEGIES if name in rulebook.strategies]
     patches = find_patches(graph, disc, PLAN_EDGES, strict=not patch_strategies)
     if patch_strategies:
-        add_patch_nodes(graph, patches)
+        added = add_patch_nodes(graph, patches)
+        part = graph.to_json()
+        runner.trace.record_edit(*([x for x in part[kind] if x["id"] in set(ids)]
+                                   for kind, ids in zip(("nodes", "edges"), added)))
         for name in patch_strategies:
             runner.run(name)
         patches = find_patches(graph, disc, PLAN_EDGES)
         check_patch_nodes(graph, patches)
+    check_no_enclosed_holes(graph, patches)
     reports = tuple(RuleStep(r.step, r.applications) for r in runner.reports)
-    return Decomposition(disc, sk, graph, tuple(patches), reports, runner.trace.to_json())
+    return Decomposition(disc, sk, graph, tuple(patches), reports, runner.trace.to_json(), runner.invariant_checks,
+                         start)

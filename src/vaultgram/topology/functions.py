@@ -10,20 +10,25 @@ registered non-local. None of them changes the graph.
 from __future__ import annotations
 
 import math
+import weakref
 
 import numpy as np
+import shapely
 
 from vaultgram.engine.embedding import face_walk
 from vaultgram.engine.expressions import Functions
 from vaultgram.errors import RuleError
 from vaultgram.geometry.polygons import interior_angle, signed_area
 from vaultgram.geometry.polylines import arc_lengths, point_at_length
-from vaultgram.topology.patches import half_edge_polyline
-from vaultgram.topology.types import CURVE, PATCH_CORNER, PLAN_EDGES
+from vaultgram.topology.patches import enclosed_holes, half_edge_polyline, hole_rings, plan_faces
+from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE, DUAL, PATCH_CORNER, PLAN_EDGES
 
-__all__ = ["vault_functions", "distance", "midpoint", "lerp", "move_end", "angle_between", "curve_side",
-           "curve_neighbours", "patch_corner", "patch_chains", "patch_side_starts", "patch_angle", "diagonal_path",
-           "path_clear"]
+__all__ = ["vault_functions", "distance", "midpoint", "lerp", "move_end", "move_branch_end", "angle_between",
+           "curve_side",
+           "curve_neighbours", "patch_corner", "patch_in_plan", "patch_chains", "patch_side_starts", "patch_angle",
+           "diagonal_path",
+           "path_clear", "plan_area", "domain_area", "plan_euler", "hole_count", "holes_enclosed",
+           "curve_crossings", "plan_crossings"]
 
 
 def distance(p, q) -> float:
@@ -65,6 +70,29 @@ def move_end(polyline, old, new) -> tuple:
     k = 0 if math.dist(points[0], old) <= math.dist(points[-1], old) else -1
     points[k] = tuple(new)
     return tuple(points)
+
+
+def move_branch_end(graph, polyline, old, new, s: int, t: int) -> tuple:
+    """:func:`move_end` for a branch of skeleton vertices ``s`` and ``t`` being merged at ``new``, its
+    points next to the moved end dropped where they hook round a radius of the merged circle (from
+    ``new`` to a point either circle touches: what the rebranching rule draws, Figure 2e) -- the
+    junction the merge collapses; with no hook, exactly ``move_end``."""
+    moved = move_end(polyline, old, new)
+    ends = [graph.get(graph.ends(e)[1], "pos") for n in (s, t) for e in graph.incident(n, [DUAL])]
+    if len(moved) < 3 or not ends:
+        return moved
+    start = np.repeat(np.asarray([new], dtype=float), len(ends), axis=0)
+    end = np.asarray(ends, dtype=float)
+    points = np.asarray(moved, dtype=float)
+    at_start = math.dist(points[0], new) <= math.dist(points[-1], new)
+    points = points if at_start else points[::-1]
+    if _clear(points, start, end):
+        return moved
+    for k in range(2, len(points) - 1):
+        candidate = np.vstack([points[:1], points[k:]])
+        if _clear(candidate, start, end):
+            return _points(candidate if at_start else candidate[::-1])
+    return moved
 
 
 def angle_between(p, centre, q) -> float:
@@ -145,6 +173,13 @@ def _patch_outline(graph, patch: int, x: int) -> tuple[list, np.ndarray] | None:
         if signed_area(outline) > 0:
             return face, outline
     return None
+
+
+def patch_in_plan(graph, patch: int) -> bool:
+    """Whether a Patch node is a face of the plan: some face at its first corner has all its corners
+    (a rule that splits or merges patches must keep the Patch nodes in step with the faces)."""
+    corners = [graph.ends(e)[1] for e in sorted(graph.incident(patch, [PATCH_CORNER]))]
+    return bool(corners) and _patch_outline(graph, patch, corners[0]) is not None
 
 
 def patch_chains(graph, patch: int, x: int, o: int) -> tuple[np.ndarray, np.ndarray] | None:
@@ -256,6 +291,76 @@ def _resample(chain: np.ndarray, t: np.ndarray) -> np.ndarray:
     return point_at_length(chain, t * arc_lengths(chain)[-1]).T
 
 
+# -- measures of the whole plan, for the rulebook's invariants (rules/invariants.vgr) -------------
+
+_FACES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> (its changes count, its faces)
+
+
+def _faces(graph) -> list:
+    """:func:`plan_faces` of the graph as it is now, computed once per state (several invariants ask
+    for them in one check; ``graph.changes`` tells a state from every other)."""
+    cached = _FACES.get(graph)
+    if cached is None or cached[0] != graph.changes:
+        cached = (graph.changes, plan_faces(graph, PLAN_EDGES))
+        _FACES[graph] = cached
+    return cached[1]
+
+
+def plan_area(graph) -> float:
+    """The summed area of the faces of the plan (bounded, not inside a hole): the patches' area."""
+    return float(sum(signed_area(outline) for _, _, outline in _faces(graph)))
+
+
+def domain_area(graph) -> float:
+    """The area of the domain: its outer ring's less its holes' (from the boundary vertices)."""
+    rings: dict[int, list] = {}
+    for n in graph.of_types(graph.schema.subtypes(BOUNDARY_VERTEX)):
+        rings.setdefault(graph.get(n, "ring"), []).append((graph.get(n, "index"), graph.get(n, "pos")))
+    areas = {r: abs(signed_area(np.array([p for _, p in sorted(pts)]))) for r, pts in rings.items()}
+    return float(areas.get(0, 0.0) - sum(a for r, a in areas.items() if r > 0))
+
+
+def plan_euler(graph) -> int:
+    """V - E + F of the patch layout: its points, its edges and its patches (faces not inside a hole);
+    1 - holes for a layout of disks (§3.1)."""
+    edges = list(graph.of_types(PLAN_EDGES))
+    nodes = {n for e in edges for n in graph.ends(e)}
+    return len(nodes) - len(edges) + len(_faces(graph))
+
+
+def hole_count(graph) -> int:
+    """The number of holes of the domain (rings of boundary vertices other than the outer one)."""
+    return len(hole_rings(graph))
+
+
+def holes_enclosed(graph) -> int:
+    """How many (face, hole) pairs have the hole inside the face of the plan: 0 for a layout of disks."""
+    outlines = [outline for _, _, outline in _faces(graph)]
+    return len(enclosed_holes(outlines, hole_rings(graph)))
+
+
+def plan_crossings(graph) -> int:
+    """How many pairs of plan edges properly cross (meeting at a shared end is no crossing): 0 for a
+    planar layout, which the faces of the plan need. A straight rebranch can cross a skeleton branch
+    that bends across it where the discretisation is too coarse for the domain."""
+    lines = [shapely.LineString(half_edge_polyline(graph, e, graph.ends(e)[0])) for e in graph.of_types(PLAN_EDGES)]
+    if len(lines) < 2:
+        return 0
+    pairs = shapely.STRtree(lines).query(lines, predicate="crosses")
+    return int(np.count_nonzero(pairs[0] < pairs[1]))
+
+
+def curve_crossings(graph) -> int:
+    """How many pieces of the skeleton, rebranches and diagonals properly cross a curve feature's
+    segment (§4.2: the skeleton does not cross a curve; meeting it at a point is no crossing)."""
+    curve = [half_edge_polyline(graph, e, graph.ends(e)[0]) for e in graph.of_types([CURVE])]
+    others = [e for e in graph.of_types(PLAN_EDGES) if graph.edge_type(e) not in (CURVE, "Boundary")]
+    if not curve or not others:
+        return 0
+    start, end = np.concatenate([c[:-1] for c in curve]), np.concatenate([c[1:] for c in curve])
+    return sum(not _clear(half_edge_polyline(graph, e, graph.ends(e)[0]), start, end) for e in others)
+
+
 def vault_functions() -> Functions:
     """A registry with the engine's builtins plus the vault pipeline's geometry (the signatures
     rules see; ``uses_graph`` functions get the host graph as their first argument)."""
@@ -265,6 +370,8 @@ def vault_functions() -> Functions:
     f.register("lerp", lerp, ("vec2", "vec2", "number"), "vec2")
     f.register("angle_between", angle_between, ("vec2", "vec2", "vec2"), "float")
     f.register("move_end", move_end, ("list", "vec2", "vec2"), "list")
+    f.register("move_branch_end", move_branch_end, ("list", "vec2", "vec2", "node", "node"), "list", uses_graph=True,
+               local=False)
     f.register("interior_angle", interior_angle, ("vec2", "vec2", "vec2"), "float")
     f.register("curve_side", curve_side, ("node",), "int", uses_graph=True, local=False)
     f.register("curve_neighbours", curve_neighbours, ("node", "node"), "bool", uses_graph=True, local=False)
@@ -274,4 +381,10 @@ def vault_functions() -> Functions:
     f.register("patch_side_starts", patch_side_starts, ("node", "node", "node"), "bool", uses_graph=True,
                local=False)
     f.register("patch_corner", patch_corner, ("node", "int"), "node", uses_graph=True, local=False)
+    f.register("patch_in_plan", patch_in_plan, ("node",), "bool", uses_graph=True, local=False)
+    for name, fn, returns in (("plan_area", plan_area, "float"), ("domain_area", domain_area, "float"),
+                              ("plan_euler", plan_euler, "int"), ("hole_count", hole_count, "int"),
+                              ("holes_enclosed", holes_enclosed, "int"), ("curve_crossings", curve_crossings, "int"),
+                              ("plan_crossings", plan_crossings, "int")):
+        f.register(name, fn, (), returns, uses_graph=True, local=False)
     return f

@@ -12,10 +12,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import shapely
 
 from vaultgram.engine.embedding import faces
 from vaultgram.engine.graph import HostGraph
-from vaultgram.errors import DomainError
+from vaultgram.errors import DomainError, RewriteError
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.text import fmt_point
 from vaultgram.topology.discretise import Discretisation
@@ -93,11 +94,7 @@ def find_patches(graph: HostGraph, disc: Discretisation, edge_types, strict: boo
     """
     types = set(edge_types)
     patches = []
-    for face in faces(graph, types):
-        polys = [half_edge_polyline(graph, e, u) for e, u in face]
-        outline = np.vstack([p[:-1] for p in polys])
-        if signed_area(outline) <= 0 or _is_hole(graph, face):
-            continue  # the unbounded face, or the inside of a hole
+    for face, polys, outline in plan_faces(graph, types):
         corners, sides, side_edges = _sides(graph, face, polys, outline, types)
         if len(corners) < 3 or (strict and len(corners) > 4):
             raise DomainError(
@@ -107,6 +104,65 @@ def find_patches(graph: HostGraph, disc: Discretisation, edge_types, strict: boo
             )
         patches.append(Patch(len(patches), corners, sides, side_edges))
     return patches
+
+
+def plan_faces(graph: HostGraph, edge_types) -> list[tuple[list, list, np.ndarray]]:
+    """The bounded faces of the plan that are not the inside of a hole, each as its half-edges, their
+    polylines and its outline (counter-clockwise, not closed)."""
+    out = []
+    for face in faces(graph, edge_types):
+        polys = [half_edge_polyline(graph, e, u) for e, u in face]
+        outline = np.vstack([p[:-1] for p in polys])
+        if signed_area(outline) > 0 and not _is_hole(graph, face):  # not the unbounded face, nor a hole
+            out.append((face, polys, outline))
+    return out
+
+
+def hole_rings(graph: HostGraph) -> list[np.ndarray]:
+    """The hole rings of the plan (ring 1, 2, ...) as point arrays in ring order, from the graph's
+    ``BoundaryVertex`` nodes (their ``ring`` and ``index``)."""
+    rings: dict[int, list] = {}
+    for n in graph.of_types(graph.schema.subtypes(BOUNDARY_VERTEX)):
+        ring = graph.get(n, "ring")
+        if ring > 0:
+            rings.setdefault(ring, []).append((graph.get(n, "index"), graph.get(n, "pos")))
+    return [np.array([p for _, p in sorted(rings[r])], dtype=float) for r in sorted(rings)]
+
+
+def enclosed_holes(outlines, holes) -> list[tuple[int, int]]:
+    """The pairs (outline k, hole h) where outline ``k`` has hole ``h`` inside it: a face of the plan
+    that encloses a hole is no disk, whatever its number of sides (§3.1: every patch is a disk). A
+    hole is inside when a point inside the hole is (each hole is tested at one such point)."""
+    if not holes:
+        return []
+    inside = np.array([_point_inside(ring) for ring in holes])
+    return [(k, int(h)) for k, outline in enumerate(outlines)
+            for h in np.flatnonzero(shapely.contains_xy(shapely.Polygon(outline), inside[:, 0], inside[:, 1]))]
+
+
+def check_no_enclosed_holes(graph: HostGraph, patches) -> None:
+    """The stage check of the topology: no patch may enclose a hole (a wrong rulebook can leave a hole's
+    ring unconnected to the layout, and the ring of patches around it comes out as one patch).
+
+    Raises
+    ------
+    RewriteError
+        Naming the patch and the hole: a fault of the rules, whatever they did.
+    """
+    found = enclosed_holes([p.polygon() for p in patches], hole_rings(graph))
+    if found:
+        k, h = found[0]
+        where = _where(patches[k].polygon())
+        raise RewriteError(
+            f"patch {patches[k].id} around {where} ({patches[k].n_sides} sides) encloses hole {h + 1}: it is no "
+            "disk; no rule connected the hole's ring to the patch layout: check the rules (rebranching)"
+        )
+
+
+def _point_inside(ring: np.ndarray) -> np.ndarray:
+    """A point strictly inside a simple polygon (shapely's representative point)."""
+    point = shapely.Polygon(ring).representative_point()
+    return np.array([point.x, point.y])
 
 
 def _sides(graph: HostGraph, face: list, polys: list, outline: np.ndarray, types) -> tuple[tuple, tuple, tuple]:

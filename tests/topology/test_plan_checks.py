@@ -1,0 +1,147 @@
+"""The vault rulebook's invariants and their host functions (rules/invariants.vgr, topology/functions.py),
+and the topology's stage check that no patch encloses a hole (topology/patches.py)."""
+
+import shutil
+
+import numpy as np
+import pytest
+
+from vaultgram.domain import domain_from_dict, load_domain
+from vaultgram.engine.invariants import InvariantError
+from vaultgram.errors import RewriteError
+from vaultgram.pipeline import decompose
+from vaultgram.topology import functions as f
+from vaultgram.topology.patches import enclosed_holes
+from vaultgram.topology.rulebook import default_rules_dir, load_vault_rulebook
+
+from paths import EXAMPLES
+
+EXAMPLE_NAMES = ["l_shape", "quad_with_hole", "fig5_boundary_points", "fig6_inner_points", "fig7_curves",
+                 "features_combined", "square_point_loads"]
+
+
+@pytest.mark.parametrize("name", EXAMPLE_NAMES)
+def test_examples_keep_every_invariant(name):
+    dec = decompose(load_domain(EXAMPLES / f"{name}.json"), 0.03, check_invariants=True)
+    g = dec.graph
+    assert dec.invariant_checks > 0
+    holes = len(load_domain(EXAMPLES / f"{name}.json").holes)
+    assert f.hole_count(g) == holes and f.plan_euler(g) == 1 - holes and f.holes_enclosed(g) == 0
+    assert f.plan_area(g) == pytest.approx(sum(p.area() for p in dec.patches), rel=1e-12)
+    assert f.plan_area(g) == pytest.approx(f.domain_area(g), rel=1e-9)
+    assert f.curve_crossings(g) == 0
+    assert all(f.patch_in_plan(g, p) for p in dec.patch_nodes())
+
+
+def test_bundled_rulebook_declares_the_invariants():
+    book = load_vault_rulebook()
+    assert {"patches_in_step_with_the_plan", "patches_have_three_or_four_sides", "patches_are_disks",
+            "patches_tile_the_domain", "euler_characteristic", "features_are_patch_corners",
+            "layout_does_not_cross_curves"} <= set(book.invariants)
+
+
+def test_enclosed_holes_finds_a_hole_inside_a_face():
+    square = np.array([[0, 0], [4, 0], [4, 4], [0, 4]], float)
+    hole = np.array([[1, 1], [1, 2], [2, 2], [2, 1]], float)
+    far = hole + 10
+    assert enclosed_holes([square], [hole, far]) == [(0, 0)]
+    assert enclosed_holes([square], []) == []
+
+
+def test_curve_crossings_counts_a_branch_across_a_curve():
+    dec = decompose(load_domain(EXAMPLES / "fig7_curves.json"), 0.03)
+    g = dec.graph
+    curve = next(e for e in g.edges() if g.edge_type(e) == "Curve")
+    a, b = (np.asarray(g.get(n, "pos")) for n in g.ends(curve))
+    mid, normal = (a + b) / 2, np.array([b[1] - a[1], a[0] - b[0]])
+    s = next(n for n in g.nodes() if g.node_type(n) == "Singularity")
+    across = ((mid - normal).tolist(), (mid + normal).tolist())
+    g.add_edge("Branch", s, g.ends(curve)[0], {"polyline": (tuple(g.get(s, "pos")), *map(tuple, across),
+                                                            tuple(a))})
+    assert f.curve_crossings(g) >= 1
+
+
+def test_a_patch_around_a_hole_is_a_loud_error_whatever_the_rules(tmp_path):
+    """The stage check: a rebranch that never reaches a hole's ring leaves the ring of patches around
+    the hole as one patch; decompose fails, without any invariant checked."""
+    rules = tmp_path / "rules"
+    shutil.copytree(default_rules_dir(), rules, ignore=shutil.ignore_patterns("*.py", "__pycache__"))
+    text = (rules / "topology.vgr").read_text()
+    broken = text.replace("v: Point  s -Dual-> v", "v: BoundaryVertex { ring: 0 }  s -Dual-> v")
+    (rules / "topology.vgr").write_text(broken)
+    with pytest.raises(RewriteError, match="encloses hole 1"):
+        decompose(load_domain(EXAMPLES / "quad_with_hole.json"), 0.03, rules_dir=rules)
+
+
+#: Found by `vaultgram rules test` (with outlines notched deeper than vault_domains draws, radii from 4
+#: instead of 5): a point feature near a reflex corner. Three singularities close together were
+#: merged and a branch end moved to the midpoint hooked round a rebranch: the layout was not planar
+#: and a face had 10 sides. move_branch_end drops the hooking points.
+NOTCHED = {"outer": [[3.876, 0.990], [4.592, 7.741], [-2.227, 8.720], [-4.945, 2.934], [-3.876, -0.990],
+                     [-2.041, -3.440], [0.990, -3.876], [6.881, -4.081]], "points": [[1.0, 0.0]]}
+
+#: Found by `vaultgram rules test --seed 3`: a plain 7-gon whose layout is not planar at spacing 0.04.
+HEPTAGON = {"outer": [[6.0, 0.0], [3.468, 4.349], [-1.780, 7.799], [-4.955, 2.386], [-5.181, -2.495],
+                      [-1.113, -4.875], [3.117, -3.909]]}
+
+
+@pytest.mark.parametrize("spacing", [0.02, 0.03, 0.04])
+def test_merged_junctions_keep_the_layout_planar(spacing):
+    dec = decompose(domain_from_dict(NOTCHED), spacing, check_invariants=True)
+    assert {p.n_sides for p in dec.patches} <= {3, 4} and f.plan_crossings(dec.graph) == 0
+
+
+def test_move_branch_end_drops_a_hook_and_only_a_hook():
+    dec = decompose(load_domain(EXAMPLES / "l_shape.json"), 0.05)
+    g = dec.graph
+    s = dec.singularities()[0]
+    e = next(iter(g.incident(s, ["Branch"])))
+    poly, pos = g.get_edge(e, "polyline"), g.get(s, "pos")
+    assert f.move_branch_end(g, poly, pos, pos, s, s) == f.move_end(poly, pos, pos)  # no hook: move_end
+    dual = [g.get(g.ends(d)[1], "pos") for d in g.incident(s, ["Dual"])]
+    spoke = np.asarray(dual[0]) - np.asarray(pos)  # a hook: the second point across a radius and back
+    side = np.array([-spoke[1], spoke[0]]) / np.hypot(*spoke)
+    hooked = (tuple(pos), tuple(np.asarray(pos) + 0.3 * spoke + 0.05 * side),
+              tuple(np.asarray(pos) + 0.3 * spoke - 0.05 * side), *map(tuple, poly[1:]))
+    straight = f.move_branch_end(g, hooked, pos, pos, s, s)
+    assert len(straight) < len(hooked) and straight[0] == tuple(map(float, pos))
+
+
+def test_the_planarity_invariant_names_a_non_planar_layout():
+    with pytest.raises(InvariantError, match="layout_is_planar"):
+        decompose(domain_from_dict(HEPTAGON), 0.04, check_invariants=True)
+
+
+@pytest.mark.xfail(strict=True, reason="known bug found by rules test: the heptagon's layout is not planar at 0.04")
+def test_the_heptagon_decomposes():
+    dec = decompose(domain_from_dict(HEPTAGON), 0.04)
+    assert {p.n_sides for p in dec.patches} <= {3, 4}
+
+
+#: Found by `vaultgram rules test --seed 1` with holes the spacing does not resolve (vault_domains keeps
+#: only holes of circumradius and clearance >= 2 h): an octagon with a triangular hole and a boundary
+#: point; at spacing 0.04 the layout after patching is not a map of disks (a face of 10 sides).
+OCTAGON_WITH_TRIANGLE = {  # the exact coordinates: rounded to 3 decimals it decomposes
+    "outer": [
+        [9.0, 0.0],
+        [5.656854249492381, 5.65685424949238],
+        [3.3677786976552215e-16, 5.5],
+        [-4.242640687119285, 4.242640687119286],
+        [-7.0, 8.572527594031472e-16],
+        [-4.242640687119286, -4.242640687119285],
+        [-9.184850993605148e-16, -5.0],
+        [4.242640687119284, -4.242640687119286],
+    ],
+    "holes": [[
+        [-2.0, 0.0],
+        [-4.25, -1.299038105676658],
+        [-4.250000000000001, 1.2990381056766576],
+    ]],
+    "points": [[-2.121320343559642, 4.871320343559643]],
+}
+
+
+@pytest.mark.xfail(strict=True, reason="known bug found by rules test: a face of 10 sides after patching")
+def test_the_octagon_with_a_small_triangular_hole_decomposes():
+    dec = decompose(domain_from_dict(OCTAGON_WITH_TRIANGLE), 0.04)
+    assert {p.n_sides for p in dec.patches} <= {3, 4}
