@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["distinct", "row_dot"]
+__all__ = ["distinct", "row_dot", "unit_rows"]
 
 
 def distinct(values) -> np.ndarray:
@@ -30,3 +30,12 @@ def row_dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     [6.0, 5.0]
     """
     return np.einsum("ij,ij->i", a, b)
+
+
+def unit_rows(v: np.ndarray) -> np.ndarray:
+    """Each row of ``v`` scaled to unit length (a zero row stays zero).
+
+    >>> unit_rows(np.array([[3.0, 4.0], [0.0, 0.0]])).tolist()
+    [[0.6, 0.8], [0.0, 0.0]]
+    """
+    return v / np.maximum(np.sqrt(row_dot(v, v)), 1e-300)[:, None]

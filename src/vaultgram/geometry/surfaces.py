@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
-from vaultgram.geometry.arrays import row_dot
+from vaultgram.geometry.arrays import row_dot, unit_rows
 from vaultgram.geometry.meshes import corner_arrays
 
 __all__ = [
@@ -51,11 +51,6 @@ def surface_areas(vertices: np.ndarray, faces) -> np.ndarray:
     return np.linalg.norm(area_vectors(vertices, faces), axis=1)
 
 
-def _unit(v: np.ndarray) -> np.ndarray:
-    length = np.linalg.norm(v, axis=-1, keepdims=True)
-    return v / np.where(length > 0, length, 1.0)
-
-
 def vertex_normals(vertices: np.ndarray, faces) -> np.ndarray:
     """Unit normal at each vertex: the sum of the vector areas of its faces, normalised (area-weighted).
 
@@ -68,7 +63,7 @@ def vertex_normals(vertices: np.ndarray, faces) -> np.ndarray:
     out = np.zeros((len(vertices), 3))
     for k in range(3):
         out[:, k] = np.bincount(u, weights=a[face, k], minlength=len(vertices))
-    return _unit(out)
+    return unit_rows(out)
 
 
 def loop_planes(vertices: np.ndarray, loops, up=None) -> tuple[np.ndarray, np.ndarray]:

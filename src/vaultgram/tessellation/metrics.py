@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from vaultgram.geometry.arrays import distinct, row_dot
+from vaultgram.geometry.arrays import distinct, row_dot, unit_rows
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.geometry.surfaces import area_vectors
@@ -26,10 +26,6 @@ from vaultgram.tessellation.voussoirs import max_corner_angles, voussoirs_at_ver
 
 __all__ = ["force_angles", "summarise", "format_summary", "meeting_points", "joint_force_angles", "joint_tilts",
            "euler_characteristic"]
-
-
-def _unit(v: np.ndarray) -> np.ndarray:
-    return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-300)
 
 
 def inner_vertices(layout: VoussoirLayout, n: int) -> np.ndarray:
@@ -51,7 +47,7 @@ def _histogram(count: np.ndarray) -> dict:
 
 
 def _face_normals(x: np.ndarray, layout: VoussoirLayout) -> np.ndarray:
-    return _unit(area_vectors(x, layout.mesh.faces))
+    return unit_rows(area_vectors(x, layout.mesh.faces))
 
 
 def force_angles(x: np.ndarray, me: MeshEdges, face_normals: np.ndarray, edges: np.ndarray) -> np.ndarray:
@@ -59,9 +55,9 @@ def force_angles(x: np.ndarray, me: MeshEdges, face_normals: np.ndarray, edges: 
     across it: the mean direction of the network edges crossing it (the sides leaving the edge's
     ends in the faces on both sides, turned to point the same way across)."""
     a, b = me.edges[edges, 0], me.edges[edges, 1]
-    d = _unit(x[b] - x[a])
-    normal = _unit(face_normals[me.faces_of[edges]].sum(axis=1))
-    across = _unit(np.cross(normal, d))
+    d = unit_rows(x[b] - x[a])
+    normal = unit_rows(face_normals[me.faces_of[edges]].sum(axis=1))
+    across = unit_rows(np.cross(normal, d))
     flow = np.zeros_like(across)
     for side in (0, 1):
         c = me.corners_of[edges, side]
@@ -71,9 +67,9 @@ def force_angles(x: np.ndarray, me: MeshEdges, face_normals: np.ndarray, edges: 
         next_c = start + (me.corner_side[c] + 1) % size
         sides = (x[me.corner_vertex[prev_c]] - x[me.corner_vertex[c]], x[me.corner_next[next_c]] - x[me.corner_next[c]])
         for t in sides:
-            t = _unit(t)
+            t = unit_rows(t)
             flow += t * np.sign(row_dot(t, across))[:, None]
-    cos = np.abs(row_dot(_unit(flow), across))
+    cos = np.abs(row_dot(unit_rows(flow), across))
     return np.degrees(np.arccos(np.clip(cos, 0.0, 1.0)))
 
 
@@ -98,9 +94,9 @@ def joint_tilts(x: np.ndarray, normals: np.ndarray, layout: VoussoirLayout, face
     (``normals`` at the vertices, ``face_normals`` of the layout's faces, computed if not given)."""
     me, j = layout.edges, layout.joints
     a, b = me.edges[j, 0], me.edges[j, 1]
-    plane = _unit(np.cross(x[b] - x[a], normals[a] + normals[b]))
+    plane = unit_rows(np.cross(x[b] - x[a], normals[a] + normals[b]))
     faces = _face_normals(x, layout) if face_normals is None else face_normals
-    normal = _unit(faces[me.faces_of[j]].sum(axis=1))
+    normal = unit_rows(faces[me.faces_of[j]].sum(axis=1))
     return np.degrees(np.arcsin(np.clip(np.abs(row_dot(plane, normal)), 0.0, 1.0)))
 
 

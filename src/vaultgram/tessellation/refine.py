@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from vaultgram.geometry.halfedges import MeshEdges, mesh_edges
-from vaultgram.geometry.meshes import Faces, with_midpoints
+from vaultgram.geometry.meshes import Faces, corner_arrays, with_midpoints
 from vaultgram.geometry.surfaces import surface_areas
 from vaultgram.tessellation.strips import Strip, node_strips, quad_strips, strip_directions
 
@@ -97,15 +97,14 @@ def refine_large_faces(x: np.ndarray, faces, large: float = LARGE, passes: int =
     Returns the vertices, the faces, for every added vertex the vertices it is the mean of, for every
     face the input face it comes from, and the number of strips refined.
     """
-    area = surface_areas(x, faces)
-    quads = np.array([len(f) == 4 for f in faces], dtype=bool)
+    faces = faces if isinstance(faces, Faces) else Faces(tuple(f) for f in faces)
+    area, quads = _quad_areas(x, faces)
     limit = large * float(np.median(area[quads])) if quads.any() else np.inf
     parents: list = []
     refined = 0
-    faces = Faces(tuple(f) for f in faces)
     origin = np.arange(len(faces))
     for _ in range(passes):
-        big = np.flatnonzero((surface_areas(x, faces) > limit) & np.array([len(f) == 4 for f in faces]))
+        big = np.flatnonzero((area > limit) & quads)
         if not len(big):
             break  # (the strips are walked only when there is something to refine)
         me = mesh_edges(faces, len(x))
@@ -116,4 +115,10 @@ def refine_large_faces(x: np.ndarray, faces, large: float = LARGE, passes: int =
         parents += new_parents
         origin = origin[new_origin]
         refined += len(chosen)
+        area, quads = _quad_areas(x, faces)
     return x, faces, parents, origin, refined
+
+
+def _quad_areas(x: np.ndarray, faces: Faces) -> tuple[np.ndarray, np.ndarray]:
+    """The area of every face, and which faces are quads."""
+    return surface_areas(x, faces), np.bincount(corner_arrays(faces)[0], minlength=len(faces)) == 4

@@ -42,7 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
-from vaultgram.geometry.arrays import distinct, row_dot
+from vaultgram.geometry.arrays import distinct, row_dot, unit_rows
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.tessellation.strips import Strip, strip_directions
 
@@ -90,10 +90,6 @@ class Bond:
     target: float
 
 
-def _unit(d: np.ndarray) -> np.ndarray:
-    return d / np.maximum(np.linalg.norm(d, axis=1), 1e-300)[:, None]
-
-
 def preferential_directions(x: np.ndarray, me: MeshEdges, supported: np.ndarray, rings=()) -> np.ndarray:
     """Per edge, the unit plan direction of the unsupported boundary edge closest to the edge's
     midpoint (of the closest boundary edge when the whole boundary is supported). The edges
@@ -106,7 +102,7 @@ def preferential_directions(x: np.ndarray, me: MeshEdges, supported: np.ndarray,
     ref = np.concatenate([ref, np.asarray(rings, dtype=np.int64)])
     a, b = x[edges[ref, 0], :2], x[edges[ref, 1], :2]
     _, nearest = cKDTree(0.5 * (a + b)).query(0.5 * (x[edges[:, 0], :2] + x[edges[:, 1], :2]), workers=-1)
-    return _unit(b - a)[nearest]
+    return unit_rows(b - a)[nearest]
 
 
 def quad_directions(x: np.ndarray, me: MeshEdges, pref: np.ndarray, is_quad: np.ndarray) -> np.ndarray:
@@ -115,7 +111,7 @@ def quad_directions(x: np.ndarray, me: MeshEdges, pref: np.ndarray, is_quad: np.
     direction. Where both run about as close (within :data:`AMBIGUITY`), the quad follows the
     majority of its neighbours, :data:`SMOOTHING` times, so courses do not fray along the diagonals."""
     d = x[me.edges[:, 1], :2] - x[me.edges[:, 0], :2]
-    align = np.abs(row_dot(_unit(d), pref))
+    align = np.abs(row_dot(unit_rows(d), pref))
     quad_corner = is_quad[me.corner_face]
     c = np.flatnonzero(quad_corner)
     f, side = me.corner_face[c], me.corner_side[c]

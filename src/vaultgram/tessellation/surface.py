@@ -16,7 +16,7 @@ import numpy as np
 
 from vaultgram.errors import MeshError, TessellationError
 from vaultgram.geometry.halfedges import MeshEdges, mesh_edges
-from vaultgram.geometry.meshes import boundary_loops
+from vaultgram.geometry.meshes import Faces, boundary_loops
 
 __all__ = ["ThrustSurface", "surface_from_network", "surface_from_json"]
 
@@ -78,7 +78,7 @@ def _checked_faces(faces, n: int, where: str) -> tuple:
         out.append(f)
     if not out:
         raise TessellationError(f"{where}: the network has no faces")
-    return tuple(out)
+    return Faces(out)
 
 
 def _checked_edges(faces: tuple, n: int, where: str) -> MeshEdges:
