@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["distinct", "row_dot", "unit_rows"]
+__all__ = ["distinct", "run_starts", "row_dot", "unit_rows"]
 
 
 def distinct(values) -> np.ndarray:
@@ -19,7 +19,16 @@ def distinct(values) -> np.ndarray:
     [1, 3, 7]
     """
     s = np.sort(np.asarray(values).ravel())
-    return s[np.concatenate([[True], s[1:] != s[:-1]])] if len(s) else s
+    return s[run_starts(s)]
+
+
+def run_starts(keys: np.ndarray) -> np.ndarray:
+    """Where each run of equal values of the sorted 1-d ``keys`` starts.
+
+    >>> run_starts(np.array([1, 1, 3, 7, 7])).tolist()
+    [True, False, True, True, False]
+    """
+    return np.concatenate([[True], keys[1:] != keys[:-1]]) if len(keys) else np.zeros(0, dtype=bool)
 
 
 def row_dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:

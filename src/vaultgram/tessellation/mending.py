@@ -43,7 +43,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-from vaultgram.geometry.arrays import distinct
+from vaultgram.geometry.arrays import distinct, run_starts
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.tessellation.sizes import UPPER
 from vaultgram.tessellation.voussoirs import (
@@ -142,8 +142,7 @@ def _state(me: MeshEdges, removed: np.ndarray, n: int) -> _State:
     n_groups = int(group.max()) + 1 if len(group) else 0
     start = np.searchsorted(group[order], np.arange(n_groups + 1))
     keys = np.sort(me.corner_vertex * n_groups + group[me.corner_face])
-    distinct_keys = keys[np.concatenate([[True], keys[1:] != keys[:-1]])] if len(keys) else keys
-    count = np.bincount(distinct_keys // max(n_groups, 1), minlength=n)  # the voussoirs at each vertex
+    count = np.bincount(keys[run_starts(keys)] // max(n_groups, 1), minlength=n)  # the voussoirs at each vertex
     return _State(group, order, start, count, keys)
 
 

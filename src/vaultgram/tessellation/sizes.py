@@ -21,6 +21,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import breadth_first_order
 
+from vaultgram.geometry.arrays import run_starts
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.geometry.meshes import Faces, with_midpoints
 from vaultgram.geometry.surfaces import surface_areas
@@ -74,17 +75,12 @@ def _halving_edges(me: MeshEdges, removed: np.ndarray, group: np.ndarray, area: 
     gap = np.abs(size[g] - 2 * below[np.where(parent[a] == b, a, b)])  # below the end further from the root
     order = np.lexsort((links, gap, g))
     order = order[tree[g[order]]]
-    first = order[_firsts(g[order])]
+    first = order[run_starts(g[order])]
     found = dict(zip(g[first].tolist(), links[first].tolist()))
     for k in np.flatnonzero(large & ~tree & (n_links > 0)).tolist():
         mine = links[g == k]
         found[k] = min(mine.tolist(), key=lambda e: (abs(size[k] - 2 * _side_area(me, mine, area, e)), e))
     return sorted(found.items())
-
-
-def _firsts(keys: np.ndarray) -> np.ndarray:
-    """Where each run of equal values of the sorted ``keys`` starts."""
-    return np.concatenate([[True], keys[1:] != keys[:-1]]) if len(keys) else np.zeros(0, dtype=bool)
 
 
 def _subtree_areas(a: np.ndarray, b: np.ndarray, group: np.ndarray, area: np.ndarray, faces: np.ndarray
@@ -94,7 +90,7 @@ def _subtree_areas(a: np.ndarray, b: np.ndarray, group: np.ndarray, area: np.nda
     and outside)."""
     n = len(area)
     by_group = faces[np.argsort(group[faces], kind="stable")]
-    roots = by_group[_firsts(group[by_group])]
+    roots = by_group[run_starts(group[by_group])]
     top = n  # one node above every root, so that one search roots them all
     pairs = (np.concatenate([a, np.full(len(roots), top)]), np.concatenate([b, roots]))
     graph = coo_matrix((np.ones(len(pairs[0])), pairs), shape=(n + 1, n + 1))
