@@ -145,3 +145,34 @@ OCTAGON_WITH_TRIANGLE = {  # the exact coordinates: rounded to 3 decimals it dec
 def test_the_octagon_with_a_small_triangular_hole_decomposes():
     dec = decompose(domain_from_dict(OCTAGON_WITH_TRIANGLE), 0.04)
     assert {p.n_sides for p in dec.patches} <= {3, 4}
+
+
+#: Found by `vaultgram rules test --examples 500` (the default draws): a quad with a point and a bent
+#: curve; at spacing 0.04 a T-junction snapped to the curve's end drew a straight rebranch across a
+#: bent branch. The snap now needs a clear path (rules/curves.vgr, snap_t_junction_to_curve_end).
+QUAD_WITH_CURVE = {"outer": [[5.0, 0.0], [0.0, 7.0], [-6.0, 0.0], [0.0, -5.0]], "points": [[0.0, 0.0]],
+                   "curves": [[[-2.0, 0.0], [-0.9193953882637205, 1.682941969615793],
+                               [-0.7779209849283146, 3.6779319428239017]]]}
+
+
+def test_a_t_junction_snaps_to_a_curve_end_only_along_a_clear_path():
+    dec = decompose(domain_from_dict(QUAD_WITH_CURVE), 0.04, check_invariants=True)
+    assert {p.n_sides for p in dec.patches} <= {3, 4} and f.plan_crossings(dec.graph) == 0
+
+
+#: Found by the same run once that was fixed: a 7-gon with a triangular hole, a point and a straight
+#: curve; at spacing 0.03 V - E + F of the layout after patching is not 1 - holes.
+HEPTAGON_WITH_HOLE_AND_CURVE = {
+    "outer": [[5.704286652287423, 3.1162660009273195], [1.3786703843820047, 7.880308875369542],
+              [-3.9761149841619763, 4.493385097309445], [-4.993447562976573, -0.25589340711187714],
+              [-2.913298109796165, -4.0635814404854855], [1.3606242405121047, -4.811309767218368],
+              [4.609968786038329, -1.9360237064024535]],
+    "holes": [[[1.0, 0.0], [-0.4999999999999998, -0.8660254037844387], [-0.5000000000000004, 0.8660254037844384]]],
+    "points": [[2.4600744513583592, 6.689298156758985]],
+    "curves": [[[-1.0, 4.5], [0.5, 4.5]]],
+}
+
+
+@pytest.mark.xfail(strict=True, reason="known bug found by rules test: V - E + F is not 1 - holes after patching")
+def test_the_heptagon_with_a_hole_and_a_curve_decomposes():
+    decompose(domain_from_dict(HEPTAGON_WITH_HOLE_AND_CURVE), 0.03, check_invariants=True)
