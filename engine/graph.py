@@ -746,10 +746,9 @@ class HostGraph:
             return
         for n in dict.fromkeys(nodes):
             keys = sorted(self._rotation_key(e, n) for e in self._rot[n])
-            order = [e for _, e in keys]
-            if order != self._rot[n]:
+            if keys != self._rot_keys[n]:  # new keys in the same order too: edges added later are placed by them
                 self._record(_Rotation(n, self._rot[n], self._rot_keys[n]))
-                self._rot[n] = order
+                self._rot[n] = [e for _, e in keys]
                 self._rot_keys[n] = keys
 
     def _set_attr(self, kind: str, i: int, type_name: str, data: dict, name: str, value: object) -> None:

@@ -178,6 +178,21 @@ def test_rotation_by_angle_and_refresh(schema):
     assert g.snapshot() == snap
 
 
+def test_a_move_that_keeps_the_order_still_renews_the_keys_later_edges_are_placed_by(schema):
+    """A neighbour that moves from 80 to 120 degrees stays between its neighbours at 0 and 180, but
+    an edge added afterwards at 100 degrees must come before it, not after (the stale key of 80
+    degrees put it after, and a face walk then ran round the wrong side)."""
+    g = HostGraph(schema, _angle)
+    c = g.add_node("Sing", P())
+    east, west = g.add_node("Bnd", P(1.0, 0.0)), g.add_node("Bnd", P(-1.0, 0.0))
+    moved = g.add_node("Bnd", P(math.cos(math.radians(80)), math.sin(math.radians(80))))
+    e_east, e_west, e_moved = (g.add_edge("Branch", c, n) for n in (east, west, moved))
+    g.set_node_attr(moved, "pos", (math.cos(math.radians(120)), math.sin(math.radians(120))))
+    assert g.rotation(c) == [e_east, e_moved, e_west]  # the same order as before the move
+    late = g.add_edge("Branch", c, g.add_node("Bnd", P(math.cos(math.radians(100)), math.sin(math.radians(100)))))
+    assert g.rotation(c) == [e_east, late, e_moved, e_west]
+
+
 def test_rollback_restores_snapshot_exactly(schema):
     g = HostGraph(schema)
     s = g.add_node("Sing", P())

@@ -42,8 +42,6 @@ def broken_rules(tmp_path, name):
     return rules
 
 
-@pytest.mark.xfail(strict=True, reason="known bug found by rules test in the default draws: V - E + F is not "
-                   "1 - holes after patching (test_plan_checks.py: the heptagon with a hole and a curve)")
 def test_bundled_rulebook_passes_500_examples(tmp_path):
     """The issue's acceptance run, as a user runs it: `vaultgram rules test rules --examples 500`, in a
     process of its own (hypothesis biases its draws with the constants of the modules loaded, so only
