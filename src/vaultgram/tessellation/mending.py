@@ -213,8 +213,9 @@ def _feasible(x: np.ndarray, me: MeshEdges, removed: np.ndarray, state: _State, 
     owner, face = owner[order], face[order]
     loops, single = set_outlines(me, owner, face, 2 * m)
     empty = np.bincount(owner, minlength=2 * m) == 0
-    joined = _joined(me, removed, owner, face, 2 * m)
-    joined[:m] = True  # the move itself joins the face to its target
+    joined = np.ones(2 * m, dtype=bool)  # the move itself joins the face to its target
+    shrunk = owner >= m
+    joined[m:] = _joined(me, removed, owner[shrunk] - m, face[shrunk], m)
     ok = (single & joined) | empty
     check = np.flatnonzero(ok & ~empty)
     angle = np.zeros(2 * m)
