@@ -26,7 +26,7 @@ from vaultgram.geometry.meshes import face_areas
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.polylines import polyline_length
 
-__all__ = ["relax_openings", "relax", "balance", "Relaxed", "opening_edges"]
+__all__ = ["relax_openings", "relax", "Relaxed", "opening_edges"]
 
 RELAX_MODES = ("boundary", "all")
 
@@ -142,35 +142,6 @@ def relax(form: FormDiagram, sag: float = 0.1, *, mode: str = "boundary", q_inte
     return Relaxed(out, system.densities(logq))
 
 
-def balance(form: FormDiagram, q: np.ndarray, floor: float = 0.01) -> Relaxed:
-    """The form diagram moved into exact equilibrium with the force densities ``q`` (per form edge), every
-    free vertex moving (Schek's force density method in plan).
-
-    ``q`` is typically the outcome of a parallelisation that found no compression-only reciprocal of
-    the pattern as meshed: its densities balance the pattern everywhere but on a few edges, so the
-    pattern moves little (a fraction of an edge length on the shared plans at 10^4 faces, where unit
-    densities move it by several). Densities below ``floor`` times the median positive one (tension
-    included) are raised to it; the result is compression only.
-
-    Example
-    -------
-    >>> from vaultgram.formfinding.formdiagram import form_diagram
-    >>> from vaultgram.geometry.meshes import grid_mesh
-    >>> form = form_diagram(*grid_mesh(4))
-    >>> r = balance(form, np.where(np.arange(form.n_edges) == 3, -1.0, 1.0))
-    >>> bool(r.q.min() > 0), bool(np.abs(r.form.xy - form.xy).max() > 0)
-    (True, True)
-    """
-    q = np.asarray(q, dtype=float)
-    positive = q[q > 0]
-    q = np.maximum(q, floor * (float(np.median(positive)) if len(positive) else 1.0))
-    out = form.with_xy(_ForceDensities(form, ~form.anchors, np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64),
-                                       1.0).solve_with(q))
-    _check_not_collapsed(form, out)
-    _check_not_folded(out)
-    return Relaxed(out, q)
-
-
 def _check_options(sag: float, mode: str) -> None:
     if sag <= 0:
         raise FormFindingError(f"sag must be positive, got {sag}")
@@ -243,11 +214,7 @@ class _ForceDensities:
 
     def solve(self, logq: np.ndarray) -> np.ndarray:
         """Plan positions in equilibrium for the opening force densities ``exp(logq)``."""
-        return self.solve_with(self.densities(logq))
-
-    def solve_with(self, q: np.ndarray) -> np.ndarray:
-        """Plan positions in equilibrium for the force densities ``q`` (per form edge)."""
-        Q = sp.diags(q)
+        Q = sp.diags(self.densities(logq))
         A = (self.Cm.T @ Q @ self.Cm).tocsc()
         b = -(self.Cm.T @ (Q @ (self.Cs @ self.xs)))
         xy = self.xy0.copy()
