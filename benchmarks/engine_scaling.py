@@ -11,17 +11,22 @@ edges of type E) of about 10^3, 10^4 and 10^5 nodes. For each size:
   applies every match one at a time with incremental re-matching;
 * measure one incremental re-match after a single local change (delete one E edge).
 
-Usage: python benchmarks/engine_scaling.py [--sizes 1000 10000 100000] [--no-baseline]
+Usage: python benchmarks/engine_scaling.py [--sizes 1000 10000 100000] [--no-baseline] [--construction]
+
+``--construction`` only times building the host graph: in bulk from arrays, one element at a time,
+and as a networkx Graph (the issue-18 floor: bulk at most 3x networkx; sizes up to 10^6 are cheap).
 Prints a table; never used by tests.
 """
 
 from __future__ import annotations
 
 import argparse
+import gc
 import math
 import time
 
 import networkx as nx
+import numpy as np
 from networkx.algorithms import isomorphism
 
 from vaultgram.engine.columnar import forget_arrays
@@ -66,6 +71,50 @@ def grid(rulebook, n_nodes: int) -> HostGraph:
                 g.add_edge("E", n, n + side)
     g.forget()
     return g
+
+
+def grid_arrays(n_nodes: int):
+    """The checkerboard grid of :func:`grid` as arrays: A ids, B ids, edge ends (k, 2)."""
+    side = int(math.isqrt(n_nodes))
+    ids = np.arange(side * side)
+    i, j = np.divmod(ids, side)
+    ends = np.vstack([np.column_stack([ids[j + 1 < side], ids[j + 1 < side] + 1]),
+                      np.column_stack([ids[i + 1 < side], ids[i + 1 < side] + side])])
+    return ids[(i + j) % 2 == 0], ids[(i + j) % 2 == 1], ends
+
+
+def construction(size: int) -> dict:
+    """Seconds to build the grid host graph in bulk from arrays (``add_nodes`` / ``add_edges``, the
+    cyclic garbage collector paused), one element at a time (:func:`grid`), and as a networkx Graph
+    with a type attribute (acceptance: bulk at most 3x networkx)."""
+    rulebook = rulebook_from_text(RULES)
+    a, b, ends = grid_arrays(size)
+
+    def bulk():
+        g = HostGraph(rulebook.schema)
+        g.add_nodes("A", a)
+        g.add_nodes("B", b)
+        g.add_edges("E", ends)
+        return g
+
+    def networkx():
+        h = nx.Graph()
+        h.add_nodes_from(a.tolist(), type="A")
+        h.add_nodes_from(b.tolist(), type="B")
+        h.add_edges_from(ends.tolist(), type="E")
+        return h
+
+    row = {"nodes": len(a) + len(b), "edges": len(ends)}
+    for name, build in (("bulk_s", bulk), ("one_by_one_s", lambda: grid(rulebook, size)), ("networkx_s", networkx)):
+        paused = gc.isenabled()
+        gc.disable()
+        try:
+            _, row[name] = timed(build)
+        finally:
+            if paused:
+                gc.enable()
+    row["bulk_vs_networkx"] = row["bulk_s"] / row["networkx_s"]
+    return row
 
 
 def networkx_baseline(g: HostGraph) -> tuple[int, float]:
@@ -143,7 +192,17 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[1_000, 10_000, 100_000])
     parser.add_argument("--no-baseline", action="store_true", help="skip the networkx baseline")
+    parser.add_argument("--construction", action="store_true",
+                        help="only time building the host graph (bulk, one by one, networkx); 10^6 nodes take ~1 min")
     args = parser.parse_args()
+    if args.construction:
+        cols = ["nodes", "edges", "bulk_s", "one_by_one_s", "networkx_s", "bulk_vs_networkx"]
+        print(" ".join(f"{c:>16}" for c in cols))
+        for size in args.sizes:
+            row = construction(size)
+            print(" ".join(f"{row[c]:>16.4g}" if isinstance(row[c], float) else f"{row[c]:>16}" for c in cols),
+                  flush=True)
+        return
     cols = ["nodes", "edges", "matches", "engine_s", "warm_s", "as_objects_s", "networkx_s", "speedup", "all_s",
             "all_applied", "fixpoint_recheck_s", "fixpoint_s", "fixpoint_applied", "incremental_ms"]
     print(" ".join(f"{c:>18}" for c in cols))

@@ -2,6 +2,11 @@
 
 Run:  python benchmarks/formfinding_scaling.py [n ...] [--quick] [--peer-max-n N] [--no-peer]
                                                [--peer-horizontal nodal|sparse] [--peer-tight]
+                                               [--plans [PLAN ...]] [--plan-faces N ...]
+
+``1000`` among the sizes is the 10^6-face grid (floor: under 15 s and 4 GB; growth exponent from
+n = 100 to the largest at most 1.1); ``--plans`` form-finds shared plans at several resolutions and
+compares their heights (acceptance: within 2% of zmax).
 
 Prints, per grid: vertices, time to build the form diagram, force diagram, horizontal and vertical
 equilibrium (self-weight, zmax = n/4, loads and scale iterated to 1e-12), iterations and the final max
@@ -34,6 +39,7 @@ Differences between the two set-ups that the comparison cannot remove (see bench
 from __future__ import annotations
 
 import argparse
+import resource
 import sys
 import time
 from pathlib import Path
@@ -51,6 +57,16 @@ QUICK_SIZES = [10, 20]
 PEER_KMAX = 100
 
 
+def _growth(results: dict) -> None:
+    """The time's growth exponent between the smallest and the largest grid of at least 10^4 faces
+    (acceptance: at most 1.1 from 10^4 to 10^6 faces)."""
+    big = sorted(n for n in results if n >= 100)
+    if len(big) >= 2:
+        a, b = results[big[0]], results[big[-1]]
+        k = np.log(b["total"] / a["total"]) / np.log(b["vertices"] / a["vertices"])
+        print(f"     growth exponent n = {big[0]} -> {big[-1]}: {k:.2f} (floor: at most 1.1)")
+
+
 def run_vaultgram(n: int) -> dict:
     v, f = grid_mesh(n)
     timings: dict = {}
@@ -62,7 +78,8 @@ def run_vaultgram(n: int) -> dict:
             "h_iter": s["horizontal_iterations"], "v_iter": s["vertical_iterations"],
             "angle": s["max_angle_deg"], "residual": s["vertical_residual"] / s["total_load"],
             "n_form": s["n_vertices"], "scale": s["scale"], "zmax": s["zmax"],
-            "z": dict(zip(tn.vertex_ids.tolist(), tn.vertices[:, 2].tolist()))}
+            "z": dict(zip(tn.vertex_ids.tolist(), tn.vertices[:, 2].tolist())),
+            "peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}
 
 
 def vaultgram_horizontal_fixed_iterations(n: int, kmax: int = PEER_KMAX) -> float:
@@ -187,6 +204,51 @@ def run_meshes(face_counts) -> None:
     print("min q = smallest force density / median (all q > 0: compression only)")
 
 
+def run_plans(plans, face_counts) -> None:
+    """Shared plans at several resolutions with the defaults of ``vaultgram design`` (supports of the
+    plan, default rise, automatic relaxation): convergence, time, peak memory, and how far the heights
+    of each resolution are from the next coarser one at its plan points (linear interpolation of the
+    finer network), as a fraction of zmax (acceptance: below 2%)."""
+    import resource
+
+    from scipy.interpolate import LinearNDInterpolator
+
+    from vaultgram.domain import load_domain
+    from vaultgram.pipeline import mesh_domain, thrust_of_mesh
+
+    folder = Path(__file__).resolve().parents[2] / "shared" / "data" / "architecture"
+    print("\nshared plans, defaults of vaultgram design; times in seconds, dz = max height difference to the "
+          "previous resolution / zmax")
+    head = (f"{'plan':>16} {'faces':>8} {'mesh':>7} {'form find':>9} {'relax':>6} {'h_it':>5} {'angle':>9} "
+            f"{'q>0':>4} {'dz':>7} {'peak MB':>8}")
+    print(head)
+    print("-" * len(head))
+    for plan in plans:
+        domain, previous = load_domain(folder / f"{plan}.json"), None
+        for faces in face_counts:
+            t0 = time.perf_counter()
+            mesh = mesh_domain(domain, 0.02, target_length=float(np.sqrt(domain.area / faces)))
+            t1 = time.perf_counter()
+            try:
+                tn = thrust_of_mesh(mesh, domain.supports, domain)
+            except Exception as exc:  # a failure is a result of the benchmark, reported
+                print(f"{plan:>16} {len(mesh.faces):>8} {t1 - t0:>7.2f} failed: {str(exc)[:90]}", flush=True)
+                continue
+            t2 = time.perf_counter()
+            s, xyz = tn.summary, tn.vertices
+            dz = ""
+            if previous is not None:
+                z = LinearNDInterpolator(xyz[:, :2], xyz[:, 2])(previous[:, :2])
+                ok = np.isfinite(z)
+                dz = f"{np.max(np.abs(z[ok] - previous[ok, 2])) / s['zmax']:.2%}"
+            previous = xyz
+            peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+            compression = str(bool(np.all(tn.q[tn.form.active] > 0)))
+            print(f"{plan:>16} {len(mesh.faces):>8} {t1 - t0:>7.2f} {t2 - t1:>9.2f} {s['relax_mode']:>6} "
+                  f"{s['horizontal_iterations']:>5} {s['max_angle_deg']:>9.2e} {compression:>4} "
+                  f"{dz:>7} {peak:>8.0f}", flush=True)
+
+
 def parse_args(argv):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("sizes", nargs="*", type=int, help=f"grid sizes n (default {DEFAULT_SIZES})")
@@ -198,6 +260,11 @@ def parse_args(argv):
     p.add_argument("--mesh-faces", type=int, nargs="+", default=[1_000, 10_000, 100_000],
                    help="approximate face counts of the quad_with_hole meshes (default 10^3, 10^4, 10^5; "
                         "10^5 takes about 10 s to mesh and form-find)")
+    p.add_argument("--plans", nargs="*", default=None, metavar="PLAN",
+                   help="shared plans to form-find at --plan-faces (default with no names: armadillo_vault, "
+                        "multiple_lobes, rv_quad_pattern)")
+    p.add_argument("--plan-faces", type=int, nargs="+", default=[10_000, 100_000],
+                   help="approximate face counts of the plans (default 10^4 and 10^5; add 1000000 for 10^6)")
     p.add_argument("--peer-horizontal", choices=("nodal", "sparse"), default="nodal",
                    help="compas_tna horizontal solver: horizontal_nodal_numpy (default) or horizontal_numpy")
     p.add_argument("--peer-tight", action="store_true",
@@ -227,8 +294,15 @@ def main(argv=None) -> None:
         if n == 100:
             print(f"     n = 100 floor (< 1 s): {'met' if r['total'] < 1.0 else 'MISSED'}")
 
+        if n >= 1000:
+            met = r["total"] < 15.0 and r["peak_mb"] < 4096
+            print(f"     n = {n} floor (< 15 s, < 4 GB peak): {'met' if met else 'MISSED'}"
+                  f" ({r['total']:.1f} s, {r['peak_mb']:.0f} MB)")
+    _growth(results)
     if not args.no_meshes:
         run_meshes(args.mesh_faces)
+    if args.plans is not None:
+        run_plans(args.plans or ["armadillo_vault", "multiple_lobes", "rv_quad_pattern"], args.plan_faces)
     if args.no_peer:
         print("\npeer comparison skipped (--no-peer)")
         return

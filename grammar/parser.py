@@ -46,6 +46,7 @@ from lark.exceptions import (
     VisitError,
 )
 
+from vaultgram.grammar import cache
 from vaultgram.grammar.ast import (
     Attr,
     AttrDecl,
@@ -108,6 +109,7 @@ def _lark() -> Lark:
         lexer="contextual",
         propagate_positions=True,
         maybe_placeholders=True,
+        cache=cache.lark_cache(),
     )
 
 
@@ -132,6 +134,16 @@ def parse_text(text: str, filename: str = "<string>") -> RuleFile:
     ------
     RuleSyntaxError : with the file, line and column of the offending token and a hint.
     """
+    cached = cache.load("ast", filename, text)
+    if isinstance(cached, RuleFile):
+        return cached
+    rule_file = _parsed(text, filename)
+    cache.store(rule_file, "ast", filename, text)
+    return rule_file
+
+
+def _parsed(text: str, filename: str) -> RuleFile:
+    """:func:`parse_text` without the cache."""
     try:
         tree = _parse_tree(text, filename)
         return _ToAst(filename).transform(tree)

@@ -174,14 +174,14 @@ class ForceDiagram(Diagram):
         }
 
 
-def force_diagram(form: FormDiagram) -> ForceDiagram:
+def force_diagram(form: FormDiagram, q: np.ndarray | None = None) -> ForceDiagram:
     """The reciprocal force diagram of ``form`` (Block & Ochsendorf 2007), positioned by least squares.
 
     Every face of the form (openings included) becomes a vertex, every form edge with a free end an
-    edge from its right face to its left face. The positions minimise ``sum |force_e - form_e|^2``
-    (unit force densities), one vertex per component held at the origin: exact when the form is in
-    equilibrium with equal force densities (a regular grid), otherwise the start of
-    :func:`vaultgram.formfinding.horizontal.horizontal`.
+    edge from its right face to its left face. The positions minimise ``sum |force_e - q_e form_e|^2``
+    (unit force densities ``q`` unless given, one per form edge), one vertex per component held at the
+    origin: exact when the form is in equilibrium with these force densities (equal ones on a regular
+    grid, those of a relaxation), otherwise the start of :func:`vaultgram.formfinding.horizontal.horizontal`.
 
     Example
     -------
@@ -199,4 +199,6 @@ def force_diagram(form: FormDiagram) -> ForceDiagram:
         a.setflags(write=False)
     force = ForceDiagram(xy=np.zeros((form.n_faces, 2)), edges=edges, form_edge=active, C=C)
     target = (form.C @ form.xy)[active]
+    if q is not None:
+        target = np.asarray(q, dtype=float)[active, None] * target
     return force.with_xy(PinnedLaplacian(C, force.pins).solve(target, np.zeros((form.n_faces, 2))))

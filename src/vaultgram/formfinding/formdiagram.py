@@ -36,7 +36,7 @@ from vaultgram.errors import FormFindingError
 from vaultgram.formfinding.diagrams import Diagram, connectivity_matrix
 from vaultgram.formfinding.supports import outer_loop
 from vaultgram.geometry.arrays import distinct
-from vaultgram.geometry.meshes import boundary_halfedges, boundary_loops, corner_arrays, face_areas
+from vaultgram.geometry.meshes import Faces, boundary_halfedges, boundary_loops, corner_arrays, face_areas
 
 __all__ = ["FormDiagram", "form_diagram", "connectivity_matrix"]
 
@@ -181,12 +181,25 @@ def _checked_mesh(vertices, faces) -> tuple[np.ndarray, list[tuple[int, ...]]]:
     V = np.asarray(vertices, dtype=float)
     if V.ndim != 2 or V.shape[1] not in (2, 3):
         raise FormFindingError(f"vertices must have shape (n, 2) or (n, 3), got {V.shape}")
-    faces = [tuple(int(i) for i in f) for f in faces]
+    faces = Faces(tuple(map(int, f)) for f in faces)
     if not faces:
         raise FormFindingError("the mesh has no faces")
-    for k, f in enumerate(faces):
-        _check_face(k, f, len(V))
+    bad = _first_bad_face(faces, len(V))
+    if bad is not None:
+        _check_face(bad, faces[bad], len(V))
     return V[:, :2], faces
+
+
+def _first_bad_face(faces: Faces, n: int) -> int | None:
+    """The first face that :func:`_check_face` rejects (None if none), found on the corner arrays
+    without a Python loop over the faces."""
+    fid, vert, _, _ = corner_arrays(faces)
+    lens = np.bincount(fid, minlength=len(faces))
+    bad = (lens < 3) | (np.bincount(fid, weights=((vert < 0) | (vert >= n)), minlength=len(faces)) > 0)
+    order = np.lexsort((vert, fid))
+    repeated = (np.diff(fid[order]) == 0) & (np.diff(vert[order]) == 0)
+    bad[fid[order][1:][repeated]] = True
+    return int(np.argmax(bad)) if bad.any() else None
 
 
 def _check_face(k: int, f: tuple[int, ...], n: int) -> None:
@@ -298,11 +311,14 @@ def _drop_supported_edges(xy: np.ndarray, faces, anchors: np.ndarray, drop: bool
 
 def _without_vertices(index: list[int], faces, dead: np.ndarray) -> tuple[list[int], list[tuple[int, ...]]]:
     """The faces (and their input indices) with the ``dead`` vertices dropped; faces left with < 3 go."""
-    shrunk = [(k, tuple(i for i in f if not dead[i])) for k, f in zip(index, faces)]
+    fid, vert, _, _ = corner_arrays(faces)
+    touched = np.zeros(len(faces), dtype=bool)
+    touched[fid[dead[vert]]] = True
+    shrunk = [(k, tuple(i for i in f if not dead[i]) if t else f) for k, f, t in zip(index, faces, touched.tolist())]
     shrunk = [(k, f) for k, f in shrunk if len(f) >= 3]
     if not shrunk:
         raise FormFindingError("every edge joins two supports: nothing is left to form-find")
-    return [k for k, _ in shrunk], [f for _, f in shrunk]
+    return [k for k, _ in shrunk], Faces(f for _, f in shrunk)
 
 
 class _Network(NamedTuple):
@@ -326,7 +342,10 @@ def _renumbered(xy0: np.ndarray, anchors0: np.ndarray, faces, edges: _Edges) -> 
         raise FormFindingError("no supports left after removing fully supported edges")
     renumbered = np.stack([new[edges.u], new[edges.v]], axis=1)
     renumbered = renumbered[np.lexsort((renumbered[:, 1], renumbered[:, 0]))]
-    loaded = [tuple(int(new[i]) for i in f) for f in faces]
+    _, vert, _, _ = corner_arrays(faces)
+    flat = new[vert].tolist()
+    ends = np.cumsum(np.fromiter(map(len, faces), dtype=np.int64, count=len(faces))).tolist()
+    loaded = [tuple(flat[a:b]) for a, b in zip([0, *ends[:-1]], ends)]
     return _Network(xy0[vertex_ids].copy(), anchors, vertex_ids, renumbered, loaded)
 
 

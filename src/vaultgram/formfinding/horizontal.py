@@ -260,9 +260,10 @@ def horizontal(form: FormDiagram, force: ForceDiagram | None = None, *, alpha: f
     """
     force = force_diagram(form) if force is None else force
     fpm = _Parallelisation(form, force, _form_weight(alpha, length_weight), length_weight)
-    it, k, history, converged = _parallelise(fpm, tol_deg, kmax, stall_window, anderson)
-    new_form = _moved_form(form, fpm, it)
     lp_ok = rescue and len(force.form_edge) <= lp_max_edges
+    flip_window = None if lp_ok else min(stall_window, _FLIP_WINDOW)
+    it, k, history, converged = _parallelise(fpm, tol_deg, kmax, stall_window, anderson, flip_window)
+    new_form = _moved_form(form, fpm, it)
     end = _settled(new_form, fpm, it, converged, min_force, lp_ok, tol_deg, tuple(history))
     res = HorizontalResult(form=new_form, force=force.with_xy(end.y), q=_force_densities(form, force, end),
                            angles=end.angles, max_angle=end.max_angle, iterations=k, history=end.history,
@@ -362,19 +363,32 @@ class _Anderson:
         return plain
 
 
-def _parallelise(fpm: _Parallelisation, tol_deg: float, kmax: int, stall_window: int, anderson: int
-                 ) -> tuple[_Iterate, int, list[float], bool]:
-    """Iterate until the max angle is below ``tol_deg`` (converged), ``kmax`` iterations, or a stall:
-    the last iterate, the number of iterations, the max angle before each and after the last, and
-    whether it converged."""
+#: Without the LP rescue (too many edges), the iteration gives up once some edge has stayed flipped
+#: (max angle above 90 degrees) for this many iterations: on the fine meshes where that happens it
+#: never recovered, and each iteration costs a solve (the pipeline then relaxes the pattern).
+_FLIP_WINDOW = 10
+
+
+def _parallelise(fpm: _Parallelisation, tol_deg: float, kmax: int, stall_window: int, anderson: int,
+                 flip_window: int | None = None) -> tuple[_Iterate, int, list[float], bool]:
+    """Iterate until the max angle is below ``tol_deg`` (converged), ``kmax`` iterations, a stall, or
+    an edge flipped for ``flip_window`` iterations (None: no such test): the last iterate, the number
+    of iterations, the max angle before each and after the last, and whether it converged."""
     it, history, acceleration = fpm.start, [], _Anderson(anderson)
+    flip_window = kmax + 1 if flip_window is None else flip_window
     while True:
         history.append(it.amax)
         if it.amax < tol_deg:
             return it, len(history) - 1, history, True
-        if len(history) > kmax or _stalled(history, stall_window):
+        if len(history) > kmax or _stalled(history, stall_window) or _flipped(history, flip_window):
             return it, len(history) - 1, history, False
         it = acceleration.next(fpm, it, fpm.step(it))
+
+
+def _flipped(history: list[float], window: int) -> bool:
+    """Some edge has been flipped (max angle above 90 degrees) at each of the last ``window`` iterates
+    after the start."""
+    return len(history) > window and min(history[-window:]) > 90.0
 
 
 def _stalled(history: list[float], window: int) -> bool:

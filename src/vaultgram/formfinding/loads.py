@@ -57,9 +57,16 @@ class TributaryAreas:
         c = self.centroid @ xyz
         p0 = xyz[self.vert]
         cp = c - p0
-        a = np.linalg.norm(np.cross(xyz[self.nxt] - p0, cp), axis=1)
-        a += np.linalg.norm(np.cross(xyz[self.prv] - p0, cp), axis=1)
+        a = _cross_norms(xyz[self.nxt] - p0, cp)
+        a += _cross_norms(xyz[self.prv] - p0, cp)
         return 0.25 * np.bincount(self.vert, weights=a, minlength=self.n)
+
+
+def _cross_norms(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``|a_i x b_i|`` of rows of 3-vectors, by components (``np.cross`` copies its operands)."""
+    ax, ay, az = a.T
+    bx, by, bz = b.T
+    return np.sqrt((ay * bz - az * by) ** 2 + (az * bx - ax * bz) ** 2 + (ax * by - ay * bx) ** 2)
 
 
 def tributary_areas(xyz: np.ndarray, faces, n: int | None = None) -> np.ndarray:

@@ -16,11 +16,12 @@ import signal
 import tempfile
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Iterator, Sequence
-
-import numpy as np
+from typing import TYPE_CHECKING, Iterator, Sequence
 
 from vaultgram.errors import VaultgramError
+
+if TYPE_CHECKING:  # numpy is imported where it is used: `vaultgram --help` does not need it
+    import numpy as np
 
 
 def read_json(path: str | Path):
@@ -93,6 +94,8 @@ def write_json(path: str | Path, data) -> None:
 
 
 def _obj_vertices(vertices: np.ndarray) -> list[str]:
+    import numpy as np
+
     v = np.asarray(vertices, dtype=float)
     if v.shape[1] == 2:
         v = np.column_stack([v, np.zeros(len(v))])

@@ -1,0 +1,48 @@
+"""Form finding on fine meshes (issue 18): shared plans meshed at about 10^4 faces converge with the
+defaults -- compression only, max angle below the tolerance -- where the pattern as meshed has no
+compression-only reciprocal (every boundary supported) or the openings' arches fold it: the pattern is
+relaxed with equal force densities (and arches in the openings)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from formfinding.cases import holed_grid
+
+from vaultgram.domain import load_domain
+from vaultgram.formfinding.formdiagram import form_diagram
+from vaultgram.formfinding.horizontal import horizontal
+from vaultgram.pipeline import mesh_domain, thrust_of_mesh
+
+
+@pytest.mark.parametrize("plan, faces, openings", [("rv_quad_pattern", 8000, False),
+                                                   ("armadillo_vault", 10000, True)])
+def test_plan_at_ten_thousand_faces_converges_in_compression(architecture_dir, plan, faces, openings):
+    domain = load_domain(architecture_dir / f"{plan}.json")
+    mesh = mesh_domain(domain, 0.02, target_length=float(np.sqrt(domain.area / faces)))
+    assert len(mesh.faces) > 0.7 * faces
+    tn = thrust_of_mesh(mesh, domain.supports, domain)
+    s = tn.summary
+    assert s["max_angle_deg"] < 0.5
+    assert np.all(tn.q[tn.form.active] > 0)                 # compression only
+    assert s["relax_mode"] == "all"                           # the pattern as meshed had none
+    assert s["horizontal_iterations"] == 0                    # the relaxation's densities: reciprocal at once
+    if not openings:                                          # every free vertex at the mean of its neighbours
+        form = tn.form
+        nbr_sum = np.zeros_like(form.xy)
+        np.add.at(nbr_sum, form.edges[:, 0], form.xy[form.edges[:, 1]])
+        np.add.at(nbr_sum, form.edges[:, 1], form.xy[form.edges[:, 0]])
+        mean = nbr_sum / np.bincount(form.edges.ravel(), minlength=form.n_vertices)[:, None]
+        assert np.allclose(mean[form.free], form.xy[form.free], atol=1e-9)
+
+
+def test_without_the_lp_a_hopeless_iteration_gives_up_early():
+    """Straight open edges flip for good: without the LP rescue (too many edges) the iteration stops once
+    an edge has stayed flipped for 10 iterations, instead of waiting for the 50-iteration stall."""
+    v, f, outer = holed_grid()
+    form = form_diagram(v, f, supports=outer)
+    quick = horizontal(form, lp_max_edges=0, raise_on_failure=False)
+    slow = horizontal(form, raise_on_failure=False, stall_window=10 ** 6, kmax=60)   # the LP: no such test
+    assert not quick.converged and quick.iterations == 10
+    assert min(quick.history[1:]) > 90.0
+    assert slow.iterations == 60 and min(slow.history[1:61]) > 90.0      # it would not have recovered
