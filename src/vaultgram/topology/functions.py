@@ -261,7 +261,12 @@ def path_clear(graph, path) -> bool:
 
 
 def _plan_segments(graph) -> tuple[np.ndarray, np.ndarray]:
-    """Start and end points of every straight piece of every plan edge."""
+    """Start and end points of every straight piece of every plan edge (once per state: every
+    diagonal a rule tries in one state is checked against the same plan)."""
+    return _per_state(_SEGMENTS, graph, _all_plan_segments)
+
+
+def _all_plan_segments(graph) -> tuple[np.ndarray, np.ndarray]:
     pieces = [half_edge_polyline(graph, e, graph.ends(e)[0]) for e in graph.of_types(PLAN_EDGES)]
     return np.concatenate([poly[:-1] for poly in pieces]), np.concatenate([poly[1:] for poly in pieces])
 
@@ -294,16 +299,23 @@ def _resample(chain: np.ndarray, t: np.ndarray) -> np.ndarray:
 # -- measures of the whole plan, for the rulebook's invariants (rules/invariants.vgr) -------------
 
 _FACES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> (its changes count, its faces)
+_SEGMENTS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> (its changes count, segments)
+
+
+def _per_state(cache: weakref.WeakKeyDictionary, graph, make):
+    """``make(graph)`` computed once per state of the graph (``graph.changes`` tells a state from
+    every other, undo included)."""
+    cached = cache.get(graph)
+    if cached is None or cached[0] != graph.changes:
+        cached = (graph.changes, make(graph))
+        cache[graph] = cached
+    return cached[1]
 
 
 def _faces(graph) -> list:
     """:func:`plan_faces` of the graph as it is now, computed once per state (several invariants ask
-    for them in one check; ``graph.changes`` tells a state from every other)."""
-    cached = _FACES.get(graph)
-    if cached is None or cached[0] != graph.changes:
-        cached = (graph.changes, plan_faces(graph, PLAN_EDGES))
-        _FACES[graph] = cached
-    return cached[1]
+    for them in one check)."""
+    return _per_state(_FACES, graph, lambda g: plan_faces(g, PLAN_EDGES))
 
 
 def plan_area(graph) -> float:
