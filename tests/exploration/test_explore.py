@@ -8,11 +8,11 @@ import shutil
 from pathlib import Path
 
 import pytest
+from browser import render
 from click.testing import CliRunner
 
 from vaultgram.cli import main
 
-from browser import render
 from paths import EXAMPLES, REPO
 
 DOMAIN = str(EXAMPLES / "fig5_boundary_points.json")

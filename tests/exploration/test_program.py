@@ -47,5 +47,6 @@ def test_the_stepper_stops_at_choice_points_and_its_answers_replay():
     options = stepper.take(1)  # the second option at the first choice point, then on to the next
     patches = stepper.complete()
     replayed = decompose(domain, 0.05, chooser=Scripted(stepper.answers))
-    assert sorted(map(sorted, (p.corners for p in patches))) == sorted(map(sorted, (p.corners for p in replayed.patches)))
+    corners = sorted(map(sorted, (p.corners for p in patches)))
+    assert corners == sorted(map(sorted, (p.corners for p in replayed.patches)))
     assert len(patches) != len(dec.patches)  # a quad kept instead of split

@@ -6,6 +6,7 @@ import itertools
 
 import numpy as np
 import pytest
+from exploration.conftest import SPACING, domain_of
 
 from vaultgram.exploration.layout import isomorphic, layout_of
 from vaultgram.exploration.search import search
@@ -13,8 +14,6 @@ from vaultgram.geometry.polygons import signed_area
 from vaultgram.pipeline import decompose
 from vaultgram.topology.decomposition import decomposition_graph
 from vaultgram.topology.rulebook import load_vault_rulebook
-
-from exploration.conftest import SPACING, domain_of
 
 ACCEPTANCE = ["two_holes_five_points", "armadillo_vault_plan", "fig5_boundary_points"]
 
@@ -51,7 +50,8 @@ def test_every_variant_tiles_the_domain_with_three_and_four_sided_patches_and_me
 
 def test_every_path_to_a_variant_is_kept_and_first_options_inherit(explorations):
     result = explorations("two_holes_five_points").result
-    assert sorted(s for v in result.variants for s in v.states) == [s.id for s in result.states if s.variant is not None]
+    reached = sorted(s for v in result.variants for s in v.states)
+    assert reached == [s.id for s in result.states if s.variant is not None]
     for state in result.states[1:]:
         parent = result.states[state.parent]
         assert state.depth == parent.depth + 1 and state.answers[:len(parent.answers)] == parent.answers

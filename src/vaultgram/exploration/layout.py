@@ -23,6 +23,7 @@ colours as labels.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 from dataclasses import dataclass
 from functools import cached_property
@@ -34,7 +35,7 @@ from vaultgram.engine.graph import HostGraph
 from vaultgram.topology.patches import Patch
 from vaultgram.topology.types import PATCH, PATCH_CORNER
 
-ROUNDS = 6  # refinement rounds (distance in darts over which structure is told apart by the hash)
+MAX_ROUNDS = 64  # refinement stops earlier, when a round separates no more darts (or all of them)
 _M1, _M2 = np.uint64(0xBF58476D1CE4E5B9), np.uint64(0x94D049BB133111EB)
 _ROLE = [np.uint64(c) for c in (0x9E3779B97F4A7C15, 0xC2B2AE3D27D4EB4F, 0x165667B19E3779F9, 0x27D4EB2F165667C5,
                                 0x85EBCA77C2B2AE63, 0xFF51AFD7ED558CCD)]
@@ -49,10 +50,14 @@ def _mix(x: np.ndarray) -> np.ndarray:
     return x ^ (x >> np.uint64(31))
 
 
-def _code(labels: list[str]) -> np.ndarray:
+def _code(labels) -> np.ndarray:
     """64-bit codes of label strings (the same in every process: not Python's salted ``hash``)."""
-    return np.array([int.from_bytes(hashlib.blake2b(s.encode(), digest_size=8).digest(), "little") for s in labels],
-                    dtype=np.uint64)
+    return np.array([_label_code(s) for s in labels], dtype=np.uint64)
+
+
+@functools.lru_cache(maxsize=None)
+def _label_code(label: str) -> int:
+    return int.from_bytes(hashlib.blake2b(label.encode(), digest_size=8).digest(), "little")
 
 
 @dataclass(frozen=True, eq=False)
@@ -68,7 +73,7 @@ class PatchLayout:
 
     @cached_property
     def colours(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Refined colours of darts, points and patches (:data:`ROUNDS` rounds)."""
+        """Refined colours of darts, points and patches (rounds until stable, :func:`_refine`)."""
         return _refine(self)
 
     @cached_property
@@ -120,27 +125,40 @@ def _marked_poles(graph: HostGraph) -> dict:
 
 
 def _refine(layout: PatchLayout) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Colour refinement: a dart's colour from its own, its point's, its patch's and its successor's
-    and predecessor's; a point's and a patch's from theirs and the sum (a multiset) of their darts'."""
+    """Colour refinement, until a round separates no more darts (a criterion that isomorphic
+    layouts meet at the same round, so the colours stay invariant): a dart's colour from its own, its point's, its patch's and its successor's
+    and predecessor's (each role weighed by its own odd constant, then mixed); a point's and a
+    patch's from theirs and the sum (a multiset) of their darts'."""
     prev = np.empty_like(layout.dart_next)
     prev[layout.dart_next] = np.arange(len(prev))
+    by_point, by_patch = _groups(layout.dart_point), _groups(layout.dart_patch)
     dart = _code(["pole" if p else "corner" for p in layout.dart_pole])
-    point = _code(list(layout.point_labels))
+    point = _code(layout.point_labels)
     patch = _code([f"patch{s}" for s in layout.patch_sides])
-    for _ in range(ROUNDS):
-        dart = _mix(dart * _ROLE[0] + _mix(point[layout.dart_point] ^ _ROLE[1])
-                    + _mix(patch[layout.dart_patch] ^ _ROLE[2]) + _mix(dart[layout.dart_next] ^ _ROLE[3])
-                    + _mix(dart[prev] ^ _ROLE[4]))
-        point = _mix(point * _ROLE[5] + _sums(_mix(dart), layout.dart_point, len(point)))
-        patch = _mix(patch * _ROLE[5] + _sums(_mix(dart ^ _ROLE[1]), layout.dart_patch, len(patch)))
+    distinct = 0
+    for _ in range(MAX_ROUNDS):
+        dart = _mix(dart * _ROLE[0] + point[layout.dart_point] * _ROLE[1] + patch[layout.dart_patch] * _ROLE[2]
+                    + dart[layout.dart_next] * _ROLE[3] + dart[prev] * _ROLE[4])
+        point = _mix(point * _ROLE[5] + _sums(dart, by_point))
+        patch = _mix(patch * _ROLE[5] + _sums(dart ^ _ROLE[1], by_patch))
+        now = len(np.unique(dart))
+        if now == distinct or now == len(dart):
+            break
+        distinct = now
     return dart, point, patch
 
 
-def _sums(values: np.ndarray, groups: np.ndarray, n: int) -> np.ndarray:
-    """Wrapping uint64 sums of ``values`` by group (a multiset's code, independent of order)."""
-    out = np.zeros(n, dtype=np.uint64)
-    np.add.at(out, groups, values)
-    return out
+def _groups(owner: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The darts sorted by their owner (point or patch), and where each owner's run starts (every
+    owner has a dart: points and patches are made from them)."""
+    order = np.argsort(owner, kind="stable")
+    return order, np.flatnonzero(np.r_[True, np.diff(owner[order]) != 0])
+
+
+def _sums(values: np.ndarray, groups: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
+    """Wrapping uint64 sums of ``values`` by owner (a multiset's code, independent of order)."""
+    order, starts = groups
+    return np.add.reduceat(values[order], starts)
 
 
 def same_layout(a: PatchLayout, b: PatchLayout) -> bool:
