@@ -603,11 +603,12 @@ def stats_command(mesh_path, domain_path, as_json) -> None:
 @click.option("--smooth", default=20, show_default=True, type=int, help="Laplacian smoothing iterations.")
 @click.option("--pareto", default="min_scaled_jacobian,edge_groups", show_default=True,
               help="The two metrics of the Pareto front.")
+@click.option("--formfind", is_flag=True, help="Also form-find each variant (angle deviation, thrust, rise).")
 @click.option("--workers", default=1, show_default=True, type=int, help="Processes evaluating the variants.")
 @click.option("--scheduler", default=None, help="Evaluate on the Dask cluster at this address (vaultgram[dask]).")
 @input_options
 def explore_command(domain_path, out_dir, spacing, rules_dir, limit, depth, seed, target_length, smooth, pareto,
-                    workers, scheduler, input_format, layers) -> None:
+                    formfind, workers, scheduler, input_format, layers) -> None:
     """Explore the topology variants of a DOMAIN: a breadth-first search over the rulebook's choice
     points (choose steps), de-duplicated by layout isomorphism, each variant meshed, measured and ranked.
 
@@ -622,7 +623,8 @@ def explore_command(domain_path, out_dir, spacing, rules_dir, limit, depth, seed
 
     check_bounds(limit, depth)
     check_workers(workers)
-    options = ExploreOptions(spacing, rules_dir, limit, depth, seed, target_length, smooth, parse_pareto(pareto))
+    options = ExploreOptions(spacing, rules_dir, limit, depth, seed, target_length, smooth, parse_pareto(pareto),
+                             formfind)
     domain = load_domain(domain_path, input_format, layer_names(layers), spacing)
     client = connect(scheduler) if scheduler else None
     try:

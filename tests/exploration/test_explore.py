@@ -117,3 +117,12 @@ def test_replay_of_a_missing_variant_is_an_error(explored, tmp_path):
     result = CliRunner().invoke(main, ["replay", DOMAIN, str(explored / "state_space.json"), "--variant", "99",
                                        "--out", str(tmp_path / "r")])
     assert result.exit_code == 2 and "no variant 99" in result.output and not (tmp_path / "r").exists()
+
+
+def test_formfind_adds_the_thrust_network_metrics(tmp_path):
+    result = _explore(tmp_path / "ff", "--formfind", "--limit", "2")
+    assert result.exit_code == 0, result.output
+    for v in json.loads((tmp_path / "ff" / "variants.json").read_text())["variants"]:
+        metrics = v["metrics"]
+        assert "formfind_error" in metrics or (
+            0 <= metrics["angle_deviation_deg"] < 5 and metrics["max_thrust"] > 0 and metrics["zmax"] > 0)

@@ -6,8 +6,8 @@ replay`` writes byte for byte what ``vaultgram explore`` wrote. The decompositio
 domain with the variant's choices (:class:`~.program.Scripted`), meshed with the pipeline's own
 meshing at the common target length (:func:`vaultgram.pipeline.mesh_decomposition`; folds are
 counted, not refused, so every variant can be compared) and measured with
-:func:`vaultgram.meshing.quality.mesh_stats`. Its files are returned as bytes, for the caller to
-write inside its output folder.
+:func:`vaultgram.meshing.quality.mesh_stats` (and, with ``formfind``, form-found). Its files are
+returned as bytes, for the caller to write inside its output folder.
 """
 
 from __future__ import annotations
@@ -16,6 +16,8 @@ import tempfile
 from collections import Counter
 from dataclasses import dataclass
 from pathlib import Path
+
+import numpy as np
 
 from vaultgram.domain import Domain
 from vaultgram.errors import VaultgramError
@@ -41,6 +43,7 @@ class Job:
     target_length: float | None
     smooth: int
     hash: str  # the search's layout hash, which the rebuilt decomposition must have
+    formfind: bool = False  # also form-find the mesh (§5) and measure the thrust network
 
 
 @dataclass(frozen=True)
@@ -63,6 +66,8 @@ def evaluate(job: Job) -> Evaluation:
         raise RuntimeError(f"variant {job.variant}: rebuilt layout {layout.hash} differs from the search's {job.hash}")
     mesh = mesh_decomposition(dec, job.target_length, job.smooth, allow_folds=True)
     metrics = {**layout_metrics(dec), **mesh_metrics(mesh, job.domain)}
+    if job.formfind:
+        metrics.update(formfind_metrics(mesh, job.domain))
     return Evaluation(job.variant, metrics, _files(dec, mesh), thumbnail_svg(dec, mesh))
 
 
@@ -94,6 +99,21 @@ def mesh_metrics(mesh, domain: Domain) -> dict:
         "inverted_faces": int(stats["inverted_faces"]),
         "faces": int(stats["faces"]),
     }
+
+
+def formfind_metrics(mesh, domain: Domain) -> dict:
+    """The form-finding result of the mesh with the domain's supports (:func:`vaultgram.pipeline.
+    thrust_of_mesh`): the largest angle deviation between form and force diagram, the largest
+    horizontal thrust, the rise; or why there is no compression-only network."""
+    from vaultgram.pipeline import thrust_of_mesh
+
+    try:
+        network = thrust_of_mesh(mesh, domain.supports, domain)
+    except VaultgramError as exc:
+        return {"formfind_error": str(exc)}
+    return {"angle_deviation_deg": round(float(network.summary["max_angle_deg"]), 6),
+            "max_thrust": round(float(np.max(network.horizontal_forces)), 6),
+            "zmax": round(float(network.summary["zmax"]), 6)}
 
 
 def _files(dec, mesh) -> dict:

@@ -51,11 +51,12 @@ class ExploreOptions:
     target_length: float | None = None
     smooth: int = 20
     pareto: tuple = DEFAULT_PARETO
+    formfind: bool = False
 
     def to_json(self) -> dict:
         return {"spacing": self.spacing, "rules": self.rules_dir, "limit": self.limit, "depth": self.depth,
                 "seed": self.seed, "target_length": self.target_length, "smooth": self.smooth,
-                "pareto": list(self.pareto)}
+                "pareto": list(self.pareto), "formfind": self.formfind}
 
 
 @dataclass(frozen=True)
@@ -103,7 +104,7 @@ def _job(domain: Domain, options: ExploreOptions, result: SearchResult, variant:
     v = result.variants[variant]
     first = result.states[v.states[0]]
     return Job(variant, tuple(first.answers), domain, options.spacing, options.rules_dir, options.target_length,
-               options.smooth, v.hash)
+               options.smooth, v.hash, options.formfind)
 
 
 def state_space_json(exp: Exploration) -> dict:
@@ -154,7 +155,7 @@ def replay_variant(domain: Domain, state_space_path: str | Path, variant: int) -
         raise VaultgramError(f"{state_space_path}: no variant {variant} (it has {len(rows)}: 0 to {len(rows) - 1})")
     row = rows[variant]
     job = Job(variant, tuple(row["answers"]), domain, options["spacing"], options["rules"], options["target_length"],
-              options["smooth"], row["hash"])
+              options["smooth"], row["hash"], bool(options.get("formfind")))
     try:
         return evaluate(job)
     except RuntimeError as exc:  # the domain is not the one explored (or the rules changed)

@@ -11,7 +11,7 @@ from __future__ import annotations
 import html
 
 SHOWN = ("score", "min_scaled_jacobian", "mean_scaled_jacobian", "patches", "singularities", "poles", "edge_groups",
-         "boundary_singularities", "inverted_faces")
+         "boundary_singularities", "inverted_faces", "angle_deviation_deg", "max_thrust", "zmax")
 
 _STYLE = """body{font-family:system-ui,sans-serif;margin:1.5em;background:#f6f7f9;color:#1f2933}
 #cards{display:flex;flex-wrap:wrap;gap:12px}

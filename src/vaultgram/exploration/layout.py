@@ -126,9 +126,10 @@ def _marked_poles(graph: HostGraph) -> dict:
 
 def _refine(layout: PatchLayout) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Colour refinement, until a round separates no more darts (a criterion that isomorphic
-    layouts meet at the same round, so the colours stay invariant): a dart's colour from its own, its point's, its patch's and its successor's
-    and predecessor's (each role weighed by its own odd constant, then mixed); a point's and a
-    patch's from theirs and the sum (a multiset) of their darts'."""
+    layouts meet at the same round, so the colours stay invariant): a dart's colour from its own,
+    its point's, its patch's and its successor's and predecessor's (each role weighed by its own
+    odd constant, then mixed); a point's and a patch's from theirs and the sum (a multiset) of
+    their darts'."""
     prev = np.empty_like(layout.dart_next)
     prev[layout.dart_next] = np.arange(len(prev))
     by_point, by_patch = _groups(layout.dart_point), _groups(layout.dart_patch)

@@ -22,7 +22,7 @@ from vaultgram.errors import VaultgramError
 SENSE = {
     "min_scaled_jacobian": 1, "mean_scaled_jacobian": 1, "score": 1, "patches": -1, "singularities": -1,
     "poles": -1, "edge_groups": -1, "boundary_singularities": -1, "interior_singular_vertices": -1,
-    "inverted_faces": -1, "faces": -1,
+    "inverted_faces": -1, "faces": -1, "angle_deviation_deg": -1, "max_thrust": -1, "zmax": 1,
 }
 DEFAULT_PARETO = ("min_scaled_jacobian", "edge_groups")
 
