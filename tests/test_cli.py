@@ -27,7 +27,7 @@ def test_rules_check_prints_summary():
     assert "prune_corner_branch all; rebranch all" in result.output
     assert (
         "patching: split_at_boundary_feature(onto_boundary = false) fixpoint; split_at_boundary_feature fixpoint; "
-        "{ split_quad_at_feature_beside_boundary, split_quad_at_feature } fixpoint"
+        "choose { split_quad_at_feature_beside_boundary, split_quad_at_feature, keep_quad_at_feature } fixpoint"
     ) in result.output
 
 

@@ -586,3 +586,85 @@ def stats_command(mesh_path, domain_path, as_json) -> None:
     domain = load_domain(domain_path) if domain_path else None
     stats = mesh_stats(mesh, domain)
     click.echo(json.dumps(stats, indent=1) if as_json else format_stats(stats))
+
+
+# -- exploration (issue 13): vaultgram explore, vaultgram replay ---------------------------------------
+
+
+@main.command("explore")
+@click.argument("domain_path", metavar="DOMAIN", type=click.Path(dir_okay=False))
+@OUT
+@SPACING
+@RULES
+@click.option("--limit", default=100, show_default=True, type=int, help="States to visit at most.")
+@click.option("--depth", default=8, show_default=True, type=int, help="Choice points to explore along a path.")
+@click.option("--seed", default=None, type=int, help="Visit each choice point's options in an order drawn from it.")
+@TARGET_LENGTH
+@click.option("--smooth", default=20, show_default=True, type=int, help="Laplacian smoothing iterations.")
+@click.option("--pareto", default="min_scaled_jacobian,edge_groups", show_default=True,
+              help="The two metrics of the Pareto front.")
+@click.option("--formfind", is_flag=True, help="Also form-find each variant (angle deviation, thrust, rise).")
+@click.option("--workers", default=1, show_default=True, type=int, help="Processes evaluating the variants.")
+@click.option("--scheduler", default=None, help="Evaluate on the Dask cluster at this address (vaultgram[dask]).")
+@input_options
+def explore_command(domain_path, out_dir, spacing, rules_dir, limit, depth, seed, target_length, smooth, pareto,
+                    formfind, workers, scheduler, input_format, layers) -> None:
+    """Explore the topology variants of a DOMAIN: a breadth-first search over the rulebook's choice
+    points (choose steps), de-duplicated by layout isomorphism, each variant meshed, measured and ranked.
+
+    Writes state_space.json, variants.json, index.html (the gallery) and variants/vNNN/ (decomposition.json,
+    patches.json, mesh.json) to --out; docs/exploration.md.
+    """
+    from vaultgram.domain import load_domain
+    from vaultgram.exploration.explore import ExploreOptions, explore, write_exploration
+    from vaultgram.exploration.parallel import check_workers, connect
+    from vaultgram.exploration.ranking import parse_pareto
+    from vaultgram.exploration.search import check_bounds
+
+    check_bounds(limit, depth)
+    check_workers(workers)
+    options = ExploreOptions(spacing, rules_dir, limit, depth, seed, target_length, smooth, parse_pareto(pareto),
+                             formfind)
+    domain = load_domain(domain_path, input_format, layer_names(layers), spacing)
+    client = connect(scheduler) if scheduler else None
+    try:
+        exp = explore(domain, options, workers, client)
+    finally:
+        if client is not None:
+            client.close()
+    with output_folder(out_dir) as stage:
+        write_exploration(exp, stage)
+    echo_exploration(exp, Path(out_dir))
+
+
+def echo_exploration(exp, out: Path) -> None:
+    """What the search found, and where the gallery is."""
+    counts = exp.result
+    if not exp.choice_steps:
+        click.echo("the rulebook has no choice points (choose steps): explored one variant")
+    elif len(counts.states) == 1:
+        click.echo("no choice point offered a choice on this domain: one variant")
+    click.echo(f"{len(counts.states)} states visited, {len(counts.variants)} distinct variants "
+               f"({counts.hashes} hashed, {counts.exact_checks} exact checks, {counts.collisions} collisions) "
+               f"in {counts.seconds:.2f} s; Pareto front: {', '.join(str(v) for v in sorted(exp.front)) or 'none'}")
+    click.echo(f"wrote {out / 'index.html'}, {out / 'variants.json'}, {out / 'state_space.json'}")
+
+
+@main.command("replay")
+@click.argument("domain_path", metavar="DOMAIN", type=click.Path(dir_okay=False))
+@click.argument("state_space", metavar="STATE_SPACE.json", type=click.Path(dir_okay=False))
+@click.option("--variant", required=True, type=int, help="The variant's id (state_space.json, variants.json).")
+@OUT
+@input_options
+def replay_command(domain_path, state_space, variant, out_dir, input_format, layers) -> None:
+    """Rebuild one variant that vaultgram explore found, from the DOMAIN: the same decomposition.json,
+    patches.json and mesh.json, byte for byte."""
+    from vaultgram.domain import load_domain
+    from vaultgram.exploration.explore import replay_variant, write_files
+
+    options = read_json(state_space).get("options", {}) if Path(state_space).is_file() else {}
+    domain = load_domain(domain_path, input_format, layer_names(layers), options.get("spacing", 0.02))
+    ev = replay_variant(domain, state_space, variant)
+    with output_folder(out_dir) as stage:
+        write_files(ev, stage)
+    click.echo(f"variant {variant}: wrote {', '.join(str(Path(out_dir) / n) for n in sorted(ev.files))}")

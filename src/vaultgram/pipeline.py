@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from vaultgram.domain import Domain, check_feature_spacing
+from vaultgram.engine.strategy import first_option
 from vaultgram.errors import (
     ConvergenceError,
     FormFindingError,
@@ -113,13 +114,15 @@ def _collector_paused():
 
 
 def decompose(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None = None, smooth: bool = False,
-              timings: dict | None = None, check_invariants: bool = False, trace: bool = False) -> Decomposition:
+              timings: dict | None = None, check_invariants: bool = False, trace: bool = False,
+              chooser=None) -> Decomposition:
     """Topology finding (§3.1, §4): discretise, triangulate, skeletonise, rewrite with the rules, patch.
 
     ``rules_dir`` holds the rulebook (default: the one shipped with vaultgram); ``smooth`` smooths the
     skeleton branches with splines; ``check_invariants`` checks the rulebook's invariants while its
     strategies run (as ``vaultgram rules test`` does); ``trace`` keeps the graph the rules start from
-    for a replay (``Decomposition.start_graph``).
+    for a replay (``Decomposition.start_graph``); ``chooser`` resolves the rulebook's ``choose`` steps
+    (default: the first option; exploration replays a variant's choices).
     """
     rulebook = load_vault_rulebook(rules_dir)
     with _timed(timings, "discretise"):
@@ -129,7 +132,7 @@ def decompose(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | Non
     with _timed(timings, "skeleton"):
         sk = skeleton(tri, smooth=smooth)
     with _timed(timings, "rules"):
-        return block_decomposition(sk, rulebook, check_invariants, trace)
+        return block_decomposition(sk, rulebook, check_invariants, trace, chooser or first_option)
 
 
 # --------------------------------------------------------------------------------------------

@@ -29,7 +29,7 @@ import numpy as np
 
 from vaultgram.engine.graph import HostGraph
 from vaultgram.engine.rulebook import Rulebook
-from vaultgram.engine.strategy import Runner
+from vaultgram.engine.strategy import Chooser, Runner, first_option
 from vaultgram.errors import DomainError, RewriteError
 from vaultgram.geometry.polylines import arc_lengths
 from vaultgram.geometry.text import fmt_point
@@ -309,8 +309,34 @@ def check_patch_nodes(graph: HostGraph, patches) -> None:
         )
 
 
+def patch_strategies_of(rulebook: Rulebook) -> list[str]:
+    """The patching strategies the rulebook has (:data:`PATCH_STRATEGIES`, in their order)."""
+    return [name for name in PATCH_STRATEGIES if name in rulebook.strategies]
+
+
+def start_patching(graph: HostGraph, disc: Discretisation, trace, patching: bool) -> None:
+    """Between the topology strategy and the patching ones: the faces of the plan become ``Patch``
+    nodes (recorded in ``trace`` as a host edit, for replay); nothing when the rulebook has no
+    patching strategies (``patching`` false), whose faces are only checked at the end."""
+    if not patching:
+        return
+    added = add_patch_nodes(graph, find_patches(graph, disc, PLAN_EDGES, strict=False))
+    part = graph.to_json()
+    trace.record_edit(*([x for x in part[kind] if x["id"] in set(ids)] for kind, ids in zip(("nodes", "edges"), added)))
+
+
+def final_patches(graph: HostGraph, disc: Discretisation, patching: bool) -> list[Patch]:
+    """The patches of the rewritten plan, checked: 3 or 4 sides each, in step with the ``Patch``
+    nodes (when the rulebook patches), and no hole inside one."""
+    patches = find_patches(graph, disc, PLAN_EDGES)
+    if patching:
+        check_patch_nodes(graph, patches)
+    check_no_enclosed_holes(graph, patches)
+    return patches
+
+
 def block_decomposition(sk: Skeleton, rulebook: Rulebook, check_invariants: bool = False,
-                        trace: bool = False) -> Decomposition:
+                        trace: bool = False, chooser: Chooser = first_option) -> Decomposition:
     """The block decomposition of a skeleton by the rulebook (§3.1 pruning and rebranching, §4).
 
     The rulebook's ``topology`` strategy rewrites the skeleton graph (:func:`decomposition_graph`);
@@ -336,20 +362,13 @@ def block_decomposition(sk: Skeleton, rulebook: Rulebook, check_invariants: bool
     disc = sk.triangulation.disc
     graph = decomposition_graph(sk, rulebook)
     start = graph.to_json() if trace else None
-    runner = Runner(rulebook, graph, check_invariants=check_invariants)
+    runner = Runner(rulebook, graph, chooser, check_invariants=check_invariants)
     runner.run(TOPOLOGY_STRATEGY)
-    patch_strategies = [name for name in PATCH_STRATEGIES if name in rulebook.strategies]
-    patches = find_patches(graph, disc, PLAN_EDGES, strict=not patch_strategies)
-    if patch_strategies:
-        added = add_patch_nodes(graph, patches)
-        part = graph.to_json()
-        runner.trace.record_edit(*([x for x in part[kind] if x["id"] in set(ids)]
-                                   for kind, ids in zip(("nodes", "edges"), added)))
-        for name in patch_strategies:
-            runner.run(name)
-        patches = find_patches(graph, disc, PLAN_EDGES)
-        check_patch_nodes(graph, patches)
-    check_no_enclosed_holes(graph, patches)
+    patch_strategies = patch_strategies_of(rulebook)
+    start_patching(graph, disc, runner.trace, bool(patch_strategies))
+    for name in patch_strategies:
+        runner.run(name)
+    patches = final_patches(graph, disc, bool(patch_strategies))
     reports = tuple(RuleStep(r.step, r.applications) for r in runner.reports)
     return Decomposition(disc, sk, graph, tuple(patches), reports, runner.trace.to_json(), runner.invariant_checks,
                          start)

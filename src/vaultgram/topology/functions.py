@@ -158,9 +158,17 @@ def patch_corner(graph, patch: int, index: int) -> int:
 
 def _patch_outline(graph, patch: int, x: int) -> tuple[list, np.ndarray] | None:
     """The face of the plan around a Patch node, walked from its corner ``x``: its half-edges and its
-    closed outline (first point = last point = ``x``); None if no face at ``x`` has all the patch's
-    corners (a Patch node out of step with the plan, which decompose reports at the end). Only the
-    faces at ``x`` are walked."""
+    closed outline (first point = last point = ``x``, read-only); None if no face at ``x`` has all the
+    patch's corners (a Patch node out of step with the plan, which decompose reports at the end). Only
+    the faces at ``x`` are walked, once per state of the graph (the rules ask for the same outlines
+    in every match they try)."""
+    outlines = _per_state(_OUTLINES, graph, lambda g: {})
+    if (patch, x) not in outlines:
+        outlines[(patch, x)] = _walk_patch_outline(graph, patch, x)
+    return outlines[(patch, x)]
+
+
+def _walk_patch_outline(graph, patch: int, x: int) -> tuple[list, np.ndarray] | None:
     corners = {graph.ends(e)[1] for e in graph.incident(patch, [PATCH_CORNER])}
     for first in graph.rotation(x):
         if graph.edge_type(first) not in PLAN_EDGES:
@@ -170,6 +178,7 @@ def _patch_outline(graph, patch: int, x: int) -> tuple[list, np.ndarray] | None:
             continue
         pieces = [half_edge_polyline(graph, e, u) for e, u in face]
         outline = np.vstack([poly[:-1] for poly in pieces] + [pieces[0][:1]])
+        outline.setflags(write=False)
         if signed_area(outline) > 0:
             return face, outline
     return None
@@ -261,7 +270,12 @@ def path_clear(graph, path) -> bool:
 
 
 def _plan_segments(graph) -> tuple[np.ndarray, np.ndarray]:
-    """Start and end points of every straight piece of every plan edge."""
+    """Start and end points of every straight piece of every plan edge (once per state: every
+    diagonal a rule tries in one state is checked against the same plan)."""
+    return _per_state(_SEGMENTS, graph, _all_plan_segments)
+
+
+def _all_plan_segments(graph) -> tuple[np.ndarray, np.ndarray]:
     pieces = [half_edge_polyline(graph, e, graph.ends(e)[0]) for e in graph.of_types(PLAN_EDGES)]
     return np.concatenate([poly[:-1] for poly in pieces]), np.concatenate([poly[1:] for poly in pieces])
 
@@ -294,16 +308,24 @@ def _resample(chain: np.ndarray, t: np.ndarray) -> np.ndarray:
 # -- measures of the whole plan, for the rulebook's invariants (rules/invariants.vgr) -------------
 
 _FACES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> (its changes count, its faces)
+_SEGMENTS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> (its changes count, segments)
+_OUTLINES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> (changes, {(patch, x): outline})
+
+
+def _per_state(cache: weakref.WeakKeyDictionary, graph, make):
+    """``make(graph)`` computed once per state of the graph (``graph.changes`` tells a state from
+    every other, undo included)."""
+    cached = cache.get(graph)
+    if cached is None or cached[0] != graph.changes:
+        cached = (graph.changes, make(graph))
+        cache[graph] = cached
+    return cached[1]
 
 
 def _faces(graph) -> list:
     """:func:`plan_faces` of the graph as it is now, computed once per state (several invariants ask
-    for them in one check; ``graph.changes`` tells a state from every other)."""
-    cached = _FACES.get(graph)
-    if cached is None or cached[0] != graph.changes:
-        cached = (graph.changes, plan_faces(graph, PLAN_EDGES))
-        _FACES[graph] = cached
-    return cached[1]
+    for them in one check)."""
+    return _per_state(_FACES, graph, lambda g: plan_faces(g, PLAN_EDGES))
 
 
 def plan_area(graph) -> float:

@@ -1,0 +1,52 @@
+"""The decomposition program: choice steps, the scripted chooser, stopping and resuming at choice points."""
+
+from __future__ import annotations
+
+import pytest
+
+from vaultgram.domain import load_domain
+from vaultgram.exploration.program import Scripted, Stepper, choice_steps, decomposition_program
+from vaultgram.pipeline import decompose
+from vaultgram.topology.decomposition import decomposition_graph
+from vaultgram.topology.rulebook import load_vault_rulebook
+
+from paths import EXAMPLES
+
+
+def test_the_bundled_rulebook_has_choice_points():
+    steps = choice_steps(load_vault_rulebook())
+    assert any("keep_quad_at_feature" in s for s in steps) and any("keep_close_singularities" in s for s in steps)
+    assert all(s.startswith("choose ") for s in steps)
+
+
+def test_the_program_runs_topology_then_the_patch_step_then_patching():
+    program = decomposition_program(load_vault_rulebook())
+    strategies = [i.strategy for i in program]
+    first_patch = strategies.index("patch nodes")
+    assert set(strategies[:first_patch]) == {"topology", "curve_topology"}
+    assert set(strategies[first_patch + 1:]) == {"curve_patching", "patching"}
+
+
+def test_no_answers_is_the_default_decomposition():
+    domain = load_domain(EXAMPLES / "fig5_boundary_points.json")
+    assert decompose(domain, 0.05, chooser=Scripted([])).to_json() == decompose(domain, 0.05).to_json()
+
+
+def test_an_answer_out_of_range_is_refused():
+    with pytest.raises(IndexError, match="choice 3 at choice point 0, which has 2 options"):
+        Scripted([3])(["a", "b"])
+
+
+def test_the_stepper_stops_at_choice_points_and_its_answers_replay():
+    domain = load_domain(EXAMPLES / "fig5_boundary_points.json")
+    book = load_vault_rulebook()
+    dec = decompose(domain, 0.05)
+    stepper = Stepper(book, decomposition_graph(dec.skeleton, book), dec.disc)
+    options = stepper.advance()
+    assert len(options) >= 2 and stepper.program[stepper.pc].step.choose
+    options = stepper.take(1)  # the second option at the first choice point, then on to the next
+    patches = stepper.complete()
+    replayed = decompose(domain, 0.05, chooser=Scripted(stepper.answers))
+    corners = sorted(map(sorted, (p.corners for p in patches)))
+    assert corners == sorted(map(sorted, (p.corners for p in replayed.patches)))
+    assert len(patches) != len(dec.patches)  # a quad kept instead of split
