@@ -38,6 +38,23 @@ def test_rules_check_json():
     assert summary["types"]["nodes"]["Corner"] == "BoundaryVertex"
 
 
+def test_rules_check_of_the_whole_folder_checks_each_stage_rulebook_with_its_functions():
+    files = sorted((REPO / "rules").glob("*.vgr"))
+    result = run("rules", "check", *files)
+    assert result.exit_code == 0, result.output
+    assert result.output.count("ok: ") == 2 and "ok: 1 file(s)" in result.output  # tessellation.vgr alone
+    books = json.loads(run("rules", "check", "--json", *files).output)
+    assert sorted(books[1]["rules"]) == ["keystone", "keystone_of_fan"]
+    assert "Vertex" in books[1]["types"]["nodes"] and "Corner" in books[0]["types"]["nodes"]
+
+
+def test_rules_run_refuses_the_two_stage_rulebooks_together(tmp_path):
+    result = run("rules", "run", RULES, REPO / "rules" / "tessellation.vgr", "--graph",
+                 EXAMPLES / "skeleton_quad_with_hole.json", "--strategy", "topology", "--out", tmp_path / "o")
+    assert result.exit_code == 2 and "a rulebook of its own" in result.output
+    assert not (tmp_path / "o").exists()
+
+
 def test_rules_check_reports_syntax_error_with_position(tmp_path):
     bad = tmp_path / "bad.vgr"
     bad.write_text("rule r {\n  match { a: A \n")

@@ -151,12 +151,19 @@ def rules() -> None:
 @click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=False))
 @click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
 def rules_check(files, as_json: bool) -> None:
-    """Parse and type-check rule FILES; print their types, rules, strategies and invariants."""
-    book = _load_rules(files)
-    summary = book.summary()
+    """Parse and type-check rule FILES; print their types, rules, strategies and invariants. The
+    tessellation's file (``tessellation.vgr``, §5) is a rulebook of its own, checked with the
+    tessellation's functions, beside the topology's rulebook of the other files."""
+    summaries = [book.summary() for book in _rulebooks(files)]
     if as_json:
-        click.echo(json.dumps(summary, indent=2))
+        click.echo(json.dumps(summaries[0] if len(summaries) == 1 else summaries, indent=2))
         return
+    for summary in summaries:
+        _echo_rulebook(summary)
+
+
+def _echo_rulebook(summary: dict) -> None:
+    """The printed summary of one rulebook (``rules check``)."""
     types = summary["types"]
     click.echo(f"ok: {len(summary['files'])} file(s)")
     click.echo(f"node types ({len(types['nodes'])}): " + ", ".join(
@@ -185,11 +192,27 @@ def _load_graph(path: str, book):
 
 
 def _load_rules(files):
-    """The rulebook of rule FILES, with the vault pipeline's functions."""
+    """The rulebook of rule FILES, with the functions of the stage that runs it: the tessellation's
+    for its own file (``tessellation.vgr``), the vault pipeline's topology functions otherwise."""
+    books = _rulebooks(files)
+    if len(books) > 1:
+        raise click.UsageError("tessellation.vgr is a rulebook of its own (the tessellation's, §5): "
+                               "give it without the topology's rule files")
+    return books[0]
+
+
+def _rulebooks(files) -> list:
+    """The rulebooks of rule FILES: the topology's (every file but ``tessellation.vgr``) and the
+    tessellation's, each loaded with its stage's functions, those that have files."""
     from vaultgram.engine.rulebook import load_rulebook
+    from vaultgram.tessellation.functions import tessellation_functions
+    from vaultgram.tessellation.keystones import RULE_FILE
     from vaultgram.topology.functions import vault_functions
 
-    return load_rulebook(files, vault_functions())
+    topology = [f for f in files if Path(f).name != RULE_FILE]
+    tessellation = [f for f in files if Path(f).name == RULE_FILE]
+    return ([load_rulebook(topology, vault_functions())] if topology else []) + \
+        ([load_rulebook(tessellation, tessellation_functions())] if tessellation else [])
 
 
 @rules.command("run")
