@@ -343,11 +343,18 @@ def _curve_chains_fit(mesh: QuadMesh, x: np.ndarray, topo: _Topology, lines: lis
 
 
 def format_stats(stats: dict) -> str:
-    """A two-column text table of :func:`mesh_stats` (vertex lists left out, floats to 6 digits).
+    """A two-column text table of :func:`mesh_stats` (vertex lists left out, floats to 6 digits),
+    then a line for each boundary singularity: its vertex, interior angle and valence, and the
+    valence its angle asks for.
 
     >>> print(format_stats({"vertices": 9, "interior_singular_vertices": [], "min_angle": 90.0}))
     vertices   9
     min_angle  90
+    >>> print(format_stats({"boundary_singular": 1, "boundary_singular_vertices": [4],
+    ...                     "boundary_singular_angles": [270.0], "boundary_singular_valences": [3],
+    ...                     "boundary_singular_regular_valences": [4]}))
+    boundary_singular  1
+    boundary singular vertex 4: angle 270 degrees, valence 3 (regular 4)
     """
     rows = []
     for k, val in stats.items():
@@ -357,4 +364,9 @@ def format_stats(stats: dict) -> str:
             val = f"{val:.6g}"
         rows.append((k, str(val)))
     width = max(len(k) for k, _ in rows)
-    return "\n".join(f"{k:<{width}}  {val}" for k, val in rows)
+    lines = [f"{k:<{width}}  {val}" for k, val in rows]
+    singular = zip(*(stats.get(f"boundary_singular_{k}", []) for k in ("vertices", "angles", "valences",
+                                                                        "regular_valences")))
+    lines += [f"boundary singular vertex {v}: angle {a:.6g} degrees, valence {d} (regular {r})"
+              for v, a, d, r in singular]
+    return "\n".join(lines)

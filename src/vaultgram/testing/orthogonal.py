@@ -1,6 +1,7 @@
 """Random rectilinear plans for the tests of the reflex-corner rules (``rules/corners.vgr``).
 
-``orthogonal_domains()`` draws domain dicts: the outline of a random polyomino on a grid of
+:data:`RECTILINEAR_PLANS` are named examples (an L, T, U, H, a comb of 5 teeth, a courtyard block
+with an L-shaped court); ``orthogonal_domains()`` draws domain dicts: the outline of a random polyomino on a grid of
 uneven integer widths (8 to 40 corners, all right angles, convex or reflex) with 0 to 2 rectangular
 or L-shaped holes, each inside one cell that the polyomino surrounds. Grid lines at least 2 apart
 and holes at least 1 from their cell's sides keep the plan resolvable at the default spacing.
@@ -13,9 +14,36 @@ import shapely
 from hypothesis import assume
 from hypothesis import strategies as st
 
-__all__ = ["orthogonal_domains", "corner_count"]
+__all__ = ["orthogonal_domains", "corner_count", "comb", "RECTILINEAR_PLANS"]
 
 GRID = 6  # cells per side of the grid the polyomino grows on
+
+
+def comb(teeth: int = 5) -> list:
+    """A comb's outline: a base 4 high under ``teeth`` teeth 2 wide and 6 high, 2 apart.
+
+    >>> len(comb(5)), corner_count(comb(5))
+    (20, 20)
+    """
+    width = 4 * teeth - 2
+    pts = [[0, 0], [width, 0]]
+    for k in range(teeth):
+        right = width - 4 * k
+        pts += [[right, 10], [right - 2, 10]] + ([[right - 2, 4], [right - 4, 4]] if k < teeth - 1 else [])
+    return pts
+
+
+#: Rectilinear plans by name, as domain dicts.
+RECTILINEAR_PLANS = {
+    "L": {"outer": [[0, 0], [10, 0], [10, 5], [5, 5], [5, 10], [0, 10]]},
+    "T": {"outer": [[0, 0], [4, 0], [4, 6], [10, 6], [10, 10], [-6, 10], [-6, 6], [0, 6]]},
+    "U": {"outer": [[0, 0], [12, 0], [12, 10], [8, 10], [8, 4], [4, 4], [4, 10], [0, 10]]},
+    "H": {"outer": [[0, 0], [4, 0], [4, 4], [8, 4], [8, 0], [12, 0], [12, 12], [8, 12], [8, 8], [4, 8], [4, 12],
+                    [0, 12]]},
+    "comb": {"outer": comb(5)},
+    "courtyard": {"outer": [[0, 0], [20, 0], [20, 16], [0, 16]],  # a block round an L-shaped court
+                  "holes": [[[5, 4], [5, 12], [9, 12], [9, 8], [15, 8], [15, 4]]]},
+}
 
 
 def corner_count(ring) -> int:

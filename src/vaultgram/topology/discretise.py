@@ -158,9 +158,9 @@ def discretise(domain: Domain, spacing: float = 0.02, corner_angle: float = 30.0
     Example
     -------
     >>> from vaultgram.domain import load_domain
-    >>> disc = discretise(load_domain("examples/l_shape.json"), 0.05)
+    >>> disc = discretise(load_domain("examples/l_shape.json"), 0.05)  # with its chords' two feet
     >>> disc
-    Discretisation('l_shape', spacing=0.05, 62 points, 6 corners)
+    Discretisation('l_shape', spacing=0.05, 64 points, 6 corners)
     >>> disc.corner_kind[disc.is_corner].tolist()  # the reflex corner of the L at (5, 5)
     [1, 1, 1, -1, 1, 1]
     """
