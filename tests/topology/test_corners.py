@@ -16,7 +16,6 @@ from vaultgram.topology.corners import chord_feet, ray_hit, rectilinear_rings
 from paths import EXAMPLES
 from strategies.domains import RECTILINEAR_PLANS, orthogonal_domains
 
-
 PLANS = RECTILINEAR_PLANS
 
 
