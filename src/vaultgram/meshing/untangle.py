@@ -206,8 +206,9 @@ def _descend(x: np.ndarray, region: _Region, settle: _Settle, steps: int, power:
              stall_limit: int | None = None) -> np.ndarray:
     """Gradient steps with an adaptive rate on the sum of the deficits to the ``power``: a step that
     leaves fewer inverted corners, or as many and a smaller sum (with ``power`` 2: and its worst
-    corner no worse), is taken (and the next tried longer); any other is halved. With ``stall_limit``, it stops once that many steps in a row
-    gained less than a thousandth of the sum each (the targets out of reach)."""
+    corner no worse), is taken (and the next tried longer); any other is halved. With
+    ``stall_limit``, it stops once that many steps in a row gained less than a thousandth of the sum
+    each (the targets out of reach)."""
     rate, stall = 1.0, 0
     for _ in range(steps):
         now = _deficits(x, region)
