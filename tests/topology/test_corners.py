@@ -10,7 +10,7 @@ from hypothesis import HealthCheck, given, settings
 
 from vaultgram.domain import domain_from_dict, load_domain
 from vaultgram.meshing.quality import mesh_stats
-from vaultgram.pipeline import decompose, mesh_domain
+from vaultgram.pipeline import decompose, mesh_decomposition
 from vaultgram.topology.corners import chord_feet, ray_hit, rectilinear_rings
 
 from paths import EXAMPLES
@@ -23,7 +23,7 @@ def no_singular_vertex(domain) -> None:
     """The plan's patches are all four-sided and its mesh has no singular vertex at all."""
     dec = decompose(domain, 0.02)
     assert {p.n_sides for p in dec.patches} == {4}
-    stats = mesh_stats(mesh_domain(domain), domain)
+    stats = mesh_stats(mesh_decomposition(dec), domain)
     assert stats["interior_singular"] == 0, stats["interior_singular_vertices"]
     assert stats["boundary_singular"] == 0, list(zip(stats["boundary_singular_angles"],
                                                      stats["boundary_singular_valences"]))
