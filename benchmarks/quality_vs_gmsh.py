@@ -37,6 +37,7 @@ from vaultgram.errors import VaultgramError
 from vaultgram.io.meshfiles import mesh_from_json
 from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import mesh_domain
+from vaultgram.testing.orthogonal import RECTILINEAR_PLANS
 
 HERE = Path(__file__).resolve().parent
 EXAMPLES = HERE.parent / "examples"
@@ -48,24 +49,6 @@ MESHERS = {"frontal": {"Mesh.Algorithm": 8, "Mesh.RecombinationAlgorithm": 1},
 # ---------------------------------------------------------------------------------------------
 # Plans
 # ---------------------------------------------------------------------------------------------
-
-
-def rectilinear_plans() -> dict:
-    """Orthogonal plans of the issue: an L, T, U, H, a comb of five teeth and a courtyard block with
-    an L-shaped hole (counter-clockwise outlines, clockwise holes, metres)."""
-    comb = [[0, 0], [22, 0]]
-    for left in (20, 15, 10, 5, 0):  # teeth 2 m wide and 6 m long, 3 m apart, from the right
-        comb += [[left + 2, 10], [left, 10]] + ([[left, 4], [left - 3, 4]] if left else [])
-    return {
-        "L": {"outer": [[0, 0], [20, 0], [20, 8], [8, 8], [8, 20], [0, 20]]},
-        "T": {"outer": [[8, 0], [14, 0], [14, 12], [22, 12], [22, 18], [0, 18], [0, 12], [8, 12]]},
-        "U": {"outer": [[0, 0], [24, 0], [24, 18], [17, 18], [17, 7], [7, 7], [7, 18], [0, 18]]},
-        "H": {"outer": [[0, 0], [7, 0], [7, 8], [15, 8], [15, 0], [22, 0], [22, 20], [15, 20], [15, 12],
-                        [7, 12], [7, 20], [0, 20]]},
-        "comb": {"outer": comb},
-        "courtyard": {"outer": [[0, 0], [30, 0], [30, 24], [0, 24]],
-                      "holes": [[[8, 6], [8, 18], [14, 18], [14, 12], [22, 12], [22, 6]]]},
-    }
 
 
 def jagged_plans(count: int = 4, seed: int = 7) -> dict:
@@ -83,16 +66,17 @@ def jagged_plans(count: int = 4, seed: int = 7) -> dict:
 
 def plans(kinds: list[str]) -> dict:
     """The plans by name: ``shared`` (every file of the shared architecture data), ``examples``,
-    ``rectilinear`` and ``jagged`` (generated)."""
+    ``rectilinear`` (:data:`vaultgram.testing.orthogonal.RECTILINEAR_PLANS`) and ``jagged``
+    (generated)."""
     out = {}
     if "shared" in kinds and ARCHITECTURE.is_dir():
         out.update({p.stem: load_domain(p) for p in sorted(ARCHITECTURE.glob("*.json"))})
     if "examples" in kinds:
         out.update({p.stem: load_domain(p) for p in sorted(EXAMPLES.glob("*.json"))
                     if not p.stem.startswith("skeleton_")})
-    for kind, make in (("rectilinear", rectilinear_plans), ("jagged", jagged_plans)):
+    for kind, made in (("rectilinear", RECTILINEAR_PLANS), ("jagged", jagged_plans())):
         if kind in kinds:
-            out.update({name: domain_from_dict(data, name) for name, data in make().items()})
+            out.update({name: domain_from_dict(data, name) for name, data in made.items()})
     return out
 
 

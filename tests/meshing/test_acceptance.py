@@ -19,13 +19,17 @@ from strategies.domains import convex_domains
 
 # Examples that meet every acceptance property, and for the others the property that fails (kept as
 # strict xfails so that a fix shows up). "Boundary singularities" are compared with the number the
-# index theorem forces for the decomposition (see forced_boundary_singular): 0 for most plans, 1 for
-# the L-shape and multiple_lobes, whose decompositions have one more valence-5 singularity than a
-# boundary without singularities allows.
-PASSING = ["l_shape", "quad_with_hole", "square_point_loads", "british_museum_map", "mexico_airport",
+# index theorem forces for the decomposition (see forced_boundary_singular), each boundary vertex
+# counted by the regular valence of its angle: 0 for most plans, more where the medial axis leaves
+# reflex corners without a branch of their own (none on a rectilinear plan such as the L-shape,
+# rules/corners.vgr).
+PASSING = ["l_shape", "quad_with_hole", "square_point_loads", "british_museum_map",
            "rolex_learning_centre", "hiroshi_senju_museum", "multiple_lobes",
            "rv_lips_pattern", "rv_pillow_pattern", "rv_quad_pattern", "rv_ring_pattern", "armadillo_vault_plan"]
 FAILING = {
+    "mexico_airport": "91 boundary singularities by the regular valence, where 3 are forced: its openings' "
+                      "corners of 230-270 degrees (reflex for the domain) are corners of 2 quads, the medial "
+                      "axis giving them no branch (rules/corners.vgr does on rectilinear plans only)",
     "two_holes_five_points": "1 boundary singularity at (4.76, 9.01): the boundary feature (4.5, 9.22) is the corner "
                              "of two quads whose far corners are on the boundary, and Figure 4 splits one",
     "rv_star_pattern": "reflex corners (8.85, 2.9) and (6.79, 10.93) are corners of 2 quads; the 214 degree "
@@ -123,14 +127,14 @@ def test_index_theorem(meshed, name):
     assert stats["boundary_singular"] >= forced_boundary_singular(layout)
 
 
-def test_l_shape_reflex_corner_is_forced(meshed):
-    """The L's decomposition has one valence-5 singularity (index -1); its 5 convex corners give +5,
-    so the reflex corner must take index 0 (2 faces) instead of -1: exactly that one is singular."""
+def test_l_shape_has_no_singular_vertex(meshed):
+    """The L's reflex corner is the corner of three patches (rules/corners.vgr): nothing is forced,
+    no vertex is singular, and the corner (5, 5) has three quads (valence 4)."""
     domain, layout, _, mesh, stats = meshed("l_shape")
-    assert forced_boundary_singular(layout) == 1
-    assert stats["interior_singular_valences"] == [5]
-    (v,) = stats["boundary_singular_vertices"]
-    assert np.allclose(mesh.vertices[v], [5, 5]) and mesh.corner[v] == -1
+    assert forced_boundary_singular(layout) == 0
+    assert stats["interior_singular"] == 0 and stats["boundary_singular"] == 0
+    (v,) = [v for v in range(len(mesh.vertices)) if np.allclose(mesh.vertices[v, :2], [5, 5])]
+    assert mesh.corner[v] == -1 and sum(v in f for f in mesh.faces) == 3
 
 
 @pytest.mark.parametrize("name", PASSING)
@@ -172,9 +176,10 @@ def test_halved_target_length(meshed, name):
 # ---------------------------------------------------------------------------------------------
 
 
-@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow,
+                                                                  HealthCheck.function_scoped_fixture])
 @given(convex_domains(), st.sampled_from([0.03, 0.05]))
-def test_random_domains_mesh_or_fail_clearly(domain, fraction):
+def test_random_domains_mesh_or_fail_clearly(unexplained, domain, fraction):
     try:
         mesh = mesh_domain(domain, target_length=fraction * domain.diagonal)
     except VaultgramError as exc:
@@ -189,8 +194,9 @@ def test_random_domains_mesh_or_fail_clearly(domain, fraction):
     assert not tri or mesh.pole[np.asarray(tri)].any(axis=1).all()
     assert (mesh.singular | mesh.pole)[stats["interior_singular_vertices"]].all()
     # convex plans force no boundary singularity (benchmarks/quality_survey.py: 150 of 150 without
-    # one since the spread_boundary_pole rules)
-    assert stats["boundary_singular"] == 0, stats["boundary_singular_vertices"]
+    # one since the spread_boundary_pole rules, by the old count); by the regular valence, corners of
+    # 135-150 degrees with one quad remain (the discretisation's corners turn by more than 30 degrees)
+    assert unexplained(stats) == [], stats["boundary_singular_vertices"]
 
 
 def test_near_symmetric_kite():

@@ -18,7 +18,13 @@ def test_stats_without_labels_use_mesh_topology():
     v = [[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0], [1, 1, 0], [2, 1, 0]]
     stats = mesh_stats(mesh_from_json({"vertices": v, "faces": [[0, 1, 4, 3], [1, 2, 5, 4]]}))
     assert stats["quads"] == 2 and stats["interior_singular"] == 0
-    assert stats["boundary_singular"] == 4  # no corner labels: the four corners count as singular
+    assert stats["boundary_singular"] == 0  # the corners' angles in the mesh (90 degrees) ask for one face
+    assert stats["boundary_singular_angles"] == [] and stats["boundary_singular_valences"] == []
+    # the left quad split into two triangles from the corner (0, 0): two faces at 90 degrees there,
+    # three at 180 degrees at (1, 1)
+    split = mesh_stats(mesh_from_json({"vertices": v, "faces": [[0, 1, 4], [0, 4, 3], [1, 2, 5, 4]]}))
+    assert split["boundary_singular_vertices"] == [0, 4] and split["boundary_singular_angles"] == [90.0, 180.0]
+    assert split["boundary_singular_valences"] == [3, 4] and split["boundary_singular_regular_valences"] == [2, 3]
     assert stats["min_scaled_jacobian"] == pytest.approx(1.0)
     assert stats["min_angle"] == pytest.approx(90.0) and stats["max_angle"] == pytest.approx(90.0)
     flipped = mesh_stats(mesh_from_json({"vertices": v, "faces": [[0, 3, 4, 1], [1, 2, 5, 4]]}))

@@ -11,3 +11,4 @@ from vaultgram.testing.domains import (  # noqa: F401
     star_polygons,
     vault_domains,
 )
+from vaultgram.testing.orthogonal import RECTILINEAR_PLANS, orthogonal_domains  # noqa: F401, E402

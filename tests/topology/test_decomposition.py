@@ -48,17 +48,17 @@ def test_quad_with_hole_has_twelve_quads_and_four_valence_five_singularities(spa
 
 
 @pytest.mark.parametrize("spacing", [0.01, 0.02, 0.03, 0.05])
-def test_l_shape_has_nine_quads_and_one_valence_five_vertex(spacing):
+def test_l_shape_is_three_quads_without_singularity(spacing):
+    """The reflex corner (5, 5) gets its sides' extensions as branches (rules/corners.vgr): three
+    rectangles and no singular vertex, where the published implementation's layout
+    (reference/peer_decomposition/Lshape_h0.25.json) has nine quads round a valence-5 singularity
+    and the corner on the side of one patch."""
     dec = decompose(load_domain(EXAMPLES / "l_shape.json"), spacing)
     g = dec.graph
-    assert [p.n_sides for p in dec.patches] == [4] * 9
-    interior = [n for n in g.nodes() if g.node_type(n) in ("Singularity", "LoopVertex")]
-    irregular = [dec.valence(n) for n in interior if dec.valence(n) != 4]
-    assert irregular == [5]
-    # the reflex corner (5, 5) gets no branch of its own: two boundary pieces and one rebranch, the
-    # layout of the published implementation (reference/peer_decomposition/Lshape_h0.25.json)
+    assert [p.n_sides for p in dec.patches] == [4] * 3
+    assert not [n for n in g.nodes() if g.node_type(n) in ("Singularity", "LoopVertex")]
     (reflex,) = [n for n in g.nodes() if g.node_type(n) != "Patch" and np.allclose(g.get(n, "pos"), (5, 5))]
-    assert g.node_type(reflex) == "BoundaryVertex" and dec.valence(reflex) == 3
+    assert g.node_type(reflex) == "ChordEnd" and dec.valence(reflex) == 4
     corners = sorted(tuple(g.get(n, "pos")) for n in g.nodes() if g.node_type(n) == "Corner")
     assert corners == [(0, 0), (0, 10), (5, 10), (10, 0), (10, 5)]
     assert tiling_error(dec) < 1e-9

@@ -12,6 +12,7 @@ from vaultgram.errors import DomainError
 from vaultgram.topology.discretise import discretise
 
 L_SHAPE = [[0, 0], [10, 0], [10, 5], [5, 5], [5, 10], [0, 10]]
+SKEWED_L = [[0, 0], [10, 0], [10, 5], [5, 5], [4, 10], [0, 10]]  # not rectilinear: no chord feet added
 
 
 @pytest.fixture(scope="module")
@@ -22,13 +23,13 @@ def lshape():
 @given(spacing=st.floats(0.01, 0.05))
 @settings(max_examples=25, deadline=None)
 def test_spacing_bound_and_vertices_kept(spacing):
-    d = domain_from_dict({"outer": L_SHAPE})
+    d = domain_from_dict({"outer": SKEWED_L})
     disc = discretise(d, spacing)
     ring = disc.points[disc.rings[0]]
     gaps = np.hypot(*(np.roll(ring, -1, axis=0) - ring).T)
     assert gaps.max() <= spacing * d.diagonal * (1 + 1e-9)
     # each input segment is split into equal parts
-    for a, b in zip(L_SHAPE, L_SHAPE[1:] + L_SHAPE[:1]):
+    for a, b in zip(SKEWED_L, SKEWED_L[1:] + SKEWED_L[:1]):
         seg_len = np.hypot(b[0] - a[0], b[1] - a[1])
         m = int(np.ceil(seg_len / (spacing * d.diagonal) - 1e-9))
         ab, ap = np.subtract(b, a), ring - a
@@ -38,6 +39,17 @@ def test_spacing_bound_and_vertices_kept(spacing):
         assert on.sum() == m + 1
     # every input vertex is a point, in order
     np.testing.assert_allclose(disc.points[disc.is_input_vertex], d.outer)
+
+
+def test_a_rectilinear_plan_is_sampled_at_its_chord_feet(lshape):
+    """The reflex corner's side extensions meet the boundary at (5, 0) and (0, 5): ring points there
+    (rules/corners.vgr draws the chords to them), and the segments on either side split evenly."""
+    disc = discretise(lshape, 0.03)
+    ring = disc.points[disc.rings[0]]
+    for foot in ([5, 0], [0, 5]):
+        assert np.isclose(np.hypot(*(ring - foot).T), 0).sum() == 1
+    gaps = np.hypot(*(np.roll(ring, -1, axis=0) - ring).T)
+    assert np.allclose(gaps, gaps[0]) and gaps.max() <= 0.03 * lshape.diagonal
 
 
 def test_corners_by_angle(lshape):

@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-__all__ = ["signed_area", "bbox_diagonal", "interior_angle", "cross_z", "triangle_areas"]
+__all__ = ["signed_area", "bbox_diagonal", "interior_angle", "regular_valence", "cross_z", "triangle_areas"]
 
 
 def signed_area(poly: np.ndarray) -> float:
@@ -44,6 +44,20 @@ def interior_angle(before, corner, after) -> float:
     a = math.atan2(after[1] - corner[1], after[0] - corner[0])
     b = math.atan2(before[1] - corner[1], before[0] - corner[0])
     return math.degrees((b - a) % (2 * math.pi))
+
+
+def regular_valence(theta) -> np.ndarray:
+    """The regular valence of a boundary vertex of a quad mesh whose interior angle is ``theta``
+    (degrees): ``1 + max(1, round(theta / 90))``, the usual quad-layout rule. Its number of faces is
+    one less: 1 below 135 degrees (a convex corner, valence 2), 2 from 135 to 225 (a smooth
+    boundary point, 3), 3 from 225 to 315 (a reflex corner, 4), 4 beyond (5). A tie goes up (135 is
+    smooth, 225 reflex), within 1e-9 degrees (a polygon's 135 degree corner computed in floating point).
+
+    >>> regular_valence(np.array([90.0, 134.0, 135.0, 180.0, 224.0, 270.0, 320.0])).tolist()
+    [2, 2, 3, 3, 3, 4, 5]
+    """
+    q = np.asarray(theta, dtype=float) / 90.0
+    return 1 + np.maximum(1, np.floor(q + 0.5 + 1e-11)).astype(np.int64)
 
 
 def cross_z(a: np.ndarray, b: np.ndarray) -> np.ndarray:

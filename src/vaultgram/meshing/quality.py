@@ -19,7 +19,7 @@ from scipy.spatial import cKDTree
 from vaultgram.domain.model import Domain
 from vaultgram.errors import MeshFoldError, VaultgramError
 from vaultgram.geometry.meshes import NonManifoldVertexError, boundary_loops, corner_arrays, corner_vectors, has_twin
-from vaultgram.geometry.polygons import bbox_diagonal, cross_z, interior_angle
+from vaultgram.geometry.polygons import bbox_diagonal, cross_z, interior_angle, regular_valence
 from vaultgram.geometry.polylines import polyline_hausdorff, turning_angles
 from vaultgram.geometry.text import fmt_point
 from vaultgram.meshing.quadmesh import QuadMesh
@@ -34,50 +34,30 @@ __all__ = [
     "CORNER_ANGLE",
 ]
 
-#: Tolerance band (degrees) around 135 and 225 degrees inside which a boundary corner is regular
-#: with either neighbouring number of quads (a 135 degree corner takes 1 quad or 2 equally well).
-CORNER_TIE_BAND = 10.0
-
-#: Turning angle (degrees) beyond which a ring vertex is a corner (as in
+#: Turning angle (degrees) beyond which a curve vertex is a bend (as the discretisation's corners,
 #: :func:`vaultgram.topology.discretise.discretise`).
 CORNER_ANGLE = 30.0
 
 
-def regular_boundary_faces(
-    turning: np.ndarray, band: float = CORNER_TIE_BAND, corner_angle: float = CORNER_ANGLE
-) -> tuple[np.ndarray, np.ndarray]:
-    """Regular number of faces at boundary vertices, from the domain's turning angle (degrees).
-
-    Two readings of "regular" are accepted, and both are reported as regular:
-
-    * the acceptance's: valence 2 (1 face) at a convex corner, 3 (2 faces) on a smooth stretch,
-      4 (3 faces) at a reflex corner, a corner being a ring vertex turning by more than
-      ``corner_angle`` (the discretisation's corner threshold, §3.1);
-    * the corner angle's: the interior angle ``180 - turning`` divided by 90 and rounded, at least
-      1, and within ``band`` degrees of a tie (135, 225, ...) both neighbours. This one is stricter
-      on smooth stretches and at sharp corners (a 300 degree corner is regular with 3 faces only)
-      and adds flat corners (a 215 degree corner with 2 faces, a 145 degree one with 2).
+def regular_boundary_faces(turning: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Regular number of faces at boundary vertices, from the domain's turning angle (degrees): one
+    less than :func:`~vaultgram.geometry.polygons.regular_valence` of the interior angle
+    ``180 - turning`` (1 at a convex corner, 2 on a smooth stretch and at corners of 135-225 degrees,
+    3 at a reflex corner, 4 beyond 315 degrees).
 
     Returns
     -------
     low, high : ndarray int
-        Lowest and highest regular number of faces.
+        Lowest and highest regular number of faces (equal: the rule has no tolerance band).
 
     Example
     -------
     >>> low, high = regular_boundary_faces(np.array([90.0, 0.0, -90.0, 45.0]))  # convex, flat, reflex, 135 deg
     >>> low.tolist(), high.tolist()
-    ([1, 2, 3, 1], [1, 2, 3, 2])
+    ([1, 2, 3, 2], [1, 2, 3, 2])
     """
-    turning = np.asarray(turning, dtype=float)
-    q = (180.0 - turning) / 90.0
-    base = np.maximum(1, np.floor(q + 0.5)).astype(np.int64)
-    frac = q - np.floor(q)
-    tie = np.abs(frac - 0.5) * 90.0 <= band
-    low = np.where(tie, np.maximum(1, np.floor(q)), base).astype(np.int64)
-    high = np.where(tie, np.maximum(1, np.floor(q) + 1), base).astype(np.int64)
-    kind = np.where(turning > corner_angle, 1, np.where(turning < -corner_angle, 3, 2))
-    return np.minimum(low, kind), np.maximum(high, kind)
+    faces = regular_valence(180.0 - np.asarray(turning, dtype=float)) - 1
+    return faces, faces.copy()
 
 
 def _face_array(faces) -> np.ndarray:
@@ -92,14 +72,6 @@ def _face_array(faces) -> np.ndarray:
     if (~q).any():
         out[~q, :3] = np.array([f for f in faces if len(f) == 3], dtype=np.int64)
     return out
-
-
-def _turning_from_domain(x: np.ndarray, domain: Domain) -> np.ndarray:
-    """Domain turning angle at each point lying on a domain ring vertex (0 elsewhere)."""
-    pts = np.vstack(domain.rings)
-    ang = np.concatenate([turning_angles(r) for r in domain.rings])
-    d, k = cKDTree(pts).query(x)
-    return np.where(d <= 1e-7 * domain.diagonal, ang[k], 0.0)
 
 
 def _boundary_distance(x: np.ndarray, loops, domain: Domain) -> float:
@@ -189,12 +161,14 @@ def mesh_stats(mesh: QuadMesh, domain: Domain | None = None) -> dict:
     """
     x = np.asarray(mesh.vertices, dtype=float)[:, :2]
     topo = _topology(mesh.faces, len(x))
-    low, high = regular_boundary_faces(_turning(mesh, x, domain))
-    irregular = _irregular(topo, low, high)
+    angle = _corner_angles(x, topo)
+    theta = np.bincount(topo.u, weights=angle, minlength=len(x))
+    regular = regular_valence(theta)
+    irregular = np.where(topo.on_boundary, topo.faces_at != regular - 1, topo.valence != 4)
     stats = {
         **_face_counts(mesh.faces, topo),
-        **_singular_vertices(topo, irregular, _feature_mask(mesh)),
-        **_shape_stats(x, mesh.faces, topo),
+        **_singular_vertices(topo, irregular, _feature_mask(mesh), theta, regular),
+        **_shape_stats(x, mesh.faces, angle),
         "manifold": topo.manifold,
         "oriented": topo.oriented,
         "boundary_loops": len(topo.loops),
@@ -246,20 +220,6 @@ def _topology(faces, nv: int) -> _Topology:
                      bool((mult == 1).all()))
 
 
-def _turning(mesh: QuadMesh, x: np.ndarray, domain: Domain | None) -> np.ndarray:
-    """The domain's turning angle at each vertex: from the domain's rings if given, else the mesh's labels."""
-    if domain is not None:
-        return _turning_from_domain(x, domain)
-    return np.asarray(mesh.turning, dtype=float)
-
-
-def _irregular(topo: _Topology, low: np.ndarray, high: np.ndarray) -> np.ndarray:
-    """Irregular vertices: inside, a valence other than 4; on the boundary, a number of faces outside
-    the regular range ``[low, high]`` of its corner angle."""
-    outside = (topo.faces_at < low) | (topo.faces_at > high)
-    return np.where(topo.on_boundary, outside, topo.valence != 4)
-
-
 def _feature_mask(mesh: QuadMesh) -> np.ndarray:
     """The point-feature label per vertex (all False when the mesh has none)."""
     n = len(mesh.vertices)
@@ -277,9 +237,12 @@ def _face_counts(faces, topo: _Topology) -> dict:
     }
 
 
-def _singular_vertices(topo: _Topology, irregular: np.ndarray, feature: np.ndarray) -> dict:
+def _singular_vertices(topo: _Topology, irregular: np.ndarray, feature: np.ndarray, theta: np.ndarray,
+                       regular: np.ndarray) -> dict:
     """Interior singularities (valence other than 4) and boundary singularities (§3.2: "no boundary
-    singularities"); a boundary feature point is a pole on purpose (§4.1: "high valency vertices")
+    singularities"): a valence other than the regular one of the vertex's interior angle ``theta``
+    in the mesh (``regular``, :func:`~vaultgram.geometry.polygons.regular_valence`), with each one's
+    angle and valence; a boundary feature point is a pole on purpose (§4.1: "high valency vertices")
     and is counted apart."""
     used = topo.faces_at > 0
     interior = np.flatnonzero(used & ~topo.on_boundary & (topo.valence != 4))
@@ -291,16 +254,24 @@ def _singular_vertices(topo: _Topology, irregular: np.ndarray, feature: np.ndarr
         "interior_singular_valences": topo.valence[interior].tolist(),
         "boundary_singular": len(boundary),
         "boundary_singular_vertices": boundary.tolist(),
+        "boundary_singular_angles": [round(float(a), 6) for a in theta[boundary]],
+        "boundary_singular_valences": topo.valence[boundary].tolist(),
+        "boundary_singular_regular_valences": regular[boundary].tolist(),
         "boundary_feature_singular": len(np.flatnonzero(on_boundary & feature)),
     }
 
 
-def _shape_stats(x: np.ndarray, faces, topo: _Topology) -> dict:
-    """Scaled Jacobians (per face, the worst corner) and corner angles (degrees, in [0, 360))."""
+def _corner_angles(x: np.ndarray, topo: _Topology) -> np.ndarray:
+    """The angle of every face corner (degrees, in [0, 360)); summed round a boundary vertex, its
+    interior angle in the mesh."""
     e1, e2 = corner_vectors(x, topo.u, topo.v, topo.w)
-    face_sj = face_scaled_jacobians(x, faces)
     angle = np.degrees(np.arctan2(cross_z(e1, e2), (e1 * e2).sum(1)))
-    angle = np.where(angle < 0, 360.0 + angle, angle)
+    return np.where(angle < 0, 360.0 + angle, angle)
+
+
+def _shape_stats(x: np.ndarray, faces, angle: np.ndarray) -> dict:
+    """Scaled Jacobians (per face, the worst corner) and corner angles (degrees, in [0, 360))."""
+    face_sj = face_scaled_jacobians(x, faces)
     return {
         "min_scaled_jacobian": float(face_sj.min()) if len(faces) else None,
         "mean_scaled_jacobian": float(face_sj.mean()) if len(faces) else None,
@@ -372,11 +343,18 @@ def _curve_chains_fit(mesh: QuadMesh, x: np.ndarray, topo: _Topology, lines: lis
 
 
 def format_stats(stats: dict) -> str:
-    """A two-column text table of :func:`mesh_stats` (vertex lists left out, floats to 6 digits).
+    """A two-column text table of :func:`mesh_stats` (vertex lists left out, floats to 6 digits),
+    then a line for each boundary singularity: its vertex, interior angle and valence, and the
+    valence its angle asks for.
 
     >>> print(format_stats({"vertices": 9, "interior_singular_vertices": [], "min_angle": 90.0}))
     vertices   9
     min_angle  90
+    >>> print(format_stats({"boundary_singular": 1, "boundary_singular_vertices": [4],
+    ...                     "boundary_singular_angles": [270.0], "boundary_singular_valences": [3],
+    ...                     "boundary_singular_regular_valences": [4]}))
+    boundary_singular  1
+    boundary singular vertex 4: angle 270 degrees, valence 3 (regular 4)
     """
     rows = []
     for k, val in stats.items():
@@ -386,4 +364,9 @@ def format_stats(stats: dict) -> str:
             val = f"{val:.6g}"
         rows.append((k, str(val)))
     width = max(len(k) for k, _ in rows)
-    return "\n".join(f"{k:<{width}}  {val}" for k, val in rows)
+    lines = [f"{k:<{width}}  {val}" for k, val in rows]
+    singular = zip(*(stats.get(f"boundary_singular_{k}", []) for k in ("vertices", "angles", "valences",
+                                                                        "regular_valences")))
+    lines += [f"boundary singular vertex {v}: angle {a:.6g} degrees, valence {d} (regular {r})"
+              for v, a, d, r in singular]
+    return "\n".join(lines)

@@ -36,6 +36,7 @@ from scipy.spatial import cKDTree
 from vaultgram.domain.model import Domain
 from vaultgram.errors import DomainError
 from vaultgram.geometry.polylines import locate_on_polyline, subdivide_polyline, turning_angles
+from vaultgram.topology.corners import chord_feet
 
 __all__ = ["Discretisation", "discretise", "SPACING_RANGE"]
 
@@ -157,9 +158,9 @@ def discretise(domain: Domain, spacing: float = 0.02, corner_angle: float = 30.0
     Example
     -------
     >>> from vaultgram.domain import load_domain
-    >>> disc = discretise(load_domain("examples/l_shape.json"), 0.05)
+    >>> disc = discretise(load_domain("examples/l_shape.json"), 0.05)  # with its chords' two feet
     >>> disc
-    Discretisation('l_shape', spacing=0.05, 62 points, 6 corners)
+    Discretisation('l_shape', spacing=0.05, 64 points, 6 corners)
     >>> disc.corner_kind[disc.is_corner].tolist()  # the reflex corner of the L at (5, 5)
     [1, 1, 1, -1, 1, 1]
     """
@@ -230,8 +231,9 @@ class _Placed(NamedTuple):
 
 
 def _insert_features(domain: Domain, tol: float) -> _Placed:
-    """Insert the curve ends lying on a ring into it, then the point features lying on a ring or on a
-    curve (§4: they share the point there)."""
+    """Insert the curve ends lying on a ring into it, the feet of the reflex corners' chords of a
+    rectilinear plan (:func:`vaultgram.topology.corners.chord_feet`), then the point features lying
+    on a ring or on a curve (§4: they share the point there)."""
     rings = [np.asarray(r) for r in domain.rings]
     curves = [np.asarray(c) for c in domain.curves]
     ring_inserts: list[list[_Insert]] = [[] for _ in rings]
@@ -239,6 +241,8 @@ def _insert_features(domain: Domain, tol: float) -> _Placed:
     end_refs = [[_queue(ring_inserts, True, _on_rings(rings, curve[end], tol), curve[end])
                  for end in (0, len(curve) - 1)] for curve in curves]
     point_refs = []
+    for foot in chord_feet(rings) if not (len(domain.points) or len(domain.curves)) else ():  # corners.vgr
+        _queue(ring_inserts, True, _on_rings(rings, foot, tol), foot)
     for p in domain.points:
         ref = _queue(ring_inserts, True, _on_rings(rings, p, tol), p)
         if ref is None:

@@ -18,8 +18,9 @@ import shapely
 from vaultgram.engine.embedding import face_walk
 from vaultgram.engine.expressions import Functions
 from vaultgram.errors import RuleError
-from vaultgram.geometry.polygons import interior_angle, signed_area
+from vaultgram.geometry.polygons import interior_angle, regular_valence, signed_area
 from vaultgram.geometry.polylines import arc_lengths, point_at_length
+from vaultgram.topology import corners
 from vaultgram.topology.patches import enclosed_holes, half_edge_polyline, hole_rings, plan_faces
 from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE, DUAL, PATCH_CORNER, PLAN_EDGES
 
@@ -409,4 +410,17 @@ def vault_functions() -> Functions:
                               ("holes_enclosed", holes_enclosed, "int"), ("curve_crossings", curve_crossings, "int"),
                               ("plan_crossings", plan_crossings, "int")):
         f.register(name, fn, (), returns, uses_graph=True, local=False)
+    _register_corner_helpers(f)
     return f
+
+
+def _register_corner_helpers(f: Functions) -> None:
+    """The helpers of ``rules/corners.vgr`` (:mod:`vaultgram.topology.corners`): the regular valence
+    of a boundary vertex by its angle, whether the plan is rectilinear, where a reflex corner's chord
+    ends, and where two chords cross."""
+    f.register("regular_valence", lambda theta: int(regular_valence(theta)), ("number",), "int")
+    f.register("boundary_angle", corners.boundary_angle, ("node",), "float", uses_graph=True, local=False)
+    f.register("rectilinear_plan", corners.rectilinear_plan, (), "bool", uses_graph=True, local=False)
+    f.register("chord_end", corners.chord_end, ("node", "int"), "node", uses_graph=True, local=False)
+    f.register("segments_cross", corners.segments_cross, ("vec2", "vec2", "vec2", "vec2"), "bool")
+    f.register("segment_crossing", corners.segment_crossing, ("vec2", "vec2", "vec2", "vec2"), "vec2")

@@ -1,0 +1,79 @@
+"""Pattern quality and meshing time on real and rectilinear plans (the issue "pattern quality on
+real plans").
+
+Run: ``python benchmarks/pattern_quality.py [--repeat R] [NAME ...]``. Meshes every shared plan
+(``../shared/data/architecture/*.json`` beside the repository, when present), every example and the
+rectilinear plans of :data:`vaultgram.testing.orthogonal.RECTILINEAR_PLANS` at the default settings,
+and prints per plan: patches (triangles among them), interior and boundary singular vertices (the
+boundary ones by the regular valence of their angle, boundary point features apart), min and mean
+scaled Jacobian, inverted faces, the boundary's distance from the domain's (relative to the
+diagonal) and the best of ``R`` meshing times (``mesh_domain``). Timings are noisy on a shared
+machine: note the load beside them.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import time
+from pathlib import Path
+
+from vaultgram.domain import domain_from_dict, load_domain
+from vaultgram.errors import VaultgramError
+from vaultgram.meshing.quality import mesh_stats
+from vaultgram.pipeline import mesh_domain
+from vaultgram.testing.orthogonal import RECTILINEAR_PLANS
+
+ROOT = Path(__file__).resolve().parent.parent
+SHARED = ROOT.parent / "shared" / "data" / "architecture"
+
+
+def plans() -> dict:
+    """The plans by name: shared plans, examples (domain files only), rectilinear plans."""
+    out = {}
+    for path in sorted(SHARED.glob("*.json")) + sorted((ROOT / "examples").glob("*.json")):
+        try:
+            out[path.stem] = load_domain(path)
+        except VaultgramError:
+            continue  # not a domain file (the skeleton example)
+    out.update({name: domain_from_dict({"name": name, **data}) for name, data in RECTILINEAR_PLANS.items()})
+    return out
+
+
+def measure(domain, repeat: int) -> str:
+    """One table row: the mesh's quality and the best meshing time of ``repeat`` runs."""
+    best = float("inf")
+    for _ in range(repeat):
+        start = time.perf_counter()
+        mesh = mesh_domain(domain, allow_folds=True)
+        best = min(best, time.perf_counter() - start)
+    s = mesh_stats(mesh, domain)
+    return (f"{mesh.info['patches']:5d} {mesh.info['triangle_patches']:4d} {s['interior_singular']:4d} "
+            f"{s['boundary_singular']:4d} {s['boundary_feature_singular']:4d} {s['min_scaled_jacobian']:7.3f} "
+            f"{s['mean_scaled_jacobian']:7.3f} {s['inverted_faces']:4d} {s['boundary_distance_relative']:8.5f} "
+            f"{best:7.3f}")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("names", nargs="*", help="plans to measure (default all)")
+    ap.add_argument("--repeat", type=int, default=3)
+    args = ap.parse_args()
+    print(f"load average {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
+    print(f"{'plan':28s} patch  tri  int  bnd feat  min SJ mean SJ  inv bnd dist  time s")
+    total = 0.0
+    for name, domain in plans().items():
+        if args.names and name not in args.names:
+            continue
+        try:
+            row = measure(domain, args.repeat)
+        except VaultgramError as exc:
+            row = f"error: {str(exc).splitlines()[0][:80]}"
+        else:
+            total += float(row.split()[-1])
+        print(f"{name:28s} {row}", flush=True)
+    print(f"total meshing time {total:.2f} s; load average {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
+
+
+if __name__ == "__main__":
+    main()

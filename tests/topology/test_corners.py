@@ -1,0 +1,83 @@
+"""Reflex corners of rectilinear plans (rules/corners.vgr, vaultgram.topology.corners): each reflex
+corner gets branches of its own (its sides' extensions to the boundary), and the plan meshes as a
+structured grid without any singular vertex, inside or on the boundary."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+
+from vaultgram.domain import domain_from_dict, load_domain
+from vaultgram.meshing.quality import mesh_stats
+from vaultgram.pipeline import decompose, mesh_decomposition
+from vaultgram.topology.corners import chord_feet, ray_hit, rectilinear_rings
+
+from paths import EXAMPLES
+from strategies.domains import RECTILINEAR_PLANS, orthogonal_domains
+
+PLANS = RECTILINEAR_PLANS
+
+
+def no_singular_vertex(domain) -> None:
+    """The plan's patches are all four-sided and its mesh has no singular vertex at all."""
+    dec = decompose(domain, 0.02)
+    assert {p.n_sides for p in dec.patches} == {4}
+    stats = mesh_stats(mesh_decomposition(dec), domain)
+    assert stats["interior_singular"] == 0, stats["interior_singular_vertices"]
+    assert stats["boundary_singular"] == 0, list(zip(stats["boundary_singular_angles"],
+                                                     stats["boundary_singular_valences"]))
+    assert stats["triangles"] == 0 and stats["inverted_faces"] == 0
+    assert stats["min_scaled_jacobian"] > 0.9
+
+
+@pytest.mark.parametrize("name", sorted(PLANS))
+def test_rectilinear_plans_mesh_without_singular_vertices(name):
+    no_singular_vertex(domain_from_dict({"name": name, **PLANS[name]}))
+
+
+def test_each_reflex_corner_is_the_corner_of_three_patches():
+    """The L's reflex corner (5, 5) has both its chords, to (5, 0) and (0, 5): three rectangles."""
+    dec = decompose(domain_from_dict(PLANS["L"]), 0.05)
+    corners = sorted(sorted(tuple(np.round(dec.graph.get(c, "pos"), 9)) for c in p.corners) for p in dec.patches)
+    assert corners == [[(0, 0), (0, 5), (5, 0), (5, 5)], [(0, 5), (0, 10), (5, 5), (5, 10)],
+                       [(5, 0), (5, 5), (10, 0), (10, 5)]]
+
+
+def test_the_l_shape_example_is_three_rectangles():
+    dec = decompose(load_domain(EXAMPLES / "l_shape.json"), 0.02)
+    assert len(dec.patches) == 3 and not dec.singularities()
+
+
+def test_chords_cross_at_regular_interior_vertices():
+    """In the courtyard block the chord up from the court's corner (15, 8) crosses the one to the
+    right from its corner (9, 12), at (15, 12): the corner of four patches, valence 4."""
+    dec = decompose(domain_from_dict(PLANS["courtyard"]), 0.02)
+    g = dec.graph
+    crossings = [n for n in g.nodes() if g.node_type(n) == "ChordCrossing"]
+    assert [tuple(np.round(g.get(n, "pos"), 9)) for n in crossings] == [(15, 12)]
+    assert [dec.valence(n) for n in crossings] == [4]
+
+
+def test_chord_feet_are_where_the_side_extensions_meet_the_boundary():
+    feet = sorted(tuple(f) for f in chord_feet([np.array(PLANS["L"]["outer"], dtype=float)]))
+    assert feet == [(0.0, 5.0), (5.0, 0.0)]
+    assert chord_feet([np.array([[0, 0], [4, 0], [2, 3.0]])]) == []  # not rectilinear: no chords
+    # the ray from the inside of a square leaves it on the side it points to
+    assert ray_hit([np.array([[0, 0], [4, 0], [4, 4], [0, 4.0]])], np.array([1.0, 1.0]), np.array([0, -1.0])).tolist() \
+        == [1.0, 0.0]
+
+
+def test_plans_with_other_angles_or_features_keep_the_medial_axis():
+    """A 100 degree corner, or a point feature, and the chords' rules do not apply."""
+    assert not rectilinear_rings([np.array([[0, 0], [10, 0], [10, 5], [5, 5], [5, 10], [-1, 10.0]])])
+    with_point = domain_from_dict({**PLANS["L"], "points": [[2.0, 2.0]]})
+    dec = decompose(with_point, 0.05)
+    assert dec.singularities() and not [n for n in dec.graph.nodes() if dec.graph.node_type(n) == "ChordEnd"]
+
+
+@settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
+@given(orthogonal_domains())
+def test_random_orthogonal_plans_mesh_without_singular_vertices(data):
+    """Random polyomino outlines of 8-40 corners with 0-2 rectangular or L-shaped holes."""
+    no_singular_vertex(domain_from_dict(data))
