@@ -23,7 +23,7 @@ def test_the_program_runs_topology_then_the_patch_step_then_patching():
     program = decomposition_program(load_vault_rulebook())
     strategies = [i.strategy for i in program]
     first_patch = strategies.index("patch nodes")
-    assert set(strategies[:first_patch]) == {"topology", "curve_topology"}
+    assert set(strategies[:first_patch]) == {"topology", "curve_topology", "reflex_corners"}
     assert set(strategies[first_patch + 1:]) == {"curve_patching", "patching"}
 
 
