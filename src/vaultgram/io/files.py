@@ -14,6 +14,7 @@ import os
 import shutil
 import signal
 import tempfile
+import threading
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Iterator, Sequence
@@ -52,15 +53,67 @@ def output_folder(path: str | Path) -> Iterator[Path]:
     ['a.txt']
     """
     path = Path(path)
-    if path.exists() and not path.is_dir():
-        raise VaultgramError(f"{path}: the output folder is a file")
-    path.parent.mkdir(parents=True, exist_ok=True)
-    stage = Path(tempfile.mkdtemp(prefix=f".{path.name}.", dir=path.parent))
     try:
-        yield stage
-        _move_into(stage, path)
+        stage = _make_stage(path)
+    except OSError as exc:
+        raise _output_error(path, exc) from None
+    try:
+        with _terminate_unwinds():
+            yield stage
+            _check_targets(stage, path)
+            _move_into(stage, path)
+    except OSError as exc:
+        raise _output_error(path, exc) from None
     finally:
         shutil.rmtree(stage, ignore_errors=True)
+
+
+@contextmanager
+def _terminate_unwinds() -> Iterator[None]:
+    """SIGTERM raises SystemExit(143) in the block (as SIGINT raises KeyboardInterrupt), so that the
+    staging folder is removed on the way out rather than left behind by the default handler, which
+    ends the process at once. The handler is set only in the main thread (elsewhere it cannot be)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGTERM, _raise_exit)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _raise_exit(signum, frame) -> None:
+    raise SystemExit(128 + signum)
+
+
+def _make_stage(path: Path) -> Path:
+    """The staging folder beside ``path`` (its parent made if need be)."""
+    if path.exists() and not path.is_dir():
+        raise VaultgramError(f"{path}: the output folder is a file")
+    for parent in path.parents:
+        if parent.exists() and not parent.is_dir():
+            raise VaultgramError(f"{path}: the output folder is below a file ({parent})")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    return Path(tempfile.mkdtemp(prefix=f".{path.name}.", dir=path.parent))
+
+
+def _output_error(path: Path, exc: OSError) -> VaultgramError:
+    """An operating-system error while writing as one line naming the file (permission, disk full...)."""
+    where = exc.filename if exc.filename else path
+    if isinstance(where, str) and Path(where).parent.name.startswith(f".{path.name}."):
+        where = path / Path(where).name  # a file of the staging folder: name it by where it was going
+    return VaultgramError(f"{where}: cannot write: {exc.strerror or exc}")
+
+
+def _check_targets(stage: Path, path: Path) -> None:
+    """Refuse, before anything moves, a staged file whose place in ``path`` is taken by a folder (or a
+    staged folder whose place is a file): the output folder is complete or untouched."""
+    for item in sorted(stage.iterdir()):
+        target = path / item.name
+        if target.exists() and target.is_dir() != item.is_dir():
+            kind = "a folder" if target.is_dir() else "a file"
+            raise VaultgramError(f"{target}: cannot write: {kind} is in the way")
 
 
 def _move_into(stage: Path, path: Path) -> None:
