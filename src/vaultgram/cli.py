@@ -15,6 +15,7 @@ from pathlib import Path
 
 import click
 
+from vaultgram.clitypes import FINITE, ITERATIONS, Finite, max_faces_option, spacing_option
 from vaultgram.errors import VaultgramError, VaultgramWarning
 from vaultgram.io.files import output_folder, read_json, write_json
 
@@ -45,17 +46,16 @@ def _show_warning(message, category, filename, lineno, file=None, line=None) -> 
 
 
 # Options several commands share.
-POSITIVE = click.FloatRange(min=0.0, min_open=True)
+POSITIVE = Finite(min=0.0, min_open=True)
 OUT = click.option("--out", "out_dir", required=True, type=click.Path(file_okay=False), help="Output directory.")
-SPACING = click.option("--spacing", default=0.02, show_default=True, type=float,
-                       help="Boundary spacing as a fraction of the bounding-box diagonal (0.01 to 0.05 usual).")
+SPACING = spacing_option
 RULES = click.option("--rules", "rules_dir", default=None, type=click.Path(file_okay=False, exists=True),
                      help="Directory with the rule files: topology.vgr, tessellation.vgr "
                           "(default: the rulebook shipped with vaultgram).")
 TARGET_LENGTH = click.option("--target-length", type=POSITIVE, default=None,
                              help="Target mesh edge length (domain units); "
                                   "default 2.5% of the bounding-box diagonal.")
-SMOOTH = click.option("--smooth", default=None, type=int,
+SMOOTH = click.option("--smooth", default=None, type=ITERATIONS,
                       help="Laplacian smoothing iterations "
                            "(default 20; 0: the raw Coons patches, not untangled either).")
 ALLOW_FOLDS = click.option("--allow-folds", is_flag=True,
@@ -66,11 +66,11 @@ THRUST = [
     click.option("--thickness", type=POSITIVE, default=1.0, show_default=True, help="Shell thickness for self-weight."),
     click.option("--density", type=POSITIVE, default=1.0, show_default=True,
                  help="Material density (weight per volume)."),
-    click.option("--point-load", type=float, default=0.0, show_default=True,
+    click.option("--point-load", type=FINITE, default=0.0, show_default=True,
                  help="Vertical load at every point feature (a column load, a lantern...)."),
     click.option("--tol-deg", type=POSITIVE, default=0.5, show_default=True,
                  help="Horizontal equilibrium: largest angle between form and force edges."),
-    click.option("--sag", type=click.FloatRange(min=0.0, min_open=True), default=0.1, show_default=True,
+    click.option("--sag", type=POSITIVE, default=0.1, show_default=True,
                  help="How far unsupported boundary edges are bent inwards before form finding (relative)."),
     click.option("--relax-mode", type=click.Choice(["auto", "boundary", "all"]), default="auto", show_default=True,
                  help="Bend only the unsupported boundary ('boundary'), let every vertex move ('all'), or the "
@@ -113,10 +113,10 @@ def input_options(command):
 TESSELLATION = [
     click.option("--rhythm", type=click.Choice(["2", "4"]), default="2", show_default=True,
                  help="Keep every second or every fourth edge along a course (voussoirs of about 2 or 4 faces)."),
-    click.option("--max-concavity", type=click.FloatRange(180.0, 360.0, max_open=True), default=190.0,
+    click.option("--max-concavity", type=Finite(180.0, 360.0, max_open=True), default=190.0,
                  show_default=True, help="Largest voussoir corner (degrees, in its best-fit plane)."),
     click.option("--flat-extrados", is_flag=True, help="Make each voussoir's top face planar (best-fit plane)."),
-    click.option("--surface-smooth", type=click.IntRange(min=0), default=0, show_default=True,
+    click.option("--surface-smooth", type=ITERATIONS, default=0, show_default=True,
                  help="Laplacian smoothing iterations of the network on the thrust surface "
                       "(no voussoir made concave)."),
 ]
@@ -384,12 +384,13 @@ def trace_command(domain_path: str, out_dir: str, spacing: float, rules_dir: str
 @SUPPORTS
 @SPACING
 @TARGET_LENGTH
+@max_faces_option
 @FORMAT
 @click.option("--input-format", type=click.Choice(["json", "geojson", "dxf", "3dm", "mesh", "obj", "compas"]),
               default=None, help="The input's format (default: by extension, then by content).")
 @LAYERS
 def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, tol_deg, sag, relax_mode,
-                     supports_path, spacing, target_length, formats, input_format, layers) -> None:
+                     supports_path, spacing, target_length, formats, input_format, layers, max_faces) -> None:
     """Thrust Network Analysis (paper 5) on a MESH or a DOMAIN.
 
     A MESH is a mesh.json (or any {"vertices", "faces"}), a Wavefront OBJ or a COMPAS mesh JSON, faces
@@ -411,7 +412,7 @@ def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, 
         mesh, spec = pattern
     else:
         domain = load_domain(input_path, input_format, layer_names(layers), spacing)
-        mesh = mesh_domain(domain, spacing, target_length, timings=timings)
+        mesh = mesh_domain(domain, spacing, target_length, timings=timings, max_faces=max_faces)
         spec = domain.supports
     if supports_path:
         spec = read_json(supports_path)
@@ -469,9 +470,11 @@ def tessellate_command(thrust_path, out_dir, thickness, rhythm, max_concavity, f
 @FORMAT
 @input_options
 @TRACE
+@max_faces_option
 def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smooth, densities_path, allow_folds,
                    supports_path, zmax, thickness, density, point_load, tol_deg, sag, relax_mode, rhythm,
-                   max_concavity, flat_extrados, surface_smooth, formats, input_format, layers, with_trace) -> None:
+                   max_concavity, flat_extrados, surface_smooth, formats, input_format, layers, with_trace,
+                   max_faces) -> None:
     """The whole pipeline on a DOMAIN: decomposition (3.1, 4), mesh (3.2), thrust network and voussoirs (5).
 
     Everything is computed before anything is written, so a failing stage leaves no output. The DOMAIN
@@ -491,7 +494,7 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
         load_densities(densities_path) if densities_path else None, allow_folds,
         read_json(supports_path) if supports_path else None, point_load, zmax, thickness,
         TessellationOptions(int(rhythm), max_concavity, flat_extrados, surface_smooth), trace=with_trace,
-        density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode)
+        density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode, max_faces=max_faces)
     out = Path(out_dir)
     with output_folder(out) as stage:
         write_design(result, stage, formats, trace=with_trace)
@@ -526,8 +529,9 @@ def _joined(names) -> str:
 @SUPPORTS
 @FORMAT
 @input_options
+@max_faces_option
 def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities_path, allow_folds,
-                 supports_path, formats, input_format, layers) -> None:
+                 supports_path, formats, input_format, layers, max_faces) -> None:
     """Quad-mesh a DOMAIN (paper 3): decompose, mesh the patches, weld, smooth.
 
     Writes mesh.json (vertices, faces, vertex labels, edge groups, the vertices that bear thrust) and
@@ -546,7 +550,7 @@ def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities
     domain = load_domain(domain_path, input_format, layer_names(layers), spacing)
     spec = load_densities(densities_path) if densities_path else None
     mesh = mesh_domain(domain, spacing, target_length, DEFAULT_ITERATIONS if smooth is None else smooth, spec,
-                       allow_folds=allow_folds)
+                       allow_folds=allow_folds, max_faces=max_faces)
     supports = read_json(supports_path) if supports_path else domain.supports
     if isinstance(supports, list):
         supports = {"vertices": supports}

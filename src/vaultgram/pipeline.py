@@ -51,6 +51,7 @@ from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.halfedges import mesh_edges
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.surfaces import area_vectors, vertex_normals
+from vaultgram.limits import MAX_FACES
 from vaultgram.meshing.densities import DensitySpec, group_counts
 from vaultgram.meshing.layout import Layout, edge_groups
 from vaultgram.meshing.quadmesh import QuadMesh
@@ -139,17 +140,18 @@ def decompose(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | Non
 
 def mesh_decomposition(dec: Decomposition, target_length: float | None = None, smooth: int = DEFAULT_ITERATIONS,
                        densities: DensitySpec | None = None, allow_folds: bool = False,
-                       timings: dict | None = None) -> QuadMesh:
+                       timings: dict | None = None, max_faces: int = MAX_FACES) -> QuadMesh:
     """Geometry of §3.2 for a decomposition: edge groups, densities, Coons patches, welding, smoothing.
 
     A smoothed mesh with inverted faces raises :class:`~vaultgram.errors.MeshFoldError` unless
-    ``allow_folds``; the raw Coons patches (``smooth=0``) are returned as they are.
+    ``allow_folds``; the raw Coons patches (``smooth=0``) are returned as they are. Densities that ask
+    for more than ``max_faces`` faces are refused before any is made (:mod:`vaultgram.meshing.guards`).
     """
     if smooth < 0:
         raise VaultgramError(f"smoothing iterations must be >= 0, got {smooth}")
     with _timed(timings, "groups"):
         layout = edge_groups(dec)
-        counts = group_counts(layout, densities, target_length)
+        counts = group_counts(layout, densities, target_length, max_faces)
     with _timed(timings, "weld"):
         mesh = weld(layout, counts)
     with _timed(timings, "smooth"):
@@ -179,7 +181,7 @@ def _mesh_info(dec: Decomposition, layout: Layout, smooth: int) -> dict:
 
 def mesh_domain(domain: Domain, spacing: float = 0.02, target_length: float | None = None,
                 smooth: int = DEFAULT_ITERATIONS, densities: DensitySpec | None = None, rules_dir=None,
-                allow_folds: bool = False, timings: dict | None = None) -> QuadMesh:
+                allow_folds: bool = False, timings: dict | None = None, max_faces: int = MAX_FACES) -> QuadMesh:
     """Topology and geometry of §3: a smooth quad mesh of ``domain``.
 
     Parameters
@@ -197,17 +199,19 @@ def mesh_domain(domain: Domain, spacing: float = 0.02, target_length: float | No
         Local density control (:func:`vaultgram.meshing.densities.load_densities`).
     allow_folds : bool
         Return a mesh that still has inverted faces after smoothing instead of raising.
+    max_faces : int
+        Refuse densities that ask for more faces (:mod:`vaultgram.meshing.guards`).
 
     Raises
     ------
     VaultgramError
-        From any stage (invalid domain, a patch that is not 3- or 4-sided, bad densities);
+        From any stage (invalid domain, a patch that is not 3- or 4-sided, bad densities, too many faces);
         :class:`~vaultgram.errors.MeshFoldError` when the smoothed mesh has inverted faces (unless
         ``allow_folds``).
     """
     check_feature_spacing(domain, spacing)
     dec = decompose(domain, spacing, rules_dir, timings=timings)
-    return mesh_decomposition(dec, target_length, smooth, densities, allow_folds, timings)
+    return mesh_decomposition(dec, target_length, smooth, densities, allow_folds, timings, max_faces)
 
 
 # --------------------------------------------------------------------------------------------
@@ -519,19 +523,19 @@ def design(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None =
            densities: DensitySpec | None = None, allow_folds: bool = False, supports=None,
            point_load: float = 0.0, zmax: float | None = None, thickness: float = 1.0,
            tessellation: TessellationOptions | None = TessellationOptions(), trace: bool = False,
-           **options) -> Design:
+           max_faces: int = MAX_FACES, **options) -> Design:
     """The whole pipeline on a domain: decomposition (§3.1, §4), mesh (§3.2), thrust network (§5) and
     tessellation (§5).
 
     ``supports`` overrides the domain's own; ``zmax`` defaults to a rise (:func:`thrust_of_mesh`); ``thickness``
     is the shell's, for its self-weight and its voussoirs; ``tessellation`` None stops at the thrust
-    network; ``trace`` keeps the decomposition's starting graph for a replay; ``options`` are those of
-    :func:`form_find`.
+    network; ``trace`` keeps the decomposition's starting graph for a replay; ``max_faces`` limits the
+    mesh (:mod:`vaultgram.meshing.guards`); ``options`` are those of :func:`form_find`.
     """
     timings: dict = {}
     check_feature_spacing(domain, spacing)
     dec = decompose(domain, spacing, rules_dir, timings=timings, trace=trace)
-    mesh = mesh_decomposition(dec, target_length, smooth, densities, allow_folds, timings)
+    mesh = mesh_decomposition(dec, target_length, smooth, densities, allow_folds, timings, max_faces)
     spec = domain.supports if supports is None else supports
     spec = {"vertices": spec} if isinstance(spec, list) else spec
     anchors = support_vertices(mesh.vertices, mesh.faces, spec, domain)
