@@ -118,3 +118,52 @@ def test_rectangle_with_hole_property(w, h, spacing, hx, hy, hr):
         assert "smaller spacing" in str(e)
         return
     check_triangulation(tri)
+
+
+def _regular_polygon(n, radius=10.0):
+    t = 2 * np.pi * np.arange(n) / n
+    return radius * np.column_stack([np.cos(t), np.sin(t)])
+
+
+def _empty_circumcircles(pts, tri, rel=1e-9):
+    """No point lies inside a triangle's circumcircle by more than ``rel`` of its radius."""
+    from scipy.spatial import cKDTree
+
+    from vaultgram.topology.triangulation import circumcentres
+
+    centre, radius = circumcentres(pts, tri)
+    inside = cKDTree(pts).query_ball_point(centre, radius * (1 - rel))
+    return all(len(i) == 0 for i in inside)
+
+
+def test_many_cocircular_points_take_the_perturbed_triangulation():
+    """A regular 1500-gon: one co-circular group of 1498 faces, over COCIRCULAR_LIMIT, so the points
+    are moved by a tiny amount for qhull; every triangle is still a Delaunay one of the points as given,
+    and the same triangles come every time."""
+    from vaultgram.topology import triangulation as t
+
+    pts = _regular_polygon(1500)
+    tri = t.delaunay_triangles(pts)
+    assert t._largest_cocircular_group(pts, tri) > t.COCIRCULAR_LIMIT
+    assert len(tri) == 1498 and _empty_circumcircles(pts, tri)
+    assert np.array_equal(tri, t.delaunay_triangles(pts))
+    from vaultgram.geometry.polygons import triangle_areas
+
+    assert np.isclose(np.abs(triangle_areas(pts, tri)).sum(), 0.5 * 1500 * 100 * np.sin(2 * np.pi / 1500))
+
+
+def test_a_regular_polygon_of_many_sides_triangulates_and_tiles():
+    """The domain of a 3000-gon: every boundary segment recovered, the faces tile it (triangulate checks)."""
+    disc = discretise(domain_from_dict({"outer": _regular_polygon(3000).tolist()}), 0.02)
+    tri = triangulate(disc)
+    assert tri.n_faces == 2998
+
+
+def test_few_cocircular_points_keep_qhulls_triangulation():
+    """Below the limit the triangles are qhull's own (what every decomposition so far was made with)."""
+    from scipy.spatial import Delaunay
+
+    from vaultgram.topology import triangulation as t
+
+    pts = _regular_polygon(64)
+    assert np.array_equal(t.delaunay_triangles(pts), Delaunay(pts).simplices)
