@@ -25,24 +25,56 @@ class _Group(click.Group):
     stderr and exit code 2."""
 
     def invoke(self, ctx):
+        """Run the command; a VaultgramWarning (what an input had that was not used) is one
+        ``warning:`` line after it, or folded into the error line if it fails; other libraries'
+        warnings (numpy, shapely) are dropped: what they warn of is checked and named."""
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("ignore")
+            warnings.simplefilter("always", VaultgramWarning)
+            try:
+                result = super().invoke(ctx)
+            except VaultgramError as exc:
+                click.echo(f"error: {exc}{_folded(caught)}", err=True)
+                sys.exit(2)
+            except click.UsageError as exc:
+                _usage_line(exc)
+        for w in caught:
+            click.echo(f"warning: {w.message}", err=True)
+        return result
+
+    def main(self, args=None, prog_name=None, complete_var=None, standalone_mode=True, **extra):
+        """click's ``main``, with its usage errors (the group's own too: an unknown command or option)
+        as one line naming the command, instead of click's usage block."""
+        if not standalone_mode:
+            return super().main(args, prog_name, complete_var, standalone_mode, **extra)
         try:
-            with warnings.catch_warnings():
-                warnings.showwarning = _show_warning
-                warnings.simplefilter("always", VaultgramWarning)
-                return super().invoke(ctx)
-        except VaultgramError as exc:
-            click.echo(f"error: {exc}", err=True)
-            sys.exit(2)
+            code = super().main(args, prog_name, complete_var, False, **extra)
         except click.UsageError as exc:
-            if isinstance(exc, click.NoSuchOption) or exc.ctx is None or exc.ctx.command is self:
-                raise  # the group's own usage (an unknown command or option): click's full message
-            click.echo(f"error: {exc.ctx.command_path}: {exc.format_message()}", err=True)
-            sys.exit(2)
+            _usage_line(exc)
+        except click.ClickException as exc:
+            exc.show()
+            sys.exit(exc.exit_code)
+        except click.Abort:
+            click.echo("Aborted!", err=True)
+            sys.exit(1)
+        sys.exit(code if isinstance(code, int) else 0)
 
 
-def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
-    """A warning as one ``warning:`` line on stderr (what an input had that was not used)."""
-    click.echo(f"warning: {message}", err=True)
+def _usage_line(exc: click.UsageError) -> None:
+    """A click usage error as one line, ``error: vaultgram mesh: No such option: --bogus (see
+    'vaultgram mesh --help')``, and exit code 2."""
+    path = exc.ctx.command_path if exc.ctx is not None else "vaultgram"
+    message = " ".join(exc.format_message().split())
+    click.echo(f"error: {path}: {message} (see '{path} --help')", err=True)
+    sys.exit(2)
+
+
+def _folded(caught) -> str:
+    """The warnings before an error, folded into its line."""
+    if not caught:
+        return ""
+    more = f" and {len(caught) - 1} more" if len(caught) > 1 else ""
+    return f" (after a warning: {caught[0].message}{more})"
 
 
 # Options several commands share.

@@ -12,6 +12,12 @@ from __future__ import annotations
 SPACING_RANGE = (0.01, 0.05)
 #: Spacings outside ``(0, SPACING_MAX]`` are rejected.
 SPACING_MAX = 0.2
+#: Largest coordinate a plan may have: beyond, squared lengths and areas overflow (1e200) or keep no
+#: digit of the plan's shape.
+MAX_COORDINATE = 1e15
+#: Largest distance of a plan from the origin, in diagonals of the plan: double precision keeps about
+#: 16 digits, and the stages need some 8 of them for the plan's shape.
+MAX_OFFSET = 1e7
 #: Default limit on the number of faces of a mesh (``--max-faces``, :mod:`vaultgram.meshing.guards`).
 MAX_FACES = 2_000_000
 #: Peak memory of the whole pipeline (``vaultgram design``) per mesh face, in bytes: about 0.8 GB at

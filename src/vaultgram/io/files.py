@@ -27,13 +27,37 @@ from vaultgram.errors import VaultgramError
 def read_json(path: str | Path):
     """Read a JSON file, turning every failure into a VaultgramError that names the file and place."""
     try:
-        text = Path(path).read_text()
+        text = Path(path).read_text(encoding="utf-8")
     except OSError as exc:
         raise VaultgramError(f"{path}: cannot read: {exc.strerror}") from None
+    except UnicodeDecodeError as exc:
+        raise VaultgramError(f"{path}: not UTF-8 text (byte {exc.start}): not a JSON file") from None
+    return parse_json(text, path)
+
+
+def parse_json(text: str, path, error: type = VaultgramError):
+    """The JSON document in ``text``, or an ``error`` naming ``path`` and the place: invalid JSON (line
+    and column), ``NaN`` or ``Infinity`` (not JSON numbers), nesting too deep to read.
+
+    >>> parse_json('{"a": [1, 2]}', "x.json")
+    {'a': [1, 2]}
+    >>> parse_json('[NaN]', "x.json")
+    Traceback (most recent call last):
+    ...
+    vaultgram.grammar.errors.InputError: x.json: invalid JSON: NaN is not a JSON number
+    """
     try:
-        return json.loads(text)
+        return json.loads(text, parse_constant=_no_constant)
     except json.JSONDecodeError as exc:
-        raise VaultgramError(f"{path}:{exc.lineno}:{exc.colno}: invalid JSON: {exc.msg}") from None
+        raise error(f"{path}:{exc.lineno}:{exc.colno}: invalid JSON: {exc.msg}") from None
+    except RecursionError:
+        raise error(f"{path}: invalid JSON: nested too deeply") from None
+    except ValueError as exc:  # NaN or Infinity
+        raise error(f"{path}: invalid JSON: {exc}") from None
+
+
+def _no_constant(name: str):
+    raise ValueError(f"{name} is not a JSON number")
 
 
 @contextmanager

@@ -22,6 +22,7 @@ import numpy as np
 
 from vaultgram.errors import VaultgramError
 from vaultgram.geometry.polylines import chord_deviation, resample_polyline
+from vaultgram.io import strict
 from vaultgram.io.files import read_json
 from vaultgram.limits import MAX_COUNT
 from vaultgram.meshing.guards import check_mesh_size
@@ -248,11 +249,11 @@ def densities_from_dict(data: dict, where: str = "densities") -> DensitySpec:
     if unknown:
         raise VaultgramError(f"{where}: unknown key(s) {', '.join(sorted(unknown))}")
     regions = []
-    for k, r in enumerate(data.get("regions", [])):
+    for k, r in enumerate(strict.json_list(data.get("regions", []), f"{where}: regions")):
         if not isinstance(r, dict) or "polygon" not in r:
             raise VaultgramError(f"{where}: region {k} needs a 'polygon' [[x, y], ...]")
-        poly = np.asarray(r["polygon"], dtype=float)
-        if poly.ndim != 2 or poly.shape[1] != 2 or len(poly) < 3:
+        poly = strict.points(r["polygon"], f"{where}: region {k}: polygon", (2,))
+        if len(poly) < 3:
             raise VaultgramError(f"{where}: region {k}: polygon must have at least 3 [x, y] points")
         value = {key: r[key] for key in ("count", "length") if key in r}
         _value(value, f"region {k}")
@@ -261,7 +262,7 @@ def densities_from_dict(data: dict, where: str = "densities") -> DensitySpec:
     if not isinstance(groups, dict):
         raise VaultgramError(f"{where}: 'groups' maps group ids to counts or lengths")
     target = data.get("target_length")
-    if target is not None and not (isinstance(target, (int, float)) and target > 0):
+    if target is not None and not (strict.is_number(target) and target > 0):
         raise VaultgramError(f"{where}: target_length must be a positive number, got {target!r}")
     min_count = data.get("min_count", 1)
     if not isinstance(min_count, int) or isinstance(min_count, bool) or min_count < 1:
