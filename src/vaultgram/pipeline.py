@@ -74,9 +74,9 @@ from vaultgram.tessellation.surface import ThrustSurface, surface_from_network
 from vaultgram.tessellation.voussoirs import MAX_CONCAVITY, face_groups, without_concavities
 from vaultgram.topology.decomposition import Decomposition, block_decomposition
 from vaultgram.topology.discretise import discretise
+from vaultgram.topology.recovery import triangulate_recovering
 from vaultgram.topology.rulebook import load_vault_rulebook
 from vaultgram.topology.skeleton import skeleton
-from vaultgram.topology.triangulation import triangulate
 
 __all__ = ["decompose", "mesh_decomposition", "mesh_domain", "form_find", "thrust_of_mesh", "tessellate", "design",
            "Design", "TessellationOptions", "default_rise"]
@@ -126,7 +126,7 @@ def decompose(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | Non
     with _timed(timings, "discretise"):
         disc = discretise(domain, spacing)
     with _timed(timings, "triangulate"):
-        tri = triangulate(disc)
+        tri = triangulate_recovering(disc)
     with _timed(timings, "skeleton"):
         sk = skeleton(tri, smooth=smooth)
     with _timed(timings, "rules"):

@@ -167,3 +167,29 @@ def test_few_cocircular_points_keep_qhulls_triangulation():
 
     pts = _regular_polygon(64)
     assert np.array_equal(t.delaunay_triangles(pts), Delaunay(pts).simplices)
+
+
+def test_a_missing_boundary_segment_is_recovered_by_local_refinement():
+    """The slot of the test above: the midpoints of the missing segments become ring vertices until
+    every boundary segment is an edge; the plan's shape is unchanged, the new vertices lie on it."""
+    import shapely
+
+    from vaultgram.topology.recovery import triangulate_recovering
+
+    outer = [[0, 0], [10, 0], [10, 10], [5.001, 10], [5.001, 1.3], [4.999, 1], [4.999, 10], [0, 10]]
+    d = domain_from_dict({"outer": outer})
+    tri = triangulate_recovering(discretise(d, 0.05))
+    refined = tri.disc.domain
+    assert len(refined.outer) > len(d.outer)
+    assert shapely.Polygon(refined.outer).symmetric_difference(shapely.Polygon(d.outer)).area < 1e-9
+    assert np.isclose(tri.areas.sum(), d.area)
+    with pytest.raises(DomainError, match="not an edge of the Delaunay triangulation"):
+        triangulate_recovering(discretise(d, 0.05), rounds=0)
+
+
+def test_a_plan_that_needs_no_refinement_keeps_its_triangulation(examples_dir):
+    from vaultgram.topology.recovery import triangulate_recovering
+
+    disc = discretise(load_domain(examples_dir / "fig7_curves.json"), 0.03)
+    tri = triangulate_recovering(disc)
+    assert tri.disc is disc and np.array_equal(tri.triangles, triangulate(disc).triangles)

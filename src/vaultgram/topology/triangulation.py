@@ -355,6 +355,15 @@ class _HalfEdges(NamedTuple):
         return np.where(hit, self.order[pos], -1)
 
 
+class BoundaryRecoveryError(DomainError):
+    """A boundary or curve segment that is not an edge of the triangulation; ``segments`` (k, 2, 2)
+    holds the end points of every such segment (:mod:`vaultgram.topology.recovery` refines there)."""
+
+    def __init__(self, message: str, segments: np.ndarray):
+        super().__init__(message)
+        self.segments = segments
+
+
 def _check_boundary_recovered(disc: Discretisation, half_edges: _HalfEdges) -> None:
     """Every boundary segment is an edge of a face on the domain side."""
     pts, n = disc.points, half_edges.n
@@ -364,10 +373,11 @@ def _check_boundary_recovered(disc: Discretisation, half_edges: _HalfEdges) -> N
         s = int(np.flatnonzero(found < 0)[0])
         i, j = seg[s]
         r = int(disc.ring[i])
-        raise DomainError(
+        raise BoundaryRecoveryError(
             f"{ring_name(r)}, vertex {int(disc.index[i])}: boundary segment from {fmt_point(pts[i], 10)} to "
             f"{fmt_point(pts[j], 10)} is not an edge of the Delaunay triangulation (spacing {disc.spacing:g} is "
-            "too coarse for the geometry there); use a smaller spacing or add vertices to the ring"
+            "too coarse for the geometry there); use a smaller spacing or add vertices to the ring",
+            pts[seg[found < 0]],
         )
 
 
@@ -382,10 +392,11 @@ def _check_curves_recovered(disc: Discretisation, half_edges: _HalfEdges) -> Non
         i, j = cseg[int(np.flatnonzero(missing)[0])]
         c_id = next(k for k, cv in enumerate(disc.curves) if np.any((cv[:-1] == i) & (cv[1:] == j)))
         pos = int(np.flatnonzero(disc.curves[c_id] == i)[0])
-        raise DomainError(
+        raise BoundaryRecoveryError(
             f"curve feature {c_id}, vertex {pos}: segment from {fmt_point(pts[i], 10)} to {fmt_point(pts[j], 10)} "
             f"is not an edge of the Delaunay triangulation (spacing {disc.spacing:g} is too "
-            "coarse there); use a smaller spacing"
+            "coarse there); use a smaller spacing",
+            pts[cseg[missing]],
         )
 
 
