@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from vaultgram.domain import Domain, check_feature_spacing
+from vaultgram.domain.layouts import check_feature_layout
 from vaultgram.errors import (
     ConvergenceError,
     FormFindingError,
@@ -122,6 +123,7 @@ def decompose(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | Non
     strategies run (as ``vaultgram rules test`` does); ``trace`` keeps the graph the rules start from
     for a replay (``Decomposition.start_graph``).
     """
+    check_feature_layout(domain)
     rulebook = load_vault_rulebook(rules_dir)
     with _timed(timings, "discretise"):
         disc = discretise(domain, spacing)
