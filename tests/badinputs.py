@@ -7,9 +7,11 @@ Every case must give exit code 2, exactly one line on stderr and no traceback (t
 from __future__ import annotations
 
 import json
+from pathlib import Path
 from typing import NamedTuple
 
 SQUARE = [[0, 0], [30, 0], [30, 30], [0, 30]]
+RULES = str(Path(__file__).resolve().parents[1] / "rules" / "topology.vgr")
 HOLE = [[12, 12], [18, 12], [18, 18], [12, 18]]
 OUT = "@OUT"
 
@@ -259,6 +261,19 @@ def support_cases() -> list[Case]:
     return cases
 
 
+def graph_cases() -> list[Case]:
+    """Host graphs for ``rules run --graph``: wrong types, unknown types, dangling edges."""
+    corner = {"id": 0, "type": "Corner", "pos": [0, 0]}
+    bad = {"list": [], "nodes-object": {"nodes": {}, "edges": []}, "id-float": {"nodes": [{**corner, "id": 1.5}]},
+           "id-string": {"nodes": [{**corner, "id": "a"}]}, "id-bool": {"nodes": [{**corner, "id": True}]},
+           "type-unknown": {"nodes": [{**corner, "type": "Bogus"}]},
+           "pos-missing": {"nodes": [{"id": 0, "type": "Corner"}]},
+           "pos-strings": {"nodes": [{**corner, "pos": ["a", 1]}]},
+           "dangling-edge": {"nodes": [corner], "edges": [{"id": 0, "type": "Branch", "source": 0, "target": 5}]}}
+    return [Case(f"graph/{name}", ["rules", "run", RULES, "--graph", "g.json", "--strategy", "topology", "--out", OUT],
+                 {"g.json": _json(data)}) for name, data in bad.items()]
+
+
 def all_cases() -> list[Case]:
     return [*domain_cases(), *option_cases(), *mesh_cases(), *geojson_cases(), *dxf_cases(), *density_cases(),
-            *support_cases()]
+            *support_cases(), *graph_cases()]

@@ -12,6 +12,7 @@ from badinputs import (
     domain_cases,
     dxf_cases,
     geojson_cases,
+    graph_cases,
     mesh_cases,
     option_cases,
     support_cases,
@@ -38,7 +39,7 @@ def _failure(case, tmp_path) -> str | None:
 
 
 @pytest.mark.parametrize("cases", [domain_cases, option_cases, mesh_cases, geojson_cases, dxf_cases, density_cases,
-                                   support_cases], ids=lambda f: f.__name__)
+                                   support_cases, graph_cases], ids=lambda f: f.__name__)
 def test_every_bad_input_is_one_line_and_exit_2(tmp_path, cases):
     failures = [f for case in cases() if (f := _failure(case, tmp_path)) is not None]
     assert not failures, "\n".join(failures)
@@ -47,5 +48,6 @@ def test_every_bad_input_is_one_line_and_exit_2(tmp_path, cases):
 def test_the_suite_has_at_least_300_cases_of_every_kind():
     cases = all_cases()
     kinds = {c.name.split("/")[0] for c in cases}
-    assert len(cases) >= 300 and kinds == {"domain", "option", "mesh", "geojson", "dxf", "densities", "supports"}
+    assert len(cases) >= 300 and kinds == {"domain", "option", "mesh", "geojson", "dxf", "densities", "supports",
+                                           "graph"}
     assert len({c.name for c in cases}) == len(cases)

@@ -213,7 +213,10 @@ def _load_graph(path: str, book):
     from vaultgram.engine.graph import HostGraph
     from vaultgram.topology.decomposition import edge_angle
 
-    return HostGraph.from_json(read_json(path), book.schema, angle=edge_angle)
+    try:
+        return HostGraph.from_json(read_json(path), book.schema, angle=edge_angle)
+    except VaultgramError as exc:
+        raise VaultgramError(exc if str(exc).startswith(f"{path}:") else f"{path}: {exc}") from None
 
 
 def _load_rules(files):
