@@ -106,7 +106,7 @@ def test_formfind_cli_bad_inputs_exit_2_without_output(tmp_path):
     mesh = tmp_path / "mesh.json"
     mesh.write_text(json.dumps({"vertices": [[0, 0], [1, 0], [1, 1]], "faces": [[0, 1, 7]]}))
     result = CliRunner().invoke(main, ["formfind", str(mesh), "--out", str(tmp_path / "out")])
-    assert result.exit_code == 2 and "valid vertex indices" in result.output
+    assert result.exit_code == 2 and "faces[0][2]: vertex index 7 is out of range" in result.output
     supports = tmp_path / "supports.json"
     supports.write_text(json.dumps({"polylines": [[[50, 50], [60, 50]]]}))
     result = CliRunner().invoke(main, ["formfind", str(EXAMPLES / "l_shape.json"), "--out", str(tmp_path / "out"),

@@ -15,6 +15,7 @@ from pathlib import Path
 
 import click
 
+from vaultgram.clitypes import FINITE, ITERATIONS, Finite, max_faces_option, spacing_option
 from vaultgram.errors import VaultgramError, VaultgramWarning
 from vaultgram.io.files import output_folder, read_json, write_json
 
@@ -24,38 +25,69 @@ class _Group(click.Group):
     stderr and exit code 2."""
 
     def invoke(self, ctx):
+        """Run the command; a VaultgramWarning (what an input had that was not used) is one
+        ``warning:`` line after it, or folded into the error line if it fails; other libraries'
+        warnings (numpy, shapely) are dropped: what they warn of is checked and named."""
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("ignore")
+            warnings.simplefilter("always", VaultgramWarning)
+            try:
+                result = super().invoke(ctx)
+            except VaultgramError as exc:
+                click.echo(f"error: {exc}{_folded(caught)}", err=True)
+                sys.exit(2)
+            except click.UsageError as exc:
+                _usage_line(exc)
+        for w in caught:
+            click.echo(f"warning: {w.message}", err=True)
+        return result
+
+    def main(self, args=None, prog_name=None, complete_var=None, standalone_mode=True, **extra):
+        """click's ``main``, with its usage errors (the group's own too: an unknown command or option)
+        as one line naming the command, instead of click's usage block."""
+        if not standalone_mode:
+            return super().main(args, prog_name, complete_var, standalone_mode, **extra)
         try:
-            with warnings.catch_warnings():
-                warnings.showwarning = _show_warning
-                warnings.simplefilter("always", VaultgramWarning)
-                return super().invoke(ctx)
-        except VaultgramError as exc:
-            click.echo(f"error: {exc}", err=True)
-            sys.exit(2)
+            code = super().main(args, prog_name, complete_var, False, **extra)
         except click.UsageError as exc:
-            if isinstance(exc, click.NoSuchOption) or exc.ctx is None or exc.ctx.command is self:
-                raise  # the group's own usage (an unknown command or option): click's full message
-            click.echo(f"error: {exc.ctx.command_path}: {exc.format_message()}", err=True)
-            sys.exit(2)
+            _usage_line(exc)
+        except click.ClickException as exc:
+            exc.show()
+            sys.exit(exc.exit_code)
+        except click.Abort:
+            click.echo("Aborted!", err=True)
+            sys.exit(1)
+        sys.exit(code if isinstance(code, int) else 0)
 
 
-def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
-    """A warning as one ``warning:`` line on stderr (what an input had that was not used)."""
-    click.echo(f"warning: {message}", err=True)
+def _usage_line(exc: click.UsageError) -> None:
+    """A click usage error as one line, ``error: vaultgram mesh: No such option: --bogus (see
+    'vaultgram mesh --help')``, and exit code 2."""
+    path = exc.ctx.command_path if exc.ctx is not None else "vaultgram"
+    message = " ".join(exc.format_message().split())
+    click.echo(f"error: {path}: {message} (see '{path} --help')", err=True)
+    sys.exit(2)
+
+
+def _folded(caught) -> str:
+    """The warnings before an error, folded into its line."""
+    if not caught:
+        return ""
+    more = f" and {len(caught) - 1} more" if len(caught) > 1 else ""
+    return f" (after a warning: {caught[0].message}{more})"
 
 
 # Options several commands share.
-POSITIVE = click.FloatRange(min=0.0, min_open=True)
+POSITIVE = Finite(min=0.0, min_open=True)
 OUT = click.option("--out", "out_dir", required=True, type=click.Path(file_okay=False), help="Output directory.")
-SPACING = click.option("--spacing", default=0.02, show_default=True, type=float,
-                       help="Boundary spacing as a fraction of the bounding-box diagonal (0.01 to 0.05 usual).")
+SPACING = spacing_option
 RULES = click.option("--rules", "rules_dir", default=None, type=click.Path(file_okay=False, exists=True),
                      help="Directory with the rule files: topology.vgr, tessellation.vgr "
                           "(default: the rulebook shipped with vaultgram).")
 TARGET_LENGTH = click.option("--target-length", type=POSITIVE, default=None,
                              help="Target mesh edge length (domain units); "
                                   "default 2.5% of the bounding-box diagonal.")
-SMOOTH = click.option("--smooth", default=None, type=int,
+SMOOTH = click.option("--smooth", default=None, type=ITERATIONS,
                       help="Laplacian smoothing iterations "
                            "(default 20; 0: the raw Coons patches, not untangled either).")
 ALLOW_FOLDS = click.option("--allow-folds", is_flag=True,
@@ -66,11 +98,11 @@ THRUST = [
     click.option("--thickness", type=POSITIVE, default=1.0, show_default=True, help="Shell thickness for self-weight."),
     click.option("--density", type=POSITIVE, default=1.0, show_default=True,
                  help="Material density (weight per volume)."),
-    click.option("--point-load", type=float, default=0.0, show_default=True,
+    click.option("--point-load", type=FINITE, default=0.0, show_default=True,
                  help="Vertical load at every point feature (a column load, a lantern...)."),
     click.option("--tol-deg", type=POSITIVE, default=0.5, show_default=True,
                  help="Horizontal equilibrium: largest angle between form and force edges."),
-    click.option("--sag", type=click.FloatRange(min=0.0, min_open=True), default=0.1, show_default=True,
+    click.option("--sag", type=POSITIVE, default=0.1, show_default=True,
                  help="How far unsupported boundary edges are bent inwards before form finding (relative)."),
     click.option("--relax-mode", type=click.Choice(["auto", "boundary", "all"]), default="auto", show_default=True,
                  help="Bend only the unsupported boundary ('boundary'), let every vertex move ('all'), or the "
@@ -113,10 +145,10 @@ def input_options(command):
 TESSELLATION = [
     click.option("--rhythm", type=click.Choice(["2", "4"]), default="2", show_default=True,
                  help="Keep every second or every fourth edge along a course (voussoirs of about 2 or 4 faces)."),
-    click.option("--max-concavity", type=click.FloatRange(180.0, 360.0, max_open=True), default=190.0,
+    click.option("--max-concavity", type=Finite(180.0, 360.0, max_open=True), default=190.0,
                  show_default=True, help="Largest voussoir corner (degrees, in its best-fit plane)."),
     click.option("--flat-extrados", is_flag=True, help="Make each voussoir's top face planar (best-fit plane)."),
-    click.option("--surface-smooth", type=click.IntRange(min=0), default=0, show_default=True,
+    click.option("--surface-smooth", type=ITERATIONS, default=0, show_default=True,
                  help="Laplacian smoothing iterations of the network on the thrust surface "
                       "(no voussoir made concave)."),
 ]
@@ -188,7 +220,10 @@ def _load_graph(path: str, book):
     from vaultgram.engine.graph import HostGraph
     from vaultgram.topology.decomposition import edge_angle
 
-    return HostGraph.from_json(read_json(path), book.schema, angle=edge_angle)
+    try:
+        return HostGraph.from_json(read_json(path), book.schema, angle=edge_angle)
+    except VaultgramError as exc:
+        raise VaultgramError(exc if str(exc).startswith(f"{path}:") else f"{path}: {exc}") from None
 
 
 def _load_rules(files):
@@ -407,12 +442,13 @@ def trace_command(domain_path: str, out_dir: str, spacing: float, rules_dir: str
 @SUPPORTS
 @SPACING
 @TARGET_LENGTH
+@max_faces_option
 @FORMAT
 @click.option("--input-format", type=click.Choice(["json", "geojson", "dxf", "3dm", "mesh", "obj", "compas"]),
               default=None, help="The input's format (default: by extension, then by content).")
 @LAYERS
 def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, tol_deg, sag, relax_mode,
-                     supports_path, spacing, target_length, formats, input_format, layers) -> None:
+                     supports_path, spacing, target_length, formats, input_format, layers, max_faces) -> None:
     """Thrust Network Analysis (paper 5) on a MESH or a DOMAIN.
 
     A MESH is a mesh.json (or any {"vertices", "faces"}), a Wavefront OBJ or a COMPAS mesh JSON, faces
@@ -434,7 +470,7 @@ def formfind_command(input_path, out_dir, zmax, thickness, density, point_load, 
         mesh, spec = pattern
     else:
         domain = load_domain(input_path, input_format, layer_names(layers), spacing)
-        mesh = mesh_domain(domain, spacing, target_length, timings=timings)
+        mesh = mesh_domain(domain, spacing, target_length, timings=timings, max_faces=max_faces)
         spec = domain.supports
     if supports_path:
         spec = read_json(supports_path)
@@ -492,9 +528,11 @@ def tessellate_command(thrust_path, out_dir, thickness, rhythm, max_concavity, f
 @FORMAT
 @input_options
 @TRACE
+@max_faces_option
 def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smooth, densities_path, allow_folds,
                    supports_path, zmax, thickness, density, point_load, tol_deg, sag, relax_mode, rhythm,
-                   max_concavity, flat_extrados, surface_smooth, formats, input_format, layers, with_trace) -> None:
+                   max_concavity, flat_extrados, surface_smooth, formats, input_format, layers, with_trace,
+                   max_faces) -> None:
     """The whole pipeline on a DOMAIN: decomposition (3.1, 4), mesh (3.2), thrust network and voussoirs (5).
 
     Everything is computed before anything is written, so a failing stage leaves no output. The DOMAIN
@@ -514,7 +552,7 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
         load_densities(densities_path) if densities_path else None, allow_folds,
         read_json(supports_path) if supports_path else None, point_load, zmax, thickness,
         TessellationOptions(int(rhythm), max_concavity, flat_extrados, surface_smooth), trace=with_trace,
-        density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode)
+        density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode, max_faces=max_faces)
     out = Path(out_dir)
     with output_folder(out) as stage:
         write_design(result, stage, formats, trace=with_trace)
@@ -549,8 +587,9 @@ def _joined(names) -> str:
 @SUPPORTS
 @FORMAT
 @input_options
+@max_faces_option
 def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities_path, allow_folds,
-                 supports_path, formats, input_format, layers) -> None:
+                 supports_path, formats, input_format, layers, max_faces) -> None:
     """Quad-mesh a DOMAIN (paper 3): decompose, mesh the patches, weld, smooth.
 
     Writes mesh.json (vertices, faces, vertex labels, edge groups, the vertices that bear thrust) and
@@ -569,7 +608,7 @@ def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities
     domain = load_domain(domain_path, input_format, layer_names(layers), spacing)
     spec = load_densities(densities_path) if densities_path else None
     mesh = mesh_domain(domain, spacing, target_length, DEFAULT_ITERATIONS if smooth is None else smooth, spec,
-                       allow_folds=allow_folds)
+                       allow_folds=allow_folds, max_faces=max_faces)
     supports = read_json(supports_path) if supports_path else domain.supports
     if isinstance(supports, list):
         supports = {"vertices": supports}

@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from vaultgram.domain import Domain, check_feature_spacing
+from vaultgram.domain.layouts import check_feature_layout
 from vaultgram.engine.strategy import first_option
 from vaultgram.errors import (
     ConvergenceError,
@@ -52,6 +53,7 @@ from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.halfedges import mesh_edges
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.surfaces import area_vectors, vertex_normals
+from vaultgram.limits import MAX_FACES
 from vaultgram.meshing.densities import DensitySpec, group_counts
 from vaultgram.meshing.layout import Layout, edge_groups
 from vaultgram.meshing.quadmesh import QuadMesh
@@ -74,9 +76,9 @@ from vaultgram.tessellation.surface import ThrustSurface, surface_from_network
 from vaultgram.tessellation.voussoirs import MAX_CONCAVITY, face_groups, without_concavities
 from vaultgram.topology.decomposition import Decomposition, block_decomposition
 from vaultgram.topology.discretise import discretise
+from vaultgram.topology.recovery import triangulate_recovering
 from vaultgram.topology.rulebook import load_vault_rulebook
 from vaultgram.topology.skeleton import skeleton
-from vaultgram.topology.triangulation import triangulate
 
 __all__ = ["decompose", "mesh_decomposition", "mesh_domain", "form_find", "thrust_of_mesh", "tessellate", "design",
            "Design", "TessellationOptions", "default_rise"]
@@ -124,11 +126,12 @@ def decompose(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | Non
     for a replay (``Decomposition.start_graph``); ``chooser`` resolves the rulebook's ``choose`` steps
     (default: the first option; exploration replays a variant's choices).
     """
+    check_feature_layout(domain)
     rulebook = load_vault_rulebook(rules_dir)
     with _timed(timings, "discretise"):
         disc = discretise(domain, spacing)
     with _timed(timings, "triangulate"):
-        tri = triangulate(disc)
+        tri = triangulate_recovering(disc)
     with _timed(timings, "skeleton"):
         sk = skeleton(tri, smooth=smooth)
     with _timed(timings, "rules"):
@@ -142,17 +145,18 @@ def decompose(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | Non
 
 def mesh_decomposition(dec: Decomposition, target_length: float | None = None, smooth: int = DEFAULT_ITERATIONS,
                        densities: DensitySpec | None = None, allow_folds: bool = False,
-                       timings: dict | None = None) -> QuadMesh:
+                       timings: dict | None = None, max_faces: int = MAX_FACES) -> QuadMesh:
     """Geometry of §3.2 for a decomposition: edge groups, densities, Coons patches, welding, smoothing.
 
     A smoothed mesh with inverted faces raises :class:`~vaultgram.errors.MeshFoldError` unless
-    ``allow_folds``; the raw Coons patches (``smooth=0``) are returned as they are.
+    ``allow_folds``; the raw Coons patches (``smooth=0``) are returned as they are. Densities that ask
+    for more than ``max_faces`` faces are refused before any is made (:mod:`vaultgram.meshing.guards`).
     """
     if smooth < 0:
         raise VaultgramError(f"smoothing iterations must be >= 0, got {smooth}")
     with _timed(timings, "groups"):
         layout = edge_groups(dec)
-        counts = group_counts(layout, densities, target_length)
+        counts = group_counts(layout, densities, target_length, max_faces)
     with _timed(timings, "weld"):
         mesh = weld(layout, counts)
     with _timed(timings, "smooth"):
@@ -183,7 +187,7 @@ def _mesh_info(dec: Decomposition, layout: Layout, smooth: int) -> dict:
 
 def mesh_domain(domain: Domain, spacing: float = 0.02, target_length: float | None = None,
                 smooth: int = DEFAULT_ITERATIONS, densities: DensitySpec | None = None, rules_dir=None,
-                allow_folds: bool = False, timings: dict | None = None) -> QuadMesh:
+                allow_folds: bool = False, timings: dict | None = None, max_faces: int = MAX_FACES) -> QuadMesh:
     """Topology and geometry of §3: a smooth quad mesh of ``domain``.
 
     Parameters
@@ -201,17 +205,19 @@ def mesh_domain(domain: Domain, spacing: float = 0.02, target_length: float | No
         Local density control (:func:`vaultgram.meshing.densities.load_densities`).
     allow_folds : bool
         Return a mesh that still has inverted faces after smoothing instead of raising.
+    max_faces : int
+        Refuse densities that ask for more faces (:mod:`vaultgram.meshing.guards`).
 
     Raises
     ------
     VaultgramError
-        From any stage (invalid domain, a patch that is not 3- or 4-sided, bad densities);
+        From any stage (invalid domain, a patch that is not 3- or 4-sided, bad densities, too many faces);
         :class:`~vaultgram.errors.MeshFoldError` when the smoothed mesh has inverted faces (unless
         ``allow_folds``).
     """
     check_feature_spacing(domain, spacing)
     dec = decompose(domain, spacing, rules_dir, timings=timings)
-    return mesh_decomposition(dec, target_length, smooth, densities, allow_folds, timings)
+    return mesh_decomposition(dec, target_length, smooth, densities, allow_folds, timings, max_faces)
 
 
 # --------------------------------------------------------------------------------------------
@@ -541,19 +547,19 @@ def design(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None =
            densities: DensitySpec | None = None, allow_folds: bool = False, supports=None,
            point_load: float = 0.0, zmax: float | None = None, thickness: float = 1.0,
            tessellation: TessellationOptions | None = TessellationOptions(), trace: bool = False,
-           **options) -> Design:
+           max_faces: int = MAX_FACES, **options) -> Design:
     """The whole pipeline on a domain: decomposition (§3.1, §4), mesh (§3.2), thrust network (§5) and
     tessellation (§5).
 
     ``supports`` overrides the domain's own; ``zmax`` defaults to a rise (:func:`thrust_of_mesh`); ``thickness``
     is the shell's, for its self-weight and its voussoirs; ``tessellation`` None stops at the thrust
-    network; ``trace`` keeps the decomposition's starting graph for a replay; ``options`` are those of
-    :func:`form_find`.
+    network; ``trace`` keeps the decomposition's starting graph for a replay; ``max_faces`` limits the
+    mesh (:mod:`vaultgram.meshing.guards`); ``options`` are those of :func:`form_find`.
     """
     timings: dict = {}
     check_feature_spacing(domain, spacing)
     dec = decompose(domain, spacing, rules_dir, timings=timings, trace=trace)
-    mesh = mesh_decomposition(dec, target_length, smooth, densities, allow_folds, timings)
+    mesh = mesh_decomposition(dec, target_length, smooth, densities, allow_folds, timings, max_faces)
     spec = domain.supports if supports is None else supports
     spec = {"vertices": spec} if isinstance(spec, list) else spec
     anchors = support_vertices(mesh.vertices, mesh.faces, spec, domain)

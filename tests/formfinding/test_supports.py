@@ -50,7 +50,7 @@ def test_polylines_select_boundary_vertices_on_them():
 def test_explicit_vertices_and_errors():
     v, f = grid_mesh(3)
     assert support_vertices(v, f, {"vertices": [5, 0, 5]}).tolist() == [0, 5]
-    with pytest.raises(FormFindingError, match="vertex 99 does not exist"):
+    with pytest.raises(FormFindingError, match=r"supports.vertices\[0\]: vertex index 99 is out of range"):
         support_vertices(v, f, {"vertices": [99]})
     with pytest.raises(FormFindingError, match="no mesh vertex lies on them"):
         support_vertices(v, f, {"polylines": [[[10, 10], [11, 10]]]})

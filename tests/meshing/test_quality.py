@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
 
 import pytest
@@ -9,6 +10,7 @@ from click.testing import CliRunner
 
 from vaultgram.cli import main
 from vaultgram.domain import domain_from_dict
+from vaultgram.errors import VaultgramError
 from vaultgram.io.meshfiles import mesh_from_json
 from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import mesh_domain
@@ -27,7 +29,10 @@ def test_stats_without_labels_use_mesh_topology():
     assert split["boundary_singular_valences"] == [3, 4] and split["boundary_singular_regular_valences"] == [2, 3]
     assert stats["min_scaled_jacobian"] == pytest.approx(1.0)
     assert stats["min_angle"] == pytest.approx(90.0) and stats["max_angle"] == pytest.approx(90.0)
-    flipped = mesh_stats(mesh_from_json({"vertices": v, "faces": [[0, 3, 4, 1], [1, 2, 5, 4]]}))
+    with pytest.raises(VaultgramError, match="edge 4-1 is traversed in the same direction by faces 0 and 1"):
+        mesh_from_json({"vertices": v, "faces": [[0, 3, 4, 1], [1, 2, 5, 4]]})  # the reader refuses it
+    mesh = mesh_from_json({"vertices": v, "faces": [[0, 1, 4, 3], [1, 2, 5, 4]]})
+    flipped = mesh_stats(dataclasses.replace(mesh, faces=[(0, 3, 4, 1), (1, 2, 5, 4)]))
     assert flipped["inverted_faces"] == 1 and not flipped["oriented"]
 
 

@@ -118,3 +118,78 @@ def test_rectangle_with_hole_property(w, h, spacing, hx, hy, hr):
         assert "smaller spacing" in str(e)
         return
     check_triangulation(tri)
+
+
+def _regular_polygon(n, radius=10.0):
+    t = 2 * np.pi * np.arange(n) / n
+    return radius * np.column_stack([np.cos(t), np.sin(t)])
+
+
+def _empty_circumcircles(pts, tri, rel=1e-9):
+    """No point lies inside a triangle's circumcircle by more than ``rel`` of its radius."""
+    from scipy.spatial import cKDTree
+
+    from vaultgram.topology.triangulation import circumcentres
+
+    centre, radius = circumcentres(pts, tri)
+    inside = cKDTree(pts).query_ball_point(centre, radius * (1 - rel))
+    return all(len(i) == 0 for i in inside)
+
+
+def test_many_cocircular_points_take_the_perturbed_triangulation():
+    """A regular 1500-gon: one co-circular group of 1498 faces, over COCIRCULAR_LIMIT, so the points
+    are moved by a tiny amount for qhull; every triangle is still a Delaunay one of the points as given,
+    and the same triangles come every time."""
+    from vaultgram.topology import triangulation as t
+
+    pts = _regular_polygon(1500)
+    tri = t.delaunay_triangles(pts)
+    assert t._largest_cocircular_group(pts, tri) > t.COCIRCULAR_LIMIT
+    assert len(tri) == 1498 and _empty_circumcircles(pts, tri)
+    assert np.array_equal(tri, t.delaunay_triangles(pts))
+    from vaultgram.geometry.polygons import triangle_areas
+
+    assert np.isclose(np.abs(triangle_areas(pts, tri)).sum(), 0.5 * 1500 * 100 * np.sin(2 * np.pi / 1500))
+
+
+def test_a_regular_polygon_of_many_sides_triangulates_and_tiles():
+    """The domain of a 3000-gon: every boundary segment recovered, the faces tile it (triangulate checks)."""
+    disc = discretise(domain_from_dict({"outer": _regular_polygon(3000).tolist()}), 0.02)
+    tri = triangulate(disc)
+    assert tri.n_faces == 2998
+
+
+def test_few_cocircular_points_keep_qhulls_triangulation():
+    """Below the limit the triangles are qhull's own (what every decomposition so far was made with)."""
+    from scipy.spatial import Delaunay
+
+    from vaultgram.topology import triangulation as t
+
+    pts = _regular_polygon(64)
+    assert np.array_equal(t.delaunay_triangles(pts), Delaunay(pts).simplices)
+
+
+def test_a_missing_boundary_segment_is_recovered_by_local_refinement():
+    """The slot of the test above: the midpoints of the missing segments become ring vertices until
+    every boundary segment is an edge; the plan's shape is unchanged, the new vertices lie on it."""
+    import shapely
+
+    from vaultgram.topology.recovery import triangulate_recovering
+
+    outer = [[0, 0], [10, 0], [10, 10], [5.001, 10], [5.001, 1.3], [4.999, 1], [4.999, 10], [0, 10]]
+    d = domain_from_dict({"outer": outer})
+    tri = triangulate_recovering(discretise(d, 0.05))
+    refined = tri.disc.domain
+    assert len(refined.outer) > len(d.outer)
+    assert shapely.Polygon(refined.outer).symmetric_difference(shapely.Polygon(d.outer)).area < 1e-9
+    assert np.isclose(tri.areas.sum(), d.area)
+    with pytest.raises(DomainError, match="not an edge of the Delaunay triangulation"):
+        triangulate_recovering(discretise(d, 0.05), rounds=0)
+
+
+def test_a_plan_that_needs_no_refinement_keeps_its_triangulation(examples_dir):
+    from vaultgram.topology.recovery import triangulate_recovering
+
+    disc = discretise(load_domain(examples_dir / "fig7_curves.json"), 0.03)
+    tri = triangulate_recovering(disc)
+    assert tri.disc is disc and np.array_equal(tri.triangles, triangulate(disc).triangles)

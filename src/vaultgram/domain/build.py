@@ -18,6 +18,7 @@ from vaultgram.domain.model import REL_TOL, Domain
 from vaultgram.domain.validation import check_finite, validate_domain
 from vaultgram.errors import DomainError
 from vaultgram.geometry.polygons import bbox_diagonal, signed_area
+from vaultgram.limits import MAX_COORDINATE, MAX_OFFSET
 
 __all__ = ["build_domain", "as_coords", "prefixed", "default_name", "POINT_SNAP"]
 
@@ -41,11 +42,32 @@ def as_coords(value: Any, what: str, min_len: int = 0) -> np.ndarray:
             or len(p) < 2
             or not all(isinstance(c, (int, float)) and not isinstance(c, bool) for c in p[:2])
         ):
-            raise DomainError(f"{what}, vertex {i}: expected [x, y] with two numbers, got {p!r}")
-        out[i] = (float(p[0]), float(p[1]))
+            raise DomainError(f"{what}, vertex {i}: expected [x, y] with two numbers, got {_short(p)}")
+        out[i] = (_coordinate(p[0], what, i), _coordinate(p[1], what, i))
     if len(out) < min_len:
         raise DomainError(f"{what}: expected at least {min_len} vertices, got {len(out)}")
     return out
+
+
+def _coordinate(c, what: str, i: int) -> float:
+    """A coordinate as a float: finite and at most :data:`~vaultgram.limits.MAX_COORDINATE` in size
+    (beyond, squared lengths and areas overflow or lose every digit of the plan's shape)."""
+    try:
+        x = float(c)
+    except OverflowError:
+        x = float("inf")
+    if not np.isfinite(x):
+        raise DomainError(f"{what}, vertex {i}: coordinate is not finite ({_short(c)})")
+    if abs(x) > MAX_COORDINATE:
+        raise DomainError(f"{what}, vertex {i}: coordinate {x:g} is larger than {MAX_COORDINATE:g} "
+                          "(give the plan in other units, or nearer the origin)")
+    return x
+
+
+def _short(value) -> str:
+    """``repr`` of a value, cut at 60 characters."""
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
 
 
 def normalise_ring(ring: np.ndarray, what: str, ccw: bool, tol: float) -> np.ndarray:
@@ -103,6 +125,7 @@ def build_domain(
 ) -> Domain:
     """Normalise raw arrays into a validated Domain (every reader ends here)."""
     check_finite(outer, "outer ring")
+    check_offset(outer)
     tol = REL_TOL * bbox_diagonal(outer)
     outer = normalise_ring(outer, "outer ring", ccw=True, tol=tol)
     holes = tuple(
@@ -117,6 +140,21 @@ def build_domain(
     dom = Domain(str(name), outer, holes, points, curves, supports, units)
     validate_domain(dom)
     return dom
+
+
+def check_offset(outer: np.ndarray) -> None:
+    """Refuse a plan lying so far from the origin, for its size, that double precision keeps too few
+    digits of its shape to mesh it (more than :data:`~vaultgram.limits.MAX_OFFSET` diagonals away: a
+    10 x 10 square at (1e9, 1e9) read as a ring of zero area)."""
+    if len(outer) < 2:
+        return
+    diagonal = bbox_diagonal(outer)
+    far = float(np.abs(outer).max())
+    if far > MAX_OFFSET * diagonal:
+        lo = outer.min(axis=0)
+        raise DomainError(
+            f"outer ring: the plan lies at ({lo[0]:g}, {lo[1]:g}), {far / max(diagonal, 1e-300):.3g} times its size "
+            f"(diagonal {diagonal:g}) from the origin, beyond {MAX_OFFSET:g}: translate it nearer the origin")
 
 
 def snap_points(outer, holes, points, snap):

@@ -9,7 +9,6 @@ feature and the vertex.
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Any, Mapping, NamedTuple
 
@@ -21,6 +20,7 @@ from vaultgram.domain.model import Domain
 from vaultgram.domain.rhino import domain_from_3dm
 from vaultgram.errors import DomainError
 from vaultgram.geometry.polygons import signed_area
+from vaultgram.io.files import parse_json
 
 __all__ = ["load_domain", "domain_from_dict", "domain_from_geojson", "domain_from_dxf", "domain_from_3dm",
            "POINT_SNAP", "GEOJSON_TYPES", "GEOJSON_ROLES", "FORMATS"]
@@ -50,8 +50,10 @@ def domain_from_dict(d: Any, source: str = "<dict>") -> Domain:
 
 def _list_of(d: dict, key: str, what: str) -> list:
     """The list under an optional key (empty when absent or null), or an error naming ``what`` it holds."""
-    value = d.get(key, []) or []
-    if not isinstance(value, list):
+    value = d.get(key)
+    if value is None:
+        return []
+    if not isinstance(value, list):  # {} is not an empty list
         raise DomainError(f"{key}: expected a list of {what}, got {type(value).__name__}")
     return value
 
@@ -241,9 +243,14 @@ def _multi(parts: Any, i: int, key: str = "coordinates") -> list:
 
 
 def _properties(obj: dict) -> dict:
-    """The ``properties`` of a GeoJSON object (empty when absent or not an object)."""
+    """The ``properties`` of a GeoJSON object (empty when absent or null; anything but an object is
+    an error)."""
     props = obj.get("properties")
-    return props if isinstance(props, dict) else {}
+    if props is None:
+        return {}
+    if not isinstance(props, dict):
+        raise DomainError(f"properties: expected an object or null, got {type(props).__name__}")
+    return props
 
 
 # --------------------------------------------------------------------------------------------
@@ -345,7 +352,4 @@ def _parse_json(raw: bytes, path: Path) -> Any:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError as e:
         raise DomainError(f"{path}: not UTF-8 text ({e.reason} at byte {e.start})") from None
-    try:
-        return json.loads(text)
-    except json.JSONDecodeError as e:
-        raise DomainError(f"{path}:{e.lineno}:{e.colno}: invalid JSON: {e.msg}") from None
+    return parse_json(text, path, DomainError)

@@ -19,9 +19,10 @@ from typing import Sequence
 import numpy as np
 import shapely
 
-from vaultgram.errors import FormFindingError
+from vaultgram.errors import FormFindingError, VaultgramError
 from vaultgram.geometry.meshes import boundary_loops
 from vaultgram.geometry.polygons import bbox_diagonal, signed_area
+from vaultgram.io import strict
 
 
 def outer_loop(vertices: np.ndarray, faces: Sequence[Sequence[int]]) -> list[int]:
@@ -59,26 +60,44 @@ def support_vertices(vertices, faces, spec=None, domain=None) -> np.ndarray:
         return np.array(sorted(outer_loop(xy, faces)), dtype=np.int64)
     if not isinstance(spec, dict) or len(set(spec) - {"comment"}) != 1:
         raise FormFindingError('supports: expected one of {"rings": ...}, {"polylines": ...} or {"vertices": ...}')
-    if "vertices" in spec:
-        chosen = _listed_vertices(spec["vertices"], len(xy))
-    elif "polylines" in spec:
-        chosen = _boundary_on_lines(xy, faces, [np.asarray(p, dtype=float)[:, :2] for p in spec["polylines"]])
-    elif "rings" in spec:
-        chosen = _boundary_on_lines(xy, faces, _ring_lines(spec["rings"], domain))
-    else:
-        raise FormFindingError(f"supports: unknown key {sorted(spec)[0]!r}")
+    try:
+        chosen = _chosen(xy, faces, spec, domain)
+    except FormFindingError:
+        raise
+    except VaultgramError as exc:  # a type or range error of the specification
+        raise FormFindingError(str(exc)) from None
     if len(chosen) == 0:
         raise FormFindingError(f"supports {spec}: no mesh vertex lies on them, so nothing bears thrust")
     return chosen
 
 
+def _chosen(xy: np.ndarray, faces, spec: dict, domain) -> np.ndarray:
+    """The vertices a specification of one key names (none found is not an error here)."""
+    if "vertices" in spec:
+        chosen = _listed_vertices(spec["vertices"], len(xy))
+    elif "polylines" in spec:
+        chosen = _boundary_on_lines(xy, faces, _polylines(spec["polylines"]))
+    elif "rings" in spec:
+        chosen = _boundary_on_lines(xy, faces, _ring_lines(strict.json_list(spec["rings"], "supports.rings"), domain))
+    else:
+        raise FormFindingError(f"supports: unknown key {sorted(spec)[0]!r}")
+    return chosen
+
+
 def _listed_vertices(vertices, n: int) -> np.ndarray:
-    """``supports.vertices``: distinct, existing mesh vertex indices."""
-    idx = np.asarray(vertices, dtype=np.int64).ravel()
-    bad = idx[(idx < 0) | (idx >= n)]
-    if len(bad):
-        raise FormFindingError(f"supports.vertices: vertex {int(bad[0])} does not exist ({n} vertices)")
-    return np.unique(idx)
+    """``supports.vertices``: distinct, existing mesh vertex indices (integers, strictly)."""
+    return np.unique(strict.indices(vertices, n, "supports.vertices"))
+
+
+def _polylines(value) -> list[np.ndarray]:
+    """``supports.polylines``: a list of polylines of at least two [x, y] (or [x, y, z]) points."""
+    lines = []
+    for k, p in enumerate(strict.json_list(value, "supports.polylines")):
+        line = strict.points(p, f"supports.polylines[{k}]")
+        if len(line) < 2:
+            raise FormFindingError(f"supports.polylines[{k}]: expected at least 2 points, got {len(line)}")
+        lines.append(line[:, :2])
+    return lines
 
 
 def _ring_lines(names, domain) -> list[np.ndarray]:

@@ -14,6 +14,7 @@ import os
 import shutil
 import signal
 import tempfile
+import threading
 from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Iterator, Sequence
@@ -27,13 +28,37 @@ if TYPE_CHECKING:  # numpy is imported where it is used: `vaultgram --help` does
 def read_json(path: str | Path):
     """Read a JSON file, turning every failure into a VaultgramError that names the file and place."""
     try:
-        text = Path(path).read_text()
+        text = Path(path).read_text(encoding="utf-8")
     except OSError as exc:
         raise VaultgramError(f"{path}: cannot read: {exc.strerror}") from None
+    except UnicodeDecodeError as exc:
+        raise VaultgramError(f"{path}: not UTF-8 text (byte {exc.start}): not a JSON file") from None
+    return parse_json(text, path)
+
+
+def parse_json(text: str, path, error: type = VaultgramError):
+    """The JSON document in ``text``, or an ``error`` naming ``path`` and the place: invalid JSON (line
+    and column), ``NaN`` or ``Infinity`` (not JSON numbers), nesting too deep to read.
+
+    >>> parse_json('{"a": [1, 2]}', "x.json")
+    {'a': [1, 2]}
+    >>> parse_json('[NaN]', "x.json")
+    Traceback (most recent call last):
+    ...
+    vaultgram.grammar.errors.InputError: x.json: invalid JSON: NaN is not a JSON number
+    """
     try:
-        return json.loads(text)
+        return json.loads(text, parse_constant=_no_constant)
     except json.JSONDecodeError as exc:
-        raise VaultgramError(f"{path}:{exc.lineno}:{exc.colno}: invalid JSON: {exc.msg}") from None
+        raise error(f"{path}:{exc.lineno}:{exc.colno}: invalid JSON: {exc.msg}") from None
+    except RecursionError:
+        raise error(f"{path}: invalid JSON: nested too deeply") from None
+    except ValueError as exc:  # NaN or Infinity
+        raise error(f"{path}: invalid JSON: {exc}") from None
+
+
+def _no_constant(name: str):
+    raise ValueError(f"{name} is not a JSON number")
 
 
 @contextmanager
@@ -53,15 +78,67 @@ def output_folder(path: str | Path) -> Iterator[Path]:
     ['a.txt']
     """
     path = Path(path)
-    if path.exists() and not path.is_dir():
-        raise VaultgramError(f"{path}: the output folder is a file")
-    path.parent.mkdir(parents=True, exist_ok=True)
-    stage = Path(tempfile.mkdtemp(prefix=f".{path.name}.", dir=path.parent))
     try:
-        yield stage
-        _move_into(stage, path)
+        stage = _make_stage(path)
+    except OSError as exc:
+        raise _output_error(path, exc) from None
+    try:
+        with _terminate_unwinds():
+            yield stage
+            _check_targets(stage, path)
+            _move_into(stage, path)
+    except OSError as exc:
+        raise _output_error(path, exc) from None
     finally:
         shutil.rmtree(stage, ignore_errors=True)
+
+
+@contextmanager
+def _terminate_unwinds() -> Iterator[None]:
+    """SIGTERM raises SystemExit(143) in the block (as SIGINT raises KeyboardInterrupt), so that the
+    staging folder is removed on the way out rather than left behind by the default handler, which
+    ends the process at once. The handler is set only in the main thread (elsewhere it cannot be)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGTERM, _raise_exit)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _raise_exit(signum, frame) -> None:
+    raise SystemExit(128 + signum)
+
+
+def _make_stage(path: Path) -> Path:
+    """The staging folder beside ``path`` (its parent made if need be)."""
+    if path.exists() and not path.is_dir():
+        raise VaultgramError(f"{path}: the output folder is a file")
+    for parent in path.parents:
+        if parent.exists() and not parent.is_dir():
+            raise VaultgramError(f"{path}: the output folder is below a file ({parent})")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    return Path(tempfile.mkdtemp(prefix=f".{path.name}.", dir=path.parent))
+
+
+def _output_error(path: Path, exc: OSError) -> VaultgramError:
+    """An operating-system error while writing as one line naming the file (permission, disk full...)."""
+    where = exc.filename if exc.filename else path
+    if isinstance(where, str) and Path(where).parent.name.startswith(f".{path.name}."):
+        where = path / Path(where).name  # a file of the staging folder: name it by where it was going
+    return VaultgramError(f"{where}: cannot write: {exc.strerror or exc}")
+
+
+def _check_targets(stage: Path, path: Path) -> None:
+    """Refuse, before anything moves, a staged file whose place in ``path`` is taken by a folder (or a
+    staged folder whose place is a file): the output folder is complete or untouched."""
+    for item in sorted(stage.iterdir()):
+        target = path / item.name
+        if target.exists() and target.is_dir() != item.is_dir():
+            kind = "a folder" if target.is_dir() else "a file"
+            raise VaultgramError(f"{target}: cannot write: {kind} is in the way")
 
 
 def _move_into(stage: Path, path: Path) -> None:

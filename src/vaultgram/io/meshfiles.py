@@ -13,6 +13,8 @@ from pathlib import Path
 import numpy as np
 
 from vaultgram.errors import VaultgramError
+from vaultgram.geometry.meshcheck import check_plan_mesh
+from vaultgram.io import strict
 from vaultgram.io.files import read_json, write_json, write_obj
 from vaultgram.meshing.quadmesh import QuadMesh
 
@@ -47,46 +49,87 @@ def mesh_to_json(mesh: QuadMesh, supports=None) -> dict:
 
 def mesh_from_json(data: dict, where: str = "mesh", polygons: bool = False) -> QuadMesh:
     """A :class:`QuadMesh` from :func:`mesh_to_json` output (or any ``{"vertices", "faces"}`` dict); with
-    ``polygons``, faces of any number of sides (a pattern for form finding), else triangles and quads."""
+    ``polygons``, faces of any number of sides (a pattern for form finding), else triangles and quads.
+
+    Validated before use (:mod:`vaultgram.io.strict`, :func:`vaultgram.geometry.meshcheck.check_plan_mesh`):
+    strict types (an index is an integer, a coordinate a finite number), indices in range, faces of
+    distinct vertices, a manifold and consistently oriented mesh; the error names ``where``, the
+    element and its index.
+    """
     try:
-        x = np.asarray(data["vertices"], dtype=float)
-        faces = [tuple(int(i) for i in f) for f in data["faces"]]
-    except (KeyError, TypeError, ValueError) as exc:
-        raise VaultgramError(f"{where}: not a mesh (needs 'vertices' and 'faces'): {exc}") from None
-    if x.ndim != 2 or x.shape[1] not in (2, 3):
-        raise VaultgramError(f"{where}: vertices must be [x, y] or [x, y, z] points")
+        return _mesh_from_json(data, polygons)
+    except VaultgramError as exc:
+        raise VaultgramError(f"{where}: {exc}") from None
+
+
+def _mesh_from_json(data, polygons: bool) -> QuadMesh:
+    """:func:`mesh_from_json` without the file name on errors."""
+    data = strict.json_object(data, "mesh")
+    for key in ("vertices", "faces"):
+        if key not in data:
+            raise VaultgramError(f"not a mesh: needs 'vertices' and 'faces' (no '{key}')")
+    x = strict.points(data["vertices"], "vertices")
     n = len(x)
-    if any((len(f) < 3 if polygons else len(f) not in (3, 4)) or min(f) < 0 or max(f) >= n for f in faces):
-        kinds = "polygons" if polygons else "triangles or quads"
-        raise VaultgramError(f"{where}: faces must be {kinds} of valid vertex indices")
-    labels = data.get("labels", {})
+    faces = [tuple(strict.indices(f, n, f"faces[{k}]").tolist())
+             for k, f in enumerate(strict.json_list(data["faces"], "faces"))]
+    for k, f in enumerate(faces):
+        if not polygons and len(f) not in (3, 4):
+            raise VaultgramError(f"faces[{k}]: expected a triangle or a quad, got {len(f)} vertices")
+    check_plan_mesh(x, faces)
+    labels = strict.json_object(data.get("labels", {}), "labels")
 
     def mask(name):
         m = np.zeros(n, dtype=bool)
-        m[np.asarray(labels.get(name, []), dtype=np.int64)] = True
+        m[strict.indices(labels.get(name, []), n, f"labels.{name}")] = True
         return m
 
     corner = np.zeros(n, dtype=np.int8)
     corner[mask("corner")] = 1
     corner[mask("reflex_corner")] = -1
     turning = np.zeros(n)
-    for k, a in data.get("turning", []):
-        turning[int(k)] = float(a)
-    ring = np.asarray(data.get("ring", [-1] * n), dtype=np.int64)
-    node = np.asarray(data.get("node", [-1] * n), dtype=np.int64)
-    fp = np.asarray(data.get("face_patch", [-1] * len(faces)), dtype=np.int64)
-    try:
-        chains = tuple(np.asarray(c["vertices"], dtype=np.int64) for c in data.get("curves", []))
-        lines = tuple(np.asarray(c["polyline"], dtype=float).reshape(-1, 2) for c in data.get("curves", []))
-    except (KeyError, TypeError, ValueError) as exc:
-        raise VaultgramError(f"{where}: 'curves' must be a list of {{'vertices', 'polyline'}}: {exc}") from None
+    for k, pair in enumerate(strict.json_list(data.get("turning", []), "turning")):
+        if not isinstance(pair, list) or len(pair) != 2:
+            raise VaultgramError(f"turning[{k}]: expected [vertex, degrees], got {pair!r}")
+        turning[strict.indices(pair[:1], n, f"turning[{k}]")[0]] = strict.finite_number(pair[1], f"turning[{k}][1]")
+    ring = _per_item(data, "ring", n, "vertices")
+    node = _per_item(data, "node", n, "vertices")
+    fp = _per_item(data, "face_patch", len(faces), "faces")
+    chains, lines = _curves(data, n)
     curve = np.full(n, -1, dtype=np.int64)
     for c, chain in enumerate(chains):
         curve[chain] = c
+    if "supports" in data:
+        strict.indices(data["supports"], n, "supports")
     return QuadMesh(x[:, :2].copy(), faces, fp, mask("boundary"), ring, corner, turning, mask("fixed"),
                     mask("pole"), mask("feature"), node, mask("singular_node"),
-                    tuple(data.get("edge_groups", ())), (), dict(data.get("info", {})),
-                    curve, mask("curve_extremity"), chains, lines)
+                    tuple(strict.json_list(data.get("edge_groups", []), "edge_groups")), (),
+                    dict(strict.json_object(data.get("info", {}), "info")), curve, mask("curve_extremity"),
+                    chains, lines)
+
+
+def _per_item(data: dict, key: str, n: int, of: str) -> np.ndarray:
+    """An optional list of one integer per vertex (or face) under ``key``; -1 each when absent."""
+    if key not in data:
+        return np.full(n, -1, dtype=np.int64)
+    values = strict.json_list(data[key], key)
+    if len(values) != n:
+        raise VaultgramError(f"{key}: expected one integer per {of[:-1]} ({n}), got {len(values)}")
+    bad = [k for k, v in enumerate(values) if not strict.is_integer(v)]
+    if bad:
+        raise VaultgramError(f"{key}[{bad[0]}]: expected an integer, got {values[bad[0]]!r}")
+    return np.asarray(values, dtype=np.int64)
+
+
+def _curves(data: dict, n: int) -> tuple[tuple, tuple]:
+    """The curve chains (vertex indices) and polylines of ``data["curves"]``."""
+    chains, lines = [], []
+    for k, c in enumerate(strict.json_list(data.get("curves", []), "curves")):
+        c = strict.json_object(c, f"curves[{k}]")
+        if "vertices" not in c or "polyline" not in c:
+            raise VaultgramError(f"curves[{k}]: expected {{'vertices', 'polyline'}}")
+        chains.append(strict.indices(c["vertices"], n, f"curves[{k}].vertices"))
+        lines.append(strict.points(c["polyline"], f"curves[{k}].polyline", (2,)).reshape(-1, 2))
+    return tuple(chains), tuple(lines)
 
 
 def write_mesh(mesh: QuadMesh, out_dir: str | Path, supports=None) -> tuple[Path, Path]:

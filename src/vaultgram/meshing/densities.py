@@ -22,7 +22,10 @@ import numpy as np
 
 from vaultgram.errors import VaultgramError
 from vaultgram.geometry.polylines import chord_deviation, resample_polyline
+from vaultgram.io import strict
 from vaultgram.io.files import read_json
+from vaultgram.limits import MAX_COUNT
+from vaultgram.meshing.guards import check_mesh_size
 from vaultgram.meshing.layout import EdgeGroup, Layout, kept_points, side_anchors
 
 __all__ = ["DensitySpec", "group_counts", "curve_min_counts", "densities_from_dict", "load_densities",
@@ -36,6 +39,13 @@ TARGET_FRACTION = 0.025
 CHORD_TOLERANCE = 0.002
 #: The geometric minimum count of a side is searched up to this multiple of its length count.
 CHORD_MAX_FACTOR = 6
+#: Above this many subdivisions a side is not searched for its chord count (it follows its curve
+#: anyway): the search would resample it millions of times over before the size guard
+#: (:mod:`vaultgram.meshing.guards`) refuses the mesh.
+CHORD_SEARCH_LIMIT = 100_000
+#: Length counts are clamped here (a tiny target length would overflow an integer); the size guard
+#: refuses any such mesh.
+COUNT_CEILING = 10**12
 
 
 @dataclass(frozen=True)
@@ -64,7 +74,8 @@ class DensitySpec:
     regions: tuple = ()
 
 
-def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length: float | None = None) -> np.ndarray:
+def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length: float | None = None,
+                 max_faces: int | None = None) -> np.ndarray:
     """Number of subdivisions of each edge group (§3.2).
 
     Parameters
@@ -74,6 +85,9 @@ def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length:
         Local control and defaults; ``target_length`` overrides ``spec.target_length``.
     target_length : float, optional
         Global target edge length; default ``TARGET_FRACTION`` of the domain's diagonal.
+    max_faces : int, optional
+        Refuse counts that make a mesh of more faces (:func:`vaultgram.meshing.guards.check_mesh_size`),
+        checked before the boundary sides are searched for their chord counts too.
 
     Returns
     -------
@@ -84,7 +98,7 @@ def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length:
     Raises
     ------
     VaultgramError
-        For a bad target length, count, length mode or group id.
+        For a bad target length, count, length mode or group id, or more than ``max_faces`` faces.
 
     Example
     -------
@@ -101,14 +115,28 @@ def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length:
     target = _checked_target(spec, target_length, diag)
     local = _local_values(layout, spec)
     counts = np.empty(layout.n_groups, dtype=np.int64)
+    by_length = []
     for g in layout.groups:
         kind, v = local[g.id] or ("length", target)
         if kind == "count":
             counts[g.id] = v
         else:
-            counts[g.id] = max(int(spec.min_count), int(round(g.length(spec.length_mode) / v)))
+            counts[g.id] = max(int(spec.min_count), _length_count(g.length(spec.length_mode), v))
+            by_length.append(g)
+    if max_faces is not None:  # before the chord search, which resamples each side at its count
+        check_mesh_size(layout, np.maximum(counts, 1), max_faces)
+    for g in by_length:
+        if counts[g.id] <= CHORD_SEARCH_LIMIT:
             counts[g.id] = max(counts[g.id], _chord_count(layout, g, counts[g.id], CHORD_TOLERANCE * diag))
-    return np.maximum(counts, curve_min_counts(layout))
+    counts = np.maximum(counts, curve_min_counts(layout))
+    if max_faces is not None:
+        check_mesh_size(layout, counts, max_faces)
+    return counts
+
+
+def _length_count(length: float, target: float) -> int:
+    """``round(length / target)``, clamped at :data:`COUNT_CEILING`."""
+    return int(round(min(length / target, COUNT_CEILING)))
 
 
 def _checked_target(spec: DensitySpec, target_length: float | None, diag: float) -> float:
@@ -196,6 +224,8 @@ def _value(value, where: str) -> tuple[str, float]:
         c = value["count"]
         if not isinstance(c, (int, np.integer)) or isinstance(c, bool) or c < 1:
             raise VaultgramError(f"density for {where}: count must be a positive integer, got {c!r}")
+        if c > MAX_COUNT:
+            raise VaultgramError(f"density for {where}: count {c} is more than the limit of {MAX_COUNT}")
         return ("count", int(c))
     length = value["length"]
     if not isinstance(length, (int, float)) or isinstance(length, bool) or not length > 0:
@@ -219,11 +249,11 @@ def densities_from_dict(data: dict, where: str = "densities") -> DensitySpec:
     if unknown:
         raise VaultgramError(f"{where}: unknown key(s) {', '.join(sorted(unknown))}")
     regions = []
-    for k, r in enumerate(data.get("regions", [])):
+    for k, r in enumerate(strict.json_list(data.get("regions", []), f"{where}: regions")):
         if not isinstance(r, dict) or "polygon" not in r:
             raise VaultgramError(f"{where}: region {k} needs a 'polygon' [[x, y], ...]")
-        poly = np.asarray(r["polygon"], dtype=float)
-        if poly.ndim != 2 or poly.shape[1] != 2 or len(poly) < 3:
+        poly = strict.points(r["polygon"], f"{where}: region {k}: polygon", (2,))
+        if len(poly) < 3:
             raise VaultgramError(f"{where}: region {k}: polygon must have at least 3 [x, y] points")
         value = {key: r[key] for key in ("count", "length") if key in r}
         _value(value, f"region {k}")
@@ -232,11 +262,13 @@ def densities_from_dict(data: dict, where: str = "densities") -> DensitySpec:
     if not isinstance(groups, dict):
         raise VaultgramError(f"{where}: 'groups' maps group ids to counts or lengths")
     target = data.get("target_length")
-    if target is not None and not (isinstance(target, (int, float)) and target > 0):
+    if target is not None and not (strict.is_number(target) and target > 0):
         raise VaultgramError(f"{where}: target_length must be a positive number, got {target!r}")
     min_count = data.get("min_count", 1)
-    if not isinstance(min_count, int) or min_count < 1:
+    if not isinstance(min_count, int) or isinstance(min_count, bool) or min_count < 1:
         raise VaultgramError(f"{where}: min_count must be a positive integer, got {min_count!r}")
+    if min_count > MAX_COUNT:
+        raise VaultgramError(f"{where}: min_count {min_count} is more than the limit of {MAX_COUNT}")
     for key, value in groups.items():
         _value(value, f"group {key}")
     return DensitySpec(target, data.get("length_mode", "average"), min_count, dict(groups), tuple(regions))

@@ -36,14 +36,11 @@ from scipy.spatial import cKDTree
 from vaultgram.domain.model import Domain
 from vaultgram.errors import DomainError
 from vaultgram.geometry.polylines import locate_on_polyline, subdivide_polyline, turning_angles
+from vaultgram.limits import SPACING_MAX, SPACING_RANGE
 from vaultgram.topology.corners import chord_feet
 
 __all__ = ["Discretisation", "discretise", "SPACING_RANGE"]
 
-#: The documented useful range of the relative spacing (paper §3.1: "between 1% to 5%").
-SPACING_RANGE = (0.01, 0.05)
-#: Spacings outside ``(0, SPACING_MAX]`` are rejected.
-SPACING_MAX = 0.2
 
 #: :attr:`Discretisation.ring` of curve-feature points and of point features off rings and curves.
 RING_CURVE = -1

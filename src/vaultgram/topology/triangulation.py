@@ -7,8 +7,10 @@ corner faces those with only one adjacent face." (§3.1)
 
 Method
 ------
-1. Delaunay triangulation of all sample points (:class:`scipy.spatial.Delaunay`), triangles
-   re-oriented counter-clockwise (:func:`_delaunay`).
+1. Delaunay triangulation of all sample points (:func:`delaunay_triangles`: qhull's, or where many
+   samples lie on one circle qhull's of the points moved by a tiny deterministic amount,
+   :func:`perturbed_delaunay`, so that it stays O(n log n)), triangles re-oriented counter-clockwise
+   (:func:`_delaunay`).
 2. Faces whose centroid is outside the outer ring or inside a hole are removed
    (``shapely.contains_xy``, vectorised).
 3. Every boundary segment must be an edge of a kept triangle, with the triangle on the domain side
@@ -52,7 +54,7 @@ import numpy as np
 import shapely
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
-from scipy.spatial import Delaunay, QhullError
+from scipy.spatial import Delaunay, QhullError, cKDTree
 
 from vaultgram.domain.model import ring_name
 from vaultgram.errors import DomainError
@@ -222,8 +224,8 @@ def _faces_inside(disc: Discretisation) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _delaunay(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The Delaunay triangles of ``pts``, made counter-clockwise, with their signed areas (before the
-    turn) and centroids.
+    """The Delaunay triangles of ``pts`` (:func:`delaunay_triangles`), made counter-clockwise, with
+    their signed areas (before the turn) and centroids.
 
     A far frame around the points means no sample lies on the convex hull, so collinear boundary
     samples never produce qhull's flat (zero-area) hull triangles; triangles touching the frame are
@@ -234,17 +236,86 @@ def _delaunay(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     mid, big = 0.5 * (lo + hi), 10.0 * max(bbox_diagonal(pts), 1e-300)
     ang = np.radians([15.0, 105.0, 195.0, 285.0, 60.0])
     frame = mid + big * np.stack([np.cos(ang), np.sin(ang)], axis=1) * np.array([[1.0], [1.1], [1.0], [1.2], [1.3]])
-    try:
-        dl = Delaunay(np.concatenate([pts, frame]))
-    except QhullError as e:  # pragma: no cover - validated domains are never flat
-        raise DomainError(f"Delaunay triangulation failed: {str(e).splitlines()[0]}") from None
-    tri = dl.simplices.astype(np.int64)
+    tri = delaunay_triangles(np.concatenate([pts, frame]))
     tri = tri[(tri < n).all(axis=1)]
     signed = triangle_areas(pts, tri)
     centroid = (pts[tri[:, 0]] + pts[tri[:, 1]] + pts[tri[:, 2]]) / 3.0
     flip = signed < 0
     tri[flip] = tri[flip][:, [0, 2, 1]]
     return tri, signed, centroid
+
+
+#: Size of the perturbation of :func:`perturbed_delaunay`, relative to the squared distance of the
+#: closest two points over the diagonal (the sagitta of the finest sampled arc of a circle as wide as
+#: the plan: below it no point leaves the place it has among its neighbours; much smaller, and qhull
+#: still sees co-circular points and merges), and its floor relative to the diagonal (above round-off).
+PERTURBATION = 0.2
+PERTURBATION_FLOOR = 1e-12
+#: Co-circular groups of up to this many faces are left to qhull's Delaunay (:func:`delaunay_triangles`).
+COCIRCULAR_LIMIT = 1000
+
+
+def delaunay_triangles(pts: np.ndarray) -> np.ndarray:
+    """Delaunay triangles of ``pts`` (k, 2) in O(n log n) whatever their degeneracy.
+
+    The triangulation of the perturbed points (:func:`perturbed_delaunay`) first; where none of its
+    groups of faces with one circumcircle (of the points as given) has more than
+    :data:`COCIRCULAR_LIMIT` faces, qhull's Delaunay of the points as given, which is fast there and
+    whose choice among co-circular diagonals every decomposition so far was made with; the perturbed
+    one where a group is larger (a finely sampled circle, a regular polygon of many sides), on which
+    qhull's facet merging is quadratic (a regular 20,000-gon took 30 s, a 100,000-gon minutes).
+
+    >>> t = 2 * np.pi * np.arange(5000) / 5000
+    >>> len(delaunay_triangles(np.column_stack([np.cos(t), np.sin(t)])))  # a regular 5000-gon, fast
+    4998
+    """
+    tri = perturbed_delaunay(pts)
+    if _largest_cocircular_group(pts, tri) > COCIRCULAR_LIMIT:
+        return tri
+    return _qhull(pts)
+
+
+def perturbed_delaunay(pts: np.ndarray) -> np.ndarray:
+    """Delaunay triangles of ``pts`` (k, 2) moved by a tiny deterministic amount: point ``i`` by
+    ``PERTURBATION * d^2 / diagonal`` (``d`` the distance of the closest two points; at least
+    ``PERTURBATION_FLOOR`` times the diagonal) along a direction hashed from ``i``.
+
+    Why: evenly sampled circles and regular polygons put many points on one circle, which qhull can
+    only triangulate by merging facets, quadratically; moved, the points are in general position.
+    The move is a fifth of the sagitta of the finest sampled arc, so every triangle is one of the
+    points as given (a Delaunay one, or among co-circular points one of the Delaunay diagonals,
+    always the same); the co-circular faces still form one cell (:func:`_cells`, from the circumcentres
+    of the points as given).
+
+    >>> square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    >>> len(perturbed_delaunay(square))  # co-circular: two triangles, one diagonal
+    2
+    """
+    diag = max(bbox_diagonal(pts), 1e-300)
+    closest = cKDTree(pts).query(pts, k=2)[0][:, 1].min() if len(pts) > 1 else diag
+    amount = max(PERTURBATION * closest**2 / diag, PERTURBATION_FLOOR * diag)
+    k = np.arange(len(pts), dtype=np.uint64)
+    angle = 2.0 * np.pi * ((k * np.uint64(2654435761)) % np.uint64(2**32)).astype(float) / 2.0**32
+    return _qhull(pts + amount * np.column_stack([np.cos(angle), np.sin(angle)]))
+
+
+def _qhull(pts: np.ndarray) -> np.ndarray:
+    """qhull's Delaunay triangles of ``pts`` (:class:`scipy.spatial.Delaunay`)."""
+    try:
+        return Delaunay(pts).simplices.astype(np.int64)
+    except QhullError as e:  # pragma: no cover - validated domains are never flat
+        raise DomainError(f"Delaunay triangulation failed: {str(e).splitlines()[0]}") from None
+
+
+def _largest_cocircular_group(pts: np.ndarray, tri: np.ndarray) -> int:
+    """The most faces of ``tri`` sharing one circumcentre (to 1e-6 of the diagonal)."""
+    if not len(tri):
+        return 0
+    centre, _ = circumcentres(pts, tri)
+    finite = np.isfinite(centre).all(axis=1)
+    tol = 1e-6 * max(bbox_diagonal(pts), 1e-300)
+    keys = np.round(centre[finite] / tol)
+    return int(np.unique(keys, axis=0, return_counts=True)[1].max()) if finite.any() else 0
 
 
 def _edge_keys(tri: np.ndarray, n: int) -> np.ndarray:
@@ -284,6 +355,15 @@ class _HalfEdges(NamedTuple):
         return np.where(hit, self.order[pos], -1)
 
 
+class BoundaryRecoveryError(DomainError):
+    """A boundary or curve segment that is not an edge of the triangulation; ``segments`` (k, 2, 2)
+    holds the end points of every such segment (:mod:`vaultgram.topology.recovery` refines there)."""
+
+    def __init__(self, message: str, segments: np.ndarray):
+        super().__init__(message)
+        self.segments = segments
+
+
 def _check_boundary_recovered(disc: Discretisation, half_edges: _HalfEdges) -> None:
     """Every boundary segment is an edge of a face on the domain side."""
     pts, n = disc.points, half_edges.n
@@ -293,10 +373,11 @@ def _check_boundary_recovered(disc: Discretisation, half_edges: _HalfEdges) -> N
         s = int(np.flatnonzero(found < 0)[0])
         i, j = seg[s]
         r = int(disc.ring[i])
-        raise DomainError(
+        raise BoundaryRecoveryError(
             f"{ring_name(r)}, vertex {int(disc.index[i])}: boundary segment from {fmt_point(pts[i], 10)} to "
             f"{fmt_point(pts[j], 10)} is not an edge of the Delaunay triangulation (spacing {disc.spacing:g} is "
-            "too coarse for the geometry there); use a smaller spacing or add vertices to the ring"
+            "too coarse for the geometry there); use a smaller spacing or add vertices to the ring",
+            pts[seg[found < 0]],
         )
 
 
@@ -311,10 +392,11 @@ def _check_curves_recovered(disc: Discretisation, half_edges: _HalfEdges) -> Non
         i, j = cseg[int(np.flatnonzero(missing)[0])]
         c_id = next(k for k, cv in enumerate(disc.curves) if np.any((cv[:-1] == i) & (cv[1:] == j)))
         pos = int(np.flatnonzero(disc.curves[c_id] == i)[0])
-        raise DomainError(
+        raise BoundaryRecoveryError(
             f"curve feature {c_id}, vertex {pos}: segment from {fmt_point(pts[i], 10)} to {fmt_point(pts[j], 10)} "
             f"is not an edge of the Delaunay triangulation (spacing {disc.spacing:g} is too "
-            "coarse there); use a smaller spacing"
+            "coarse there); use a smaller spacing",
+            pts[cseg[missing]],
         )
 
 

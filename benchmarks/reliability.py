@@ -1,0 +1,131 @@
+"""Reliability measurements of issue 17 (results in benchmarks/README.md, with the machine load).
+
+* ``python benchmarks/reliability.py plans [--count 200]`` -- ``mesh`` on a fixed list of random valid
+  plans (``vaultgram.testing.domains.vault_domains``: star-shaped non-convex outlines, 0-3 holes,
+  0-3 inner and boundary points, 0-2 curves; drawn with a fixed seed, so the list is the same every
+  run): how many give a valid mesh (no inverted face), and the refusals grouped by their message.
+* ``python benchmarks/reliability.py ngon N`` -- seconds to mesh a regular N-gon, per stage.
+* ``python benchmarks/reliability.py guard`` -- seconds to refuse ``--target-length 1e-3`` on
+  examples/quad_with_hole.json (in-process, after imports, and the whole command).
+* ``python benchmarks/reliability.py peak [--target-length L]`` -- peak resident memory of ``vaultgram
+  design`` on examples/quad_with_hole.json at about 10^5 faces (a child process, its ru_maxrss).
+"""
+
+from __future__ import annotations
+
+import argparse
+import collections
+import json
+import re
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+REPO = Path(__file__).resolve().parents[1]
+QWH = REPO / "examples" / "quad_with_hole.json"
+
+
+def random_plans(count: int, seed: int = 17) -> list:
+    """``count`` (domain dict, spacing) draws of ``vault_domains``, the same for the same seed."""
+    from hypothesis import HealthCheck, given, settings
+    from hypothesis import seed as hseed
+
+    from vaultgram.testing.domains import vault_domains
+
+    plans: list = []
+
+    @hseed(seed)
+    @settings(max_examples=count, database=None, deadline=None, derandomize=False,
+              suppress_health_check=list(HealthCheck))
+    @given(vault_domains())
+    def draw(plan):
+        if len(plans) < count:
+            plans.append(plan)
+
+    draw()
+    return plans
+
+
+def mesh_rate(count: int) -> dict:
+    """Mesh every plan; count the valid meshes and group the refusals by their message's kind."""
+    from vaultgram.domain import domain_from_dict
+    from vaultgram.errors import VaultgramError
+    from vaultgram.meshing.quality import mesh_stats
+    from vaultgram.pipeline import mesh_domain
+
+    ok, refusals = 0, collections.Counter()
+    plans = random_plans(count)
+    for data, spacing in plans:
+        try:
+            mesh = mesh_domain(domain_from_dict(data), spacing)
+            ok += mesh_stats(mesh)["inverted_faces"] == 0
+        except VaultgramError as exc:
+            refusals[re.sub(r"-?\d[\d.e+-]*", "N", str(exc).split(": ")[-1])[:90]] += 1
+    return {"plans": len(plans), "valid": ok, "rate": ok / max(len(plans), 1), "refusals": refusals.most_common()}
+
+
+def ngon(n: int) -> dict:
+    """Seconds per stage to mesh a regular n-gon of radius 10."""
+    from vaultgram.domain import domain_from_dict
+    from vaultgram.pipeline import mesh_domain
+    from vaultgram.topology.rulebook import load_vault_rulebook
+
+    load_vault_rulebook(None)
+    t = 2 * np.pi * np.arange(n) / n
+    domain = domain_from_dict({"outer": np.column_stack([10 * np.cos(t), 10 * np.sin(t)]).tolist()})
+    timings: dict = {}
+    start = time.perf_counter()
+    mesh = mesh_domain(domain, timings=timings)
+    return {"n": n, "seconds": time.perf_counter() - start, "faces": len(mesh.faces),
+            "stages": {k: round(v, 2) for k, v in timings.items()}}
+
+
+def guard() -> dict:
+    """Seconds to refuse --target-length 1e-3 on the quad with a hole: the command in-process after
+    its imports (a first call loads the rulebook), and the whole command as a process."""
+    from click.testing import CliRunner
+
+    from vaultgram.cli import main
+
+    args = ["mesh", str(QWH), "--target-length", "1e-3", "--out", str(Path(tempfile.mkdtemp()) / "o")]
+    CliRunner().invoke(main, args)
+    start = time.perf_counter()
+    result = CliRunner().invoke(main, args)
+    inprocess = time.perf_counter() - start
+    start = time.perf_counter()
+    subprocess.run([sys.executable, "-m", "vaultgram", *args], capture_output=True)
+    return {"in_process": inprocess, "process": time.perf_counter() - start, "message": result.stderr.strip()}
+
+
+def peak(target_length: float) -> dict:
+    """Peak resident memory (MB) and faces of ``vaultgram design`` on the quad with a hole."""
+    out = Path(tempfile.mkdtemp()) / "o"
+    start = time.perf_counter()
+    run = subprocess.run([sys.executable, "-m", "vaultgram", "design", str(QWH), "--out", str(out), "--zmax", "3",
+                          "--target-length", str(target_length), "--format", "json"], capture_output=True, text=True)
+    seconds = time.perf_counter() - start
+    rss = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
+    faces = len(json.loads((out / "mesh.json").read_text())["faces"]) if run.returncode == 0 else None
+    return {"faces": faces, "peak_mb": round(rss), "seconds": round(seconds, 1), "error": run.stderr[-300:]}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    sub = parser.add_subparsers(dest="what", required=True)
+    sub.add_parser("plans").add_argument("--count", type=int, default=200)
+    sub.add_parser("ngon").add_argument("n", type=int)
+    sub.add_parser("guard")
+    sub.add_parser("peak").add_argument("--target-length", type=float, default=0.0316)
+    args = parser.parse_args()
+    result = {"plans": lambda: mesh_rate(args.count), "ngon": lambda: ngon(args.n), "guard": guard,
+              "peak": lambda: peak(args.target_length)}[args.what]()
+    print(json.dumps(result, indent=1, default=str))
+
+
+if __name__ == "__main__":
+    main()

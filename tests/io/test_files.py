@@ -1,0 +1,141 @@
+"""Output folders: complete or untouched, whatever goes wrong (a folder in the way, no permission,
+--out below a file, SIGINT or SIGTERM at any moment of a run), and one line with exit code 2."""
+
+from __future__ import annotations
+
+import os
+import random
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+from click.testing import CliRunner
+
+from vaultgram.cli import main
+from vaultgram.errors import VaultgramError
+from vaultgram.io import files
+from vaultgram.io.files import output_folder, write_text
+
+from paths import EXAMPLES
+
+DOMAIN = EXAMPLES / "quad_with_hole.json"
+
+
+def _mesh(out):
+    return CliRunner().invoke(main, ["mesh", str(DOMAIN), "--out", str(out), "--target-length", "2"])
+
+
+def _one_error_line(result, *words):
+    lines = result.stderr.strip().splitlines() if hasattr(result, "stderr") else result.output.strip().splitlines()
+    assert result.exit_code == 2 and len(lines) == 1 and lines[0].startswith("error:"), result.output
+    assert all(w in lines[0] for w in words), lines[0]
+
+
+def _listing(folder):
+    return sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*"))
+
+
+def test_out_below_a_file_is_one_line(tmp_path):
+    (tmp_path / "plan").write_text("not a folder")
+    result = _mesh(tmp_path / "plan" / "out")
+    _one_error_line(result, "below a file", "plan")
+    assert _listing(tmp_path) == ["plan"]
+
+
+def test_a_folder_where_a_file_goes_leaves_out_untouched(tmp_path):
+    (tmp_path / "out" / "mesh.json").mkdir(parents=True)
+    (tmp_path / "out" / "mesh.obj").write_text("older")
+    result = _mesh(tmp_path / "out")
+    _one_error_line(result, "mesh.json", "folder is in the way")
+    assert _listing(tmp_path) == ["out", "out/mesh.json", "out/mesh.obj"]
+    assert (tmp_path / "out" / "mesh.obj").read_text() == "older"
+
+
+def test_no_permission_is_one_line_naming_the_file(tmp_path, monkeypatch):
+    """(As root the permission bits do not stop a write: the refusal is simulated where it happens.)"""
+    def refused(src, dst):
+        raise PermissionError(13, "Permission denied", str(dst))
+
+    monkeypatch.setattr(files.os, "replace", refused)
+    result = _mesh(tmp_path / "out")
+    _one_error_line(result, "Permission denied", "mesh")
+    assert "out" not in os.listdir(tmp_path) or not os.listdir(tmp_path / "out")
+    assert not [p for p in os.listdir(tmp_path) if p.startswith(".")]
+
+
+def test_an_unwritable_parent_is_one_line(tmp_path, monkeypatch):
+    def refused(*args, **kwargs):
+        raise PermissionError(13, "Permission denied", str(tmp_path))
+
+    monkeypatch.setattr(files.tempfile, "mkdtemp", refused)
+    with pytest.raises(VaultgramError, match="Permission denied"):
+        with output_folder(tmp_path / "out"):
+            pass
+
+
+def test_a_staged_folder_replaces_a_folder_of_its_name(tmp_path):
+    (tmp_path / "out" / "figures").mkdir(parents=True)
+    (tmp_path / "out" / "figures" / "old.png").write_text("old")
+    with output_folder(tmp_path / "out") as stage:
+        write_text(stage / "figures" / "new.png", "new")
+    assert _listing(tmp_path) == ["out", "out/figures", "out/figures/new.png"]
+
+
+_DESIGN = ["design", str(DOMAIN), "--zmax", "3", "--target-length", "1.5"]
+
+
+def _design(out):
+    return subprocess.Popen([sys.executable, "-m", "vaultgram", *_DESIGN, "--out", str(out)],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+
+
+def _wait_for_stage(proc, parent, deadline):
+    """Until the run starts writing (its staging folder appears) or ends."""
+    while proc.poll() is None and time.monotonic() < deadline:
+        if any(p.name.startswith(".") for p in parent.iterdir()):
+            return
+        time.sleep(0.005)
+
+
+def test_sigterm_in_the_block_removes_the_staging_folder(tmp_path):
+    with pytest.raises(SystemExit) as exit_info:
+        with output_folder(tmp_path / "out") as stage:
+            write_text(stage / "a.txt", "a")
+            os.kill(os.getpid(), signal.SIGTERM)
+            time.sleep(1)  # the handler runs at the next bytecode
+    assert exit_info.value.code == 128 + signal.SIGTERM
+    assert _listing(tmp_path) == []
+    assert signal.getsignal(signal.SIGTERM) is signal.SIG_DFL
+
+
+def test_design_interrupted_at_random_points_leaves_out_absent_or_complete(tmp_path):
+    """Three runs of ``design`` side by side, sent SIGINT or SIGTERM at a random moment: two at any
+    point of the run, one once it has started writing (its staging folder is there) plus up to 0.5 s.
+    Each --out is then absent or byte-identical to an uninterrupted run's, and no staging folder is left."""
+    rng = random.Random(17)
+    cases = [(signal.SIGINT, False), (signal.SIGTERM, False), (rng.choice([signal.SIGINT, signal.SIGTERM]), True)]
+    folders = [tmp_path / f"run{k}" for k in range(len(cases))]
+    for folder in folders:
+        folder.mkdir()
+    procs = [_design(folder / "out") for folder in folders]
+    start = time.monotonic()
+    for proc, folder, (signum, writing) in zip(procs, folders, cases):
+        if writing:
+            _wait_for_stage(proc, folder, start + 60)
+            time.sleep(rng.uniform(0.0, 0.5))
+        else:
+            time.sleep(max(0.0, start + rng.uniform(0.3, 5.0) - time.monotonic()))
+        proc.send_signal(signum)
+    for proc in procs:
+        proc.wait(timeout=120)
+    reference = tmp_path / "reference"
+    assert CliRunner().invoke(main, _DESIGN + ["--out", str(reference)]).exit_code == 0
+    expected = {p.name: p.read_bytes() for p in reference.iterdir()}
+    for proc, folder in zip(procs, folders):
+        assert not [p.name for p in folder.iterdir() if p.name != "out"], "a staging folder was left"
+        out = folder / "out"
+        if out.exists():
+            assert {p.name: p.read_bytes() for p in out.iterdir()} == expected
+        assert "Traceback" not in proc.stderr.read()
