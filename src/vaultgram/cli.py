@@ -16,7 +16,7 @@ from pathlib import Path
 import click
 
 from vaultgram.errors import VaultgramError, VaultgramWarning
-from vaultgram.io.files import output_folder, read_json, write_json
+from vaultgram.io.files import output_folder, read_json, write_json, write_text
 
 
 class _Group(click.Group):
@@ -469,9 +469,14 @@ def tessellate_command(thrust_path, out_dir, thickness, rhythm, max_concavity, f
 @FORMAT
 @input_options
 @TRACE
+@click.option("--plots/--no-plots", default=True, show_default=True,
+              help="Write the figures of every stage (figures/*.png and *.svg, and the PNGs beside the files).")
+@click.option("--report/--no-report", "with_report", default=True, show_default=True,
+              help="Write report.html (figures, parameters, metrics and times of every stage in one page).")
 def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smooth, densities_path, allow_folds,
                    supports_path, zmax, thickness, density, point_load, tol_deg, sag, relax_mode, rhythm,
-                   max_concavity, flat_extrados, surface_smooth, formats, input_format, layers, with_trace) -> None:
+                   max_concavity, flat_extrados, surface_smooth, formats, input_format, layers, with_trace,
+                   plots, with_report) -> None:
     """The whole pipeline on a DOMAIN: decomposition (3.1, 4), mesh (3.2), thrust network and voussoirs (5).
 
     Everything is computed before anything is written, so a failing stage leaves no output. The DOMAIN
@@ -493,14 +498,28 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
         TessellationOptions(int(rhythm), max_concavity, flat_extrados, surface_smooth), trace=with_trace,
         density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode)
     out = Path(out_dir)
+    parameters = {k: v for k, v in click.get_current_context().params.items() if k != "out_dir"}
     with output_folder(out) as stage:
-        write_design(result, stage, formats, trace=with_trace)
+        timings = write_design(result, stage, formats, with_trace, plots, with_report, parameters)
     echo_decomposition(result.decomposition, out)
     click.echo(f"mesh: {len(result.mesh.vertices)} vertices, {len(result.mesh.faces)} faces; "
                f"wrote {_joined(f for f in ('mesh.json', 'mesh.obj', 'mesh.compas.json') if _written(f, formats))}")
     click.echo(result.network.summary_text())
     click.echo(format_summary(result.tessellation.summary))
-    echo_timings(result.timings)
+    echo_timings(timings)
+
+
+@main.command("report")
+@click.argument("folder", metavar="DIR", type=click.Path(file_okay=False, exists=True))
+def report_command(folder) -> None:
+    """Rebuild DIR/report.html from a finished `vaultgram design` output folder (its summary.json,
+    timings.json and figures/*.svg)."""
+    from vaultgram.io.report import report_html
+
+    page = report_html(Path(folder))  # read and checked before anything is written
+    with output_folder(folder) as stage:
+        write_text(stage / "report.html", page)
+    click.echo(f"wrote {Path(folder) / 'report.html'}")
 
 
 def _written(name: str, formats) -> bool:
