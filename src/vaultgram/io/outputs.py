@@ -16,10 +16,9 @@ Without ``formats`` a writer writes ``json`` and ``obj`` (:data:`DEFAULT_FORMATS
 from __future__ import annotations
 
 import shutil
-import time
-from contextlib import contextmanager
 from pathlib import Path
 
+from vaultgram import progress
 from vaultgram.errors import VaultgramError
 from vaultgram.formfinding.thrust import ThrustNetwork
 from vaultgram.io.files import write_json, write_obj, write_obj_objects, write_text
@@ -153,7 +152,7 @@ def write_design(result, out: Path, formats=DEFAULT_FORMATS, trace: bool = False
     ``timings.json`` has the seconds of every stage, these included (the one file that differs between
     reruns, with the report that shows it). Returns the timings."""
     timings = dict(result.timings)
-    with _timed(timings, "write"):
+    with progress.timed(timings, "write"):
         write_decomposition(result.decomposition, out, plot=False, formats=formats, trace=trace)
         write_mesh_files(result.mesh, out, result.supports, plot=False, formats=formats)
         write_thrust(result.network, out, plot=False, formats=formats)
@@ -164,7 +163,7 @@ def write_design(result, out: Path, formats=DEFAULT_FORMATS, trace: bool = False
         write_drawings(out, formats, result.domain.units, decomposition=result.decomposition, mesh=result.mesh,
                        network=result.network, tessellation=result.tessellation)
     if plots and "json" in formats:
-        with _timed(timings, "figures"):
+        with progress.timed(timings, "figures"):
             write_design_figures(result, out)
     write_json(out / "timings.json", timings)
     if report and "json" in formats:
@@ -172,13 +171,6 @@ def write_design(result, out: Path, formats=DEFAULT_FORMATS, trace: bool = False
 
         write_report(out)
     return timings
-
-
-@contextmanager
-def _timed(timings: dict, step: str):
-    start = time.perf_counter()
-    yield
-    timings[step] = timings.get(step, 0.0) + time.perf_counter() - start
 
 
 def design_summary(result, parameters: dict | None = None) -> dict:
