@@ -21,7 +21,7 @@ from pathlib import Path
 from vaultgram import progress
 from vaultgram.errors import VaultgramError
 from vaultgram.formfinding.thrust import ThrustNetwork
-from vaultgram.io.files import write_json, write_obj, write_obj_objects, write_text
+from vaultgram.io.files import write_json, write_obj, write_obj_groups, write_text
 from vaultgram.io.meshfiles import mesh_to_json
 from vaultgram.io.plots import plot_decomposition, plot_mesh, plot_tessellation, plot_thrust
 from vaultgram.meshing.quadmesh import QuadMesh
@@ -126,8 +126,7 @@ def write_tessellation(tessellation: Tessellation, out: Path, summary: bool = Fa
         write_json(out / "tessellation.json", tessellation.to_json())
     if "obj" in formats:
         solids = tessellation.solids
-        objects = [(f"voussoir_{k}", solids.of(k)) for k in range(tessellation.layout.n_voussoirs)]
-        write_obj_objects(out / "voussoirs.obj", solids.vertices, objects)
+        write_obj_groups(out / "voussoirs.obj", solids.vertices, solids.triangles, solids.owner, "voussoir_")
     if "json" in formats:
         if summary:
             write_json(out / "summary.json", tessellation.summary)
