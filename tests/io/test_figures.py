@@ -137,7 +137,7 @@ def test_panel_has_the_eight_steps_of_figure_2(data):
     assert titles == [f"({letter}) {s.name.replace('_', ' ')}" for letter, s in zip("abcdefgh", PANEL)]
 
 
-def test_dense_meshes_are_shaded_not_lined():
+def test_dense_meshes_are_shaded_not_lined_and_drawn_once(tmp_path):
     v, f = grid_mesh(150)  # 22500 faces
     mesh = SimpleNamespace(vertices=v, faces=f, pole=np.zeros(len(v), dtype=bool))
     fig, ax = style.new_figure()
@@ -145,6 +145,10 @@ def test_dense_meshes_are_shaded_not_lined():
     faces = drawn(fig, "faces")
     assert len(faces.get_paths()) == len(f) and faces.get_rasterized()
     assert not np.asarray(faces.get_linewidths()).any()
+    assert style.is_dense(fig)
+    style.save_png_and_svg(fig, tmp_path / "a.png", tmp_path / "a.svg")
+    svg = ET.parse(tmp_path / "a.svg").getroot()  # the PNG, wrapped
+    assert [child.tag.rsplit("}", 1)[1] for child in svg] == ["image"]
 
 
 def test_written_figures_are_png_and_well_formed_svg_byte_identical(data, tmp_path):

@@ -9,6 +9,7 @@ output folder is complete or untouched.
 
 from __future__ import annotations
 
+import gc
 import json
 import os
 import shutil
@@ -77,6 +78,21 @@ def _move_into(stage: Path, path: Path) -> None:
             os.replace(item, target)
     finally:
         signal.pthread_sigmask(signal.SIG_UNBLOCK, held)
+
+
+@contextmanager
+def collector_paused() -> Iterator[None]:
+    """Python's cyclic garbage collector paused for the block (restored as it was). Turning 10^5-face
+    arrays into lists for JSON allocates millions of small objects, and every collection they trigger
+    walks all of them again (as in the tessellation, :func:`vaultgram.pipeline._collector_paused`);
+    reference counting frees them."""
+    was_enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if was_enabled:
+            gc.enable()
 
 
 def write_text(path: str | Path, text: str) -> None:

@@ -21,7 +21,7 @@ from pathlib import Path
 from vaultgram import progress
 from vaultgram.errors import VaultgramError
 from vaultgram.formfinding.thrust import ThrustNetwork
-from vaultgram.io.files import write_json, write_obj, write_obj_groups, write_text
+from vaultgram.io.files import collector_paused, write_json, write_obj, write_obj_groups, write_text
 from vaultgram.io.meshfiles import mesh_to_json
 from vaultgram.io.plots import plot_decomposition, plot_mesh, plot_tessellation, plot_thrust
 from vaultgram.meshing.quadmesh import QuadMesh
@@ -151,7 +151,7 @@ def write_design(result, out: Path, formats=DEFAULT_FORMATS, trace: bool = False
     ``timings.json`` has the seconds of every stage, these included (the one file that differs between
     reruns, with the report that shows it). Returns the timings."""
     timings = dict(result.timings)
-    with progress.timed(timings, "write"):
+    with progress.timed(timings, "write"), collector_paused():
         write_decomposition(result.decomposition, out, plot=False, formats=formats, trace=trace)
         write_mesh_files(result.mesh, out, result.supports, plot=False, formats=formats)
         write_thrust(result.network, out, plot=False, formats=formats)
@@ -162,7 +162,7 @@ def write_design(result, out: Path, formats=DEFAULT_FORMATS, trace: bool = False
         write_drawings(out, formats, result.domain.units, decomposition=result.decomposition, mesh=result.mesh,
                        network=result.network, tessellation=result.tessellation)
     if plots and "json" in formats:
-        with progress.timed(timings, "figures"):
+        with progress.timed(timings, "figures"), collector_paused():
             write_design_figures(result, out)
     write_json(out / "timings.json", timings)
     if report and "json" in formats:

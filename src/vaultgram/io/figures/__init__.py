@@ -18,7 +18,7 @@ Example
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
 from typing import Callable
@@ -40,6 +40,7 @@ class Stages:
     supports: np.ndarray | None = None
     network: object = None
     tessellation: object = None
+    rendered: dict = field(default_factory=dict, repr=False)  # figure name -> its pixels, once written
 
     @classmethod
     def of(cls, design) -> Stages:
@@ -116,13 +117,15 @@ PANEL = (
 
 
 def _draw_panel(fig, data: Stages) -> None:
+    """The eight steps of Figure 2, each drawn as its own figure and shown here as an image: the panel
+    costs one more drawing, not eight (the images :func:`write_figures` has just written, or drawn
+    now)."""
     axes = fig.subplots(2, 4)
     for ax, spec, letter in zip(axes.ravel(), PANEL, "abcdefgh"):
-        spec.draw(ax, data)
-        ax.set_title(f"({letter}) {spec.name.replace('_', ' ')}", fontsize=9)
-        legend = ax.get_legend()
-        if legend is not None:
-            legend.remove()
+        image = data.rendered.get(spec.name)
+        ax.imshow(style.pixels(figure(spec, data)) if image is None else image)
+        ax.set_axis_off()
+        ax.set_title(f"({letter}) {spec.name.replace('_', ' ')}", fontsize=10)
 
 
 def _draw_pair(fig, data: Stages) -> None:
@@ -170,14 +173,18 @@ BESIDE = {"decomposition.png": "patches", "mesh.png": "mesh_smoothed", "thrust.p
           "tessellation.png": "tessellation_plan"}
 
 
-def write_figures(data: Stages, out: Path, formats=("png", "svg")) -> list[FigureSpec]:
+def write_figures(data: Stages, out: Path) -> list[FigureSpec]:
     """``out/figures/NAME.png`` and ``.svg`` of every figure ``data`` has the stages for; the specs written."""
     written = []
     for spec in CATALOGUE:
         if not spec.available(data):
             continue
         fig = figure(spec, data)
-        for suffix in formats:
-            style.save(fig, out / "figures" / f"{spec.name}.{suffix}")
+        png = out / "figures" / f"{spec.name}.png"
+        style.save_png_and_svg(fig, png, png.with_suffix(".svg"))
+        if spec in PANEL:
+            from matplotlib.image import imread
+
+            data.rendered[spec.name] = imread(png)
         written.append(spec)
     return written

@@ -13,8 +13,10 @@ from vaultgram.io.figures.style import (
     DENSE,
     HEIGHT_MAP,
     RASTER,
+    face_means,
     face_polygons,
     lines,
+    padded_faces,
     plan,
     points,
     polygons,
@@ -71,7 +73,7 @@ def surface(ax, xyz: np.ndarray, faces, values, cmap: str, gid: str, edge: bool)
 
     values = np.asarray(values, dtype=float)
     colours = colormaps[cmap](Normalize(values.min(), max(values.max(), values.min() + 1e-12))(values))
-    polys = [xyz[list(f)] for f in faces]
+    polys = padded_faces(xyz, faces)
     dense = len(polys) > DENSE or not edge
     collection = Poly3DCollection(polys, facecolors=colours, edgecolors="none" if dense else "0.2",
                                   linewidths=0 if dense else 0.2, gid=gid)
@@ -83,7 +85,7 @@ def surface(ax, xyz: np.ndarray, faces, values, cmap: str, gid: str, edge: bool)
 def draw_thrust_3d(ax, network) -> None:
     """Figure 13a: the thrust network in space, shaded by height, supports marked."""
     xyz = network.vertices
-    heights = [xyz[list(f), 2].mean() for f in network.faces]
+    heights = face_means(xyz[:, 2], network.faces)
     surface(ax, xyz, network.faces, heights, HEIGHT_MAP, "faces", edge=True)
     s = xyz[network.anchors]
     ax.scatter(s[:, 0], s[:, 1], s[:, 2], s=6, c=COLOURS["support"], marker="s", gid="supports", depthshade=False)
@@ -95,7 +97,7 @@ def draw_thrust_plan(ax, network) -> None:
     """The thrust network in plan, faces shaded by height (the legacy ``thrust.png``)."""
     xyz = network.vertices
     collection = polygons(ax, face_polygons(xyz, network.faces), "faces",
-                          values=[xyz[list(f), 2].mean() for f in network.faces], cmap=HEIGHT_MAP)
+                          values=face_means(xyz[:, 2], network.faces), cmap=HEIGHT_MAP)
     ax.figure.colorbar(collection, ax=ax, shrink=0.7, label="height z")
     plan(ax, f"thrust network: z max {xyz[:, 2].max():.4g}")
 
@@ -103,9 +105,9 @@ def draw_thrust_plan(ax, network) -> None:
 def draw_tessellation_plan(ax, tessellation) -> None:
     """Figure 12b: the voussoirs in plan, coloured by construction course, keystones in red."""
     x, layout = tessellation.vertices, tessellation.layout
-    collection = polygons(ax, [x[loop, :2] for loop in layout.loops], "voussoirs", values=tessellation.courses,
+    collection = polygons(ax, face_polygons(x, layout.loops), "voussoirs", values=tessellation.courses,
                           cmap=COURSE_MAP, edgecolor="black", width=0.4)
-    polygons(ax, [x[layout.loops[k], :2] for k in layout.keystones.tolist()], "keystones",
+    polygons(ax, face_polygons(x, [layout.loops[k] for k in layout.keystones.tolist()]), "keystones",
              COLOURS["keystone"], edgecolor="black", width=0.6, zorder=2)
     ax.figure.colorbar(collection, ax=ax, shrink=0.7, label="course (voussoirs from a support)")
     plan(ax, f"{layout.n_voussoirs} voussoirs, {len(layout.keystones)} keystones (red)")
