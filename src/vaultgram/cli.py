@@ -486,16 +486,16 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
     Everything is computed before anything is written, so a failing stage leaves no output. The DOMAIN
     is vaultgram JSON, GeoJSON, DXF or a Rhino .3dm; --format 3dm writes result.3dm, one layer per stage.
     """
-    from vaultgram.domain import load_domain
-    from vaultgram.io.outputs import parse_formats, write_design
-    from vaultgram.meshing.densities import load_densities
-    from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
-    from vaultgram.pipeline import TessellationOptions, design
-    from vaultgram.tessellation.metrics import format_summary
-
-    formats = parse_formats(formats)
     with progress.reporting(not quiet):
-        progress.note(f"design: reading {domain_path}")
+        progress.note(f"design: starting on {domain_path}")  # before the imports: a second or two
+        from vaultgram.domain import load_domain
+        from vaultgram.io.outputs import parse_formats, write_design
+        from vaultgram.meshing.densities import load_densities
+        from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
+        from vaultgram.pipeline import TessellationOptions, design
+        from vaultgram.tessellation.metrics import format_summary
+
+        formats = parse_formats(formats)
         domain = load_domain(domain_path, input_format, layer_names(layers), spacing)
         result = design(
             domain, spacing, rules_dir, target_length, DEFAULT_ITERATIONS if smooth is None else smooth,
