@@ -185,7 +185,7 @@ def test_an_interrupted_run_writes_nothing_and_a_finished_one_replaces_the_files
         real(*args, **kwargs)
         raise KeyboardInterrupt
 
-    design = run("design", EXAMPLES / "quad_with_hole.json", "--out", tmp_path / "d", "--zmax", 3)
+    design = run("design", EXAMPLES / "quad_with_hole.json", "--out", tmp_path / "d", "--zmax", 3, "--no-plots")
     assert design.exit_code == 0, design.output
     monkeypatch.setattr(outputs, "write_tessellation", interrupted)
     result = run("tessellate", tmp_path / "d" / "thrust.json", "--out", out)
@@ -224,7 +224,8 @@ def test_decompose_trace_replays_to_the_same_decomposition(tmp_path, name):
 
 def test_design_trace_is_written(tmp_path):
     out = tmp_path / "d"
-    run = CliRunner().invoke(main, ["design", str(EXAMPLES / "l_shape.json"), "--out", str(out), "--trace"])
+    run = CliRunner().invoke(main, ["design", str(EXAMPLES / "l_shape.json"), "--out", str(out), "--trace",
+                                       "--no-plots"])
     assert run.exit_code == 0, run.output
     assert json.loads((out / "trace.json").read_text()) and (out / "start_graph.json").is_file()
 

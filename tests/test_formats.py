@@ -41,7 +41,7 @@ def designed(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("design3dm")
     plan = rhino_plan(tmp / "plan.3dm")
     out = tmp / "out"
-    result = run("design", plan, "--out", out, *FAST, "--format", "json,obj,compas,3dm,dxf")
+    result = run("design", plan, "--out", out, *FAST, "--format", "json,obj,compas,3dm,dxf", "--no-plots")
     assert result.exit_code == 0, result.output
     return out
 

@@ -241,13 +241,14 @@ def test_design_writes_every_file_the_readme_lists_and_the_voussoirs(designed):
     out, _ = designed
     listed = readme_design_outputs()
     assert {"decomposition.json", "mesh.json", "thrust.json", "summary.json"} <= listed
-    assert {p.name for p in out.iterdir()} == listed | {"tessellation.json", "voussoirs.obj", "tessellation.png"}
+    assert {p.name for p in out.iterdir()} == listed | {"tessellation.json", "voussoirs.obj", "tessellation.png",
+                                                         "figures", "report.html"}
 
 
 def test_design_summary_has_a_section_per_stage_matching_its_files(designed):
     out, _ = designed
     summary = json.loads((out / "summary.json").read_text())
-    assert set(summary) == {"mesh", "thrust", "tessellation"}
+    assert set(summary) == {"mesh", "thrust", "tessellation", "decomposition", "mesh_quality", "parameters"}
     mesh = json.loads((out / "mesh.json").read_text())
     thrust = json.loads((out / "thrust.json").read_text())
     tessellation = json.loads((out / "tessellation.json").read_text())

@@ -227,7 +227,7 @@ def design(plan: PlanLike, **options) -> Result:
     return _design(_domain(plan), **options)
 
 
-def save(result: Result, out: str | Path, formats=("json", "obj")) -> Path:
+def save(result: Result, out: str | Path, formats=("json", "obj"), figures: bool = True) -> Path:
     """Write a design's files to a folder, as ``vaultgram design --format`` does: all of them or,
     if writing fails, none.
 
@@ -237,6 +237,8 @@ def save(result: Result, out: str | Path, formats=("json", "obj")) -> Path:
     out : str or Path
     formats : sequence of str
         Of ``json``, ``obj``, ``compas``, ``3dm``, ``dxf`` (:mod:`vaultgram.io.outputs`).
+    figures : bool
+        Also the figures of every stage (``figures/``) and ``report.html``, as ``design`` writes them.
 
     Returns
     -------
@@ -252,7 +254,7 @@ def save(result: Result, out: str | Path, formats=("json", "obj")) -> Path:
     --------
     >>> import tempfile, vaultgram
     >>> result = vaultgram.design("examples/quad_with_hole.json", zmax=3.0, tessellation=None)
-    >>> folder = vaultgram.save(result, tempfile.mkdtemp(), formats=["json", "dxf"])
+    >>> folder = vaultgram.save(result, tempfile.mkdtemp(), formats=["json", "dxf"], figures=False)
     >>> names = {p.name for p in folder.iterdir()}
     >>> "thrust.json" in names, "result.dxf" in names, "thrust.obj" in names
     (True, True, False)
@@ -262,5 +264,5 @@ def save(result: Result, out: str | Path, formats=("json", "obj")) -> Path:
 
     out = Path(out)
     with output_folder(out) as stage:  # all the files, or none
-        write_design(result, stage, parse_formats(",".join(formats)))
+        write_design(result, stage, parse_formats(",".join(formats)), plots=figures, report=figures)
     return out

@@ -15,9 +15,10 @@ from pathlib import Path
 
 import click
 
+from vaultgram import progress
 from vaultgram.clitypes import FINITE, ITERATIONS, Finite, max_faces_option, spacing_option
 from vaultgram.errors import VaultgramError, VaultgramWarning
-from vaultgram.io.files import output_folder, read_json, write_json
+from vaultgram.io.files import output_folder, read_json, write_json, write_text
 
 
 class _Group(click.Group):
@@ -117,6 +118,8 @@ DENSITIES = click.option("--densities", "densities_path", type=click.Path(dir_ok
                          help="Density file: JSON {target_length, length_mode, min_count, groups, regions}.")
 
 
+QUIET = click.option("--quiet", is_flag=True,
+                     help="No progress on stderr (it is shown only when stderr is a terminal anyway).")
 FORMAT = click.option("--format", "formats", default=None, metavar="LIST",
                       help="Output formats, comma-separated: json, obj, compas, 3dm, dxf (default: json,obj).")
 INPUT_FORMAT = click.option("--input-format", type=click.Choice(["json", "geojson", "dxf", "3dm"]), default=None,
@@ -529,39 +532,60 @@ def tessellate_command(thrust_path, out_dir, thickness, rhythm, max_concavity, f
 @input_options
 @TRACE
 @max_faces_option
+@click.option("--plots/--no-plots", default=True, show_default=True,
+              help="Write the figures of every stage (figures/*.png and *.svg, and the PNGs beside the files).")
+@click.option("--report/--no-report", "with_report", default=True, show_default=True,
+              help="Write report.html (figures, parameters, metrics and times of every stage in one page).")
+@QUIET
 def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smooth, densities_path, allow_folds,
                    supports_path, zmax, thickness, density, point_load, tol_deg, sag, relax_mode, rhythm,
                    max_concavity, flat_extrados, surface_smooth, formats, input_format, layers, with_trace,
-                   max_faces) -> None:
+                   max_faces, plots, with_report, quiet) -> None:
     """The whole pipeline on a DOMAIN: decomposition (3.1, 4), mesh (3.2), thrust network and voussoirs (5).
 
     Everything is computed before anything is written, so a failing stage leaves no output. The DOMAIN
     is vaultgram JSON, GeoJSON, DXF or a Rhino .3dm; --format 3dm writes result.3dm, one layer per stage.
     """
-    from vaultgram.domain import load_domain
-    from vaultgram.io.outputs import parse_formats, write_design
-    from vaultgram.meshing.densities import load_densities
-    from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
-    from vaultgram.pipeline import TessellationOptions, design
-    from vaultgram.tessellation.metrics import format_summary
+    with progress.reporting(not quiet):
+        progress.note(f"design: starting on {domain_path}")  # before the imports: a second or two
+        from vaultgram.domain import load_domain
+        from vaultgram.io.outputs import parse_formats, write_design
+        from vaultgram.meshing.densities import load_densities
+        from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
+        from vaultgram.pipeline import TessellationOptions, design
+        from vaultgram.tessellation.metrics import format_summary
 
-    formats = parse_formats(formats)
-    domain = load_domain(domain_path, input_format, layer_names(layers), spacing)
-    result = design(
-        domain, spacing, rules_dir, target_length, DEFAULT_ITERATIONS if smooth is None else smooth,
-        load_densities(densities_path) if densities_path else None, allow_folds,
-        read_json(supports_path) if supports_path else None, point_load, zmax, thickness,
-        TessellationOptions(int(rhythm), max_concavity, flat_extrados, surface_smooth), trace=with_trace,
-        density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode, max_faces=max_faces)
-    out = Path(out_dir)
-    with output_folder(out) as stage:
-        write_design(result, stage, formats, trace=with_trace)
+        formats = parse_formats(formats)
+        domain = load_domain(domain_path, input_format, layer_names(layers), spacing)
+        result = design(
+            domain, spacing, rules_dir, target_length, DEFAULT_ITERATIONS if smooth is None else smooth,
+            load_densities(densities_path) if densities_path else None, allow_folds,
+            read_json(supports_path) if supports_path else None, point_load, zmax, thickness,
+            TessellationOptions(int(rhythm), max_concavity, flat_extrados, surface_smooth), trace=with_trace,
+            density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode, max_faces=max_faces)
+        out = Path(out_dir)
+        parameters = {k: v for k, v in click.get_current_context().params.items() if k not in ("out_dir", "quiet")}
+        with output_folder(out) as stage:
+            timings = write_design(result, stage, formats, with_trace, plots, with_report, parameters)
     echo_decomposition(result.decomposition, out)
     click.echo(f"mesh: {len(result.mesh.vertices)} vertices, {len(result.mesh.faces)} faces; "
                f"wrote {_joined(f for f in ('mesh.json', 'mesh.obj', 'mesh.compas.json') if _written(f, formats))}")
     click.echo(result.network.summary_text())
     click.echo(format_summary(result.tessellation.summary))
-    echo_timings(result.timings)
+    echo_timings(timings)
+
+
+@main.command("report")
+@click.argument("folder", metavar="DIR", type=click.Path(file_okay=False, exists=True))
+def report_command(folder) -> None:
+    """Rebuild DIR/report.html from a finished `vaultgram design` output folder (its summary.json,
+    timings.json and figures/*.svg)."""
+    from vaultgram.io.report import report_html
+
+    page = report_html(Path(folder))  # read and checked before anything is written
+    with output_folder(folder) as stage:
+        write_text(stage / "report.html", page)
+    click.echo(f"wrote {Path(folder) / 'report.html'}")
 
 
 def _written(name: str, formats) -> bool:

@@ -23,13 +23,13 @@ from __future__ import annotations
 import dataclasses
 import gc
 import json
-import time
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
+from vaultgram import progress
 from vaultgram.domain import Domain, check_feature_spacing
 from vaultgram.domain.layouts import check_feature_layout
 from vaultgram.engine.strategy import first_option
@@ -86,11 +86,10 @@ __all__ = ["decompose", "mesh_decomposition", "mesh_domain", "form_find", "thrus
 
 @contextmanager
 def _timed(timings: dict | None, stage: str):
-    """Add the seconds the ``with`` block takes to ``timings[stage]`` (nothing if ``timings`` is None)."""
-    start = time.perf_counter()
-    yield
-    if timings is not None:
-        timings[stage] = timings.get(stage, 0.0) + time.perf_counter() - start
+    """Add the seconds the ``with`` block takes to ``timings[stage]`` (nothing if ``timings`` is None);
+    the stage's start and end are reported (:func:`vaultgram.progress.timed`)."""
+    with progress.timed(timings, stage):
+        yield
 
 
 @contextmanager

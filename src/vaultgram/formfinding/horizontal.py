@@ -55,6 +55,7 @@ from typing import NamedTuple
 import numpy as np
 import scipy.sparse as sp
 
+from vaultgram import progress
 from vaultgram.errors import ConvergenceError, FormFindingError, HorizontalEquilibriumError
 from vaultgram.formfinding.forcediagram import ForceDiagram, PinnedLaplacian, WeightedFit, force_diagram
 from vaultgram.formfinding.formdiagram import FormDiagram
@@ -376,7 +377,9 @@ def _parallelise(fpm: _Parallelisation, tol_deg: float, kmax: int, stall_window:
     of iterations, the max angle before each and after the last, and whether it converged."""
     it, history, acceleration = fpm.start, [], _Anderson(anderson)
     flip_window = kmax + 1 if flip_window is None else flip_window
+    tick = progress.ticker("horizontal", kmax)
     while True:
+        tick()
         history.append(it.amax)
         if it.amax < tol_deg:
             return it, len(history) - 1, history, True

@@ -9,6 +9,7 @@ output folder is complete or untouched.
 
 from __future__ import annotations
 
+import gc
 import json
 import os
 import shutil
@@ -16,6 +17,7 @@ import signal
 import tempfile
 import threading
 from contextlib import contextmanager
+from itertools import chain
 from pathlib import Path
 from typing import TYPE_CHECKING, Iterator, Sequence
 
@@ -156,6 +158,21 @@ def _move_into(stage: Path, path: Path) -> None:
         signal.pthread_sigmask(signal.SIG_UNBLOCK, held)
 
 
+@contextmanager
+def collector_paused() -> Iterator[None]:
+    """Python's cyclic garbage collector paused for the block (restored as it was). Turning 10^5-face
+    arrays into lists for JSON allocates millions of small objects, and every collection they trigger
+    walks all of them again (as in the tessellation, :func:`vaultgram.pipeline._collector_paused`);
+    reference counting frees them."""
+    was_enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if was_enabled:
+            gc.enable()
+
+
 def write_text(path: str | Path, text: str) -> None:
     """Write text atomically: to a temporary file in the same folder, then rename."""
     path = Path(path)
@@ -165,38 +182,84 @@ def write_text(path: str | Path, text: str) -> None:
     tmp.replace(path)
 
 
+def write_bytes(path: str | Path, data: bytes) -> None:
+    """Write bytes atomically, as :func:`write_text`."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    tmp.write_bytes(data)
+    tmp.replace(path)
+
+
 def write_json(path: str | Path, data) -> None:
-    """Write JSON atomically, keys sorted (deterministic bytes)."""
-    write_text(path, json.dumps(data, indent=1, sort_keys=True))
+    """Write JSON atomically, keys sorted (deterministic bytes), compact, by orjson: about 15 times
+    faster than the json module's compact C encoder and 50 times its indented one (a 10^5-face design
+    took 10 s to write). Numbers read back the same; a float is written in its shortest form
+    (``0.00001``, not ``1e-05``), NaN as null.
+
+    >>> import tempfile
+    >>> path = Path(tempfile.mkdtemp()) / "a.json"
+    >>> write_json(path, {"b": [0.1, 2], "a": {3: "x"}})
+    >>> path.read_text()
+    '{"a":{"3":"x"},"b":[0.1,2]}'
+    """
+    import orjson
+
+    write_bytes(path, orjson.dumps(data, option=orjson.OPT_SORT_KEYS | orjson.OPT_NON_STR_KEYS
+                                   | orjson.OPT_SERIALIZE_NUMPY))
 
 
-def _obj_vertices(vertices: np.ndarray) -> list[str]:
+def _obj_vertices(vertices: np.ndarray) -> str:
+    """``v`` lines (``%.12g``), in one format call over the flat coordinates."""
     import numpy as np
 
     v = np.asarray(vertices, dtype=float)
     if v.shape[1] == 2:
         v = np.column_stack([v, np.zeros(len(v))])
-    return [f"v {x:.12g} {y:.12g} {z:.12g}" for x, y, z in v.tolist()]
+    return ("v %.12g %.12g %.12g\n" * len(v)) % tuple(v.ravel().tolist())
 
 
-def _obj_faces(faces) -> list[str]:
-    return ["f " + " ".join(str(int(i) + 1) for i in f) for f in faces]
+def _obj_faces(faces) -> str:
+    """``f`` lines, 1-based: the indices shifted in one array, the lines of a run of faces of one size
+    in one format call."""
+    import numpy as np
+
+    if isinstance(faces, np.ndarray) and faces.ndim == 2:
+        return (("f" + " %d" * faces.shape[1] + "\n") * len(faces)) % tuple((faces.ravel() + 1).tolist())
+    sizes = np.fromiter((len(f) for f in faces), dtype=np.int64, count=len(faces))
+    flat = (np.fromiter(chain.from_iterable(faces), dtype=np.int64, count=int(sizes.sum())) + 1).tolist()
+    cuts = np.flatnonzero(np.diff(sizes)) + 1
+    starts, stops = np.concatenate([[0], cuts]).tolist(), np.concatenate([cuts, [len(sizes)]]).tolist()
+    ends = np.concatenate([[0], np.cumsum(sizes)]).tolist()
+    return "".join((("f" + " %d" * int(sizes[a]) + "\n") * (b - a)) % tuple(flat[ends[a]:ends[b]])
+                   for a, b in zip(starts, stops) if b > a)
 
 
 def write_obj(path: str | Path, vertices: np.ndarray, faces: Sequence[Sequence[int]],
               edges: Sequence[Sequence[int]] | None = None) -> None:
     """Write a Wavefront OBJ file (1-based indices); ``edges`` become ``l`` lines if given."""
-    lines = ["# vaultgram", *_obj_vertices(vertices), *_obj_faces(faces)]
+    import numpy as np
+
+    text = "# vaultgram\n" + _obj_vertices(vertices) + _obj_faces(faces)
     if edges is not None:
-        lines += [f"l {int(a) + 1} {int(b) + 1}" for a, b in edges]
-    write_text(path, "\n".join(lines) + "\n")
+        e = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
+        text += ("l %d %d\n" * len(e)) % tuple((e.ravel() + 1).tolist())
+    write_text(path, text)
 
 
-def write_obj_objects(path: str | Path, vertices: np.ndarray, objects) -> None:
-    """Write an OBJ file of named objects over one vertex list: ``objects`` is a sequence of
-    ``(name, faces)``, each object an ``o name`` line followed by its faces (1-based indices)."""
-    lines = ["# vaultgram", *_obj_vertices(vertices)]
-    for name, faces in objects:
-        lines.append(f"o {name}")
-        lines += _obj_faces(faces)
-    write_text(path, "\n".join(lines) + "\n")
+def write_obj_groups(path: str | Path, vertices: np.ndarray, triangles: np.ndarray, owner: np.ndarray,
+                     prefix: str = "object_") -> None:
+    """Write an OBJ file of named objects over one vertex list: the ``triangles`` (t, 3), sorted by
+    their ``owner`` object ``k``, each object an ``o {prefix}{k}`` line followed by its faces
+    (1-based); objects ``0 .. owner.max()`` all named, those without triangles too."""
+    import numpy as np
+
+    n = int(owner.max()) + 1 if len(owner) else 0
+    bounds = np.searchsorted(owner, np.arange(n + 1)).tolist()
+    flat = (np.asarray(triangles, dtype=np.int64) + 1).tolist()
+    parts = ["# vaultgram\n", _obj_vertices(vertices)]
+    line = "f" + " %d" * (np.shape(triangles)[1] if len(flat) else 3) + "\n"
+    for k in range(n):
+        rows = flat[bounds[k]:bounds[k + 1]]
+        parts.append(f"o {prefix}{k}\n" + (line * len(rows)) % tuple(chain.from_iterable(rows)))
+    write_text(path, "".join(parts))

@@ -15,11 +15,13 @@ Without ``formats`` a writer writes ``json`` and ``obj`` (:data:`DEFAULT_FORMATS
 
 from __future__ import annotations
 
+import shutil
 from pathlib import Path
 
+from vaultgram import progress
 from vaultgram.errors import VaultgramError
 from vaultgram.formfinding.thrust import ThrustNetwork
-from vaultgram.io.files import write_json, write_obj, write_obj_objects, write_text
+from vaultgram.io.files import collector_paused, write_json, write_obj, write_obj_groups, write_text
 from vaultgram.io.meshfiles import mesh_to_json
 from vaultgram.io.plots import plot_decomposition, plot_mesh, plot_tessellation, plot_thrust
 from vaultgram.meshing.quadmesh import QuadMesh
@@ -27,7 +29,7 @@ from vaultgram.tessellation.model import Tessellation
 from vaultgram.topology.decomposition import Decomposition
 
 __all__ = ["write_decomposition", "write_mesh_files", "write_thrust", "write_tessellation", "write_design",
-           "write_drawings",
+           "write_drawings", "design_summary", "write_design_figures",
            "parse_formats", "OUTPUT_FORMATS", "DEFAULT_FORMATS"]
 
 #: The output formats, and the ones written when none are asked for.
@@ -124,8 +126,7 @@ def write_tessellation(tessellation: Tessellation, out: Path, summary: bool = Fa
         write_json(out / "tessellation.json", tessellation.to_json())
     if "obj" in formats:
         solids = tessellation.solids
-        objects = [(f"voussoir_{k}", solids.of(k)) for k in range(tessellation.layout.n_voussoirs)]
-        write_obj_objects(out / "voussoirs.obj", solids.vertices, objects)
+        write_obj_groups(out / "voussoirs.obj", solids.vertices, solids.triangles, solids.owner, "voussoir_")
     if "json" in formats:
         if summary:
             write_json(out / "summary.json", tessellation.summary)
@@ -141,18 +142,64 @@ def _write_compas(path: Path, item, supports=None) -> None:
     write_text(path, compas_json(to_compas_mesh(item, supports)))
 
 
-def write_design(result, out: Path, formats=DEFAULT_FORMATS, trace: bool = False) -> None:
+def write_design(result, out: Path, formats=DEFAULT_FORMATS, trace: bool = False, plots: bool = True,
+                 report: bool = True, parameters: dict | None = None) -> dict:
     """Every file of a whole design (:class:`vaultgram.pipeline.Design`), as ``formats`` ask: each stage's,
-    ``summary.json`` (one section per stage) and the drawings; the rules' trace if ``trace``."""
-    write_decomposition(result.decomposition, out, formats=formats, trace=trace)
-    write_mesh_files(result.mesh, out, result.supports, formats=formats)
-    write_thrust(result.network, out, plot=True, formats=formats)
-    if result.tessellation is not None:
-        write_tessellation(result.tessellation, out, formats=formats)
-    if "json" in formats:
-        write_json(out / "summary.json", result.summary())
-    write_drawings(out, formats, result.domain.units, decomposition=result.decomposition, mesh=result.mesh,
-                   network=result.network, tessellation=result.tessellation)
+    ``summary.json`` (one section per stage, and the ``parameters`` given), the drawings and the rules'
+    trace if ``trace``; then, off the critical path, with ``plots`` the figures of every stage
+    (:mod:`vaultgram.io.figures`) and with ``report`` ``report.html`` (:mod:`vaultgram.io.report`);
+    ``timings.json`` has the seconds of every stage, these included (the one file that differs between
+    reruns, with the report that shows it). Returns the timings."""
+    timings = dict(result.timings)
+    with progress.timed(timings, "write"), collector_paused():
+        write_decomposition(result.decomposition, out, plot=False, formats=formats, trace=trace)
+        write_mesh_files(result.mesh, out, result.supports, plot=False, formats=formats)
+        write_thrust(result.network, out, plot=False, formats=formats)
+        if result.tessellation is not None:
+            write_tessellation(result.tessellation, out, plot=False, formats=formats)
+        if "json" in formats:
+            write_json(out / "summary.json", design_summary(result, parameters))
+        write_drawings(out, formats, result.domain.units, decomposition=result.decomposition, mesh=result.mesh,
+                       network=result.network, tessellation=result.tessellation)
+    if plots and "json" in formats:
+        with progress.timed(timings, "figures"), collector_paused():
+            write_design_figures(result, out)
+    write_json(out / "timings.json", timings)
+    if report and "json" in formats:
+        from vaultgram.io.report import write_report
+
+        write_report(out)
+    return timings
+
+
+def design_summary(result, parameters: dict | None = None) -> dict:
+    """``summary.json`` of a design: each stage's summary (:meth:`vaultgram.pipeline.Design.summary`), the
+    decomposition's counts, the mesh's quality (:func:`vaultgram.meshing.quality.mesh_stats`, without
+    its vertex lists) and the ``parameters`` of the run."""
+    from vaultgram.meshing.quality import mesh_stats
+
+    dec = result.decomposition
+    counts = dec.patches_json()["counts"]
+    stats = mesh_stats(result.mesh, result.domain)
+    summary = {**result.summary(),
+               "decomposition": {"patches": len(dec.patches), "four_sided": counts["4"], "three_sided": counts["3"],
+                                 "singularities": len(dec.singularities()),
+                                 "rule_applications": sum(r.applications for r in dec.reports)},
+               "mesh_quality": {k: v for k, v in stats.items() if not isinstance(v, (list, tuple, dict))}}
+    if parameters is not None:
+        summary["parameters"] = parameters
+    return summary
+
+
+def write_design_figures(result, out: Path) -> None:
+    """Every stage's figure in ``figures/`` as PNG and SVG, and the PNG figures beside the files
+    (``decomposition.png``, ``mesh.png``, ``thrust.png``, ``tessellation.png``: copies of four of them)."""
+    from vaultgram.io.figures import BESIDE, Stages, write_figures
+
+    written = {spec.name for spec in write_figures(Stages.of(result), out)}
+    for name, figure in BESIDE.items():
+        if figure in written:  # the same figure, not drawn twice
+            shutil.copyfile(out / "figures" / f"{figure}.png", out / name)
 
 
 def write_drawings(out: Path, formats, units: str | None = None, **stages) -> None:

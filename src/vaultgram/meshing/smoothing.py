@@ -21,6 +21,7 @@ from typing import NamedTuple
 import numpy as np
 import scipy.sparse as sp
 
+from vaultgram import progress
 from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.meshes import (
     MeshError,
@@ -96,7 +97,9 @@ def laplacian_smooth(
     anchor = x[keep]
     corners = _FaceCorners(*corner_arrays(faces), len(faces))
     valid = _valid_faces(x, corners)
+    tick = progress.ticker("smooth", iterations)
     for _ in range(iterations):
+        tick()
         old, x = x, _laplacian_step(x, w, keep, anchor, constraints)
         if safe:
             valid = _undo_inversions(x, old, valid, corners)

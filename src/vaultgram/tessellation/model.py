@@ -114,8 +114,8 @@ class Tessellation:
             "areas": lay.areas(self.vertices).tolist(),
             "faces": [lay.mesh.faces[f] for f in range(len(lay.mesh.faces))],
             "face_voussoir": lay.group.tolist(),
-            "joints": [{"vertices": lay.edges.edges[e].tolist(), "voussoirs": sorted(p)}
-                       for e, p in zip(lay.joints.tolist(), pairs.tolist())],
+            "joints": [{"vertices": v, "voussoirs": p}  # the arrays converted whole: 10^5 joints
+                       for v, p in zip(lay.edges.edges[lay.joints].tolist(), np.sort(pairs, axis=1).tolist())],
             "neighbours": _neighbours(pairs, lay.n_voussoirs),
             "summary": self.summary,
         }

@@ -1,0 +1,69 @@
+"""Time what ``vaultgram design`` spends after the design is computed: writing its data files, its
+figures and its report, at about 10^3, 10^4 and 10^5 faces.
+
+Run: ``python benchmarks/output_speed.py [--sizes 1e3,1e4,1e5] [--files-only]``. The plan is
+examples/quad_with_hole.json meshed at the target length ``sqrt(area / faces)``; the whole pipeline
+runs once per size (:func:`vaultgram.pipeline.design`), then :func:`vaultgram.io.outputs.write_design`
+writes into a fresh folder, and each row gives the faces, the seconds of the design, of the data files
+(``write``: JSON, OBJ, summary), of the figures and of the report, the figures' share of the whole
+run, and whether a second write gave byte-identical data files. Floors: 10^5 faces write their files
+in under 2 s; figures under 10% of the run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import tempfile
+import time
+from pathlib import Path
+
+from vaultgram.domain import load_domain
+from vaultgram.io.outputs import write_design
+from vaultgram.pipeline import design
+
+EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "quad_with_hole.json"
+VARYING = {"timings.json", "report.html"}  # the files that hold the timings
+
+
+def folder_bytes(folder: Path) -> dict:
+    """Every file of ``folder`` but the timed ones, by relative path."""
+    return {p.relative_to(folder).as_posix(): p.read_bytes() for p in sorted(folder.rglob("*"))
+            if p.is_file() and p.name not in VARYING}
+
+
+def measure(faces_wanted: int, plots: bool) -> str:
+    """One row: the design and its outputs at about ``faces_wanted`` faces."""
+    domain = load_domain(EXAMPLE)
+    start = time.perf_counter()
+    result = design(domain, target_length=math.sqrt(domain.area / faces_wanted), zmax=3.0)
+    seconds = time.perf_counter() - start
+    with tempfile.TemporaryDirectory() as tmp:
+        a, b = Path(tmp) / "a", Path(tmp) / "b"
+        a.mkdir()
+        b.mkdir()
+        start = time.perf_counter()
+        timings = write_design(result, a, plots=plots, report=plots)
+        outputs = time.perf_counter() - start
+        write_design(result, b, plots=False, report=False)
+        same = all(folder_bytes(a).get(k) == v for k, v in folder_bytes(b).items())
+    figures, report = timings.get("figures", 0.0), outputs - timings["write"] - timings.get("figures", 0.0)
+    share = figures / (seconds + outputs)
+    return (f"{len(result.mesh.faces):>8} {seconds:>8.2f} {timings['write']:>8.2f} {figures:>8.2f} {report:>8.2f} "
+            f"{share:>7.1%} {'yes' if same else 'NO':>10}")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--sizes", default="1e3,1e4,1e5")
+    ap.add_argument("--files-only", action="store_true", help="Write the data files only (no figures, no report).")
+    args = ap.parse_args()
+    head = f"{'faces':>8} {'design':>8} {'write':>8} {'figures':>8} {'report':>8} {'fig %':>7} {'identical':>10}"
+    print(head)
+    print("-" * len(head))
+    for size in (int(float(s)) for s in args.sizes.split(",")):
+        print(measure(size, not args.files_only), flush=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,215 @@
+"""The one style of vaultgram's figures, and the drawing primitives every figure uses.
+
+Every figure draws with collections (one artist per kind of element, never one per line), so a
+figure of 10^5 faces costs about what a figure of 10^2 does; above :data:`DENSE` elements the edge
+lines of faces drop out (the shading carries the picture) and the collection is rasterised in SVG
+(an SVG of 10^5 vector polygons would weigh tens of megabytes). Artists carry a ``gid`` naming what
+they show (``"supports"``, ``"faces"``...): the tests count what was drawn through it, and the SVG
+keeps it as the element's id.
+"""
+
+from __future__ import annotations
+
+import os
+from itertools import chain
+from pathlib import Path
+
+import numpy as np
+
+#: Above this many elements a collection draws no edge lines (the shading carries the picture).
+DENSE = 20000
+#: Above this many elements a collection is rasterised in SVG (vector paths cost more to write and show).
+RASTER = 300
+
+#: Colours shared by all figures.
+COLOURS = {
+    "boundary": "black", "support": "black", "hole": "0.25", "point": "tab:red", "curve": "tab:purple",
+    "branch": "tab:blue", "rebranch": "tab:orange", "diagonal": "tab:green", "singular": "tab:red",
+    "quad": "#cfe2f3", "triangle": "#f9cb9c", "pole": "tab:red", "mesh": "0.35", "keystone": "tab:red",
+    "face_regular": "#e8e8e8", "face_singular": "tab:red", "face_corner": "tab:blue", "face_isolated": "0.5",
+}
+#: Line widths: supports thick (as the paper's Figure 9a), the rest thin.
+WIDTHS = {"support": 3.0, "boundary": 1.0, "curve": 2.0, "branch": 1.0, "mesh": 0.3}
+HEIGHT_MAP = "viridis"
+COURSE_MAP = "viridis"
+FIGSIZE = (7.0, 7.0)
+DPI = 100
+#: Fixed margins (a constrained layout costs more than the drawing itself, at every save).
+MARGINS = dict(left=0.02, right=0.98, bottom=0.02, top=0.93, wspace=0.05, hspace=0.12)
+#: Deterministic SVG (fixed ids) with real text (smaller and faster than text as paths); titles at a
+#: fixed height (placing them automatically measures every axis, at every save).
+RC = {"svg.hashsalt": "vaultgram", "svg.fonttype": "none", "axes.titley": 1.0}
+
+
+def new_figure(shape=(1, 1), size=FIGSIZE, projection: str | None = None):
+    """A figure (no pyplot: no global state, no screen) and its axes (an array for ``shape`` other than
+    (1, 1))."""
+    fig = blank_figure(size)
+    with matplotlib_rc():
+        axes = fig.subplots(*shape, subplot_kw={"projection": projection} if projection else None, squeeze=False)
+    return fig, axes[0, 0] if shape == (1, 1) else axes
+
+
+def matplotlib_rc():
+    """The context of every figure's axes and saves (:data:`RC`)."""
+    import matplotlib
+
+    return matplotlib.rc_context(RC)
+
+
+def blank_figure(size=FIGSIZE):
+    """A figure with the fixed margins and no axes yet."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=size)
+    fig.subplots_adjust(**MARGINS)
+    return fig
+
+
+def plan(ax, title: str = "") -> None:
+    """Equal aspect, no axes, limits from what was drawn."""
+    ax.autoscale_view()
+    ax.set_aspect("equal")
+    ax.set_axis_off()
+    if title:
+        ax.set_title(title, fontsize=9)
+
+
+def lines(ax, segments, gid: str, color="black", width=1.0, zorder=2):
+    """One ``LineCollection`` of ``segments`` ((k, 2, 2) or a list of polylines); ``width`` may be per line."""
+    from matplotlib.collections import LineCollection
+
+    collection = LineCollection(segments, colors=color, linewidths=width, zorder=zorder, gid=gid,
+                                capstyle="round")
+    collection.set_rasterized(len(segments) > RASTER)
+    ax.add_collection(collection)
+    return collection
+
+
+def polygons(ax, polys, gid: str, facecolors="none", values=None, cmap=None, edgecolor="0.35", width=0.3,
+             zorder=1):
+    """One ``PolyCollection``: ``facecolors`` given, or ``values`` through ``cmap``; the edge lines drop
+    out above :data:`DENSE` polygons."""
+    from matplotlib.collections import PolyCollection
+
+    dense = len(polys) > DENSE
+    collection = PolyCollection(polys, facecolors=facecolors if values is None else None,
+                                edgecolors="none" if dense else edgecolor, linewidths=0 if dense else width,
+                                cmap=cmap, zorder=zorder, gid=gid)
+    if values is not None:
+        collection.set_array(np.asarray(values, dtype=float))
+    collection.set_rasterized(len(polys) > RASTER)
+    ax.add_collection(collection)
+    return collection
+
+
+def points(ax, xy, gid: str, color="tab:red", marker="o", size=20.0, zorder=4, label=None):
+    """One scatter of the rows of ``xy`` (nothing for none)."""
+    xy = np.asarray(xy, dtype=float).reshape(-1, 2)
+    return ax.scatter(xy[:, 0], xy[:, 1], s=size, c=color, marker=marker, zorder=zorder, gid=gid, label=label,
+                      linewidths=0)
+
+
+def polyline_segments(polylines) -> np.ndarray:
+    """The segments (k, 2, 2) of polylines, in order.
+
+    >>> polyline_segments([np.array([[0, 0], [1, 0], [1, 1]])]).shape
+    (2, 2, 2)
+    """
+    parts = [np.stack([p[:-1], p[1:]], axis=1) for p in (np.asarray(q, dtype=float)[:, :2] for q in polylines)
+             if len(p) > 1]
+    return np.concatenate(parts) if parts else np.zeros((0, 2, 2))
+
+
+def face_polygons(vertices, faces) -> np.ndarray:
+    """Each face's corners in plan, as one array (faces, most corners, 2): shorter faces repeat their
+    last corner. matplotlib builds the paths of an array of polygons in one go, and of a list of
+    polygons one by one (seconds at 10^5 faces).
+
+    >>> face_polygons(np.array([[0, 0], [1, 0], [1, 1], [0, 1]]), [(0, 1, 2, 3), (0, 1, 2)])[1].tolist()
+    [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [1.0, 1.0]]
+    """
+    return padded_faces(np.asarray(vertices, dtype=float)[:, :2], faces)
+
+
+def face_means(values: np.ndarray, faces) -> np.ndarray:
+    """The mean of ``values`` over each face's corners.
+
+    >>> face_means(np.array([0.0, 1.0, 2.0, 3.0]), [(0, 1, 2, 3), (0, 1, 2)]).tolist()
+    [1.5, 1.0]
+    """
+    sizes, flat = _flat_faces(faces)
+    starts = np.concatenate([[0], np.cumsum(sizes)[:-1]]) if len(sizes) else sizes
+    return np.add.reduceat(values[flat], starts) / sizes if len(sizes) else np.zeros(0)
+
+
+def _flat_faces(faces) -> tuple[np.ndarray, np.ndarray]:
+    """Each face's number of corners, and all the corners in one array."""
+    sizes = np.fromiter((len(f) for f in faces), dtype=np.int64, count=len(faces))
+    return sizes, np.fromiter(chain.from_iterable(faces), dtype=np.int64, count=int(sizes.sum()))
+
+
+def padded_faces(x: np.ndarray, faces) -> np.ndarray:
+    """``x`` at the corners of every face, as one array (faces, most corners, dims), shorter faces
+    repeating their last corner."""
+    sizes, flat = _flat_faces(faces)
+    if not len(sizes):
+        return np.zeros((0, 3, x.shape[1]))
+    starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+    k = np.arange(sizes.max())
+    index = starts[:, None] + np.minimum(k[None, :], sizes[:, None] - 1)
+    return x[flat[index]]
+
+
+def save(fig, path: Path) -> None:
+    """Write ``fig`` to ``path`` (PNG or SVG by its suffix) atomically and byte-identically on reruns
+    (no timestamps or version metadata, fixed SVG ids)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.stem}.{os.getpid()}.tmp{path.suffix}")
+    svg = path.suffix == ".svg"
+    options = dict(metadata={"Date": None, "Creator": None}) if svg else dict(
+        metadata={"Software": None}, pil_kwargs={"compress_level": 1})  # the default 6 takes 4 times longer
+    with matplotlib_rc():
+        fig.savefig(tmp, dpi=DPI, **options)
+    tmp.replace(path)
+
+
+def pixels(fig) -> np.ndarray:
+    """``fig`` drawn as it would be saved, as an RGBA array."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    canvas = FigureCanvasAgg(fig)
+    with matplotlib_rc():
+        fig.set_dpi(DPI)
+        canvas.draw()
+    return np.asarray(canvas.buffer_rgba())
+
+
+def is_dense(fig) -> bool:
+    """Whether ``fig`` draws a collection of more than :data:`DENSE` elements."""
+    from matplotlib.collections import Collection
+
+    return any(max(len(c.get_paths()), len(c.get_facecolor())) > DENSE  # 3D: paths exist once drawn
+               for c in fig.findobj(Collection))
+
+
+def save_png_and_svg(fig, png: Path, svg: Path) -> None:
+    """Write ``fig`` as PNG and as SVG. A dense figure (:func:`is_dense`) is drawn once: its SVG holds
+    the PNG (an SVG of it would be the same picture, its collections rasterised, for a second
+    drawing of 10^5 polygons)."""
+    dense = is_dense(fig)
+    save(fig, png)
+    if not dense:
+        save(fig, svg)
+        return
+    import base64
+
+    width, height = fig.get_size_inches() * 72
+    data = base64.b64encode(png.read_bytes()).decode("ascii")
+    write_svg = svg.with_name(f".{svg.stem}.{os.getpid()}.tmp{svg.suffix}")
+    write_svg.write_text(
+        "<?xml version='1.0' encoding='utf-8'?>\n"
+        f"<svg xmlns='http://www.w3.org/2000/svg' xmlns:xlink='http://www.w3.org/1999/xlink' "
+        f"width='{width:g}pt' height='{height:g}pt' viewBox='0 0 {width:g} {height:g}' version='1.1'>"
+        f"<image width='{width:g}' height='{height:g}' xlink:href='data:image/png;base64,{data}'/></svg>\n")
+    write_svg.replace(svg)
