@@ -21,7 +21,6 @@ Example
 from __future__ import annotations
 
 import dataclasses
-import gc
 import json
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -53,6 +52,7 @@ from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.halfedges import mesh_edges
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.surfaces import area_vectors, vertex_normals
+from vaultgram.io.files import collector_paused
 from vaultgram.limits import MAX_FACES
 from vaultgram.meshing.densities import DensitySpec, group_counts
 from vaultgram.meshing.layout import Layout, edge_groups
@@ -90,23 +90,6 @@ def _timed(timings: dict | None, stage: str):
     the stage's start and end are reported (:func:`vaultgram.progress.timed`)."""
     with progress.timed(timings, stage):
         yield
-
-
-@contextmanager
-def _collector_paused():
-    """Python's cyclic garbage collector paused for the block (and restored as it was). A stage
-    that keeps hundreds of thousands of small objects alive while it allocates more (the
-    tessellation: the rulebook's host graph of the network, the faces as tuples, the courses' cost
-    tables) would have the collector walk them again and again, for nothing: they are freed by
-    reference counting (the engine's graphs hold no reference cycles). At 10^5 faces the
-    collections took about 0.4 s of the tessellation."""
-    was_enabled = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if was_enabled:
-            gc.enable()
 
 
 # --------------------------------------------------------------------------------------------
@@ -403,7 +386,7 @@ def tessellate(surface: ThrustSurface, rhythm: int = 2, thickness: float = 1.0,
     """
     _check_tessellation_options(rhythm, thickness, max_concavity, surface_smooth)
     rulebook = load_tessellation_rulebook(rules_dir)
-    with _collector_paused():
+    with collector_paused():
         with _timed(timings, "refine"):
             x, faces, supported, refined = _refine(surface)
         with _timed(timings, "keystones"):

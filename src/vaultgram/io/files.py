@@ -160,10 +160,13 @@ def _move_into(stage: Path, path: Path) -> None:
 
 @contextmanager
 def collector_paused() -> Iterator[None]:
-    """Python's cyclic garbage collector paused for the block (restored as it was). Turning 10^5-face
-    arrays into lists for JSON allocates millions of small objects, and every collection they trigger
-    walks all of them again (as in the tessellation, :func:`vaultgram.pipeline._collector_paused`);
-    reference counting frees them."""
+    """Python's cyclic garbage collector paused for the block (restored as it was). A step that
+    keeps hundreds of thousands of small objects alive while it allocates more would have the
+    collector walk them again and again, for nothing: reference counting frees them. Turning
+    10^5-face arrays into lists for JSON is one (every collection walks the lists made so far); the
+    tessellation is another (the rulebook's host graph of the network, the faces as tuples, the
+    courses' cost tables; the engine's graphs hold no reference cycles): at 10^5 faces its
+    collections took about 0.4 s."""
     was_enabled = gc.isenabled()
     gc.disable()
     try:
