@@ -177,16 +177,12 @@ def collector_paused() -> Iterator[None]:
 
 
 def write_text(path: str | Path, text: str) -> None:
-    """Write text atomically: to a temporary file in the same folder, then rename."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    tmp.write_text(text)
-    tmp.replace(path)
+    """Write text atomically, as UTF-8 (:func:`write_bytes`)."""
+    write_bytes(path, text.encode("utf-8"))
 
 
 def write_bytes(path: str | Path, data: bytes) -> None:
-    """Write bytes atomically, as :func:`write_text`."""
+    """Write bytes atomically: to a temporary file in the same folder, then rename."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
