@@ -142,3 +142,19 @@ def test_hausdorff_is_symmetric_and_zero_on_itself(a, b):
     assert polyline_hausdorff(a, b) == polyline_hausdorff(b, a)
     assert polyline_hausdorff(a, b) >= shapely.distance(shapely.points(a[0]), shapely.LineString(b)) - scale
     assert 0.0 <= chord_deviation(a, a) <= scale
+
+
+def test_projection_through_the_spatial_index_matches_the_brute_force():
+    """Many points onto a long ring: the STRtree path gives the same nearest distances as every
+    segment tried (the brute force it replaces above _CHUNK points x segments)."""
+    from vaultgram.geometry import polylines
+
+    t = np.linspace(0.0, 2 * np.pi, 20001)[:-1]
+    ring = np.column_stack([np.cos(t) * (1 + 0.1 * np.sin(7 * t)), np.sin(t)])
+    pts = np.random.default_rng(3).normal(size=(200, 2))
+    assert len(pts) * len(ring) > polylines._CHUNK
+    fast = polylines.project_to_polyline(pts, ring, closed=True)
+    a, ab = polylines._segments(ring, True)
+    _, q = polylines._closest_on_segments(pts, a, ab)
+    slow = np.hypot(*(q - pts[:, None, :]).transpose(2, 0, 1)).min(axis=1)
+    np.testing.assert_allclose(np.hypot(*(fast - pts).T), slow, rtol=0, atol=1e-12)

@@ -26,9 +26,10 @@ __all__ = [
     "chord_deviation",
     "polyline_hausdorff",
     "subdivide_polyline",
+    "thinned_dense_runs",
 ]
 
-_CHUNK = 2_000_000  # points x segments per block when projecting many points at once
+_CHUNK = 2_000_000  # above this many points x segments, projections go through a spatial index
 
 
 def segment_lengths(poly: np.ndarray) -> np.ndarray:
@@ -150,14 +151,25 @@ def project_to_polyline(points: np.ndarray, poly: np.ndarray, closed: bool = Fal
     a, ab = _segments(poly, closed)
     if len(a) == 0:
         return np.repeat(np.asarray(poly, dtype=float)[:1], len(points), axis=0)
-    out = np.empty_like(points)
-    step = max(1, _CHUNK // len(a))
-    for k in range(0, len(points), step):
-        p = points[k:k + step]
-        _, q = _closest_on_segments(p, a, ab)
-        best = np.argmin(((q - p[:, None, :]) ** 2).sum(-1), axis=1)
-        out[k:k + step] = q[np.arange(len(best)), best]
-    return out
+    if len(points) * len(a) > _CHUNK:
+        return _closest_on_nearest_segments(points, a, ab)
+    _, q = _closest_on_segments(points, a, ab)
+    best = np.argmin(((q - points[:, None, :]) ** 2).sum(-1), axis=1)
+    return q[np.arange(len(best)), best]
+
+
+def _closest_on_nearest_segments(p: np.ndarray, a: np.ndarray, ab: np.ndarray) -> np.ndarray:
+    """For many points and segments: the nearest point of the nearest segment to each point, the
+    segment found in a spatial index (shapely's STRtree), O((k + s) log s) rather than k x s."""
+    import shapely
+
+    tree = shapely.STRtree(shapely.linestrings(np.stack([a, a + ab], axis=1)))
+    where = tree.query_nearest(shapely.points(p), all_matches=False)
+    seg = np.empty(len(p), dtype=np.int64)
+    seg[where[0]] = where[1]
+    a, ab = a[seg], ab[seg]
+    t = np.clip(((p - a) * ab).sum(-1) / np.maximum((ab * ab).sum(-1), 1e-300), 0.0, 1.0)
+    return a + t[:, None] * ab
 
 
 def chord_deviation(poly: np.ndarray, samples: np.ndarray) -> float:
@@ -170,10 +182,8 @@ def chord_deviation(poly: np.ndarray, samples: np.ndarray) -> float:
     poly = np.asarray(poly, dtype=float)
     if not len(poly):
         return 0.0
-    a, ab = _segments(samples, closed=False)
-    _, q = _closest_on_segments(poly, a, ab)
-    d = np.hypot(*(q - poly[:, None, :]).transpose(2, 0, 1))
-    return float(d.min(axis=1).max())
+    q = project_to_polyline(poly, samples)
+    return float(np.hypot(*(q - poly).T).max())
 
 
 def _share_counts(lengths: np.ndarray, n: int) -> np.ndarray:
@@ -280,3 +290,40 @@ def subdivide_polyline(poly: np.ndarray, max_length: float, closed: bool = False
         out = np.concatenate([out, np.asarray(poly, dtype=float)[-1:]])
         at = np.concatenate([at, [len(out) - 1]])
     return out, at
+
+
+def thinned_dense_runs(ring: np.ndarray, dense: float, tol: float, keep_angle: float) -> np.ndarray:
+    """Which vertices of a closed ring to keep when thinning its dense runs: a vertex whose two
+    segments are both shorter than ``dense`` and which turns by at most ``keep_angle`` degrees may go
+    when the ring without it stays within ``tol`` of the ring (Douglas-Peucker, shapely's
+    ``simplify``, over the whole ring; every other vertex stays).
+
+    Why: a boundary given as 10^5 vertices much closer than the sampling spacing would make every
+    later stage work on 10^5 points where a few hundred describe the same curve to ``tol``.
+
+    >>> t = 2 * np.pi * np.arange(1000) / 1000  # a regular 1000-gon of radius 1, and a square
+    >>> int(thinned_dense_runs(np.column_stack([np.cos(t), np.sin(t)]), 0.05, 1e-4, 15.0).sum())
+    256
+    >>> thinned_dense_runs(np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]), 0.05, 1e-4, 15.0).tolist()
+    [True, True, True, True]
+    """
+    ring = np.asarray(ring, dtype=float)[:, :2]
+    seg = np.hypot(*(np.roll(ring, -1, axis=0) - ring).T)
+    may_go = (seg < dense) & (np.roll(seg, 1) < dense) & (np.abs(turning_angles(ring)) <= keep_angle)
+    if not may_go.any():
+        return np.ones(len(ring), dtype=bool)
+    import shapely
+
+    kept = shapely.get_coordinates(shapely.simplify(shapely.LinearRing(ring), tol, preserve_topology=True))
+    keep = ~may_go
+    keep[_rows_of(ring, kept)] = True
+    return keep
+
+
+def _rows_of(points: np.ndarray, rows: np.ndarray) -> np.ndarray:
+    """The indices of ``rows`` among ``points`` (each row an exact copy of a point; sorted search)."""
+    view = np.ascontiguousarray(points).view([("x", float), ("y", float)]).ravel()
+    order = np.argsort(view, kind="stable")
+    want = np.ascontiguousarray(rows).view([("x", float), ("y", float)]).ravel()
+    pos = np.clip(np.searchsorted(view[order], want), 0, len(order) - 1)
+    return order[pos][view[order[pos]] == want]

@@ -42,16 +42,22 @@ def _ring_angles(ring: np.ndarray) -> np.ndarray:
 
 def rectilinear_rings(rings) -> bool:
     """Whether every vertex of every ring (domain on the left) is a right angle, convex or reflex, or
-    straight (within :data:`RIGHT_ANGLE_TOLERANCE`).
+    straight (within :data:`RIGHT_ANGLE_TOLERANCE`), and at least four are right angles (a regular
+    polygon of many sides, all of whose vertices are nearly straight, is not rectilinear).
 
     >>> rectilinear_rings([np.array([[0, 0], [2, 0], [2, 1], [1, 1], [1, 2], [0, 2.0]])])
     True
     >>> rectilinear_rings([np.array([[0, 0], [2, 0], [0, 2.0]])])
     False
+    >>> t = 2 * np.pi * np.arange(1000) / 1000
+    >>> rectilinear_rings([np.column_stack([np.cos(t), np.sin(t)])])
+    False
     """
     for ring in rings:
-        off = np.abs((_ring_angles(np.asarray(ring, dtype=float)) + 45.0) % 90.0 - 45.0)
-        if len(ring) < 4 or off.max() > RIGHT_ANGLE_TOLERANCE:
+        angles = _ring_angles(np.asarray(ring, dtype=float))
+        off = np.abs((angles + 45.0) % 90.0 - 45.0)
+        turns = np.abs(angles - 180.0) > RIGHT_ANGLE_TOLERANCE  # a finely sampled circle has none
+        if turns.sum() < 4 or off.max() > RIGHT_ANGLE_TOLERANCE:
             return False
     return True
 

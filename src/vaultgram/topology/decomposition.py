@@ -11,7 +11,7 @@
 * skeleton cycles that meet no singularity (the loop of an annulus, or a branch that returns to its
   own node) are cut by ``LoopVertex`` nodes, whose duals are the two boundary points their maximal
   circle touches, one on each side; a domain without corners or holes keeps its single centre cell
-  as a singularity whose dual is that cell's face.
+  as a singularity whose dual is three points of that cell a third of the way around apart.
 
 :func:`block_decomposition` then runs the rulebook's ``topology`` strategy on it (prune corner branches,
 rebranch) -- the topology is decided by the rule files, not by this module -- and extracts the
@@ -212,14 +212,15 @@ def _add_plan_segments(g: HostGraph, disc: Discretisation) -> None:
 
 def _add_skeleton_vertices(g: HostGraph, sk: Skeleton) -> dict[int, int]:
     """A ``Singularity`` for every singularity of the skeleton, and for the centre cell of a domain
-    without corners and holes (its dual is the cell's face), with ``Dual`` edges to its dual; corner
-    nodes are their corner points. Returns the graph node of each skeleton node."""
+    without corners and holes (its dual: three points of the cell, a third of the way around apart),
+    with ``Dual`` edges to its dual; corner nodes are their corner points. Returns the graph node of
+    each skeleton node."""
     node_of: dict[int, int] = {}
     for node in sk.nodes:
         if node.kind == "corner":
             node_of[node.id] = int(node.point)
             continue
-        dual = node.dual if node.kind == "singularity" else tuple(sk.triangulation.triangles[node.face])
+        dual = node.dual
         radius = float(sk.triangulation.cell_radii[node.cell])
         s = g.add_node(SINGULARITY, {"pos": tuple(node.pos), "radius": radius})
         node_of[node.id] = s

@@ -35,7 +35,7 @@ from scipy.spatial import cKDTree
 
 from vaultgram.domain.model import Domain
 from vaultgram.errors import DomainError
-from vaultgram.geometry.polylines import locate_on_polyline, subdivide_polyline, turning_angles
+from vaultgram.geometry.polylines import locate_on_polyline, subdivide_polyline, thinned_dense_runs, turning_angles
 from vaultgram.limits import SPACING_MAX, SPACING_RANGE
 from vaultgram.topology.corners import chord_feet
 
@@ -45,6 +45,14 @@ __all__ = ["Discretisation", "discretise", "SPACING_RANGE"]
 #: :attr:`Discretisation.ring` of curve-feature points and of point features off rings and curves.
 RING_CURVE = -1
 RING_POINT = -2
+#: Ring vertices whose both segments are shorter than ``DENSE_RUN * h`` form dense runs (a finely
+#: sampled arc, a regular polygon of 10^5 sides), thinned to within ``THINNING_TOLERANCE * h`` of the
+#: ring before sampling; vertices turning by more than ``BOUNDARY_FIDELITY_ANGLE`` degrees always stay
+#: (issue 12: they are mesh vertices). No shared plan or example has such a run at the paper's spacings
+#: (their shortest edges are above 0.04 h), so their samples are unchanged.
+DENSE_RUN = 0.02
+THINNING_TOLERANCE = 1e-3
+BOUNDARY_FIDELITY_ANGLE = 15.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -164,7 +172,7 @@ def discretise(domain: Domain, spacing: float = 0.02, corner_angle: float = 30.0
     spacing, corner_angle = _checked_parameters(spacing, corner_angle)
     h, tol = spacing * domain.diagonal, domain.tolerance
     placed = _insert_features(domain, tol)
-    rings, ring_members, ring_vertices = _sample_rings(placed.rings, h)
+    rings, ring_members, ring_vertices = _sample_rings(placed.rings, placed.inserted, h)
     n_ring_points = sum(len(part.points) for part in rings)
     curves, curve_members, curve_vertices = _sample_curves(placed, ring_vertices, h, n_ring_points)
     n_line_points = n_ring_points + sum(len(part.points) for part in curves)
@@ -222,6 +230,7 @@ class _Placed(NamedTuple):
     """The rings and curves with the feature points that lie on them inserted as vertices."""
 
     rings: list  # of (n, 2) arrays
+    inserted: list  # for each ring, the vertices inserted into it (kept by the thinning of dense runs)
     curves: list
     curve_ends: list  # for each curve, an _At or None for its first and for its last point
     points: list  # for each point feature, an _At or None (a point off every ring and curve)
@@ -248,7 +257,7 @@ def _insert_features(domain: Domain, tol: float) -> _Placed:
     ring_hits = [_insert(r, ins, tol) for r, ins in zip(rings, ring_inserts)]
     curve_hits = [_insert(c, ins, tol) for c, ins in zip(curves, curve_inserts)]
     hits = {True: [at for _, at in ring_hits], False: [at for _, at in curve_hits]}
-    return _Placed([r for r, _ in ring_hits], [c for c, _ in curve_hits],
+    return _Placed([r for r, _ in ring_hits], [at for _, at in ring_hits], [c for c, _ in curve_hits],
                    [[_resolved(ref, hits) for ref in refs] for refs in end_refs],
                    [_resolved(ref, hits) for ref in point_refs])
 
@@ -358,19 +367,26 @@ def _subdivided(poly: np.ndarray, h: float, closed: bool) -> tuple[np.ndarray, n
     return out, at, turning, is_vertex
 
 
-def _sample_rings(rings: list, h: float) -> tuple[list[_Samples], list[np.ndarray], list[np.ndarray]]:
-    """Every ring subdivided to the spacing, numbered in order from 0.
+def _sample_rings(rings: list, inserted: list, h: float
+                  ) -> tuple[list[_Samples], list[np.ndarray], list[np.ndarray]]:
+    """Every ring, thinned where its vertices are much denser than the spacing
+    (:func:`vaultgram.geometry.polylines.thinned_dense_runs`; inserted feature points stay),
+    subdivided to the spacing, numbered in order from 0.
 
     Returns the samples of each ring, the point indices of each ring, and the point index of each
-    ring vertex.
+    ring vertex (-1 for a vertex the thinning dropped).
     """
     samples, members, vertices = [], [], []
     offset = 0
-    for r, ring in enumerate(rings):
-        out, at, turning, is_vertex = _subdivided(ring, h, closed=True)
+    for r, (ring, keep_also) in enumerate(zip(rings, inserted)):
+        keep = thinned_dense_runs(ring, h * DENSE_RUN, h * THINNING_TOLERANCE, BOUNDARY_FIDELITY_ANGLE)
+        keep[list(keep_also)] = True
+        out, at, turning, is_vertex = _subdivided(ring[keep], h, closed=True)
         samples.append(_Samples(out, np.full(len(out), r, dtype=np.int64), np.arange(len(out)), turning, is_vertex))
         members.append(np.arange(offset, offset + len(out)))
-        vertices.append(at + offset)
+        vertex = np.full(len(ring), -1, dtype=np.int64)
+        vertex[keep] = at + offset
+        vertices.append(vertex)
         offset += len(out)
     return samples, members, vertices
 

@@ -69,8 +69,9 @@ class SkeletonNode:
     point : int or None
         Corner vertex point index (corner nodes only).
     dual : tuple of int or None
-        Singularities only: point indices of the dual singular face, ccw, one per gap between
-        consecutive branches (three for a valence-3 singularity).
+        Singularities: point indices of the dual singular face, ccw, one per gap between
+        consecutive branches (three for a valence-3 singularity). A centre: three points of its
+        cell a third of the way around from each other (:func:`_centre_dual`). None for corners.
     valence : int
         Number of branch ends at the node.
     cell : int
@@ -334,7 +335,21 @@ def _node(graph: _CellGraph, live: _Live, tri: Triangulation, c: int) -> Skeleto
         faces = graph.cell_faces(c)
         f = int(faces[np.any(graph.triangles[faces] == v, axis=1)][0])
         return SkeletonNode(-1, "corner", tri.points[v].copy(), f, v, None, degree, c)
-    return SkeletonNode(-1, "centre", tri.cell_centres[c], int(graph.rep_face[c]), None, None, degree, c)
+    return SkeletonNode(-1, "centre", tri.cell_centres[c], int(graph.rep_face[c]), None,
+                        _centre_dual(graph, tri, c), degree, c)
+
+
+def _centre_dual(graph: _CellGraph, tri: Triangulation, c: int) -> tuple:
+    """Three points of the centre cell ``c``, ccw, a third of its points apart around its centre
+    (from its smallest point index): the dual of the centre of a domain without corners or holes,
+    which rebranching links to the boundary, so that a disc becomes three equal patches. (The
+    vertices of one of the cell's faces, as before, can be three neighbours on a finely sampled
+    circle, whose cell is one co-circular polygon, leaving regions without a corner.)"""
+    pts = graph.cell_points(c)
+    d = tri.points[pts] - tri.cell_centres[c]
+    ring = pts[np.argsort(np.arctan2(d[:, 1], d[:, 0]), kind="stable")]
+    ring = np.roll(ring, -int(np.argmin(ring)))
+    return tuple(int(ring[k * len(ring) // 3]) for k in range(3))
 
 
 def _dual(graph: _CellGraph, live: _Live, tri: Triangulation, c: int) -> tuple:

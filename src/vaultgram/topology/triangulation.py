@@ -59,7 +59,7 @@ from scipy.spatial import Delaunay, QhullError, cKDTree
 from vaultgram.domain.model import ring_name
 from vaultgram.errors import DomainError
 from vaultgram.geometry.arrays import distinct
-from vaultgram.geometry.polygons import bbox_diagonal, triangle_areas
+from vaultgram.geometry.polygons import bbox_diagonal, signed_area, triangle_areas
 from vaultgram.geometry.text import fmt_point
 from vaultgram.topology.discretise import Discretisation
 
@@ -236,7 +236,7 @@ def _delaunay(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     mid, big = 0.5 * (lo + hi), 10.0 * max(bbox_diagonal(pts), 1e-300)
     ang = np.radians([15.0, 105.0, 195.0, 285.0, 60.0])
     frame = mid + big * np.stack([np.cos(ang), np.sin(ang)], axis=1) * np.array([[1.0], [1.1], [1.0], [1.2], [1.3]])
-    tri = delaunay_triangles(np.concatenate([pts, frame]))
+    tri = delaunay_triangles(np.concatenate([pts, frame]), bbox_diagonal(pts))
     tri = tri[(tri < n).all(axis=1)]
     signed = triangle_areas(pts, tri)
     centroid = (pts[tri[:, 0]] + pts[tri[:, 1]] + pts[tri[:, 2]]) / 3.0
@@ -255,8 +255,10 @@ PERTURBATION_FLOOR = 1e-12
 COCIRCULAR_LIMIT = 1000
 
 
-def delaunay_triangles(pts: np.ndarray) -> np.ndarray:
-    """Delaunay triangles of ``pts`` (k, 2) in O(n log n) whatever their degeneracy.
+def delaunay_triangles(pts: np.ndarray, diagonal: float | None = None) -> np.ndarray:
+    """Delaunay triangles of ``pts`` (k, 2) in O(n log n) whatever their degeneracy; ``diagonal`` is
+    the size of the plan (default the points' bounding-box diagonal; :func:`_delaunay` passes the
+    plan's, without its far frame, which would make the perturbation 25 times too small for qhull).
 
     The triangulation of the perturbed points (:func:`perturbed_delaunay`) first; where none of its
     groups of faces with one circumcircle (of the points as given) has more than
@@ -269,13 +271,13 @@ def delaunay_triangles(pts: np.ndarray) -> np.ndarray:
     >>> len(delaunay_triangles(np.column_stack([np.cos(t), np.sin(t)])))  # a regular 5000-gon, fast
     4998
     """
-    tri = perturbed_delaunay(pts)
+    tri = perturbed_delaunay(pts, diagonal)
     if _largest_cocircular_group(pts, tri) > COCIRCULAR_LIMIT:
         return tri
     return _qhull(pts)
 
 
-def perturbed_delaunay(pts: np.ndarray) -> np.ndarray:
+def perturbed_delaunay(pts: np.ndarray, diagonal: float | None = None) -> np.ndarray:
     """Delaunay triangles of ``pts`` (k, 2) moved by a tiny deterministic amount: point ``i`` by
     ``PERTURBATION * d^2 / diagonal`` (``d`` the distance of the closest two points; at least
     ``PERTURBATION_FLOOR`` times the diagonal) along a direction hashed from ``i``.
@@ -291,7 +293,7 @@ def perturbed_delaunay(pts: np.ndarray) -> np.ndarray:
     >>> len(perturbed_delaunay(square))  # co-circular: two triangles, one diagonal
     2
     """
-    diag = max(bbox_diagonal(pts), 1e-300)
+    diag = max(bbox_diagonal(pts) if diagonal is None else diagonal, 1e-300)
     closest = cKDTree(pts).query(pts, k=2)[0][:, 1].min() if len(pts) > 1 else diag
     amount = max(PERTURBATION * closest**2 / diag, PERTURBATION_FLOOR * diag)
     k = np.arange(len(pts), dtype=np.uint64)
@@ -417,7 +419,7 @@ def _neighbours(half_edges: _HalfEdges, cut: np.ndarray | None) -> np.ndarray:
 
 def _check_tiling(disc: Discretisation, tri: np.ndarray, areas: np.ndarray) -> None:
     """The triangles tile the domain: the same area, and the Euler characteristic of a disc with holes."""
-    total, expect = float(areas.sum()), disc.domain.area
+    total, expect = float(areas.sum()), _sampled_area(disc)
     if abs(total - expect) > 1e-9 * abs(expect) + 1e-12:
         raise DomainError(
             f"triangulation covers area {total:.12g} but the domain has area {expect:.12g}; "
@@ -429,6 +431,13 @@ def _check_tiling(disc: Discretisation, tri: np.ndarray, areas: np.ndarray) -> N
             f"triangulation is not a valid tiling of the domain (Euler characteristic {euler}, "
             f"expected {1 - len(disc.domain.holes)}); use a smaller spacing"
         )
+
+
+def _sampled_area(disc: Discretisation) -> float:
+    """The area inside the sampled rings (the domain's, but for the thinning of dense runs of
+    vertices, :func:`vaultgram.geometry.polylines.thinned_dense_runs`)."""
+    areas = [abs(signed_area(disc.points[r])) for r in disc.rings]
+    return float(areas[0] - sum(areas[1:]))
 
 
 # --------------------------------------------------------------------------------------------
