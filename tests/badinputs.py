@@ -269,7 +269,9 @@ def graph_cases() -> list[Case]:
            "type-unknown": {"nodes": [{**corner, "type": "Bogus"}]},
            "pos-missing": {"nodes": [{"id": 0, "type": "Corner"}]},
            "pos-strings": {"nodes": [{**corner, "pos": ["a", 1]}]},
-           "dangling-edge": {"nodes": [corner], "edges": [{"id": 0, "type": "Branch", "source": 0, "target": 5}]}}
+           "dangling-edge": {"nodes": [corner], "edges": [{"id": 0, "type": "Branch", "source": 0, "target": 5}]},
+           "edges-object": {"nodes": [corner], "edges": {}}, "node-number": {"nodes": [1]},
+           "edge-list": {"nodes": [corner], "edges": [[0, 0]]}, "string": "graph", "empty-object": {}}
     return [Case(f"graph/{name}", ["rules", "run", RULES, "--graph", "g.json", "--strategy", "topology", "--out", OUT],
                  {"g.json": _json(data)}) for name, data in bad.items()]
 

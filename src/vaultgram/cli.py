@@ -221,10 +221,11 @@ def _load_graph(path: str, book):
     around each node follows the geometry (counter-clockwise, along an edge's ``polyline`` if it has
     one), as in the pipeline; elsewhere it is the order of the edge ids."""
     from vaultgram.engine.graph import HostGraph
+    from vaultgram.io.strict import graph_document
     from vaultgram.topology.decomposition import edge_angle
 
     try:
-        return HostGraph.from_json(read_json(path), book.schema, angle=edge_angle)
+        return HostGraph.from_json(graph_document(read_json(path)), book.schema, angle=edge_angle)
     except VaultgramError as exc:
         raise VaultgramError(exc if str(exc).startswith(f"{path}:") else f"{path}: {exc}") from None
 

@@ -22,7 +22,8 @@ import numpy as np
 
 from vaultgram.errors import VaultgramError
 
-__all__ = ["json_list", "json_object", "is_integer", "is_number", "indices", "points", "finite_number"]
+__all__ = ["json_list", "json_object", "is_integer", "is_number", "indices", "points", "finite_number",
+           "graph_document"]
 
 
 def _kind(value) -> str:
@@ -87,3 +88,29 @@ def points(value, what: str, dims: tuple = (2, 3)) -> np.ndarray:
     for k, p in enumerate(rows):
         out[k, :len(p)] = p
     return out
+
+
+def graph_document(value, what: str = "graph") -> dict:
+    """A host graph's JSON (``rules run --graph`` and the other rules commands): an object with a
+    list ``nodes`` and, unless the graph has none, a list ``edges``, each a list of objects. ``{}``
+    given for either list, or as the whole file (which holds no graph: no ``nodes``), is refused,
+    as is a file that is no object. The engine's ``HostGraph.from_json`` checks types, ids and
+    attributes after this.
+
+    >>> graph_document({"nodes": [{"id": 0, "type": "Corner"}]})["nodes"][0]["type"]
+    'Corner'
+    >>> graph_document({"nodes": [], "edges": {}})
+    Traceback (most recent call last):
+    ...
+    vaultgram.grammar.errors.InputError: graph.edges: expected a list, got an object
+    >>> graph_document({})
+    Traceback (most recent call last):
+    ...
+    vaultgram.grammar.errors.InputError: graph: expected an object with a list 'nodes' (and 'edges'), got no 'nodes'
+    """
+    if "nodes" not in json_object(value, what):
+        raise VaultgramError(f"{what}: expected an object with a list 'nodes' (and 'edges'), got no 'nodes'")
+    for key in ("nodes", "edges"):
+        for k, item in enumerate(json_list(value.get(key, []), f"{what}.{key}")):
+            json_object(item, f"{what}.{key}[{k}]")
+    return value
