@@ -121,7 +121,7 @@ def mesh(plan: PlanLike, spacing: float = 0.02, **options) -> QuadMesh:
     >>> import vaultgram
     >>> m = vaultgram.mesh("examples/quad_with_hole.json", target_length=1.0)
     >>> len(m.faces), m.info["patches"]
-    (96, 12)
+    (128, 12)
     """
     return _mesh_domain(_domain(plan), spacing, **options)
 

@@ -35,10 +35,14 @@ __all__ = ["DensitySpec", "group_counts", "curve_min_counts", "densities_from_di
 TARGET_FRACTION = 0.025
 #: A boundary side is subdivided at least finely enough that its resampled polyline stays within this
 #: fraction of the bounding-box diagonal of the domain's ring (a curved side with too few
-#: subdivisions cuts across the domain and folds the faces next to it).
-CHORD_TOLERANCE = 0.002
-#: The geometric minimum count of a side is searched up to this multiple of its length count.
+#: subdivisions cuts across the domain and folds the faces next to it; issue 12: the mesh boundary
+#: within 0.1% of the diagonal, it was 0.2%).
+CHORD_TOLERANCE = 0.001
+#: The geometric minimum count of a side is searched up to this multiple of its length count (of at
+#: least ``CHORD_SEARCH_FLOOR``: a huge target length gives count 1, and a curved side needs more
+#: than 6 chords to stay within the tolerance).
 CHORD_MAX_FACTOR = 6
+CHORD_SEARCH_FLOOR = 4
 #: Above this many subdivisions a side is not searched for its chord count (it follows its curve
 #: anyway): the search would resample it millions of times over before the size guard
 #: (:mod:`vaultgram.meshing.guards`) refuses the mesh.
@@ -125,6 +129,7 @@ def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length:
             by_length.append(g)
     if max_faces is not None:  # before the chord search, which resamples each side at its count
         check_mesh_size(layout, np.maximum(counts, 1), max_faces)
+    counts = np.maximum(counts, anchor_min_counts(layout))  # issue 12: sharp vertices are mesh vertices
     for g in by_length:
         if counts[g.id] <= CHORD_SEARCH_LIMIT:
             counts[g.id] = max(counts[g.id], _chord_count(layout, g, counts[g.id], CHORD_TOLERANCE * diag))
@@ -193,6 +198,21 @@ def curve_min_counts(layout: Layout) -> np.ndarray:
     return need
 
 
+def anchor_min_counts(layout: Layout) -> np.ndarray:
+    """Least number of subdivisions of each group that keeps every anchor of its sides
+    (:func:`vaultgram.meshing.layout.side_anchors`: the corners and the ring vertices turning by
+    :data:`~vaultgram.meshing.layout.KEEP_ANGLE` or more on boundary sides, the curve's vertices on
+    curve sides) as a mesh vertex: one more than the most anchors inside a side of the group (with
+    fewer, :func:`~vaultgram.geometry.polylines.resample_polyline` honours none of them)."""
+    disc = layout.decomposition.disc
+    keep = kept_points(disc)
+    need = np.ones(layout.n_groups, dtype=np.int64)
+    for side in layout.sides:
+        g = layout.group_of[side.id]
+        need[g] = max(need[g], len(side_anchors(side, keep, disc)) + 1)
+    return need
+
+
 def _chord_count(layout: Layout, group: EdgeGroup, count: int, tol: float) -> int:
     """The least count (from ``count`` up) at which every boundary side of the group, resampled as the
     welding does it, stays within ``tol`` of its curve: the "additional constraint on the minimum
@@ -205,7 +225,7 @@ def _chord_count(layout: Layout, group: EdgeGroup, count: int, tol: float) -> in
             continue
         anchors = side_anchors(side, keep, layout.decomposition.disc)
         n = best
-        while n < CHORD_MAX_FACTOR * max(count, 1):
+        while n < CHORD_MAX_FACTOR * max(count, CHORD_SEARCH_FLOOR):
             pts, _ = resample_polyline(side.polyline, n, anchors)
             if chord_deviation(side.polyline, pts) <= tol:
                 break

@@ -48,9 +48,10 @@ __all__ = [
 ]
 
 #: Input vertices of the domain's rings turning by at least this many degrees are kept as fixed mesh
-#: vertices (when their side's count allows), even below the discretisation's corner angle: sliding
-#: boundary vertices would otherwise cut them off.
-KEEP_ANGLE = 20.0
+#: vertices (their group's count is raised to allow it, :func:`vaultgram.meshing.densities.anchor_min_counts`),
+#: even below the discretisation's corner angle: sliding boundary vertices would otherwise cut them
+#: off (issue 12: a vertex whose angle differs from 180 degrees by more than 15 is a mesh vertex).
+KEEP_ANGLE = 12.0
 
 
 @dataclass(frozen=True, eq=False)

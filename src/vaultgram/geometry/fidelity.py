@@ -1,0 +1,65 @@
+"""How faithfully a mesh's boundary follows the domain's (issue 12, What 5).
+
+Two measures, both relative to the bounding-box diagonal of the domain's outer ring:
+
+* :func:`boundary_deviation`: the largest distance from the mesh boundary (its boundary vertices and
+  the midpoints of its boundary edges, where a chord strays farthest) to the domain's rings;
+* :func:`missed_vertices`: the ring vertices turning by more than an angle (15 degrees: those whose
+  interior angle differs from 180 by more) that no mesh boundary vertex sits on.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from vaultgram.geometry.meshes import boundary_halfedges
+from vaultgram.geometry.polygons import bbox_diagonal
+from vaultgram.geometry.polylines import turning_angles
+
+__all__ = ["boundary_deviation", "missed_vertices"]
+
+
+def _rings_lines(rings):
+    import shapely
+
+    return shapely.MultiLineString([np.vstack([r, r[:1]]) for r in (np.asarray(r, dtype=float)[:, :2] for r in rings)])
+
+
+def boundary_deviation(vertices: np.ndarray, faces, rings) -> float:
+    """Largest distance from the mesh boundary to the rings, over the outer ring's diagonal.
+
+    >>> square = [np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]])]
+    >>> x = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0], [1.0, 0.1]])
+    >>> float(round(boundary_deviation(x, [(0, 4, 1, 2, 3)], square) * np.hypot(2, 2), 6))  # vertex 4: 0.1 in
+    0.1
+    """
+    import shapely
+
+    xy = np.asarray(vertices, dtype=float)[:, :2]
+    u, v = boundary_halfedges(faces)
+    probes = np.vstack([xy[u], 0.5 * (xy[u] + xy[v])])
+    far = shapely.distance(shapely.points(probes), _rings_lines(rings)).max() if len(u) else 0.0
+    return float(far) / bbox_diagonal(np.asarray(rings[0])[:, :2])
+
+
+def missed_vertices(vertices: np.ndarray, boundary: np.ndarray, rings, angle: float = 15.0,
+                    tol: float = 1e-9) -> list[tuple[int, int]]:
+    """``(ring, vertex)`` of every ring vertex turning by more than ``angle`` degrees with no mesh
+    boundary vertex within ``tol`` diagonals of it.
+
+    >>> square = [np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]])]
+    >>> x = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.1, 1.9]])
+    >>> missed_vertices(x, np.ones(4, bool), square)
+    [(0, 3)]
+    """
+    from scipy.spatial import cKDTree
+
+    tree = cKDTree(np.asarray(vertices, dtype=float)[np.asarray(boundary, dtype=bool), :2])
+    limit = tol * bbox_diagonal(np.asarray(rings[0])[:, :2])
+    out = []
+    for r, ring in enumerate(rings):
+        ring = np.asarray(ring, dtype=float)[:, :2]
+        sharp = np.flatnonzero(np.abs(turning_angles(ring)) > angle)
+        gap = tree.query(ring[sharp])[0] if len(sharp) else np.zeros(0)
+        out += [(r, int(i)) for i in sharp[gap > limit]]
+    return out
