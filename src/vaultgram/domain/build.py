@@ -35,6 +35,9 @@ def as_coords(value: Any, what: str, min_len: int = 0) -> np.ndarray:
     """Turn a JSON list of ``[x, y]`` pairs into an (n, 2) float array, naming bad entries."""
     if not isinstance(value, (list, tuple)):
         raise DomainError(f"{what}: expected a list of [x, y] pairs, got {type(value).__name__}")
+    out = _plain_coords(value)
+    if out is not None and len(out) >= min_len:
+        return out
     out = np.empty((len(value), 2), dtype=np.float64)
     for i, p in enumerate(value):
         if (
@@ -46,6 +49,25 @@ def as_coords(value: Any, what: str, min_len: int = 0) -> np.ndarray:
         out[i] = (_coordinate(p[0], what, i), _coordinate(p[1], what, i))
     if len(out) < min_len:
         raise DomainError(f"{what}: expected at least {min_len} vertices, got {len(out)}")
+    return out
+
+
+def _plain_coords(value) -> np.ndarray | None:
+    """``value`` as an (n, 2) array when every vertex is a list of two or more plain numbers (JSON
+    integers and floats, not bools), finite and at most :data:`~vaultgram.limits.MAX_COORDINATE`;
+    None otherwise, and :func:`as_coords` then finds and names the bad vertex one by one. Why: the
+    one-by-one check took 4 s on a ring of 10^5 vertices."""
+    if not all(type(p) in (list, tuple) and len(p) >= 2 for p in value):
+        return None
+    xy = [p[:2] for p in value]
+    if not {type(c) for p in xy for c in p} <= {int, float}:
+        return None
+    try:
+        out = np.array(xy, dtype=np.float64).reshape(-1, 2)
+    except OverflowError:  # an integer beyond the floats
+        return None
+    if not (np.isfinite(out).all() and (not len(out) or np.abs(out).max() <= MAX_COORDINATE)):
+        return None
     return out
 
 
