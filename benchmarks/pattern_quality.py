@@ -25,7 +25,8 @@ from vaultgram.pipeline import mesh_domain
 from vaultgram.testing.orthogonal import RECTILINEAR_PLANS
 
 ROOT = Path(__file__).resolve().parent.parent
-SHARED = ROOT.parent / "shared" / "data" / "architecture"
+SHARED = next((d / "shared" / "data" / "architecture" for d in (ROOT.parent, ROOT.parent.parent)
+               if (d / "shared").is_dir()), ROOT.parent / "shared" / "data" / "architecture")
 
 
 def plans() -> dict:
