@@ -28,7 +28,7 @@ __all__ = ["maximise_min_quality", "OPTIMISE_TARGET", "OPTIMISE_SWEEPS"]
 #: left alone, and a trial that only raises the mean is taken only where the minimum stays there).
 OPTIMISE_TARGET = 0.5
 #: At most this many sweeps (each moves an independent set of vertices).
-OPTIMISE_SWEEPS = 60
+OPTIMISE_SWEEPS = 150
 #: Trial moves: eight directions at these fractions of the vertex's shortest edge.
 _SCALES = (0.3, 0.1, 0.03, 0.01)
 _DIRS = np.array([[math.cos(a), math.sin(a)] for a in np.arange(8) * math.pi / 4])

@@ -26,12 +26,9 @@ UNTANGLE_STEPS = 300
 UNTANGLE_STEP = 0.1
 #: :func:`improve_shapes` aims at this scaled Jacobian, in at most this many steps; it stops after
 #: SHAPE_STALL steps in a row that each gained less than 0.1% of its objective.
-SHAPE_TARGET = float(__import__("os").environ.get("VG_ST", "0.3"))
+SHAPE_TARGET = 0.3
 SHAPE_STEPS = 60
 SHAPE_STALL = 10
-#: Where a vertex's corners cannot all reach the target (a pole's fan, a sharp corner), each aims at
-#: this share of the sine of their mean angle: equal corners are the best any placement can do.
-FAN_SHARE = float(__import__("os").environ.get("VG_FAN", "0.5"))
 
 
 def untangle(
@@ -146,7 +143,7 @@ def _corner_targets(x, u, v, p, n, target: float) -> np.ndarray:
     angle = np.abs(np.arctan2(cross_z(e1, e2), (e1 * e2).sum(1)))
     total = np.bincount(u, weights=angle, minlength=n)
     mean = total[u] / np.bincount(u, minlength=n)[u]
-    return np.minimum(target, FAN_SHARE * np.sin(np.minimum(mean, np.pi / 2)))
+    return np.minimum(target, 0.5 * np.sin(np.minimum(mean, np.pi / 2)))
 
 
 class _Region(NamedTuple):
