@@ -56,10 +56,10 @@ from vaultgram.io.files import collector_paused
 from vaultgram.limits import MAX_FACES
 from vaultgram.meshing.densities import DensitySpec, group_counts
 from vaultgram.meshing.layout import Layout, edge_groups
+from vaultgram.meshing.optimise import maximise_min_quality
 from vaultgram.meshing.quadmesh import QuadMesh
 from vaultgram.meshing.quality import check_not_folded
 from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS, laplacian_smooth
-from vaultgram.meshing.optimise import maximise_min_quality
 from vaultgram.meshing.untangle import improve_shapes, untangle
 from vaultgram.meshing.weld import weld
 from vaultgram.tessellation.courses import support_zones, voussoir_courses, voussoir_names

@@ -147,13 +147,16 @@ def _slide_index(n: int, constraints) -> np.ndarray:
 
 
 def _trials(x: np.ndarray, t: _Corners, chosen: np.ndarray, slide_of: np.ndarray, constraints) -> np.ndarray:
-    """Trial positions (k, m, 2) of the chosen vertices: :data:`_MOVES` times each one's shortest edge,
-    sliding vertices projected onto their polylines."""
+    """Trial positions (k, m, 2) of the chosen vertices: :data:`_MOVES` times each one's shortest edge
+    (at least a quarter of its mean edge), sliding vertices projected onto their polylines."""
     e = np.hypot(*(x[t.v, :2] - x[t.u, :2]).T)
     shortest = np.full(len(x), np.inf)
     np.minimum.at(shortest, t.u, e)
     np.minimum.at(shortest, t.v, e)
-    trial = x[chosen, None, :2] + shortest[chosen, None, None] * _MOVES[None]
+    mean = (np.bincount(t.u, e, len(x)) + np.bincount(t.v, e, len(x))) / np.maximum(
+        np.bincount(t.u, minlength=len(x)) + np.bincount(t.v, minlength=len(x)), 1)
+    scale = np.maximum(shortest, 0.25 * mean)  # an edge collapsed to nothing still gives a step
+    trial = x[chosen, None, :2] + scale[chosen, None, None] * _MOVES[None]
     on = slide_of[chosen]
     for k in np.unique(on[on >= 0]):
         rows = np.flatnonzero(on == k)
