@@ -21,6 +21,7 @@ import numpy as np
 
 from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.geometry.polylines import project_to_polyline
+from vaultgram.meshing.fans import fan_bounds
 
 __all__ = ["maximise_min_quality", "OPTIMISE_TARGET", "OPTIMISE_SWEEPS"]
 
@@ -28,7 +29,15 @@ __all__ = ["maximise_min_quality", "OPTIMISE_TARGET", "OPTIMISE_SWEEPS"]
 #: left alone, and a trial that only raises the mean is taken only where the minimum stays there).
 OPTIMISE_TARGET = 0.5
 #: At most this many sweeps (each moves an independent set of vertices).
-OPTIMISE_SWEEPS = 150
+OPTIMISE_SWEEPS = 60
+#: Sliding (boundary and curve) vertices are optimised only below this.
+SLIDE_TARGET = 0.3
+#: A vertex next to a pole aims at this share of the pole's fan bound.
+FAN_MARGIN = 0.97
+#: A trial must raise the worst corner (or, that equal, the mean) by more than this to be taken.
+_GAIN = 1e-3
+#: Rounds of the independent-set selection per sweep.
+_ROUNDS = 4
 #: Trial moves: eight directions at these fractions of the vertex's shortest edge.
 _SCALES = (0.3, 0.1, 0.03, 0.01)
 _DIRS = np.array([[math.cos(a), math.sin(a)] for a in np.arange(8) * math.pi / 4])
@@ -36,22 +45,49 @@ _MOVES = np.vstack([np.zeros((1, 2))] + [s * _DIRS for s in _SCALES])  # (1 + 8 
 _TRI = 2.0 / math.sqrt(3.0)
 
 
+class _Groups(NamedTuple):
+    """Values grouped by an integer key, for fast per-key minima (``np.minimum.reduceat`` on the values
+    sorted by key, much faster than ``np.minimum.at``)."""
+
+    order: np.ndarray
+    starts: np.ndarray
+    keys: np.ndarray
+
+    @staticmethod
+    def of(key: np.ndarray) -> _Groups:
+        order = np.argsort(key, kind="stable")
+        k = key[order]
+        starts = np.flatnonzero(np.r_[True, k[1:] != k[:-1]]) if len(k) else np.zeros(0, dtype=np.int64)
+        return _Groups(order, starts, k[starts])
+
+    def minimum(self, values: np.ndarray, n: int, fill) -> np.ndarray:
+        """Per key ``0 .. n - 1``, the smallest of its ``values`` (``fill`` where it has none)."""
+        out = np.full(n, fill, dtype=values.dtype)
+        out[self.keys] = np.minimum.reduceat(values[self.order], self.starts)
+        return out
+
+
 class _Corners(NamedTuple):
-    """The corners of the faces: face, vertex ``u``, next ``v``, previous ``p``, and the factor that
+    """The corners of the faces: face, vertex ``u``, next ``v``, previous ``p``, the factor that
     scales a triangle's corner so that an equilateral triangle has 1 (as
-    :func:`vaultgram.meshing.quality.face_scaled_jacobians`)."""
+    :func:`vaultgram.meshing.quality.face_scaled_jacobians`), and the corners grouped by the
+    vertices they touch (``u``, ``v`` and ``p`` in turn), by vertex ``u`` and by face."""
 
     face: np.ndarray
     u: np.ndarray
     v: np.ndarray
     p: np.ndarray
     factor: np.ndarray
+    touch: _Groups
+    at: _Groups
+    of_face: _Groups
 
 
 def _corner_table(faces) -> _Corners:
     face, u, v, p = corner_arrays(faces)
     size = np.bincount(face, minlength=len(faces))[face]
-    return _Corners(face, u, v, p, np.where(size == 3, _TRI, 1.0))
+    return _Corners(face, u, v, p, np.where(size == 3, _TRI, 1.0), _Groups.of(np.concatenate([u, v, p])),
+                    _Groups.of(u), _Groups.of(face))
 
 
 def _scaled(pu: np.ndarray, pv: np.ndarray, pp: np.ndarray, factor: np.ndarray) -> np.ndarray:
@@ -66,16 +102,17 @@ def _scaled(pu: np.ndarray, pv: np.ndarray, pp: np.ndarray, factor: np.ndarray) 
 
 def maximise_min_quality(vertices: np.ndarray, faces, fixed: np.ndarray | None = None, constraints=(),
                          target: float = OPTIMISE_TARGET, sweeps: int = OPTIMISE_SWEEPS) -> np.ndarray:
-    """Raise the smallest scaled Jacobian around every vertex whose worst corner is below ``target``.
+    """Raise the smallest scaled Jacobian around every vertex whose worst corner is below its goal.
 
-    Each sweep takes the vertices below ``target`` that are not fixed and not known to be stuck,
-    keeps those whose worst corner is the lowest among the vertices sharing a face with them (an
-    independent set: their moves do not interact), and tries for each the positions
+    A vertex's goal is ``target``, less for a sliding vertex or one next to a pole's fan
+    (:func:`_goals`). Each sweep takes the vertices below their goals that are not fixed and not known
+    to be stuck, keeps those whose worst corner is the lowest among the vertices sharing a face with
+    them (an independent set: their moves do not interact), and tries for each the positions
     :data:`_MOVES` times its shortest edge away (projected onto its polyline for a sliding vertex of
-    ``constraints``). It takes the trial with the largest worst corner (capped at ``target``; ties by
-    the largest mean) when that beats the current one, else marks the vertex stuck until a neighbour
-    moves. So the worst corner of a vertex's faces only grows: a valid mesh stays valid, and an
-    inverted face is untangled where one vertex's move can do it.
+    ``constraints``). It takes the trial with the largest worst corner (counted up to the goal; ties
+    by the largest mean) when that beats the current one by :data:`_GAIN`, else marks the vertex stuck
+    until a neighbour moves. So the worst corner of a vertex's faces only grows: a valid mesh stays
+    valid, and an inverted face is untangled where one vertex's move can do it.
 
     Example
     -------
@@ -94,38 +131,62 @@ def maximise_min_quality(vertices: np.ndarray, faces, fixed: np.ndarray | None =
     table = _corner_table(faces)
     keep = np.zeros(len(x), dtype=bool) if fixed is None else np.asarray(fixed, dtype=bool)
     slide_of = _slide_index(len(x), constraints)
+    goal = _goals(x, faces, table, target, slide_of >= 0)
     stuck = keep.copy()
     for _ in range(sweeps):
         worst = _vertex_minima(x, table)
-        chosen = _independent(worst, table, ~stuck & (worst < target))
+        chosen = _independent(worst, table, ~stuck & (worst < goal))
         if not len(chosen):
             break
-        moved = _try_moves(x, table, chosen, target, slide_of, constraints)
+        moved = _try_moves(x, table, chosen, goal[chosen], slide_of, constraints)
         stuck[chosen[~moved]] = True
         stuck[_neighbours(table, chosen[moved], len(x))] = False
         stuck |= keep
     return x
 
 
+def _goals(x: np.ndarray, faces, t: _Corners, target: float, sliding: np.ndarray) -> np.ndarray:
+    """Per vertex, the worst corner to aim at: ``target`` (:data:`SLIDE_TARGET` for a sliding
+    vertex: moved along the boundary it cuts off the domain's bends, so only where a face is poor),
+    or :data:`FAN_MARGIN` of the fan bound of a corner it touches where that is lower (the fan of a
+    pole cannot do better, :func:`vaultgram.meshing.fans.fan_bounds`): no sweep is spent on what
+    cannot be reached."""
+    bound = fan_bounds(x, faces)[t.u]
+    reach = np.full(len(x), np.inf)
+    for ends in (t.u, t.v, t.p):
+        np.minimum.at(reach, ends, bound)
+    return np.minimum(np.where(sliding, min(target, SLIDE_TARGET), target), FAN_MARGIN * reach)
+
+
 def _vertex_minima(x: np.ndarray, t: _Corners) -> np.ndarray:
     """Per vertex, the smallest scaled Jacobian of the corners it touches (as vertex, next or previous)."""
     sj = _scaled(x[t.u, :2], x[t.v, :2], x[t.p, :2], t.factor)
-    out = np.full(len(x), np.inf)
-    for ends in (t.u, t.v, t.p):
-        np.minimum.at(out, ends, sj)
-    return out
+    return t.touch.minimum(np.tile(sj, 3), len(x), np.inf)
 
 
 def _independent(worst: np.ndarray, t: _Corners, candidate: np.ndarray) -> np.ndarray:
+    """An independent set of candidates (no two share a face), the worst first: :func:`_lowest`, then
+    again among the candidates sharing no face with those, for :data:`_ROUNDS` rounds (Luby's)."""
+    left = candidate.copy()
+    picked = []
+    for _ in range(_ROUNDS):
+        if not left.any():
+            break
+        got = _lowest(worst, t, left)
+        picked.append(got)
+        left[_neighbours(t, got, len(worst))] = False
+    return np.sort(np.concatenate(picked)) if picked else np.zeros(0, dtype=np.int64)
+
+
+def _lowest(worst: np.ndarray, t: _Corners, candidate: np.ndarray) -> np.ndarray:
     """The candidates whose ``worst`` (ties by index) is the lowest of every face they are in: no two
     of them share a face."""
     rank = np.full(len(worst), np.iinfo(np.int64).max)
     idx = np.flatnonzero(candidate)
     rank[idx[np.lexsort((idx, worst[idx]))]] = np.arange(len(idx))
-    face_min = np.full(int(t.face.max()) + 1, np.iinfo(np.int64).max)
-    np.minimum.at(face_min, t.face, rank[t.u])
-    lowest = np.full(len(worst), np.iinfo(np.int64).max)
-    np.minimum.at(lowest, t.u, face_min[t.face])
+    top = np.iinfo(np.int64).max
+    face_min = t.of_face.minimum(rank[t.u], int(t.face.max()) + 1, top)
+    lowest = t.at.minimum(face_min[t.face], len(worst), top)
     return idx[lowest[idx] == rank[idx]]
 
 
@@ -166,10 +227,10 @@ def _trials(x: np.ndarray, t: _Corners, chosen: np.ndarray, slide_of: np.ndarray
     return trial
 
 
-def _try_moves(x: np.ndarray, t: _Corners, chosen: np.ndarray, target: float, slide_of: np.ndarray,
+def _try_moves(x: np.ndarray, t: _Corners, chosen: np.ndarray, goal: np.ndarray, slide_of: np.ndarray,
                constraints) -> np.ndarray:
-    """Move each chosen vertex to its best trial position, in place (:func:`maximise_min_quality`);
-    which of them moved."""
+    """Move each chosen vertex to its best trial position, in place (:func:`maximise_min_quality`),
+    its worst corner counted up to its ``goal``; which of them moved."""
     trial = _trials(x, t, chosen, slide_of, constraints)
     slot = np.full(len(x), -1, dtype=np.int64)
     slot[chosen] = np.arange(len(chosen))
@@ -181,15 +242,15 @@ def _try_moves(x: np.ndarray, t: _Corners, chosen: np.ndarray, target: float, sl
         return np.where((s[hit] >= 0)[:, None, None], trial[who], x[ends[hit], None, :2])
 
     sj = _scaled(at(t.u, su), at(t.v, sv), at(t.p, sp), t.factor[hit, None])
-    low = np.full((len(chosen), len(_MOVES)), np.inf)
-    np.minimum.at(low, who, sj)
-    mean = np.zeros_like(low)
-    np.add.at(mean, who, sj)
-    primary = np.minimum(low, target)
+    order = np.argsort(who, kind="stable")  # every chosen vertex has corners: one group each, in order
+    starts = np.flatnonzero(np.r_[True, np.diff(who[order]) != 0])
+    low = np.minimum.reduceat(sj[order], starts, axis=0)
+    mean = np.add.reduceat(sj[order], starts, axis=0)
+    primary = np.minimum(low, goal[:, None])
     tie = np.where(primary >= primary.max(axis=1, keepdims=True) - 1e-12, mean, -np.inf)
     best = np.argmax(tie, axis=1)
     row = np.arange(len(chosen))
-    better = (primary[row, best] > primary[:, 0] + 1e-9) | (
-        (primary[row, best] >= primary[:, 0] - 1e-12) & (mean[row, best] > mean[:, 0] + 1e-9))
+    better = (primary[row, best] > primary[:, 0] + _GAIN) | (
+        (primary[row, best] >= primary[:, 0] - 1e-12) & (mean[row, best] > mean[:, 0] + _GAIN))
     x[chosen[better], :2] = trial[row[better], best[better]]
     return better
