@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
+from vaultgram import pipeline
 from vaultgram.cli import main
 from vaultgram.domain import load_domain
 from vaultgram.errors import FormFindingError, VerticalEquilibriumError
@@ -195,9 +196,12 @@ def test_an_unknown_relax_mode_is_named():
         form_find(v, f, relax_mode="most")
 
 
-def test_a_rise_without_vertical_equilibrium_gives_way_to_the_next():
+def test_a_rise_without_vertical_equilibrium_gives_way_to_the_next(monkeypatch):
     """multiple_lobes: vertical equilibrium does not converge for a quarter of the shorter side, so
-    the vault gets the next rise of RISES (its summary's zmax); an explicit zmax is never replaced."""
+    the vault gets the next rise of RISES (its summary's zmax); an explicit zmax is never replaced.
+    Its mesh without the max-min optimisation (vaultgram.meshing.optimise): with it, the first rise
+    converges on some runs, and this test is about the fallback."""
+    monkeypatch.setattr(pipeline, "maximise_min_quality", lambda x, *_a, **_k: x)
     domain = load_domain(shared_plan("multiple_lobes"))
     mesh = mesh_domain(domain)
     first, second = (default_rise(mesh.vertices, rise) for rise in RISES[:2])

@@ -148,7 +148,7 @@ def mesh_decomposition(dec: Decomposition, target_length: float | None = None, s
         if smooth > 0:
             x = untangle(x, mesh.faces, mesh.fixed, mesh.constraints)
             x = improve_shapes(x, mesh.faces, mesh.fixed, mesh.constraints)
-            x = maximise_min_quality(x, mesh.faces, mesh.fixed, mesh.constraints)
+            x = maximise_min_quality(x, mesh.faces, mesh.fixed, mesh.constraints, still=mesh.feature)
     mesh = dataclasses.replace(mesh, vertices=x, info=_mesh_info(dec, layout, smooth))
     if smooth > 0 and not allow_folds:
         check_not_folded(mesh, dec)

@@ -27,12 +27,15 @@ MIN_MISSES = {
     "features_combined": FAN + " (12 triangles in the 90 degrees of a corner feature: 0.151)",
     "fig5_boundary_points": FAN + " (12 triangles in the 90 degrees of a corner feature: 0.151)",
     "square_point_loads": FAN + " (39 triangles round a point load: 0.185)",
+    "fig6_inner_points": "the rings round its two point features are left as smoothing made them (the optimiser "
+                         "reached 0.379 there, under the fan bound 0.395, but moving them changed the tessellation "
+                         "round the point loads: rhythm-4 voussoirs 1.26x the rhythm-2 ones, not 1.3x)",
     "fig7_curves": "flat quads where the end of the curve (5, 7.5) is 0.5 from the hole, less than two target "
                    "lengths: the passage needs local refinement",
 }
 MIN_PASS = ["armadillo_vault", "armadillo_vault_plan", "british_museum_map", "hiroshi_senju_museum",
             "mexico_airport", "multiple_lobes", "rolex_learning_centre", "rv_quad_pattern", "rv_ring_pattern",
-            "rv_star_pattern", "fig6_inner_points", "l_shape", "quad_with_hole"]
+            "rv_star_pattern", "l_shape", "quad_with_hole"]
 LAYOUT = "skewed quads all over (median scaled Jacobian below 0.9): the patch layout, not smoothing"
 MEAN_MISSES = {
     "mexico_airport": LAYOUT, "multiple_lobes": LAYOUT, "rv_star_pattern": LAYOUT,

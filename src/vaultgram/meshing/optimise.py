@@ -102,7 +102,8 @@ def _scaled(pu: np.ndarray, pv: np.ndarray, pp: np.ndarray, factor: np.ndarray) 
 
 
 def maximise_min_quality(vertices: np.ndarray, faces, fixed: np.ndarray | None = None, constraints=(),
-                         target: float = OPTIMISE_TARGET, sweeps: int = OPTIMISE_SWEEPS) -> np.ndarray:
+                         target: float = OPTIMISE_TARGET, sweeps: int = OPTIMISE_SWEEPS,
+                         still=None) -> np.ndarray:
     """Raise the smallest scaled Jacobian around every vertex whose worst corner is below its goal.
 
     A vertex's goal is ``target``, less for a sliding vertex or next to a pole's fan, none next to a
@@ -114,7 +115,9 @@ def maximise_min_quality(vertices: np.ndarray, faces, fixed: np.ndarray | None =
     (counted up to the goal; ties by the largest mean) when that beats the current one by :data:`_GAIN`,
     else marks the vertex stuck until a neighbour moves. So the worst corner of a vertex's faces only
     grows: a valid mesh stays valid, and an inverted face is untangled where one vertex's move can do
-    it.
+    it. The vertices sharing a face with one of ``still`` are not moved unless the mesh has an inverted
+    face (a fold is worse): the pipeline passes the point features, whose rings carry the point loads'
+    force flow into the tessellation (moving them changed its joint angles and voussoir sizes there).
 
     Example
     -------
@@ -131,7 +134,9 @@ def maximise_min_quality(vertices: np.ndarray, faces, fixed: np.ndarray | None =
     if len(faces) == 0:
         return x
     table = _corner_table(faces)
-    keep = np.zeros(len(x), dtype=bool) if fixed is None else np.asarray(fixed, dtype=bool)
+    keep = np.zeros(len(x), dtype=bool) if fixed is None else np.asarray(fixed, dtype=bool).copy()
+    if still is not None and np.any(still) and _vertex_minima(x, table).min() > 0:  # unfolding comes first
+        keep[_neighbours(table, np.flatnonzero(still), len(x))] = True
     slide_of = _slide_index(len(x), constraints)
     goal = _goals(x, faces, table, target, slide_of >= 0)
     stuck = keep.copy()
