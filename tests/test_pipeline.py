@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
+from vaultgram import pipeline
 from vaultgram.cli import main
 from vaultgram.domain import load_domain
 from vaultgram.errors import FormFindingError, VerticalEquilibriumError

@@ -56,6 +56,7 @@ from vaultgram.io.files import collector_paused
 from vaultgram.limits import MAX_FACES
 from vaultgram.meshing.densities import DensitySpec, group_counts
 from vaultgram.meshing.layout import Layout, edge_groups
+from vaultgram.meshing.optimise import maximise_min_quality
 from vaultgram.meshing.quadmesh import QuadMesh
 from vaultgram.meshing.quality import check_not_folded
 from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS, laplacian_smooth
@@ -147,6 +148,7 @@ def mesh_decomposition(dec: Decomposition, target_length: float | None = None, s
         if smooth > 0:
             x = untangle(x, mesh.faces, mesh.fixed, mesh.constraints)
             x = improve_shapes(x, mesh.faces, mesh.fixed, mesh.constraints)
+            x = maximise_min_quality(x, mesh.faces, mesh.fixed, mesh.constraints, still=mesh.feature)
     mesh = dataclasses.replace(mesh, vertices=x, info=_mesh_info(dec, layout, smooth))
     if smooth > 0 and not allow_folds:
         check_not_folded(mesh, dec)

@@ -62,9 +62,10 @@ def test_improving_shapes_never_worsens_the_worst_corner_nor_folds(grid):
 
 
 def test_improving_shapes_reaches_the_target_on_a_shared_plan():
-    """The Hiroshi Senju Museum: min scaled Jacobian 0.047 after untangling alone, about 0.3 now."""
+    """The Hiroshi Senju Museum: min scaled Jacobian 0.047 after untangling alone, about 0.3 after
+    improve_shapes, 0.5 after the max-min optimisation (vaultgram.meshing.optimise)."""
     path = ARCHITECTURE / "hiroshi_senju_museum.json"
     if not path.is_file():
         pytest.skip("shared architecture data not found")
     domain = load_domain(path)
-    assert mesh_stats(mesh_domain(domain), domain)["min_scaled_jacobian"] > 0.28
+    assert mesh_stats(mesh_domain(domain), domain)["min_scaled_jacobian"] > 0.45

@@ -1,0 +1,148 @@
+"""Max-min optimisation of the worst elements (vaultgram.meshing.optimise), the fan bound
+(vaultgram.meshing.fans), and the quality floors they give on the shared plans and examples."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from vaultgram.geometry.meshes import grid_mesh
+from vaultgram.meshing.fans import fan_bounds
+from vaultgram.meshing.optimise import OPTIMISE_TARGET, maximise_min_quality
+from vaultgram.meshing.quadmesh import SlideConstraint
+from vaultgram.meshing.quality import face_scaled_jacobians, mesh_stats
+from vaultgram.pipeline import mesh_domain
+
+#: Issue 12's floors at the default settings.
+MIN_FLOOR, MEAN_FLOOR = 0.3, 0.9
+
+# Plans below the min floor, with the reason; FAN: the fan bound proves no smoothing can reach it.
+FAN = "a pole's fan of triangles: its fan bound (the best any placement can do) is below 0.3"
+MIN_MISSES = {
+    "rv_lips_pattern": FAN + " (27 triangles round an inner pole: 0.266)",
+    "rv_pillow_pattern": FAN + " (89 triangles round the centre pole: 0.081)",
+    "two_holes_five_points": FAN + " (a boundary point feature at a sharp corner: 0.087)",
+    "features_combined": FAN + " (12 triangles in the 90 degrees of a corner feature: 0.151)",
+    "fig5_boundary_points": FAN + " (12 triangles in the 90 degrees of a corner feature: 0.151)",
+    "square_point_loads": FAN + " (39 triangles round a point load: 0.185)",
+    "fig6_inner_points": "the rings round its two point features are left as smoothing made them (the optimiser "
+                         "reached 0.379 there, under the fan bound 0.395, but moving them changed the tessellation "
+                         "round the point loads: rhythm-4 voussoirs 1.26x the rhythm-2 ones, not 1.3x)",
+    "fig7_curves": "flat quads where the end of the curve (5, 7.5) is 0.5 from the hole, less than two target "
+                   "lengths: the passage needs local refinement",
+}
+MIN_PASS = ["armadillo_vault", "armadillo_vault_plan", "british_museum_map", "hiroshi_senju_museum",
+            "mexico_airport", "multiple_lobes", "rolex_learning_centre", "rv_quad_pattern", "rv_ring_pattern",
+            "rv_star_pattern", "l_shape", "quad_with_hole"]
+LAYOUT = "skewed quads all over (median scaled Jacobian below 0.9): the patch layout, not smoothing"
+MEAN_MISSES = {
+    "mexico_airport": LAYOUT, "multiple_lobes": LAYOUT, "rv_star_pattern": LAYOUT,
+    "rolex_learning_centre": LAYOUT, "features_combined": LAYOUT, "fig7_curves": LAYOUT,
+    "two_holes_five_points": LAYOUT, "square_point_loads": LAYOUT,
+}
+MEAN_PASS = [n for n in MIN_PASS + sorted(MIN_MISSES) if n not in MEAN_MISSES]
+
+
+@pytest.fixture(scope="module")
+def default_mesh(cached_examples):
+    """``default_mesh(name)``: the mesh of an example or shared plan at the default settings, with its
+    statistics (cached)."""
+    def make(domain):
+        mesh = mesh_domain(domain, allow_folds=True)
+        return mesh, mesh_stats(mesh, domain)
+
+    return cached_examples(make)
+
+
+def _dragged_grid():
+    v, f = grid_mesh(3)
+    fixed = np.zeros(len(v), bool)
+    fixed[[0, 3, 12, 15]] = True  # the corners
+    v[5, :2] = [1.9, 1.8]  # an inner vertex pushed onto its neighbour: folded faces
+    v[10, :2] += [0.4, -0.3]
+    return v, f, fixed
+
+
+def test_optimising_unfolds_and_raises_the_worst_corner_to_the_target():
+    v, f, fixed = _dragged_grid()
+    x = maximise_min_quality(v, f, fixed)
+    before, after = face_scaled_jacobians(v, f), face_scaled_jacobians(x, f)
+    assert before.min() < 0 and after.min() >= OPTIMISE_TARGET
+    assert np.array_equal(x[fixed], v[fixed])
+
+
+def test_sliding_vertices_stay_on_their_polyline():
+    v, f, fixed = _dragged_grid()
+    bottom = np.array([1, 2])  # the bottom side between the corners 0 and 3
+    v[1, :2] = [2.6, 0.0]  # pushed past its neighbour along the side: a folded face
+    line = np.array([[0.0, 0.0], [3.0, 0.0]])
+    x = maximise_min_quality(v, f, fixed, (SlideConstraint(bottom, line),))
+    assert np.allclose(x[bottom, 1], 0.0) and (0 < x[bottom, 0]).all() and (x[bottom, 0] < 3).all()
+    assert face_scaled_jacobians(x, f).min() >= OPTIMISE_TARGET
+
+
+def test_the_worst_face_gets_better_on_a_jittered_grid():
+    """Each move raises the moved vertex's worst corner and touches no corner of another moved
+    vertex, so the mesh's worst face never gets worse."""
+    v, f = grid_mesh(6)
+    rng = np.random.default_rng(12)
+    inner = (v[:, 0] % 6 != 0) & (v[:, 1] % 6 != 0)
+    v[inner, :2] += rng.uniform(-0.45, 0.45, (int(inner.sum()), 2))
+    before = face_scaled_jacobians(v, f)
+    after = face_scaled_jacobians(maximise_min_quality(v, f, ~inner), f)
+    assert after.min() > before.min() and after.min() >= min(OPTIMISE_TARGET, before.min())
+
+
+def test_a_good_mesh_is_left_alone():
+    v, f = grid_mesh(3)
+    assert np.array_equal(maximise_min_quality(v, f), v)
+
+
+def test_fan_bound_of_a_boundary_fan_and_a_regular_grid():
+    """Six triangles in a right angle: each at most 15 degrees; a grid's vertices are unlimited."""
+    a = np.linspace(0, math.pi / 2, 7)
+    v = np.vstack([[0.0, 0.0], np.column_stack([np.cos(a), np.sin(a)])])
+    f = [(0, 1 + k, 2 + k) for k in range(6)]
+    assert fan_bounds(v, f)[0] == pytest.approx(math.sin(math.pi / 12) * 2 / math.sqrt(3), abs=1e-9)
+    g, gf = grid_mesh(2)
+    assert np.allclose(fan_bounds(g, gf), 1.0)
+
+
+def test_fan_bound_bounds_the_real_mesh(default_mesh):
+    """No corner of a vertex is better than its fan bound allows: the worst corner at each vertex is
+    at most the bound (the bound is an upper bound, attained by equal corners)."""
+    mesh, _ = default_mesh("fig6_inner_points")
+    bound = fan_bounds(mesh.vertices, mesh.faces)
+    sj = face_scaled_jacobians(mesh.vertices, mesh.faces)
+    pole = int(np.argmin(bound))
+    assert mesh.pole[pole]
+    assert min(sj[k] for k, face in enumerate(mesh.faces) if pole in face) <= bound[pole] + 1e-9
+
+
+@pytest.mark.parametrize("name", MIN_PASS + sorted(MIN_MISSES))
+def test_min_scaled_jacobian_floor(default_mesh, name):
+    """Issue 12: min scaled Jacobian at least 0.3 and no fold, at the default settings; where a plan
+    misses, the listed reason (for a fan: its bound is below the floor, so the miss is not smoothing's)
+    and a strict xfail."""
+    mesh, stats = default_mesh(name)
+    assert stats["inverted_faces"] == 0
+    if name in MIN_MISSES:
+        if MIN_MISSES[name].startswith(FAN):
+            assert fan_bounds(mesh.vertices, mesh.faces).min() < MIN_FLOOR
+        if stats["min_scaled_jacobian"] < MIN_FLOOR:
+            pytest.xfail(MIN_MISSES[name])
+        pytest.fail(f"{name} now reaches the floor: move it to MIN_PASS")
+    assert stats["min_scaled_jacobian"] >= MIN_FLOOR
+
+
+@pytest.mark.parametrize("name", MEAN_PASS + sorted(MEAN_MISSES))
+def test_mean_scaled_jacobian_floor(default_mesh, name):
+    """Issue 12: mean scaled Jacobian at least 0.9 at the default settings (strict xfail where not)."""
+    _, stats = default_mesh(name)
+    if name in MEAN_MISSES:
+        if stats["mean_scaled_jacobian"] < MEAN_FLOOR:
+            pytest.xfail(MEAN_MISSES[name])
+        pytest.fail(f"{name} now reaches the mean floor: move it to MEAN_PASS")
+    assert stats["mean_scaled_jacobian"] >= MEAN_FLOOR
