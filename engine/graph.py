@@ -30,13 +30,15 @@ import itertools
 import weakref
 from contextlib import contextmanager
 from dataclasses import dataclass
-from typing import AbstractSet, Callable, Iterable, Iterator, Mapping, NamedTuple
+from typing import TYPE_CHECKING, AbstractSet, Callable, Iterable, Iterator, Mapping, NamedTuple
 
-import networkx as nx
 import numpy as np
 
 from .errors import SchemaError
 from .schema import TypeSchema
+
+if TYPE_CHECKING:
+    import networkx as nx
 
 AngleFunction = Callable[["HostGraph", int, int], float]
 
@@ -611,7 +613,10 @@ class HostGraph:
         }
 
     def to_networkx(self) -> nx.MultiDiGraph:
-        """A copy as a networkx MultiDiGraph; the element type is stored in attribute ``type``."""
+        """A copy as a networkx MultiDiGraph; the element type is stored in attribute ``type``. (networkx
+        is imported here: the engine does not need it otherwise, and it costs 0.2 s at start-up.)"""
+        import networkx as nx
+
         g = nx.MultiDiGraph()
         for n in self.nodes():
             g.add_node(n, type=self._node_type[n], **self._node_data[n])
