@@ -227,15 +227,24 @@ class _Lazy(dict):
 
 class _Block(NamedTuple):
     """Edges added in bulk, as half-edges sorted by node (then rotation key): for a node ``n`` its
-    half-edges are ``[start(n), stop(n))``."""
+    half-edges are ``[ptr[n], ptr[n + 1])`` (a CSR pointer over node ids, so that indexing a node on
+    first use is two lookups, not two binary searches: issue 18's ``all``)."""
 
     type_name: str
     node: np.ndarray
     edge: np.ndarray
     key: np.ndarray
+    ptr: np.ndarray
+
+    @classmethod
+    def of(cls, type_name: str, node: np.ndarray, edge: np.ndarray, key: np.ndarray) -> "_Block":
+        """The block of half-edges already sorted by node, with its pointer."""
+        ptr = np.zeros(int(node.max(initial=-1)) + 2, dtype=np.int64)
+        np.cumsum(np.bincount(node, minlength=len(ptr) - 1), out=ptr[1:])
+        return cls(type_name, node, edge, key, ptr)
 
     def span(self, n: int) -> tuple[int, int]:
-        return int(np.searchsorted(self.node, n)), int(np.searchsorted(self.node, n, side="right"))
+        return tuple(self.ptr[n:n + 2].tolist()) if n + 1 < len(self.ptr) else (0, 0)
 
 
 class _Rotation(NamedTuple):
@@ -492,7 +501,7 @@ class HostGraph:
         else:
             key = np.array([self._rotation_key(e, n)[0] for e, n in zip(edge.tolist(), node.tolist())])
         order = np.lexsort((edge, key, node))  # by node, then as the rotation sorts its keys
-        block = _Block(type_name, node[order], edge[order], key[order])
+        block = _Block.of(type_name, node[order], edge[order], key[order])
         # nodes whose tables exist already get the new edges now; the others when first used
         indexed = self._inc.keys() | self._rot_keys.keys()
         for n in (set(block.node.tolist()) & indexed) if indexed else ():
