@@ -60,3 +60,14 @@ def test_an_edited_include_is_checked_again(tmp_path):
     (tmp_path / "schema.vgr").write_text("schema s { node A { v: int = 0 } }\n")   # w is gone
     out, loaded, err = _rules_check(["main.vgr"], tmp_path / "cache", tmp_path)
     assert "lark" in loaded and out == "" and "main.vgr:2" in err and "w" in err
+
+
+def test_a_warm_parse_cache_loads_a_rulebook_without_lark(tmp_path):
+    code = ("import sys; from vaultgram.engine.rulebook import load_rulebook; "
+            f"book = load_rulebook([{str(REPO / 'rules' / 'schema.vgr')!r}]); "
+            "print(len(book.schema.node_types), 'lark' in sys.modules)")
+    env = {**os.environ, "VAULTGRAM_CACHE_DIR": str(tmp_path)}
+    runs = [subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env)
+            for _ in range(2)]
+    (types, cold), (types_warm, warm) = (r.stdout.split() for r in runs)
+    assert types == types_warm and int(types) > 5 and (cold, warm) == ("True", "False")
