@@ -106,13 +106,23 @@ class Table:
         full = [t for t in parts if t.rows]
         if len(full) <= 1:
             return full[0] if full else parts[0]
-        return cls({k: np.concatenate([t.nodes[k] for t in full]) for k in full[0].nodes},
-                   {k: np.concatenate([t.edges[k] for t in full]) for k in full[0].edges},
-                   np.concatenate([t.origin for t in full]))
+        # a column at a time, each part's column let go once joined: memory is the parts plus one column
+        nodes = {k: np.concatenate([t.nodes.pop(k) for t in full]) for k in list(full[0].nodes)}
+        edges = {k: np.concatenate([t.edges.pop(k) for t in full]) for k in list(full[0].edges)}
+        return cls(nodes, edges, np.concatenate([t.origin for t in full]))
 
     def take(self, index: np.ndarray) -> "Table":
         return Table({k: v[index] for k, v in self.nodes.items()}, {k: v[index] for k, v in self.edges.items()},
                      self.origin[index])
+
+    def reorder(self, index: np.ndarray) -> "Table":
+        """The rows in the order ``index`` (a permutation), in place a column at a time (so that only
+        one column is copied at once, not the whole table)."""
+        for columns in (self.nodes, self.edges):
+            for k in columns:
+                columns[k] = columns[k][index]
+        self.origin = self.origin[index]
+        return self
 
     def filter(self, mask: np.ndarray) -> "Table":
         return self.take(np.flatnonzero(mask))

@@ -139,7 +139,7 @@ class Matcher:
             ]
             table = table.filter(np.array(keep, dtype=bool))
         if rule.key_vars and table.rows > 1:
-            table = table.take(np.lexsort([table.column(v) for v in reversed(rule.key_vars)]))
+            table = table.reorder(np.lexsort([table.column(v) for v in reversed(rule.key_vars)]))
         return table
 
     def first(self) -> Match | None:
