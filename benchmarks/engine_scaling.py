@@ -117,6 +117,87 @@ def construction(size: int) -> dict:
     return row
 
 
+CYCLE = """
+schema cycle { node A  node B  edge E (Node -- Node) }
+rule square { match { a: A  b: B  c: A  d: B  a -E- b  b -E- c  c -E- d  d -E- a } }
+"""
+
+
+def bulk_grid(schema, size: int) -> HostGraph:
+    """The checkerboard grid, built in bulk from arrays (``add_nodes`` / ``add_edges``)."""
+    a, b, ends = grid_arrays(size)
+    g = HostGraph(schema)
+    g.add_nodes("A", a)
+    g.add_nodes("B", b)
+    g.add_edges("E", ends)
+    return g
+
+
+def _peak_mb() -> float:
+    """This process's peak resident memory so far (MB)."""
+    import resource
+
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+
+
+def cycle_engine(size: int) -> dict:
+    """The 4-cycle (a square of the checkerboard, A-B-A-B) with the engine: every match as a sorted
+    table, then as Match objects; the peak memory of the whole process (graph included)."""
+    g, t_build = timed(lambda: bulk_grid(rulebook_from_text(CYCLE).schema, size))
+    matcher = Matcher(rulebook_from_text(CYCLE).rules["square"], g)
+    table, t_match = timed(matcher.table)
+    return {"nodes": len(g), "matches": table.rows, "build_s": t_build, "engine_s": t_match, "peak_mb": _peak_mb()}
+
+
+def _typed_nx(size: int):
+    """The checkerboard grid as a networkx Graph with a ``type`` attribute, and the typed 4-cycle."""
+    a, b, ends = grid_arrays(size)
+    host = nx.Graph()
+    host.add_nodes_from(a.tolist(), type="A")
+    host.add_nodes_from(b.tolist(), type="B")
+    host.add_edges_from(ends.tolist(), type="E")
+    motif = nx.Graph()
+    motif.add_nodes_from([("a", {"type": "A"}), ("b", {"type": "B"}), ("c", {"type": "A"}), ("d", {"type": "B"})])
+    motif.add_edges_from([(u, v, {"type": "E"}) for u, v in ("ab", "bc", "cd", "da")])
+    return host, motif
+
+
+def cycle_peer(size: int, peer: str) -> dict:
+    """The same 4-cycle count with networkx's VF2 (typed monomorphisms) or grandiso (the ``peers``
+    extra; it streams its search), and the peak memory."""
+    host, motif = _typed_nx(size)
+    if peer == "grandiso":
+        import grandiso
+
+        search = lambda: sum(1 for _ in grandiso.find_motifs_iter(motif, host))  # noqa: E731
+    else:
+        same = lambda x, y: x["type"] == y["type"]  # noqa: E731
+        matcher = isomorphism.GraphMatcher(host, motif, node_match=same, edge_match=same)
+        search = lambda: sum(1 for _ in matcher.subgraph_monomorphisms_iter())  # noqa: E731
+    count, seconds = timed(search)
+    return {"nodes": host.number_of_nodes(), "matches": count, f"{peer}_s": seconds, "peak_mb": _peak_mb()}
+
+
+def cycles(sizes, peers, peer_max: int) -> list[dict]:
+    """Each size's 4-cycle search in a fresh process per tool (so that peak memory is its own)."""
+    import json
+    import subprocess
+    import sys
+
+    rows = []
+    for size in sizes:
+        row = {}
+        for tool in ["engine", *(p for p in peers if size <= peer_max)]:
+            out = subprocess.run([sys.executable, __file__, "--cycle-one", str(size), tool], check=True,
+                                 capture_output=True, text=True).stdout
+            one = json.loads(out)
+            row.setdefault("matches", one["matches"])
+            assert one["matches"] == row["matches"], (tool, one["matches"], row["matches"])
+            row.update({k: v for k, v in one.items() if k != "peak_mb"}, **{f"{tool}_peak_mb": one["peak_mb"]})
+        rows.append(row)
+    return rows
+
+
 def networkx_baseline(g: HostGraph) -> tuple[int, float]:
     host = nx.Graph()
     for n in g.nodes():
@@ -188,13 +269,41 @@ def run(size: int, baseline: bool) -> dict:
     return row
 
 
+def print_cycles(rows: list[dict]) -> None:
+    """The 4-cycle table, with the time growth of the engine from one size to the next (issue 18's
+    floor: at most 11x from 10^5 to 10^6 nodes, peak memory at most 2 GB)."""
+    cols = ["nodes", "matches", "build_s", "engine_s", "growth", "engine_peak_mb", "networkx_s",
+            "networkx_peak_mb", "grandiso_s", "grandiso_peak_mb"]
+    print(" ".join(f"{c:>16}" for c in cols))
+    for prev, row in zip([None, *rows], rows):
+        row["growth"] = row["engine_s"] / prev["engine_s"] if prev else float("nan")
+        print(" ".join(f"{row.get(c, float('nan')):>16.4g}" if isinstance(row.get(c, 0.0), float)
+                       else f"{row[c]:>16}" for c in cols), flush=True)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[1_000, 10_000, 100_000])
     parser.add_argument("--no-baseline", action="store_true", help="skip the networkx baseline")
     parser.add_argument("--construction", action="store_true",
                         help="only time building the host graph (bulk, one by one, networkx); 10^6 nodes take ~1 min")
+    parser.add_argument("--cycles", action="store_true",
+                        help="only the 4-cycle: engine (time, peak memory) beside the --peers; sizes up to 10^6")
+    parser.add_argument("--peers", nargs="*", default=["networkx", "grandiso"],
+                        help="with --cycles: networkx and/or grandiso (pip install 'vaultgram[peers]')")
+    parser.add_argument("--peer-max", type=int, default=100_000,
+                        help="with --cycles: run the peers only up to this many nodes (they take minutes beyond)")
+    parser.add_argument("--cycle-one", nargs=2, metavar=("SIZE", "TOOL"), help=argparse.SUPPRESS)
     args = parser.parse_args()
+    if args.cycle_one:
+        import json
+
+        size, tool = int(args.cycle_one[0]), args.cycle_one[1]
+        print(json.dumps(cycle_engine(size) if tool == "engine" else cycle_peer(size, tool)))
+        return
+    if args.cycles:
+        print_cycles(cycles(args.sizes, args.peers, args.peer_max))
+        return
     if args.construction:
         cols = ["nodes", "edges", "bulk_s", "one_by_one_s", "networkx_s", "bulk_vs_networkx"]
         print(" ".join(f"{c:>16}" for c in cols))

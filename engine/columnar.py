@@ -99,9 +99,30 @@ class Table:
         """One row binding the given node variables (none: the single empty partial match)."""
         return cls({k: np.array([v], dtype=np.int64) for k, v in given.items()}, {}, np.zeros(1, dtype=np.int64))
 
+    @classmethod
+    def concat(cls, parts: list["Table"]) -> "Table":
+        """The rows of ``parts`` one after the other (the parts without rows may lack the columns of
+        steps they never reached, and add nothing)."""
+        full = [t for t in parts if t.rows]
+        if len(full) <= 1:
+            return full[0] if full else parts[0]
+        # a column at a time, each part's column let go once joined: memory is the parts plus one column
+        nodes = {k: np.concatenate([t.nodes.pop(k) for t in full]) for k in list(full[0].nodes)}
+        edges = {k: np.concatenate([t.edges.pop(k) for t in full]) for k in list(full[0].edges)}
+        return cls(nodes, edges, np.concatenate([t.origin for t in full]))
+
     def take(self, index: np.ndarray) -> "Table":
         return Table({k: v[index] for k, v in self.nodes.items()}, {k: v[index] for k, v in self.edges.items()},
                      self.origin[index])
+
+    def reorder(self, index: np.ndarray) -> "Table":
+        """The rows in the order ``index`` (a permutation), in place a column at a time (so that only
+        one column is copied at once, not the whole table)."""
+        for columns in (self.nodes, self.edges):
+            for k in columns:
+                columns[k] = columns[k][index]
+        self.origin = self.origin[index]
+        return self
 
     def filter(self, mask: np.ndarray) -> "Table":
         return self.take(np.flatnonzero(mask))
@@ -117,15 +138,33 @@ def _type_mask(arrays: GraphArrays, types) -> np.ndarray:
     return mask
 
 
+#: The most partial matches a step takes at once. A larger table is cut into chunks of this many
+#: rows, each run through the rest of the plan on its own, so that memory stays proportional to the
+#: graph plus the matches found: a 4-cycle at 10^6 nodes would otherwise hold every open 3-path
+#: (18 million rows) before closing them (issue 18).
+CHUNK_ROWS = 1 << 17
+
+
 def run_columnar(
-    g: HostGraph, plan: list[Step], table: Table, values: dict, rule: str
+    g: HostGraph, plan: list[Step], table: Table, values: dict, rule: str, chunk: int | None = None
 ) -> Table:
-    """Execute a plan over a table of partial matches; return the table of complete ones."""
-    arrays = graph_arrays(g)
-    for step in plan:
+    """Execute a plan over a table of partial matches; return the table of complete ones, in the
+    order a single pass would give (chunks are concatenated in order)."""
+    return _run_from(g, graph_arrays(g), plan, 0, table, values, rule, chunk or CHUNK_ROWS)
+
+
+def _run_from(g: HostGraph, arrays: GraphArrays, plan: list[Step], first: int, table: Table, values: dict,
+              rule: str, chunk: int) -> Table:
+    """Steps ``first:`` of the plan over ``table``, cutting a table of more than ``chunk`` rows into
+    chunks that each run the remaining steps (depth first over chunks: at most one chunk per step
+    is alive)."""
+    for i in range(first, len(plan)):
         if table.rows == 0:
             return table
-        table, checks = _PHASES[type(step)](g, arrays, step, table)
+        if table.rows > chunk:
+            return Table.concat([_run_from(g, arrays, plan, i, table.take(np.arange(lo, min(lo + chunk, table.rows))),
+                                           values, rule, chunk) for lo in range(0, table.rows, chunk)])
+        table, checks = _PHASES[type(plan[i])](g, arrays, plan[i], table)
         table = _check_rows(g, table, checks, values, rule)
     return table
 

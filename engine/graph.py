@@ -26,19 +26,40 @@ exposes is by id, never by hash or insertion order.
 from __future__ import annotations
 
 import bisect
+import functools
+import gc
 import itertools
 import weakref
 from contextlib import contextmanager
 from dataclasses import dataclass
-from typing import AbstractSet, Callable, Iterable, Iterator, Mapping, NamedTuple
+from typing import TYPE_CHECKING, AbstractSet, Callable, Iterable, Iterator, Mapping, NamedTuple
 
-import networkx as nx
 import numpy as np
 
 from .errors import SchemaError
 from .schema import TypeSchema
 
+if TYPE_CHECKING:
+    import networkx as nx
+
 AngleFunction = Callable[["HostGraph", int, int], float]
+
+
+def _collector_paused(method):
+    """``method`` with Python's cyclic garbage collector paused: a bulk addition makes millions of
+    small objects (attribute dicts, end pairs), none of them in a cycle, and without the pause the
+    collector re-scanned the whole graph over and over (two-thirds of building a 10^6-node graph,
+    issue 18). The collector is restored as it was, also on an error."""
+    @functools.wraps(method)
+    def paused(*args, **kwargs):
+        enabled = gc.isenabled()
+        gc.disable()
+        try:
+            return method(*args, **kwargs)
+        finally:
+            if enabled:
+                gc.enable()
+    return paused
 
 
 @dataclass(frozen=True)
@@ -206,15 +227,24 @@ class _Lazy(dict):
 
 class _Block(NamedTuple):
     """Edges added in bulk, as half-edges sorted by node (then rotation key): for a node ``n`` its
-    half-edges are ``[start(n), stop(n))``."""
+    half-edges are ``[ptr[n], ptr[n + 1])`` (a CSR pointer over node ids, so that indexing a node on
+    first use is two lookups, not two binary searches: issue 18's ``all``)."""
 
     type_name: str
     node: np.ndarray
     edge: np.ndarray
     key: np.ndarray
+    ptr: np.ndarray
+
+    @classmethod
+    def of(cls, type_name: str, node: np.ndarray, edge: np.ndarray, key: np.ndarray) -> "_Block":
+        """The block of half-edges already sorted by node, with its pointer."""
+        ptr = np.zeros(int(node.max(initial=-1)) + 2, dtype=np.int64)
+        np.cumsum(np.bincount(node, minlength=len(ptr) - 1), out=ptr[1:])
+        return cls(type_name, node, edge, key, ptr)
 
     def span(self, n: int) -> tuple[int, int]:
-        return int(np.searchsorted(self.node, n)), int(np.searchsorted(self.node, n, side="right"))
+        return tuple(self.ptr[n:n + 2].tolist()) if n + 1 < len(self.ptr) else (0, 0)
 
 
 class _Rotation(NamedTuple):
@@ -401,6 +431,7 @@ class HostGraph:
         self._insert_edge(e, type_name, u, v, values, None)
         return e
 
+    @_collector_paused
     def add_nodes(self, type_name: str, ids, attrs: Mapping[str, object] | None = None) -> list[int]:
         """Add many nodes of one type at once: ``ids`` (new, distinct) and their attribute values by
         column (``{name: values}``, one value per node; numpy arrays are checked as a whole). The same
@@ -424,6 +455,7 @@ class HostGraph:
         self._node_codes[ids] = self.type_code[type_name]
         return ids  # their incidence and rotations are made on first use (_Lazy)
 
+    @_collector_paused
     def add_edges(self, type_name: str, ends, attrs: Mapping[str, object] | None = None, angles=None) -> list[int]:
         """Add many edges of one type at once, between the node pairs ``ends`` ((k, 2)), with new ids
         from the edge counter and attribute values by column. ``angles`` ((k, 2), optional) are the
@@ -469,7 +501,7 @@ class HostGraph:
         else:
             key = np.array([self._rotation_key(e, n)[0] for e, n in zip(edge.tolist(), node.tolist())])
         order = np.lexsort((edge, key, node))  # by node, then as the rotation sorts its keys
-        block = _Block(type_name, node[order], edge[order], key[order])
+        block = _Block.of(type_name, node[order], edge[order], key[order])
         # nodes whose tables exist already get the new edges now; the others when first used
         indexed = self._inc.keys() | self._rot_keys.keys()
         for n in (set(block.node.tolist()) & indexed) if indexed else ():
@@ -611,7 +643,10 @@ class HostGraph:
         }
 
     def to_networkx(self) -> nx.MultiDiGraph:
-        """A copy as a networkx MultiDiGraph; the element type is stored in attribute ``type``."""
+        """A copy as a networkx MultiDiGraph; the element type is stored in attribute ``type``. (networkx
+        is imported here: the engine does not need it otherwise, and it costs 0.2 s at start-up.)"""
+        import networkx as nx
+
         g = nx.MultiDiGraph()
         for n in self.nodes():
             g.add_node(n, type=self._node_type[n], **self._node_data[n])

@@ -9,7 +9,7 @@ variables in declaration order, so "the first match" never depends on hash seeds
 
 from __future__ import annotations
 
-from typing import Iterator, Mapping, NamedTuple
+from typing import Iterator, Mapping, NamedTuple, Sequence
 
 import numpy as np
 
@@ -46,6 +46,49 @@ class Match:
         return f"Match({self.rule}, {self.binding})"
 
 
+class Matches(Sequence):
+    """Every match of a rule, sorted by key: the key columns of the match table, each :class:`Match`
+    made only when it is read (issue 18: a Match object costs some 20 times its row, and ``first``
+    reads one). Equal to a list or tuple of the same matches."""
+
+    __slots__ = ("rule", "vars", "_columns", "_rows")
+
+    #: Rows turned into Python values at a time while iterating.
+    BATCH = 4096
+
+    def __init__(self, rule: str, vars: tuple[str, ...], table: Table):
+        self.rule, self.vars, self._rows = rule, vars, table.rows
+        self._columns = [table.column(v) for v in vars] if table.rows else []
+
+    def __len__(self) -> int:
+        return self._rows
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self[k] for k in range(*i.indices(self._rows))]
+        k = i + self._rows if i < 0 else i
+        if not 0 <= k < self._rows:
+            raise IndexError("match index out of range")
+        return Match(self.rule, self.vars, tuple(int(c[k]) for c in self._columns))
+
+    def __iter__(self) -> Iterator[Match]:
+        for lo in range(0, self._rows, self.BATCH):
+            hi = min(lo + self.BATCH, self._rows)
+            columns = [c[lo:hi].tolist() for c in self._columns]
+            for key in zip(*columns) if columns else [()] * (hi - lo):
+                yield Match(self.rule, self.vars, key)
+
+    def __eq__(self, other) -> bool:
+        if isinstance(other, (Matches, list, tuple)):
+            return len(self) == len(other) and all(a == b for a, b in zip(self, other))
+        return NotImplemented
+
+    __hash__ = None
+
+    def __repr__(self) -> str:
+        return f"Matches({self.rule}, {len(self)} match(es))"
+
+
 class Rejection(NamedTuple):
     """Why a complete positive match is refused: the index of a NAC that matches around it, or the
     nodes a plain ``delete`` would leave with edges (the dangling condition), node -> edge ids."""
@@ -77,15 +120,9 @@ class Matcher:
 
     # -- public ----------------------------------------------------------------------------------
 
-    def all(self) -> list[Match]:
-        """Every match, sorted by key."""
-        table = self.table()
-        if table.rows == 0:
-            return []
-        key_vars = self.rule.key_vars
-        columns = [table.column(v).tolist() for v in key_vars]
-        keys = zip(*columns) if columns else [()] * table.rows
-        return [Match(self.rule.name, key_vars, key) for key in keys]
+    def all(self) -> "Matches":
+        """Every match, sorted by key (a sequence that makes each Match when it is read)."""
+        return Matches(self.rule.name, self.rule.key_vars, self.table())
 
     def table(self) -> Table:
         """Every match as columns (one per pattern variable), sorted by key: the whole-graph search."""
@@ -102,7 +139,7 @@ class Matcher:
             ]
             table = table.filter(np.array(keep, dtype=bool))
         if rule.key_vars and table.rows > 1:
-            table = table.take(np.lexsort([table.column(v) for v in reversed(rule.key_vars)]))
+            table = table.reorder(np.lexsort([table.column(v) for v in reversed(rule.key_vars)]))
         return table
 
     def first(self) -> Match | None:

@@ -5,7 +5,7 @@ Building the LALR tables takes about 100 ms and parsing the bundled rulebook abo
 every command that reads rules; with the cache a warm run does neither. The cache lives in the user's
 cache folder (``$VAULTGRAM_CACHE_DIR``, else ``$XDG_CACHE_HOME/vaultgram``, else
 ``~/.cache/vaultgram``), never in the package. An entry's key is a hash of everything its value is
-computed from -- the file's name and text, the grammar, the parser and AST modules and lark's version
+computed from -- the file's name and text, the grammar, the parser (parser, lalr) and AST modules and lark's version
 -- so an edited file, grammar or parser simply misses. Nothing here may fail a run: an unwritable or
 missing folder, a corrupt or foreign entry all fall back to parsing (``VAULTGRAM_CACHE_DIR=""`` turns
 the cache off).
@@ -25,7 +25,7 @@ __all__ = ["cache_dir", "source_key", "load", "store", "lark_cache"]
 
 _HERE = Path(__file__).resolve().parent
 #: The files whose contents every cached value depends on.
-_SOURCES = ("rules.lark", "parser.py", "ast.py", "cache.py")
+_SOURCES = ("rules.lark", "parser.py", "lalr.py", "ast.py", "cache.py")
 
 
 def cache_dir() -> Path | None:

@@ -1,10 +1,14 @@
 """The command line starts light (issue 18): importing it (what `vaultgram --help` does) loads none of
-the heavy libraries; each command imports what it needs when it runs."""
+the heavy libraries; each command imports what it needs when it runs, and a warm ``rules check`` reads
+its cached result."""
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
+
+from paths import REPO
 
 HEAVY = ("numpy", "scipy", "networkx", "shapely", "lark", "matplotlib")
 
@@ -24,3 +28,46 @@ def test_help_runs_without_them():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert "design" in out.stdout
     assert out.stdout.strip().endswith("LOADED")
+
+
+def _rules_check(args, cache, cwd, loaded=("lark", "numpy", "vaultgram.engine.checker")):
+    """``vaultgram rules check ARGS`` in a subprocess with this cache folder: its output and which of
+    ``loaded`` it imported."""
+    code = ("import sys; from vaultgram.cli import main; "
+            f"sys.argv = ['vaultgram', 'rules', 'check', *{list(args)!r}]\n"
+            "try:\n    main()\nexcept SystemExit:\n    pass\n"
+            f"print('LOADED', *(m for m in {loaded!r} if m in sys.modules))")
+    env = {**os.environ, "VAULTGRAM_CACHE_DIR": str(cache)}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env, cwd=cwd)
+    text, _, modules = out.stdout.rpartition("LOADED")
+    return text, modules.split(), out.stderr
+
+
+def test_a_warm_rules_check_reads_the_cache_and_imports_nothing_heavy(tmp_path):
+    files = [str(p) for p in sorted((REPO / "rules").glob("*.vgr"))]
+    cold, cold_loaded, _ = _rules_check(files, tmp_path / "cache", REPO)
+    warm, warm_loaded, _ = _rules_check(files, tmp_path / "cache", REPO)
+    assert cold.startswith("ok: ") and cold_loaded == ["lark", "numpy", "vaultgram.engine.checker"]
+    assert warm == cold and warm_loaded == []
+
+
+def test_an_edited_include_is_checked_again(tmp_path):
+    (tmp_path / "schema.vgr").write_text("schema s { node A { w: int = 0 } }\n")
+    (tmp_path / "main.vgr").write_text('include "schema.vgr"\nrule bump { match { a: A } set a.w = a.w + 1 }\n')
+    _rules_check(["main.vgr"], tmp_path / "cache", tmp_path)
+    _, loaded, _ = _rules_check(["main.vgr"], tmp_path / "cache", tmp_path)
+    assert loaded == []                                                   # warm
+    (tmp_path / "schema.vgr").write_text("schema s { node A { v: int = 0 } }\n")   # w is gone
+    out, loaded, err = _rules_check(["main.vgr"], tmp_path / "cache", tmp_path)
+    assert "lark" in loaded and out == "" and "main.vgr:2" in err and "w" in err
+
+
+def test_a_warm_parse_cache_loads_a_rulebook_without_lark(tmp_path):
+    code = ("import sys; from vaultgram.engine.rulebook import load_rulebook; "
+            f"book = load_rulebook([{str(REPO / 'rules' / 'schema.vgr')!r}]); "
+            "print(len(book.schema.node_types), 'lark' in sys.modules)")
+    env = {**os.environ, "VAULTGRAM_CACHE_DIR": str(tmp_path)}
+    runs = [subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env)
+            for _ in range(2)]
+    (types, cold), (types_warm, warm) = (r.stdout.split() for r in runs)
+    assert types == types_warm and int(types) > 5 and (cold, warm) == ("True", "False")

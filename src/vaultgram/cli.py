@@ -188,8 +188,11 @@ def rules() -> None:
 def rules_check(files, as_json: bool) -> None:
     """Parse and type-check rule FILES; print their types, rules, strategies and invariants. The
     tessellation's file (``tessellation.vgr``, §5) is a rulebook of its own, checked with the
-    tessellation's functions, beside the topology's rulebook of the other files."""
-    summaries = [book.summary() for book in _rulebooks(files)]
+    tessellation's functions, beside the topology's rulebook of the other files. A successful check is
+    cached by the contents of the files and of the code that checks them (vaultgram.checked_rules)."""
+    from vaultgram.checked_rules import checked_summaries
+
+    summaries = checked_summaries(files, lambda: _rulebooks(files))
     if as_json:
         click.echo(json.dumps(summaries[0] if len(summaries) == 1 else summaries, indent=2))
         return

@@ -13,7 +13,6 @@ from typing import NamedTuple
 
 import numpy as np
 import shapely
-from scipy.spatial import cKDTree
 
 from vaultgram.domain.model import Domain, ring_name
 from vaultgram.errors import DomainError
@@ -118,9 +117,17 @@ def _check_polyline(pts: np.ndarray, what: str, closed: bool, tol: float) -> Non
     _check_no_crossing(pts, what, closed)
 
 
+def _close_pairs(pts: np.ndarray, r: float) -> np.ndarray:
+    """The index pairs (i < j) of points within ``r`` of each other, by a k-d tree. (scipy.spatial is
+    imported here, not with the module: reading a domain need not pay for it, issue 18.)"""
+    from scipy.spatial import cKDTree
+
+    return cKDTree(pts).query_pairs(r=r, output_type="ndarray")
+
+
 def _check_duplicates(pts: np.ndarray, what: str, tol: float) -> None:
     """No two vertices of one ring / curve within ``tol`` (consecutive or not)."""
-    pairs = cKDTree(pts).query_pairs(r=max(tol, 0.0), output_type="ndarray")
+    pairs = _close_pairs(pts, max(tol, 0.0))
     if len(pairs):
         pairs = np.sort(pairs, axis=1)
         i, j = pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))[0]]
@@ -238,7 +245,7 @@ def _check_point_features(pts: np.ndarray, shapes: _Shapes, tol: float) -> None:
             if shapely.contains_xy(hp, p[0], p[1]):
                 raise DomainError(f"point feature {i} at {fmt_point(p, 10)} lies inside hole {k}")
         raise DomainError(f"point feature {i} at {fmt_point(p, 10)} lies outside the domain")
-    pairs = cKDTree(pts).query_pairs(r=tol, output_type="ndarray")
+    pairs = _close_pairs(pts, tol)
     if len(pairs):
         i, j = np.sort(pairs, axis=1)[0]
         raise DomainError(f"point features {i} and {j} coincide at {fmt_point(pts[i], 10)}")
