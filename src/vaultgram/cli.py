@@ -689,6 +689,8 @@ def stats_command(mesh_path, domain_path, as_json) -> None:
 @click.option("--limit", default=100, show_default=True, type=int, help="States to visit at most.")
 @click.option("--depth", default=8, show_default=True, type=int, help="Choice points to explore along a path.")
 @click.option("--seed", default=None, type=int, help="Visit each choice point's options in an order drawn from it.")
+@click.option("--order", default="breadth", show_default=True, type=click.Choice(["breadth", "best"]),
+              help="Search order: breadth-first, or best-first by layout cost (docs/exploration.md).")
 @TARGET_LENGTH
 @click.option("--smooth", default=20, show_default=True, type=int, help="Laplacian smoothing iterations.")
 @click.option("--pareto", default="min_scaled_jacobian,edge_groups", show_default=True,
@@ -697,9 +699,9 @@ def stats_command(mesh_path, domain_path, as_json) -> None:
 @click.option("--workers", default=1, show_default=True, type=int, help="Processes evaluating the variants.")
 @click.option("--scheduler", default=None, help="Evaluate on the Dask cluster at this address (vaultgram[dask]).")
 @input_options
-def explore_command(domain_path, out_dir, spacing, rules_dir, limit, depth, seed, target_length, smooth, pareto,
-                    formfind, workers, scheduler, input_format, layers) -> None:
-    """Explore the topology variants of a DOMAIN: a breadth-first search over the rulebook's choice
+def explore_command(domain_path, out_dir, spacing, rules_dir, limit, depth, seed, order, target_length, smooth,
+                    pareto, formfind, workers, scheduler, input_format, layers) -> None:
+    """Explore the topology variants of a DOMAIN: a breadth-first or best-first search over the rulebook's choice
     points (choose steps), de-duplicated by layout isomorphism, each variant meshed, measured and ranked.
 
     Writes state_space.json, variants.json, index.html (the gallery) and variants/vNNN/ (decomposition.json,
@@ -714,7 +716,7 @@ def explore_command(domain_path, out_dir, spacing, rules_dir, limit, depth, seed
     check_bounds(limit, depth)
     check_workers(workers)
     options = ExploreOptions(spacing, rules_dir, limit, depth, seed, target_length, smooth, parse_pareto(pareto),
-                             formfind)
+                             formfind, order)
     domain = load_domain(domain_path, input_format, layer_names(layers), spacing)
     client = connect(scheduler) if scheduler else None
     try:

@@ -14,6 +14,9 @@ INPUTS = {
     "two_holes_five_points": ARCHITECTURE / "two_holes_five_points.json",
     "armadillo_vault_plan": ARCHITECTURE / "armadillo_vault_plan.json",
     "fig5_boundary_points": EXAMPLES / "fig5_boundary_points.json",
+    "fig6_inner_points": EXAMPLES / "fig6_inner_points.json",
+    "fig7_curves": EXAMPLES / "fig7_curves.json",
+    "features_combined": EXAMPLES / "features_combined.json",
 }
 
 

@@ -93,6 +93,7 @@ def test_the_gallery_renders_one_thumbnail_per_variant(explored):
     (["--depth", "-1"], "--depth must be at least 0"),
     (["--workers", "0"], "--workers must be at least 1"),
     (["--pareto", "score"], "--pareto takes two metrics"),
+    (["--order", "depth"], "Invalid value for '--order'"),
     (["--scheduler", "tcp://127.0.0.1:9"], "cannot reach the Dask scheduler"),
 ])
 def test_bad_options_are_one_line_exit_2_nothing_written(tmp_path, extra, message):

@@ -5,7 +5,8 @@ from __future__ import annotations
 import pytest
 
 from vaultgram.domain import load_domain
-from vaultgram.exploration.program import Scripted, Stepper, choice_steps, decomposition_program
+from vaultgram.engine.rulebook import describe_step
+from vaultgram.exploration.program import Scripted, Stepper, choice_steps, decomposition_program, noop_by_default
 from vaultgram.pipeline import decompose
 from vaultgram.topology.decomposition import decomposition_graph
 from vaultgram.topology.rulebook import load_vault_rulebook
@@ -50,3 +51,22 @@ def test_the_stepper_stops_at_choice_points_and_its_answers_replay():
     corners = sorted(map(sorted, (p.corners for p in patches)))
     assert corners == sorted(map(sorted, (p.corners for p in replayed.patches)))
     assert len(patches) != len(dec.patches)  # a quad kept instead of split
+
+
+def test_only_the_steps_whose_first_option_is_leave_are_skipped_by_complete():
+    book = load_vault_rulebook()
+    program = decomposition_program(book)
+    skipped = [describe_step(i.step) for i in program if i.noop_by_default]
+    assert skipped and all(s.startswith("choose { leave, ") and s.endswith(" once") for s in skipped)
+    assert not any(noop_by_default(book, i.step) for i in program if i.step is not None and not i.step.choose)
+
+
+@pytest.mark.parametrize("name", ["fig6_inner_points", "fig7_curves"])
+def test_complete_skipping_the_no_op_steps_makes_the_default_decomposition(name):
+    domain = load_domain(EXAMPLES / f"{name}.json")
+    book = load_vault_rulebook()
+    dec = decompose(domain, 0.05)
+    stepper = Stepper(book, decomposition_graph(dec.skeleton, book), dec.disc)
+    patches = stepper.complete()
+    assert sorted(p.corners for p in patches) == sorted(p.corners for p in dec.patches)
+    assert stepper.graph.snapshot() == dec.graph.snapshot()

@@ -8,14 +8,16 @@ import numpy as np
 import pytest
 from exploration.conftest import SPACING, domain_of
 
+from vaultgram.errors import VaultgramError
 from vaultgram.exploration.layout import isomorphic, layout_of
-from vaultgram.exploration.search import search
+from vaultgram.exploration.search import layout_cost, search
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.pipeline import decompose
 from vaultgram.topology.decomposition import decomposition_graph
 from vaultgram.topology.rulebook import load_vault_rulebook
 
-ACCEPTANCE = ["two_holes_five_points", "armadillo_vault_plan", "fig5_boundary_points"]
+ACCEPTANCE = ["two_holes_five_points", "armadillo_vault_plan", "fig5_boundary_points", "fig6_inner_points",
+              "fig7_curves", "features_combined"]  # the shared plans and every example with features
 
 
 @pytest.mark.parametrize("name", ACCEPTANCE)
@@ -83,3 +85,31 @@ def test_a_seed_visits_other_options_first_reproducibly():
     assert runs[0] == runs[1]
     assert sorted(runs[0]) != runs[0] or runs[0] != runs[2]
     assert np.all([len(a) >= 0 for a in runs[0]])
+
+
+def test_best_first_expands_the_least_costly_state_of_its_frontier():
+    book, graph, disc = _start("fig7_curves")
+    result = search(book, graph, disc, limit=20, order="best")
+    cost = {s.id: layout_cost(result.variants[s.variant].layout) if s.variant is not None else float("inf")
+            for s in result.states}
+    done: set[int] = set()
+    for state_id, made in result.expanded:
+        waiting = [s for s in result.states[:made] if s.id not in done and s.id != state_id and s.options]
+        assert all((cost[s.id], s.id) > (cost[state_id], state_id) for s in waiting)
+        done.add(state_id)
+    assert len(result.states) == 20 and len(result.expanded) >= 2
+
+
+def test_best_first_and_breadth_first_cover_the_same_whole_space():
+    book, graph, disc = _start("fig6_inner_points")
+    found = {}
+    for order in ("breadth", "best"):
+        result = search(book, graph, disc, limit=1000, order=order)
+        found[order] = sorted(v.hash for v in result.variants)
+    assert found["breadth"] == found["best"] and len(found["best"]) >= 5
+
+
+def test_an_unknown_order_is_refused():
+    book, graph, disc = _start("fig5_boundary_points")
+    with pytest.raises(VaultgramError, match="--order"):
+        search(book, graph, disc, order="depth")

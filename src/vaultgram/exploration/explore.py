@@ -52,11 +52,12 @@ class ExploreOptions:
     smooth: int = 20
     pareto: tuple = DEFAULT_PARETO
     formfind: bool = False
+    order: str = "breadth"  # of the search: "breadth" or "best" (first), exploration.search
 
     def to_json(self) -> dict:
         return {"spacing": self.spacing, "rules": self.rules_dir, "limit": self.limit, "depth": self.depth,
                 "seed": self.seed, "target_length": self.target_length, "smooth": self.smooth,
-                "pareto": list(self.pareto), "formfind": self.formfind}
+                "pareto": list(self.pareto), "formfind": self.formfind, "order": self.order}
 
 
 @dataclass(frozen=True)
@@ -92,7 +93,7 @@ def explore(domain: Domain, options: ExploreOptions, workers: int = 1, client=No
     rulebook = load_vault_rulebook(options.rules_dir)
     sk = skeleton(triangulate(discretise(domain, options.spacing)))
     result = search(rulebook, decomposition_graph(sk, rulebook), sk.triangulation.disc, options.limit,
-                    options.depth, options.seed)
+                    options.depth, options.seed, options.order)
     jobs = [_job(domain, options, result, v.id) for v in result.variants]
     evaluations = tuple(evaluate_all(jobs, workers, client))
     rows = [{"id": e.variant, "metrics": {**e.metrics, "score": score(e.metrics)}} for e in evaluations]

@@ -16,9 +16,10 @@ cycle at another corner changes nothing.
 :func:`layout_hash` is a colour refinement (Weisfeiler-Leman) over darts, points and patches, with
 numpy arrays and a fixed 64-bit mixing function, so it is the same in every process; refinement is
 invariant under isomorphism, so isomorphic layouts hash alike. Different layouts may collide:
-:func:`same_layout` decides exactly, in linear time when refinement gave every element its own
-colour (the bijection is then forced), else with networkx's VF2 on :func:`layout_graph` with the
-colours as labels.
+:func:`same_layout` decides exactly: when refinement gave every dart its own colour the bijection
+is forced, and :attr:`PatchLayout.certificate` writes the layout in that canonical order, so the
+check is a comparison of bytes; else networkx's VF2 on :func:`layout_graph` with the colours as
+labels decides.
 """
 
 from __future__ import annotations
@@ -33,21 +34,26 @@ import numpy as np
 
 from vaultgram.engine.graph import HostGraph
 from vaultgram.topology.patches import Patch
-from vaultgram.topology.types import PATCH, PATCH_CORNER
+from vaultgram.topology.types import PATCH_CORNER
 
 MAX_ROUNDS = 64  # refinement stops earlier, when a round separates no more darts (or all of them)
-_M1, _M2 = np.uint64(0xBF58476D1CE4E5B9), np.uint64(0x94D049BB133111EB)
+_M1, _SHIFT = np.uint64(0xBF58476D1CE4E5B9), np.uint64(29)
 _ROLE = [np.uint64(c) for c in (0x9E3779B97F4A7C15, 0xC2B2AE3D27D4EB4F, 0x165667B19E3779F9, 0x27D4EB2F165667C5,
                                 0x85EBCA77C2B2AE63, 0xFF51AFD7ED558CCD)]
 
 
 def _mix(x: np.ndarray) -> np.ndarray:
-    """The splitmix64 finaliser, elementwise on uint64 (wrapping arithmetic): a fixed bijection."""
-    x = x ^ (x >> np.uint64(30))
+    """A multiply-xorshift mix, elementwise on uint64 (wrapping arithmetic): a fixed bijection that
+    spreads the high bits of the product back into the low ones (a cheap one, since refinement mixes
+    every dart every round; the exact check, not the mix, decides isomorphism)."""
     x = x * _M1
-    x = x ^ (x >> np.uint64(27))
-    x = x * _M2
-    return x ^ (x >> np.uint64(31))
+    return x ^ (x >> _SHIFT)
+
+
+def _distinct(x: np.ndarray) -> int:
+    """The number of distinct values (a sort: numpy's hashed unique is slower at these sizes)."""
+    s = np.sort(x)
+    return int(1 + np.count_nonzero(s[1:] != s[:-1])) if len(s) else 0
 
 
 def _code(labels) -> np.ndarray:
@@ -84,6 +90,28 @@ class PatchLayout:
             digest.update(np.sort(colours).tobytes())
         return digest.hexdigest()
 
+    @cached_property
+    def certificate(self) -> bytes | None:
+        """A canonical form, when refinement coloured every dart apart (else None): the darts in the
+        order of their colours, each with its colour, its successor's and its point's and patch's
+        first dart in that order, and its pole flag, then the point labels and patch sides in the
+        order of their first darts. Any isomorphism keeps colours, so with every colour distinct the
+        colour order is the only candidate bijection, and two layouts are isomorphic exactly when
+        their certificates are equal (the exact check, a comparison of bytes)."""
+        dart = self.colours[0]
+        order = np.argsort(dart, kind="stable")
+        ranked = dart[order]
+        if np.any(ranked[1:] == ranked[:-1]):
+            return None
+        rank = np.empty_like(order)
+        rank[order] = np.arange(len(order))
+        point_first, patch_first = _first_darts(self.dart_point[order]), _first_darts(self.dart_patch[order])
+        labels = [self.point_labels[i] for i in np.argsort(point_first, kind="stable")]
+        sides = np.asarray(self.patch_sides, dtype=np.int64)[np.argsort(patch_first, kind="stable")]
+        parts = (ranked, rank[self.dart_next[order]], point_first[self.dart_point[order]],
+                 patch_first[self.dart_patch[order]], self.dart_pole[order], sides)
+        return b"".join(np.ascontiguousarray(x).tobytes() for x in parts) + "\0".join(labels).encode()
+
     def size(self) -> int:
         """Number of points (the layout's nodes)."""
         return len(self.point_labels)
@@ -95,58 +123,58 @@ def point_label(graph: HostGraph, n: int) -> str:
 
 
 def layout_of(graph: HostGraph, patches: list[Patch]) -> PatchLayout:
-    """The layout of a decomposition's patches (corners counter-clockwise) in its graph."""
-    corners = sorted({c for p in patches for c in p.corners})
-    index = {c: i for i, c in enumerate(corners)}
+    """The layout of a decomposition's patches (corners counter-clockwise) in its graph (index
+    arrays made with numpy: this runs once per state of a search)."""
+    sizes = np.fromiter((len(p.corners) for p in patches), dtype=np.int64, count=len(patches))
+    flat = np.fromiter((c for p in patches for c in p.corners), dtype=np.int64, count=int(sizes.sum()))
+    corners, point = np.unique(flat, return_inverse=True)
+    patch = np.repeat(np.arange(len(patches)), sizes)
+    base = np.repeat(np.cumsum(sizes) - sizes, sizes)
+    nxt = base + (np.arange(len(flat)) - base + 1) % np.repeat(sizes, sizes)
     poles = _marked_poles(graph)
-    point, patch, nxt, pole = [], [], [], []
-    for k, p in enumerate(patches):
-        base = len(point)
-        m = len(p.corners)
-        for i, c in enumerate(p.corners):
-            point.append(index[c])
-            patch.append(k)
-            nxt.append(base + (i + 1) % m)
-            pole.append(poles.get(frozenset(p.corners)) == c)
-    return PatchLayout(tuple(point_label(graph, c) for c in corners), tuple(len(p.corners) for p in patches),
-                       np.array(point, dtype=np.int64), np.array(patch, dtype=np.int64),
-                       np.array(nxt, dtype=np.int64), np.array(pole, dtype=bool))
+    pole_of = np.array([poles.get(frozenset(p.corners), -1) for p in patches], dtype=np.int64)
+    return PatchLayout(tuple(point_label(graph, int(c)) for c in corners), tuple(sizes.tolist()),
+                       point.astype(np.int64), patch, nxt, flat == pole_of[patch])
 
 
 def _marked_poles(graph: HostGraph) -> dict:
     """The marked pole of each Patch node that has one, keyed by the set of its corners."""
+    edges = list(graph.of_types([PATCH_CORNER]))
     out = {}
-    for node in graph.of_types([PATCH]):
-        ends = [(graph.ends(e)[1], graph.get_edge(e, "pole")) for e in graph.incident(node, [PATCH_CORNER])]
-        for c, pole in ends:
-            if pole:
-                out[frozenset(c for c, _ in ends)] = c
+    for e, pole in zip(edges, graph.values("edge", edges, "pole")):
+        if pole:
+            node, c = graph.ends(e)
+            out[frozenset(graph.ends(f)[1] for f in graph.incident(node, [PATCH_CORNER]))] = c
     return out
 
 
 def _refine(layout: PatchLayout) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Colour refinement, until a round separates no more darts (a criterion that isomorphic
-    layouts meet at the same round, so the colours stay invariant): a dart's colour from its own,
-    its point's, its patch's and its successor's and predecessor's (each role weighed by its own
-    odd constant, then mixed); a point's and a patch's from theirs and the sum (a multiset) of
-    their darts'."""
-    prev = np.empty_like(layout.dart_next)
-    prev[layout.dart_next] = np.arange(len(prev))
-    by_point, by_patch = _groups(layout.dart_point), _groups(layout.dart_patch)
-    dart = _code(["pole" if p else "corner" for p in layout.dart_pole])
-    point = _code(layout.point_labels)
-    patch = _code([f"patch{s}" for s in layout.patch_sides])
+    layouts meet at the same round, so the colours stay invariant). A dart starts from its label,
+    its point's label and number of darts, and its patch's sides; each round its colour is mixed
+    from its own, its point's and its successor's and predecessor's round its patch (each role
+    weighed by its own odd constant), and a point's from its own and the sum (a multiset) of its
+    darts'. A patch's colour is the sum of its darts' at the end (the successor and predecessor
+    carry a patch's cycle into its darts already, so it needs no round of its own)."""
+    nxt = layout.dart_next
+    prev = np.empty_like(nxt)
+    prev[nxt] = np.arange(len(prev))
+    by_point = _groups(layout.dart_point)
+    degree = np.bincount(layout.dart_point, minlength=layout.size()).astype(np.uint64)
+    point = _mix(_code(layout.point_labels) + degree * _ROLE[2])[layout.dart_point]
+    sides = np.asarray(layout.patch_sides, dtype=np.uint64)[layout.dart_patch]
+    dart = _mix(np.where(layout.dart_pole, _ROLE[0], _ROLE[1]) + sides * _ROLE[3])
     distinct = 0
     for _ in range(MAX_ROUNDS):
-        dart = _mix(dart * _ROLE[0] + point[layout.dart_point] * _ROLE[1] + patch[layout.dart_patch] * _ROLE[2]
-                    + dart[layout.dart_next] * _ROLE[3] + dart[prev] * _ROLE[4])
-        point = _mix(point * _ROLE[5] + _sums(dart, by_point))
-        patch = _mix(patch * _ROLE[5] + _sums(dart ^ _ROLE[1], by_patch))
-        now = len(np.unique(dart))
+        dart = _mix(dart * _ROLE[0] + point * _ROLE[1] + dart[nxt] * _ROLE[3] + dart[prev] * _ROLE[4])
+        point = _mix(point * _ROLE[5] + _sums(dart, by_point)[layout.dart_point])
+        now = _distinct(dart)
         if now == distinct or now == len(dart):
             break
         distinct = now
-    return dart, point, patch
+    order, starts = by_point
+    patch_order = _groups(layout.dart_patch)
+    return dart, point[order[starts]], _mix(_sums(dart ^ _ROLE[1], patch_order))
 
 
 def _groups(owner: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -168,36 +196,15 @@ def same_layout(a: PatchLayout, b: PatchLayout) -> bool:
         return False
     if a.hash != b.hash:
         return False
-    forced = _forced_map(a, b)
-    if forced is not None:
-        return forced
+    if a.certificate is not None and b.certificate is not None:
+        return a.certificate == b.certificate
     return _vf2(a, b)
 
 
-def _forced_map(a: PatchLayout, b: PatchLayout) -> bool | None:
-    """With every dart coloured apart in both, the only candidate bijection maps equal colours:
-    whether it is an isomorphism; None when some colour is shared (then VF2 decides)."""
-    da, db = a.colours[0], b.colours[0]
-    if len(np.unique(da)) < len(da) or len(np.unique(db)) < len(db):
-        return None
-    order_a, order_b = np.argsort(da), np.argsort(db)
-    if not np.array_equal(da[order_a], db[order_b]):
-        return False
-    to_b = np.empty(len(da), dtype=np.int64)
-    to_b[order_a] = order_b  # dart i of a -> dart to_b[i] of b
-    if not np.array_equal(to_b[a.dart_next], b.dart_next[to_b]) or not np.array_equal(a.dart_pole, b.dart_pole[to_b]):
-        return False
-    return _consistent(a.dart_point, b.dart_point[to_b], a.point_labels, b.point_labels) and _consistent(
-        a.dart_patch, b.dart_patch[to_b], a.patch_sides, b.patch_sides)
-
-
-def _consistent(src: np.ndarray, dst: np.ndarray, labels_a, labels_b) -> bool:
-    """Whether dart images induce a label-keeping bijection of the elements the darts point to."""
-    image = np.full(len(labels_a), -1, dtype=np.int64)
-    image[src] = dst
-    if np.any(image[src] != dst) or len(np.unique(image)) != len(image) or np.any(image < 0):
-        return False
-    return all(labels_a[i] == labels_b[j] for i, j in enumerate(image))
+def _first_darts(owner_in_order: np.ndarray) -> np.ndarray:
+    """For each owner (point or patch) id, the position of its first dart in the given order."""
+    _, first = np.unique(owner_in_order, return_index=True)
+    return first
 
 
 def layout_graph(layout: PatchLayout) -> nx.DiGraph:

@@ -35,10 +35,28 @@ PATCH_STEP = "patch nodes"  # the host's step between the topology and the patch
 
 @dataclass(frozen=True)
 class Instruction:
-    """One strategy step (``step``), or the host's patch step (``step`` None)."""
+    """One strategy step (``step``), or the host's patch step (``step`` None). ``noop_by_default``:
+    a ``choose ... once`` step whose first option is a rule that changes nothing (``leave``), so
+    the default chooser leaves the graph as it is (:func:`noop_by_default`)."""
 
     strategy: str
     step: ast.Step | None
+    noop_by_default: bool = False
+
+
+def noop_by_default(rulebook: Rulebook, step: ast.Step) -> bool:
+    """Whether a step, run with the default chooser (the first option), certainly changes nothing:
+    a ``choose ... once`` step whose first rule (by priority, then by order) has an empty pattern,
+    no condition and no statement. Its one match, the empty one, is then the first option: applying
+    it leaves the graph as it was. :meth:`Stepper.complete` skips such steps instead of matching
+    every other option only to take the first (the optional rules' steps in patching.vgr)."""
+    if not (step.choose and step.mode == "once" and step.rules):
+        return False
+    order = {ref.name: i for i, ref in reversed(list(enumerate(step.rules)))}
+    first = min(step.rules, key=lambda ref: (-rulebook.rules[ref.name].priority, order[ref.name]))
+    rule = rulebook.rules[first.name]
+    pattern = rule.pattern
+    return not (pattern.nodes or pattern.edges or pattern.conditions or rule.nacs or rule.statements or rule.params)
 
 
 def instructions(rulebook: Rulebook, strategy: str) -> list[Instruction]:
@@ -48,7 +66,7 @@ def instructions(rulebook: Rulebook, strategy: str) -> list[Instruction]:
         if isinstance(step, ast.Run):
             out.extend(instructions(rulebook, step.strategy))
         else:
-            out.append(Instruction(strategy, step))
+            out.append(Instruction(strategy, step, noop_by_default(rulebook, step)))
     return out
 
 
@@ -153,6 +171,8 @@ class Stepper:
         return final_patches(self.graph, self.disc, bool(patch_strategies_of(self.rulebook)))
 
     def _execute(self, instruction: Instruction) -> None:
+        if self._default and instruction.noop_by_default:
+            return  # the default option changes nothing: no need to match the others (complete)
         if instruction.step is None:
             start_patching(self.graph, self.disc, self.runner.trace, bool(patch_strategies_of(self.rulebook)))
         else:

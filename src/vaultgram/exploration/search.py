@@ -11,6 +11,14 @@ others are new.
 parents and their options (``seed`` shuffles the options of each choice point, reproducibly, for
 another sample of a large space); the search stops after ``limit`` states or at ``depth``.
 
+**Best-first** (``order="best"``): the next state expanded is the one whose decomposition has the
+lowest :func:`layout_cost` (ties: the state found first), so a small ``limit`` spends its states
+below the most regular layouts. The cost is read from the layout alone (no meshing): ten for each
+boundary point that is a corner of a number of patches other than two (a boundary singularity,
+what the paper's section 3.1 avoids; polygon corners aside), one for each other point that is the
+corner of a number of patches other than four (a singularity of the layout), one for each
+three-sided patch (a pole). A state without a valid decomposition is expanded last.
+
 **Stepping with the journal**: the search keeps one graph. Going from one state to another rolls the
 graph back (:meth:`HostGraph.rollback`) to their deepest common ancestor and re-applies the rule
 applications recorded on the way down (:func:`vaultgram.engine.trace.replay`, which checks they
@@ -26,9 +34,12 @@ patch) is a state without variant, with the reason.
 
 from __future__ import annotations
 
+import heapq
 import random
 import time
 from dataclasses import dataclass, field
+
+import numpy as np
 
 from vaultgram.engine.graph import HostGraph
 from vaultgram.engine.rulebook import Rulebook
@@ -78,6 +89,7 @@ class SearchResult:
     collisions: int = 0  # equal hashes of layouts that are not isomorphic
     seconds: float = 0.0
     by_hash: dict = field(default_factory=dict)  # hash -> ids of the variants with it
+    expanded: list = field(default_factory=list)  # (state id, states made so far) per expansion, in order
 
 
 @dataclass
@@ -109,6 +121,26 @@ def option_json(option: Option, k: int) -> dict:
     return {"rule": option.rule, "match": {v: int(i) for v, i in sorted(option.match.binding.items())}, "choice": k}
 
 
+ORDERS = ("breadth", "best")
+
+
+def layout_cost(layout: PatchLayout) -> int:
+    """The best-first search's cost of a layout (module docstring): lower is more regular.
+
+    >>> import numpy as np
+    >>> quad = PatchLayout(("Corner", "BoundaryVertex", "Singularity", "BoundaryVertex"), (4,),
+    ...                    np.arange(4), np.zeros(4, int), np.r_[1, 2, 3, 0], np.zeros(4, bool))
+    >>> layout_cost(quad)  # two boundary points with one patch: boundary singularities; one singularity
+    21
+    """
+    count = np.bincount(layout.dart_point, minlength=layout.size())
+    labels = np.array([label.rstrip("*") for label in layout.point_labels])
+    boundary = labels == "BoundaryVertex"
+    other = ~boundary & (labels != "Corner")
+    sides = np.asarray(layout.patch_sides)
+    return int(10 * np.sum(boundary & (count != 2)) + np.sum(other & (count != 4)) + np.sum(sides == 3))
+
+
 def check_bounds(limit: int, depth: int) -> None:
     """``limit`` (states) must be at least 1 and ``depth`` (choice points) at least 0."""
     if limit < 1:
@@ -118,28 +150,57 @@ def check_bounds(limit: int, depth: int) -> None:
 
 
 def search(rulebook: Rulebook, graph: HostGraph, disc: Discretisation, limit: int = 100, depth: int = 8,
-           seed: int | None = None) -> SearchResult:
-    """Breadth-first search from ``graph`` (the decomposition graph before the rules); see the module
-    docstring. The graph is left as it was given (everything is rolled back)."""
+           seed: int | None = None, order: str = "breadth") -> SearchResult:
+    """Breadth-first or best-first search (``order``) from ``graph`` (the decomposition graph before
+    the rules); see the module docstring. The graph is left as it was given (everything is rolled back)."""
     check_bounds(limit, depth)
+    if order not in ORDERS:
+        raise VaultgramError(f"--order must be one of {', '.join(ORDERS)}, got {order!r}")
     start = time.perf_counter()
     graph.forget()
     walker = _Walker(Stepper(rulebook, graph, disc), rulebook)
     result = SearchResult([], [])
-    root = _new_state(walker, result, None, None, None)
-    queue, head = [root], 0
-    while head < len(queue) and len(result.states) < limit:
-        state = queue[head]
-        head += 1
+    frontier = _Frontier(order == "best", result)
+    frontier.push(_new_state(walker, result, None, None, None))
+    while frontier and len(result.states) < limit:
+        state = frontier.pop()
         if state.depth >= depth or not state.options:
             continue
+        result.expanded.append((state.id, len(result.states)))
         for k in _order(state, seed):
             if len(result.states) >= limit:
                 break
-            queue.append(_new_state(walker, result, state, k, _chain(result, state)))
+            frontier.push(_new_state(walker, result, state, k, _chain(result, state)))
     graph.rollback(0)
     result.seconds = time.perf_counter() - start
     return result
+
+
+@dataclass
+class _Frontier:
+    """The states still to expand: first in, first out (breadth-first), or by least
+    :func:`layout_cost`, then by id (best-first)."""
+
+    best: bool
+    result: SearchResult
+    items: list = field(default_factory=list)
+    head: int = 0
+
+    def __bool__(self) -> bool:
+        return self.head < len(self.items)
+
+    def push(self, state: State) -> None:
+        if not self.best:
+            self.items.append(state)
+            return
+        cost = float("inf") if state.variant is None else layout_cost(self.result.variants[state.variant].layout)
+        heapq.heappush(self.items, (cost, state.id, state))
+
+    def pop(self) -> State:
+        if not self.best:
+            self.head += 1
+            return self.items[self.head - 1]
+        return heapq.heappop(self.items)[2]
 
 
 def _order(state: State, seed: int | None) -> list[int]:
