@@ -223,8 +223,10 @@ class _ForceDensities:
 
 
 #: Width of the bisection bracket on ``log q_b`` at which :func:`_bisect_sag` hands over to
-#: :func:`_coupled_sag`; the sags it leaves are then met to :data:`_SAG_TOL` of their targets.
-_BRACKET = 1e-3
+#: :func:`_coupled_sag`; the sags it leaves are then met to :data:`_SAG_TOL` of their targets (on the
+#: Armadillo plan 19 solves, 26 with a bracket of 1e-3); ``_DIFF``: the finite-difference step.
+_BRACKET = 0.1
+_DIFF = 1e-3
 _SAG_TOL = 1e-6
 _LOG_Q = (np.log(1e-4), np.log(1e4))
 
@@ -232,7 +234,7 @@ _LOG_Q = (np.log(1e-4), np.log(1e4))
 def _sag_search(system: _ForceDensities, arches: list[_Arch], sag: float, iterations: int
                 ) -> tuple[np.ndarray, np.ndarray]:
     """``log q_b`` per opening such that its largest outward displacement is ``sag * span``, and the plan
-    positions for them: bisection to a bracket of 1e-3, then the openings' coupled sags met together."""
+    positions for them: bisection to a bracket of 0.1, then the openings' coupled sags met together."""
     if not arches:
         return np.zeros(0), system.solve(np.zeros(0))
     target = sag * np.array([a.span for a in arches])
@@ -260,17 +262,18 @@ def _coupled_sag(system: _ForceDensities, arches: list[_Arch], target: np.ndarra
                  steps: int = 12) -> tuple[np.ndarray, np.ndarray]:
     """Every opening's sag met together: quasi-Newton (Broyden) steps on ``g = sag / target - 1`` from
     the bisection's ``x``, the Jacobian started by finite differences, over the openings strictly
-    inside the bracket (the others' targets are out of reach and keep their end). Returns ``log q_b``
+    inside the bracket (the others' targets are out of reach: they take its end). Returns ``log q_b``
     and the plan positions; the iterate with the smallest ``max |g|`` if ``steps`` do not suffice."""
     def g(logq: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         xy = system.solve(logq)
         return _sags(xy, system.xy0, arches) / target - 1.0, xy
 
+    x = np.where(x < _LOG_Q[0] + _BRACKET, _LOG_Q[0], np.where(x > _LOG_Q[1] - _BRACKET, _LOG_Q[1], x))
+    inner = np.flatnonzero((x > _LOG_Q[0]) & (x < _LOG_Q[1]))
     gx, xy = g(x)
-    inner = np.flatnonzero((x > _LOG_Q[0] + _BRACKET) & (x < _LOG_Q[1] - _BRACKET))
     if len(inner) == 0 or np.max(np.abs(gx[inner])) <= _SAG_TOL:
         return x, xy
-    J = np.column_stack([(g(x + _BRACKET * (np.arange(len(x)) == j))[0][inner] - gx[inner]) / _BRACKET
+    J = np.column_stack([(g(x + _DIFF * (np.arange(len(x)) == j))[0][inner] - gx[inner]) / _DIFF
                          for j in inner])
     best = (np.max(np.abs(gx[inner])), x, xy)
     for _ in range(steps):
