@@ -16,7 +16,6 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from vaultgram import pipeline
 from vaultgram.cli import main
 from vaultgram.domain import load_domain
 from vaultgram.errors import FormFindingError, VerticalEquilibriumError
