@@ -30,16 +30,21 @@ MIN_MISSES = {
     "fig6_inner_points": "the rings round its two point features are left as smoothing made them (the optimiser "
                          "reached 0.379 there, under the fan bound 0.395, but moving them changed the tessellation "
                          "round the point loads: rhythm-4 voussoirs 1.26x the rhythm-2 ones, not 1.3x)",
+    "multiple_lobes": "a row of four skewed quads (0.23-0.28, two of them inside) beside a bay since every sharp "
+                      "ring vertex is a mesh vertex (boundary fidelity, tests/meshing/test_boundary_fidelity.py); "
+                      "the optimiser reached 0.407 on the mesh without it",
+    "rolex_learning_centre": "four skewed quads (0.22-0.23) beside the outline since every sharp ring vertex is a "
+                             "mesh vertex (boundary fidelity); the optimiser reached 0.499 on the mesh without it",
     "fig7_curves": "flat quads where the end of the curve (5, 7.5) is 0.5 from the hole, less than two target "
                    "lengths: the passage needs local refinement",
 }
 MIN_PASS = ["armadillo_vault", "armadillo_vault_plan", "british_museum_map", "hiroshi_senju_museum",
-            "mexico_airport", "multiple_lobes", "rolex_learning_centre", "rv_quad_pattern", "rv_ring_pattern",
+            "mexico_airport", "rv_quad_pattern", "rv_ring_pattern",
             "rv_star_pattern", "l_shape", "quad_with_hole"]
 LAYOUT = "skewed quads all over (median scaled Jacobian below 0.9): the patch layout, not smoothing"
 MEAN_MISSES = {
     "mexico_airport": LAYOUT, "multiple_lobes": LAYOUT, "rv_star_pattern": LAYOUT,
-    "rolex_learning_centre": LAYOUT, "features_combined": LAYOUT, "fig7_curves": LAYOUT,
+    "features_combined": LAYOUT, "fig7_curves": LAYOUT,
     "two_holes_five_points": LAYOUT, "square_point_loads": LAYOUT,
 }
 MEAN_PASS = [n for n in MIN_PASS + sorted(MIN_MISSES) if n not in MEAN_MISSES]
