@@ -86,19 +86,26 @@ class FigureSpec:
     needs: str  # the Stages attribute that must not be None
     draw: Callable  # (axes, Stages) -> None
     projection: str | None = None
+    final: str | None = None  # a later Stages attribute the drawing shows when there (the supports)
 
     def available(self, data: Stages) -> bool:
         return getattr(data, self.needs) is not None
 
+    def ready(self, data: Stages) -> bool:
+        """Whether every stage the figure shows is there: it will not change as later stages arrive
+        (:mod:`vaultgram.io.figures.worker` draws it then)."""
+        return self.available(data) and (self.final is None or getattr(data, self.final) is not None)
 
-def _spec(name, caption, needs, draw, projection=None) -> FigureSpec:
-    return FigureSpec(name, caption, needs, draw, projection)
+
+def _spec(name, caption, needs, draw, projection=None, final=None) -> FigureSpec:
+    return FigureSpec(name, caption, needs, draw, projection, final)
 
 
 #: The eight steps of the paper's Figure 2, (a) to (h).
 PANEL = (
     _spec("boundaries", "Boundaries, supports thick, holes, point and curve features (Figure 2a, 9a)",
-          "decomposition", lambda ax, d: topology.draw_boundaries(ax, d.domain, d.support_segments)),
+          "decomposition", lambda ax, d: topology.draw_boundaries(ax, d.domain, d.support_segments),
+          final="supports"),
     _spec("delaunay", "Delaunay mesh: regular, singular and corner faces (Figure 2b)", "decomposition",
           lambda ax, d: topology.draw_delaunay(ax, d.decomposition.skeleton.triangulation)),
     _spec("skeleton", "Raw topological skeleton (Figure 2c)", "decomposition",
@@ -139,7 +146,8 @@ CATALOGUE = (
     *PANEL,
     _spec("edge_groups", "Edge groups: the sides sharing a number of subdivisions (§3.2)", "mesh",
           lambda ax, d: meshes.draw_groups(ax, d.mesh, d.layout)),
-    _spec("panel", "The eight steps as in the paper's Figure 2 (a)-(h)", "mesh", _draw_panel, "figure"),
+    _spec("panel", "The eight steps as in the paper's Figure 2 (a)-(h)", "mesh", _draw_panel, "figure",
+          final="supports"),
     _spec("form_force", "Form and force diagrams, line widths by horizontal force (Figure 10)", "network",
           _draw_pair, "figure"),
     _spec("thrust_plan", "Thrust network in plan, shaded by height", "network",
@@ -173,10 +181,11 @@ BESIDE = {"decomposition.png": "patches", "mesh.png": "mesh_smoothed", "thrust.p
           "tessellation.png": "tessellation_plan"}
 
 
-def write_figures(data: Stages, out: Path) -> list[FigureSpec]:
-    """``out/figures/NAME.png`` and ``.svg`` of every figure ``data`` has the stages for; the specs written."""
+def write_figures(data: Stages, out: Path, specs=CATALOGUE) -> list[FigureSpec]:
+    """``out/figures/NAME.png`` and ``.svg`` of every figure of ``specs`` that ``data`` has the stages
+    for; the specs written."""
     written = []
-    for spec in CATALOGUE:
+    for spec in specs:
         if not spec.available(data):
             continue
         fig = figure(spec, data)

@@ -2,8 +2,9 @@
 
 Every figure draws with collections (one artist per kind of element, never one per line), so a
 figure of 10^5 faces costs about what a figure of 10^2 does; above :data:`DENSE` elements the edge
-lines of faces drop out (the shading carries the picture) and the collection is rasterised in SVG
-(an SVG of 10^5 vector polygons would weigh tens of megabytes). Artists carry a ``gid`` naming what
+lines of faces drop out (the shading carries the picture). A figure is drawn once, by Agg: its SVG
+holds its PNG (:func:`save_png_and_svg`; drawing it again as vector SVG took as long as the PNG, and
+an SVG of 10^5 vector polygons would weigh tens of megabytes). Artists carry a ``gid`` naming what
 they show (``"supports"``, ``"faces"``...): the tests count what was drawn through it, and the SVG
 keeps it as the element's id.
 """
@@ -18,8 +19,6 @@ import numpy as np
 
 #: Above this many elements a collection draws no edge lines (the shading carries the picture).
 DENSE = 20000
-#: Above this many elements a collection is rasterised in SVG (vector paths cost more to write and show).
-RASTER = 300
 
 #: Colours shared by all figures.
 COLOURS = {
@@ -81,7 +80,6 @@ def lines(ax, segments, gid: str, color="black", width=1.0, zorder=2):
 
     collection = LineCollection(segments, colors=color, linewidths=width, zorder=zorder, gid=gid,
                                 capstyle="round")
-    collection.set_rasterized(len(segments) > RASTER)
     ax.add_collection(collection)
     return collection
 
@@ -98,7 +96,6 @@ def polygons(ax, polys, gid: str, facecolors="none", values=None, cmap=None, edg
                                 cmap=cmap, zorder=zorder, gid=gid)
     if values is not None:
         collection.set_array(np.asarray(values, dtype=float))
-    collection.set_rasterized(len(polys) > RASTER)
     ax.add_collection(collection)
     return collection
 
@@ -185,23 +182,10 @@ def pixels(fig) -> np.ndarray:
     return np.asarray(canvas.buffer_rgba())
 
 
-def is_dense(fig) -> bool:
-    """Whether ``fig`` draws a collection of more than :data:`DENSE` elements."""
-    from matplotlib.collections import Collection
-
-    return any(max(len(c.get_paths()), len(c.get_facecolor())) > DENSE  # 3D: paths exist once drawn
-               for c in fig.findobj(Collection))
-
-
 def save_png_and_svg(fig, png: Path, svg: Path) -> None:
-    """Write ``fig`` as PNG and as SVG. A dense figure (:func:`is_dense`) is drawn once: its SVG holds
-    the PNG (an SVG of it would be the same picture, its collections rasterised, for a second
-    drawing of 10^5 polygons)."""
-    dense = is_dense(fig)
+    """Write ``fig`` as PNG, and as an SVG that holds that PNG: one drawing serves both (the report
+    inlines the SVG, :mod:`vaultgram.io.report`)."""
     save(fig, png)
-    if not dense:
-        save(fig, svg)
-        return
     import base64
 
     width, height = fig.get_size_inches() * 72
