@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import multiprocessing
 import queue
+import signal
 import threading
 import time
 import traceback
@@ -108,6 +109,8 @@ class FigureWorker:
 def _serve(data, out: Path, conn) -> None:
     """The figure process: draw what is ready, then after each stage received what became ready. A
     thread takes the stages off the pipe as they come, so the pipeline never waits for a drawing."""
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # the parent's handler unwinds the parent's stack
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # an interrupt is the parent's to handle: it ends this process
     start = time.process_time()
     inbox: queue.Queue = queue.Queue()
     threading.Thread(target=_receive, args=(conn, inbox), daemon=True).start()
@@ -117,11 +120,14 @@ def _serve(data, out: Path, conn) -> None:
         for stage, value in iter(inbox.get, ("done", None)):
             data = _with(data, stage, value)
             written += _draw_ready(data, out, written)
-        conn.send(("ok", written, time.process_time() - start))
-    except BaseException:  # noqa: BLE001 -- reported to the parent, which raises
-        conn.send(("error", traceback.format_exc(limit=3), time.process_time() - start))
-    finally:
-        conn.close()
+        reply = ("ok", written, time.process_time() - start)
+    except Exception:  # noqa: BLE001 -- reported to the parent, which raises
+        reply = ("error", traceback.format_exc(limit=3), time.process_time() - start)
+    try:
+        conn.send(reply)
+    except OSError:  # the parent has gone (it failed or was interrupted)
+        pass
+    conn.close()
 
 
 def _receive(conn, inbox: queue.Queue) -> None:
