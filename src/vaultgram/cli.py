@@ -549,6 +549,7 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
     with progress.reporting(not quiet):
         progress.note(f"design: starting on {domain_path}")  # before the imports: a second or two
         from vaultgram.domain import load_domain
+        from vaultgram.io.figures.errorplot import error_figure
         from vaultgram.io.figures.worker import FigureWorker
         from vaultgram.io.outputs import parse_formats, write_design
         from vaultgram.meshing.densities import load_densities
@@ -560,8 +561,9 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
         domain = load_domain(domain_path, input_format, layer_names(layers), spacing)
         out = Path(out_dir)
         parameters = {k: v for k, v in click.get_current_context().params.items() if k not in ("out_dir", "quiet")}
-        # the figures are drawn in the background as the stages end (vaultgram.io.figures.worker)
-        with output_folder(out) as stage, FigureWorker(stage) as figures:
+        # the figures are drawn in the background as the stages end (vaultgram.io.figures.worker); a
+        # stage failing on a geometric problem leaves its error figure alone (vaultgram.io.figures.errorplot)
+        with error_figure(out, domain), output_folder(out) as stage, FigureWorker(stage) as figures:
             result = design(
                 domain, spacing, rules_dir, target_length, DEFAULT_ITERATIONS if smooth is None else smooth,
                 load_densities(densities_path) if densities_path else None, allow_folds,

@@ -125,7 +125,8 @@ def check_not_folded(mesh: QuadMesh, decomposition: Decomposition) -> None:
         why = "features, curves or boundaries this close together need a smaller --target-length or more room"
     raise MeshFoldError(
         f"the mesh folds: {len(bad)} inverted face(s), the worst near {fmt_point(where)} in the patch with corners "
-        f"{corners}; {why} (vaultgram mesh --allow-folds writes the mesh anyway)"
+        f"{corners}; {why} (vaultgram mesh --allow-folds writes the mesh anyway)",
+        places=[mesh.vertices[list(mesh.faces[k]), :2] for k in bad.tolist()],
     )
 
 
