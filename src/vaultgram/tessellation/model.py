@@ -127,17 +127,22 @@ def _lists(arrays) -> list[list]:
     >>> _lists([np.array([1, 2]), np.array([], dtype=int), np.array([3])])
     [[1, 2], [], [3]]
     """
-    ends = np.cumsum([len(a) for a in arrays]).tolist()
     flat = np.concatenate(arrays).tolist() if len(arrays) else []
+    return _cut(flat, np.cumsum([len(a) for a in arrays]).tolist())
+
+
+def _cut(flat: list, ends: list) -> list[list]:
+    """``flat`` cut into the lists that end at ``ends``."""
     return [flat[a:b] for a, b in zip([0, *ends[:-1]], ends)]
 
 
 def _neighbours(pairs: np.ndarray, n: int) -> list[list[int]]:
-    """Per voussoir, the voussoirs it shares a joint with, sorted (both directions of every pair, made
-    unique and sorted as one array).
+    """Per voussoir, the voussoirs it shares a joint with, sorted: both directions of every pair as
+    one key ``a * n + b``, made unique and sorted as one array.
 
     >>> _neighbours(np.array([[0, 1], [1, 2], [2, 1]]), 4)
     [[1], [0, 2], [1], []]
     """
-    both = np.unique(np.concatenate([pairs, pairs[:, ::-1]]).reshape(-1, 2), axis=0)
-    return _lists(np.split(both[:, 1], np.searchsorted(both[:, 0], np.arange(1, n))))
+    p = np.asarray(pairs, dtype=np.int64).reshape(-1, 2)
+    a, b = np.divmod(np.unique(np.concatenate([p[:, 0] * n + p[:, 1], p[:, 1] * n + p[:, 0]])), max(n, 1))
+    return _cut(b.tolist(), np.cumsum(np.bincount(a, minlength=n)).tolist())
