@@ -74,14 +74,43 @@ def plan(ax, title: str = "") -> None:
         ax.set_title(title, fontsize=9)
 
 
+#: Above :data:`DENSE` segments of one colour, the line widths drawn (per-line widths rounded to these).
+WIDTH_CLASSES = 12
+
+
 def lines(ax, segments, gid: str, color="black", width=1.0, zorder=2):
-    """One ``LineCollection`` of ``segments`` ((k, 2, 2) or a list of polylines); ``width`` may be per line."""
+    """One ``LineCollection`` of ``segments`` ((k, 2, 2) or a list of polylines); ``width`` may be per line.
+    Above :data:`DENSE` segments of one colour, the segments of each width are one path
+    (:func:`merged_by_width`): Agg draws a path of 10^4 pieces in the time of a few separate ones."""
     from matplotlib.collections import LineCollection
 
+    if isinstance(segments, np.ndarray) and len(segments) > DENSE and isinstance(color, str):
+        segments, width = merged_by_width(segments, width)
     collection = LineCollection(segments, colors=color, linewidths=width, zorder=zorder, gid=gid,
                                 capstyle="round")
     ax.add_collection(collection)
     return collection
+
+
+def merged_by_width(segments: np.ndarray, width) -> tuple[list, list]:
+    """The segments (k, 2, 2) as one polyline per width (NaN rows between the pieces: a break in the
+    line), the per-line widths first rounded to :data:`WIDTH_CLASSES` steps; the polylines and their widths.
+
+    >>> lines_, widths = merged_by_width(np.zeros((3, 2, 2)), [1.0, 3.0, 1.0])
+    >>> [len(p) for p in lines_], widths
+    ([5, 2], [1.0, 3.0])
+    """
+    w = np.broadcast_to(np.asarray(width, dtype=float), (len(segments),))
+    lo, hi = float(w.min()), float(w.max())
+    step = (hi - lo) / (WIDTH_CLASSES - 1) if hi > lo else 1.0
+    level = np.rint((w - lo) / step).astype(np.int64)
+    gap = np.full((len(segments), 1, 2), np.nan)
+    pieces = np.concatenate([segments, gap], axis=1)  # each segment, then a break
+    out, widths = [], []
+    for k in np.unique(level).tolist():
+        out.append(pieces[level == k].reshape(-1, 2)[:-1])
+        widths.append(lo + k * step)
+    return out, widths
 
 
 def polygons(ax, polys, gid: str, facecolors="none", values=None, cmap=None, edgecolor="0.35", width=0.3,
