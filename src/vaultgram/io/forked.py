@@ -22,7 +22,6 @@ division by zero
 
 from __future__ import annotations
 
-import multiprocessing
 import signal
 from pathlib import Path  # noqa: F401 -- the doctest's
 from typing import Callable, Sequence
@@ -32,6 +31,8 @@ def run_all(jobs: Sequence[Callable[[], object]]) -> None:
     """Run every job, all but the last in forked children; raise the first failure."""
     if not jobs:
         return
+    import multiprocessing  # here: the command line starts without it
+
     context = multiprocessing.get_context("fork")
     started = []
     try:

@@ -28,7 +28,6 @@ Example
 
 from __future__ import annotations
 
-import multiprocessing
 import queue
 import signal
 import threading
@@ -68,6 +67,8 @@ class FigureWorker:
 
     def _start(self, decomposition) -> None:
         """Fork the figure process with the domain and the decomposition it inherits."""
+        import multiprocessing  # here: the command line starts without it
+
         from vaultgram.io.figures import Stages
 
         self.close()
