@@ -22,7 +22,6 @@ from vaultgram import progress
 from vaultgram.errors import VaultgramError
 from vaultgram.formfinding.thrust import ThrustNetwork
 from vaultgram.io.files import collector_paused, write_json, write_obj, write_obj_groups, write_text
-from vaultgram.io.forked import run_all
 from vaultgram.io.meshfiles import mesh_to_json
 from vaultgram.io.plots import plot_decomposition, plot_mesh, plot_tessellation, plot_thrust
 from vaultgram.meshing.quadmesh import QuadMesh
@@ -32,10 +31,6 @@ from vaultgram.topology.decomposition import Decomposition
 __all__ = ["write_decomposition", "write_mesh_files", "write_thrust", "write_tessellation", "write_design",
            "write_drawings", "design_summary", "write_design_figures",
            "parse_formats", "OUTPUT_FORMATS", "DEFAULT_FORMATS"]
-
-#: From this many mesh faces on, a design's data files are written by several processes at once
-#: (:func:`vaultgram.io.forked.run_all`); below, the forks would cost more than they save.
-FORK_FACES = 50000
 
 #: The output formats, and the ones written when none are asked for.
 OUTPUT_FORMATS = ("json", "obj", "compas", "3dm", "dxf")
@@ -159,16 +154,15 @@ def write_design(result, out: Path, formats=DEFAULT_FORMATS, trace: bool = False
     Returns the timings."""
     timings = dict(result.timings)
     with progress.timed(timings, "write"), collector_paused():
-        summary: dict = {}
-        jobs = [*_data_jobs(result, out, formats, trace),
-                lambda: summary.update(design_summary(result, parameters) if "json" in formats else {})]
-        if len(result.mesh.faces) >= FORK_FACES:
-            run_all(jobs)
-        else:
-            for job in jobs:
-                job()
-        if summary:  # after the thrust's own summary.json, which it replaces
-            write_json(out / "summary.json", summary)
+        write_decomposition(result.decomposition, out, plot=False, formats=formats, trace=trace)
+        write_mesh_files(result.mesh, out, result.supports, plot=False, formats=formats)
+        write_thrust(result.network, out, plot=False, formats=formats)
+        if result.tessellation is not None:
+            write_tessellation(result.tessellation, out, plot=False, formats=formats)
+        if "json" in formats:
+            write_json(out / "summary.json", design_summary(result, parameters))
+        write_drawings(out, formats, result.domain.units, decomposition=result.decomposition, mesh=result.mesh,
+                       network=result.network, tessellation=result.tessellation)
     if plots and "json" in formats:
         with progress.timed(timings, "figures"), collector_paused():
             write_design_figures(result, out, figures)
@@ -178,25 +172,6 @@ def write_design(result, out: Path, formats=DEFAULT_FORMATS, trace: bool = False
 
         write_report(out)
     return timings
-
-
-def _data_jobs(result, out: Path, formats, trace: bool) -> list:
-    """The data files of a design as independent jobs, each about a core's share of the work at 10^5
-    faces (:func:`vaultgram.io.forked.run_all` runs them at once): the voussoirs' OBJ apart from the
-    rest of the tessellation, the drawings apart. ``summary.json`` is the caller's."""
-    tess = result.tessellation
-    jobs = [lambda: (write_decomposition(result.decomposition, out, plot=False, formats=formats, trace=trace),
-                     write_mesh_files(result.mesh, out, result.supports, plot=False, formats=formats)),
-            lambda: write_thrust(result.network, out, plot=False, formats=formats)]
-    if tess is not None:
-        rest = tuple(f for f in formats if f != "obj")
-        jobs.append(lambda: write_tessellation(tess, out, plot=False, formats=rest))
-        if "obj" in formats:
-            jobs.append(lambda: write_tessellation(tess, out, plot=False, formats=("obj",)))
-    if "3dm" in formats or "dxf" in formats:
-        jobs.append(lambda: write_drawings(out, formats, result.domain.units, decomposition=result.decomposition,
-                                           mesh=result.mesh, network=result.network, tessellation=tess))
-    return jobs
 
 
 def design_summary(result, parameters: dict | None = None) -> dict:
