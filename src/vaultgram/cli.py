@@ -553,6 +553,8 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
     with progress.reporting(not quiet):
         progress.note(f"design: starting on {domain_path}")  # before the imports: a second or two
         from vaultgram.domain import load_domain
+        from vaultgram.io.figures.errorplot import error_figure
+        from vaultgram.io.figures.worker import FigureWorker
         from vaultgram.io.outputs import parse_formats, write_design
         from vaultgram.meshing.densities import load_densities
         from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
@@ -561,16 +563,19 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
 
         formats = parse_formats(formats)
         domain = load_domain(domain_path, input_format, layer_names(layers), spacing)
-        result = design(
-            domain, spacing, rules_dir, target_length, DEFAULT_ITERATIONS if smooth is None else smooth,
-            load_densities(densities_path) if densities_path else None, allow_folds,
-            read_json(supports_path) if supports_path else None, point_load, zmax, thickness,
-            TessellationOptions(int(rhythm), max_concavity, flat_extrados, surface_smooth), trace=with_trace,
-            density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode, max_faces=max_faces)
         out = Path(out_dir)
         parameters = {k: v for k, v in click.get_current_context().params.items() if k not in ("out_dir", "quiet")}
-        with output_folder(out) as stage:
-            timings = write_design(result, stage, formats, with_trace, plots, with_report, parameters)
+        # the figures are drawn in the background as the stages end (vaultgram.io.figures.worker); a
+        # stage failing on a geometric problem leaves its error figure alone (vaultgram.io.figures.errorplot)
+        with error_figure(out, domain), output_folder(out) as stage, FigureWorker(stage) as figures:
+            result = design(
+                domain, spacing, rules_dir, target_length, DEFAULT_ITERATIONS if smooth is None else smooth,
+                load_densities(densities_path) if densities_path else None, allow_folds,
+                read_json(supports_path) if supports_path else None, point_load, zmax, thickness,
+                TessellationOptions(int(rhythm), max_concavity, flat_extrados, surface_smooth), trace=with_trace,
+                density=density, tol_deg=tol_deg, sag=sag, relax_mode=relax_mode, max_faces=max_faces,
+                on_stage=figures if plots and "json" in formats else None)
+            timings = write_design(result, stage, formats, with_trace, plots, with_report, parameters, figures)
     echo_decomposition(result.decomposition, out)
     click.echo(f"mesh: {len(result.mesh.vertices)} vertices, {len(result.mesh.faces)} faces; "
                f"wrote {_joined(f for f in ('mesh.json', 'mesh.obj', 'mesh.compas.json') if _written(f, formats))}")

@@ -45,7 +45,16 @@ class VaultgramWarning(UserWarning):
 
 
 class DomainError(VaultgramError):
-    """The domain (boundaries and features) is invalid: the message names the ring or feature and vertex."""
+    """The domain (boundaries and features) is invalid: the message names the ring or feature and vertex.
+
+    ``places``, when the raiser knows them, are the plan polygons where the problem is (each a
+    sequence of (x, y)): ``vaultgram design`` draws them in an error figure
+    (:mod:`vaultgram.io.figures.errorplot`).
+    """
+
+    def __init__(self, message: str, places=()):
+        super().__init__(message)
+        self.places = list(places)
 
 
 class MeshFoldError(DomainError):

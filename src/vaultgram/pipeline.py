@@ -531,27 +531,37 @@ def design(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None =
            densities: DensitySpec | None = None, allow_folds: bool = False, supports=None,
            point_load: float = 0.0, zmax: float | None = None, thickness: float = 1.0,
            tessellation: TessellationOptions | None = TessellationOptions(), trace: bool = False,
-           max_faces: int = MAX_FACES, **options) -> Design:
+           max_faces: int = MAX_FACES, on_stage=None, **options) -> Design:
     """The whole pipeline on a domain: decomposition (§3.1, §4), mesh (§3.2), thrust network (§5) and
     tessellation (§5).
 
     ``supports`` overrides the domain's own; ``zmax`` defaults to a rise (:func:`thrust_of_mesh`); ``thickness``
     is the shell's, for its self-weight and its voussoirs; ``tessellation`` None stops at the thrust
     network; ``trace`` keeps the decomposition's starting graph for a replay; ``max_faces`` limits the
-    mesh (:mod:`vaultgram.meshing.guards`); ``options`` are those of :func:`form_find`.
+    mesh (:mod:`vaultgram.meshing.guards`); ``on_stage(name, value)``, if given, is told of each stage
+    as it is done (``domain``, ``decomposition``, ``mesh``, ``supports``, ``network``, ``tessellation``:
+    :class:`vaultgram.io.figures.worker.FigureWorker` draws their figures meanwhile); ``options`` are
+    those of :func:`form_find`.
     """
     timings: dict = {}
+    done = on_stage if on_stage is not None else (lambda name, value: None)
     check_feature_spacing(domain, spacing)
+    done("domain", domain)
     dec = decompose(domain, spacing, rules_dir, timings=timings, trace=trace)
+    done("decomposition", dec)
     mesh = mesh_decomposition(dec, target_length, smooth, densities, allow_folds, timings, max_faces)
+    done("mesh", mesh)
     spec = domain.supports if supports is None else supports
     spec = {"vertices": spec} if isinstance(spec, list) else spec
     anchors = support_vertices(mesh.vertices, mesh.faces, spec, domain)
+    done("supports", anchors)
     # the specification itself, not its vertices: a failure's hint names the holes it leaves open
     network = thrust_of_mesh(mesh, spec, domain, point_load, timings, zmax=zmax, thickness=thickness, **options)
+    done("network", network)
     voussoirs = None
     if tessellation is not None:
         t = tessellation
         voussoirs = tessellate(surface_from_network(network), t.rhythm, thickness, t.max_concavity,
                                t.flat_extrados, t.surface_smooth, rules_dir, timings)
+        done("tessellation", voussoirs)
     return Design(domain, dec, mesh, anchors, network, voussoirs, timings)

@@ -254,11 +254,10 @@ def write_obj_groups(path: str | Path, vertices: np.ndarray, triangles: np.ndarr
     import numpy as np
 
     n = int(owner.max()) + 1 if len(owner) else 0
-    bounds = np.searchsorted(owner, np.arange(n + 1)).tolist()
-    flat = (np.asarray(triangles, dtype=np.int64) + 1).tolist()
-    parts = ["# vaultgram\n", _obj_vertices(vertices)]
-    line = "f" + " %d" * (np.shape(triangles)[1] if len(flat) else 3) + "\n"
-    for k in range(n):
-        rows = flat[bounds[k]:bounds[k + 1]]
-        parts.append(f"o {prefix}{k}\n" + (line * len(rows)) % tuple(chain.from_iterable(rows)))
-    write_text(path, "".join(parts))
+    counts = np.diff(np.searchsorted(owner, np.arange(n + 1))).tolist()
+    t = np.asarray(triangles, dtype=np.int64)
+    line = "f" + " %d" * (t.shape[1] if t.size else 3) + "\n"
+    name = f"o {prefix.replace('%', '%%')}"
+    # one format call over every index: the template holds each object's line and its faces' lines
+    template = "".join(f"{name}{k}\n" + line * c for k, c in enumerate(counts))
+    write_text(path, "# vaultgram\n" + _obj_vertices(vertices) + template % tuple((t.ravel() + 1).tolist()))

@@ -143,13 +143,15 @@ def _write_compas(path: Path, item, supports=None) -> None:
 
 
 def write_design(result, out: Path, formats=DEFAULT_FORMATS, trace: bool = False, plots: bool = True,
-                 report: bool = True, parameters: dict | None = None) -> dict:
+                 report: bool = True, parameters: dict | None = None, figures=None) -> dict:
     """Every file of a whole design (:class:`vaultgram.pipeline.Design`), as ``formats`` ask: each stage's,
     ``summary.json`` (one section per stage, and the ``parameters`` given), the drawings and the rules'
-    trace if ``trace``; then, off the critical path, with ``plots`` the figures of every stage
-    (:mod:`vaultgram.io.figures`) and with ``report`` ``report.html`` (:mod:`vaultgram.io.report`);
-    ``timings.json`` has the seconds of every stage, these included (the one file that differs between
-    reruns, with the report that shows it). Returns the timings."""
+    trace if ``trace``; then, with ``plots`` the figures of every stage (:mod:`vaultgram.io.figures`:
+    drawn here, or waited for from ``figures``, the :class:`~vaultgram.io.figures.worker.FigureWorker`
+    that drew them in the background while the stages ran and these files were written) and with
+    ``report`` ``report.html`` (:mod:`vaultgram.io.report`); ``timings.json`` has the seconds of every
+    stage, these included (the one file that differs between reruns, with the report that shows it).
+    Returns the timings."""
     timings = dict(result.timings)
     with progress.timed(timings, "write"), collector_paused():
         write_decomposition(result.decomposition, out, plot=False, formats=formats, trace=trace)
@@ -163,7 +165,7 @@ def write_design(result, out: Path, formats=DEFAULT_FORMATS, trace: bool = False
                        network=result.network, tessellation=result.tessellation)
     if plots and "json" in formats:
         with progress.timed(timings, "figures"), collector_paused():
-            write_design_figures(result, out)
+            write_design_figures(result, out, figures)
     write_json(out / "timings.json", timings)
     if report and "json" in formats:
         from vaultgram.io.report import write_report
@@ -191,12 +193,16 @@ def design_summary(result, parameters: dict | None = None) -> dict:
     return summary
 
 
-def write_design_figures(result, out: Path) -> None:
-    """Every stage's figure in ``figures/`` as PNG and SVG, and the PNG figures beside the files
-    (``decomposition.png``, ``mesh.png``, ``thrust.png``, ``tessellation.png``: copies of four of them)."""
+def write_design_figures(result, out: Path, worker=None) -> None:
+    """Every stage's figure in ``figures/`` as PNG and SVG (drawn now, or the ``worker``'s, waited
+    for), and the PNG figures beside the files (``decomposition.png``, ``mesh.png``, ``thrust.png``,
+    ``tessellation.png``: copies of four of them)."""
     from vaultgram.io.figures import BESIDE, Stages, write_figures
 
-    written = {spec.name for spec in write_figures(Stages.of(result), out)}
+    if worker is not None:
+        written = set(worker.finish())
+    else:
+        written = {spec.name for spec in write_figures(Stages.of(result), out)}
     for name, figure in BESIDE.items():
         if figure in written:  # the same figure, not drawn twice
             shutil.copyfile(out / "figures" / f"{figure}.png", out / name)

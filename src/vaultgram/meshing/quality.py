@@ -9,6 +9,7 @@ that says where and why.
 
 from __future__ import annotations
 
+import itertools
 import math
 from typing import NamedTuple
 
@@ -66,11 +67,11 @@ def _face_array(faces) -> np.ndarray:
     lens = np.fromiter((len(f) for f in faces), dtype=np.int64, count=len(faces))
     if len(faces) and (lens.max() > 4 or lens.min() < 3):
         raise VaultgramError("faces must be triangles or quads")
-    q = lens == 4
-    if q.any():
-        out[q] = np.array([f for f in faces if len(f) == 4], dtype=np.int64)
-    if (~q).any():
-        out[~q, :3] = np.array([f for f in faces if len(f) == 3], dtype=np.int64)
+    flat = np.fromiter(itertools.chain.from_iterable(faces), dtype=np.int64, count=int(lens.sum()))
+    starts = np.cumsum(lens) - lens  # the corners placed in one go, not face by face
+    k = np.arange(4)
+    take = k[None, :] < lens[:, None]
+    out[take] = flat[(starts[:, None] + k[None, :])[take]]
     return out
 
 
@@ -124,7 +125,8 @@ def check_not_folded(mesh: QuadMesh, decomposition: Decomposition) -> None:
         why = "features, curves or boundaries this close together need a smaller --target-length or more room"
     raise MeshFoldError(
         f"the mesh folds: {len(bad)} inverted face(s), the worst near {fmt_point(where)} in the patch with corners "
-        f"{corners}; {why} (vaultgram mesh --allow-folds writes the mesh anyway)"
+        f"{corners}; {why} (vaultgram mesh --allow-folds writes the mesh anyway)",
+        places=[mesh.vertices[list(mesh.faces[k]), :2] for k in bad.tolist()],
     )
 
 

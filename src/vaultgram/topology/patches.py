@@ -100,7 +100,7 @@ def find_patches(graph: HostGraph, disc: Discretisation, edge_types, strict: boo
             raise DomainError(
                 f"patch around {_where(outline)} has {len(corners)} sides (corners at "
                 f"{', '.join(fmt_point(graph.get(c, 'pos')) for c in corners)}); only 3- and 4-sided patches "
-                "can be meshed: try another spacing or check the rules"
+                "can be meshed: try another spacing or check the rules", places=[outline]
             )
         patches.append(Patch(len(patches), corners, sides, side_edges))
     return patches

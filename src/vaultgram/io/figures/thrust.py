@@ -12,7 +12,6 @@ from vaultgram.io.figures.style import (
     COURSE_MAP,
     DENSE,
     HEIGHT_MAP,
-    RASTER,
     face_means,
     face_polygons,
     lines,
@@ -77,7 +76,6 @@ def surface(ax, xyz: np.ndarray, faces, values, cmap: str, gid: str, edge: bool)
     dense = len(polys) > DENSE or not edge
     collection = Poly3DCollection(polys, facecolors=colours, edgecolors="none" if dense else "0.2",
                                   linewidths=0 if dense else 0.2, gid=gid)
-    collection.set_rasterized(len(polys) > RASTER)
     ax.add_collection3d(collection, autolim=False)  # the limits are the axonometric's
     return collection
 

@@ -1,0 +1,159 @@
+"""Figures off the critical path: one background process draws each stage's figures while the later
+stages run (issue 15: the figures of a small design cost more than the design).
+
+:class:`FigureWorker` is the pipeline's ``on_stage`` callback (:func:`vaultgram.pipeline.design`).
+When the decomposition is done it forks one process (the decomposition's graph cannot be pickled, a
+forked child has it already); each later stage (the mesh, its supports, the thrust network, the
+tessellation) reaches the process pickled through a pipe, and the process draws every figure whose
+stages have all arrived (:attr:`vaultgram.io.figures.FigureSpec.final`), in the catalogue's order
+within each step. :meth:`FigureWorker.finish` waits for the last figure: the wait is all the figures
+cost the run. The process writes into the run's staging folder (:func:`vaultgram.io.files.output_folder`),
+so the output folder stays complete or untouched; on a failure or interrupt :meth:`FigureWorker.close`
+ends the process before the staging folder is removed. The figures are the same bytes as
+:func:`vaultgram.io.figures.write_figures` writes in one process.
+
+Example
+-------
+>>> import tempfile
+>>> from vaultgram.domain import load_domain
+>>> from vaultgram.pipeline import design
+>>> out = Path(tempfile.mkdtemp())
+>>> with FigureWorker(out) as worker:
+...     result = design(load_domain("examples/l_shape.json"), spacing=0.05, tessellation=None,
+...                     on_stage=worker)
+...     names = worker.finish()
+>>> names[:2], (out / "figures" / "panel.png").is_file()
+(['delaunay', 'skeleton'], True)
+"""
+
+from __future__ import annotations
+
+import queue
+import signal
+import threading
+import time
+import traceback
+from dataclasses import replace
+from pathlib import Path
+
+#: The stages the pipeline reports after the decomposition, in its order (:class:`vaultgram.io.figures.Stages` fields).
+LATER = ("mesh", "supports", "network", "tessellation")
+
+
+class FigureWorker:
+    """The background figure process of one run, writing into ``out`` (a staging folder)."""
+
+    def __init__(self, out: Path):
+        self.out = Path(out)
+        self.process = None
+        self.conn = None
+        self.seconds = 0.0  # the figures' own time, in the background process
+        self.domain = None
+
+    def __enter__(self) -> FigureWorker:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def __call__(self, stage: str, value) -> None:
+        """The pipeline reports that ``stage`` is done with this ``value``."""
+        if stage == "domain":
+            self.domain = value
+        elif stage == "decomposition":
+            self._start(value)
+        elif stage in LATER and self.conn is not None:
+            self.conn.send((stage, value))
+
+    def _start(self, decomposition) -> None:
+        """Fork the figure process with the domain and the decomposition it inherits."""
+        import multiprocessing  # here: the command line starts without it
+
+        from vaultgram.io.figures import Stages
+
+        self.close()
+        context = multiprocessing.get_context("fork")
+        mine, theirs = context.Pipe()
+        data = Stages(self.domain, decomposition)
+        self.process = context.Process(target=_serve, args=(data, self.out, theirs), daemon=True)
+        self.process.start()
+        theirs.close()
+        self.conn = mine
+
+    def finish(self) -> list[str]:
+        """Wait for every figure of the stages sent; the names of the figures written, in order."""
+        if self.conn is None:
+            return []
+        self.conn.send(("done", None))
+        try:
+            status, payload, seconds = self.conn.recv()
+        except EOFError:
+            status, payload, seconds = "error", "the figure process ended without a word", 0.0
+        self.seconds = seconds
+        self.close()
+        if status != "ok":
+            raise RuntimeError(f"figures: {payload}")
+        return payload
+
+    def close(self) -> None:
+        """End the process (if still running) and wait for it: nothing writes into ``out`` after this."""
+        if self.conn is not None:
+            self.conn.close()
+            self.conn = None
+        if self.process is not None:
+            if self.process.is_alive():
+                self.process.terminate()
+            self.process.join()
+            self.process = None
+
+
+def _serve(data, out: Path, conn) -> None:
+    """The figure process: draw what is ready, then after each stage received what became ready. A
+    thread takes the stages off the pipe as they come, so the pipeline never waits for a drawing."""
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # the parent's handler unwinds the parent's stack
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # an interrupt is the parent's to handle: it ends this process
+    start = time.process_time()
+    inbox: queue.Queue = queue.Queue()
+    threading.Thread(target=_receive, args=(conn, inbox), daemon=True).start()
+    written: list[str] = []
+    try:
+        written += _draw_ready(data, out, written)
+        for stage, value in iter(inbox.get, ("done", None)):
+            data = _with(data, stage, value)
+            written += _draw_ready(data, out, written)
+        reply = ("ok", written, time.process_time() - start)
+    except Exception:  # noqa: BLE001 -- reported to the parent, which raises
+        reply = ("error", traceback.format_exc(limit=3), time.process_time() - start)
+    try:
+        conn.send(reply)
+    except OSError:  # the parent has gone (it failed or was interrupted)
+        pass
+    conn.close()
+
+
+def _receive(conn, inbox: queue.Queue) -> None:
+    """Move the messages of ``conn`` to ``inbox`` until ``done`` (or the parent is gone)."""
+    while True:
+        try:
+            message = conn.recv()
+        except (EOFError, OSError):
+            message = ("done", None)
+        inbox.put(message)
+        if message[0] == "done":
+            return
+
+
+def _with(data, stage: str, value):
+    """``data`` with one more stage; the patch layout (of the decomposition alone) is not made again."""
+    new = replace(data, **{stage: value})
+    if "layout" in data.__dict__:
+        new.__dict__["layout"] = data.layout
+    return new
+
+
+def _draw_ready(data, out: Path, done: list[str]) -> list[str]:
+    """Write the figures whose stages are all there and that are not written yet."""
+    from vaultgram.io.figures import CATALOGUE, write_figures
+
+    ready = [spec for spec in CATALOGUE if spec.name not in done and spec.ready(data)]
+    return [spec.name for spec in write_figures(data, out, ready)]

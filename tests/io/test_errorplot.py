@@ -1,0 +1,61 @@
+"""The error figure (vaultgram.io.figures.errorplot): a design that fails on a geometric problem
+(here a mesh that folds) writes DIR/error.png alone, a valid PNG that shows the place, and says so in
+its one line; beside a folder that holds a result it writes DIR.error.png and leaves the result as it was."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+from click.testing import CliRunner
+
+from vaultgram.cli import main
+
+#: Two curves too close to each other and to the boundary for the default mesh density: it folds
+#: (tests/meshing/test_quality.py).
+FOLDING = {"outer": [[0, 0], [8.969219944792723, 0], [8.969219944792723, 9.230049115216001], [0, 9.230049115216001]],
+           "points": [[8.969219944792723, 6.564436888431961]],
+           "curves": [[[1.3319402748322131, 3.237878824185768], [2.6869734415206787, 4.09028434005551]],
+                      [[5.04737783905793, 1.5446644739170763], [3.2519501197955387, 0.8942200737782218]]]}
+
+
+def design(plan, out):
+    return CliRunner().invoke(main, ["design", str(plan), "--out", str(out), "--quiet"])
+
+
+def red_pixels(png) -> int:
+    """How many pixels of the PNG are the error's red (matplotlib's tab:red, #d62728)."""
+    from matplotlib.image import imread
+
+    rgb = (imread(png)[..., :3] * 255).round()
+    return int((np.abs(rgb - [214, 39, 40]).sum(axis=-1) < 30).sum())
+
+
+def test_a_fold_draws_error_png_and_writes_nothing_else(tmp_path):
+    plan = tmp_path / "folding.json"
+    plan.write_text(json.dumps(FOLDING))
+    out = tmp_path / "out"
+    result = design(plan, out)
+    assert result.exit_code == 2 and "Traceback" not in result.output
+    (line,) = result.output.strip().splitlines()
+    assert "the mesh folds" in line and line.endswith(f"(drawn in {out / 'error.png'})")
+    assert [p.name for p in out.iterdir()] == ["error.png"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["folding.json", "out"]  # no staging folder left
+    png = (out / "error.png").read_bytes()
+    assert png.startswith(b"\x89PNG\r\n\x1a\n")
+    assert red_pixels(out / "error.png") > 20  # the folded faces and their marks, not a blank figure
+    first = png
+    design(plan, out)  # again: the same figure, still alone
+    assert [p.name for p in out.iterdir()] == ["error.png"] and (out / "error.png").read_bytes() == first
+
+
+def test_beside_a_finished_result_the_figure_goes_next_to_it(tmp_path):
+    plan = tmp_path / "folding.json"
+    plan.write_text(json.dumps(FOLDING))
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "summary.json").write_text("{}")  # a previous result
+    result = design(plan, out)
+    assert result.exit_code == 2 and f"(drawn in {tmp_path / 'out.error.png'})" in result.output
+    assert [p.name for p in out.iterdir()] == ["summary.json"] and (out / "summary.json").read_text() == "{}"
+    assert red_pixels(tmp_path / "out.error.png") > 20
