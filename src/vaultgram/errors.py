@@ -44,17 +44,19 @@ class VaultgramWarning(UserWarning):
     ...): the message names it. The command line prints each as one ``warning:`` line."""
 
 
-class DomainError(VaultgramError):
-    """The domain (boundaries and features) is invalid: the message names the ring or feature and vertex.
-
-    ``places``, when the raiser knows them, are the plan polygons where the problem is (each a
-    sequence of (x, y)): ``vaultgram design`` draws them in an error figure
-    (:mod:`vaultgram.io.figures.errorplot`).
-    """
+class _Placed:
+    """An error that may know where in the plan it is: ``places``, when the raiser knows them, are the
+    plan polygons (or segments) where the problem is, each a sequence of (x, y); ``vaultgram design``
+    draws them in an error figure (:mod:`vaultgram.io.figures.errorplot`)."""
 
     def __init__(self, message: str, places=()):
         super().__init__(message)
         self.places = list(places)
+
+
+class DomainError(_Placed, VaultgramError):
+    """The domain (boundaries and features) is invalid: the message names the ring or feature and
+    vertex, and ``places`` (:class:`_Placed`) may show it."""
 
 
 class MeshFoldError(DomainError):
@@ -63,8 +65,9 @@ class MeshFoldError(DomainError):
     there. The message says where."""
 
 
-class FormFindingError(VaultgramError):
-    """The input cannot be form-found: bad mesh, bad supports, or no compression-only equilibrium."""
+class FormFindingError(_Placed, VaultgramError):
+    """The input cannot be form-found: bad mesh, bad supports, or no compression-only equilibrium;
+    ``places`` (:class:`_Placed`) may hold the plan segments of the edges that flipped or collapsed."""
 
 
 class HorizontalEquilibriumError(FormFindingError):
@@ -74,8 +77,8 @@ class HorizontalEquilibriumError(FormFindingError):
     last state of the iteration.
     """
 
-    def __init__(self, message: str, edges=(), angles=(), result=None):
-        super().__init__(message)
+    def __init__(self, message: str, edges=(), angles=(), result=None, places=()):
+        super().__init__(message, places)
         self.edges = list(edges)
         self.angles = list(angles)
         self.result = result

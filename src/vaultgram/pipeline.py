@@ -334,9 +334,9 @@ def thrust_of_mesh(mesh: QuadMesh, supports=None, domain: Domain | None = None, 
                 raise
         except HorizontalEquilibriumError as exc:
             raise HorizontalEquilibriumError(f"{exc}{_support_hint(domain, supports)}", exc.edges, exc.angles,
-                                             exc.result) from None
+                                             exc.result, exc.places) from None
         except FormFindingError as exc:
-            raise FormFindingError(f"{exc}{_support_hint(domain, supports)}") from None
+            raise FormFindingError(f"{exc}{_support_hint(domain, supports)}", exc.places) from None
 
 
 def _support_hint(domain: Domain | None, supports) -> str:

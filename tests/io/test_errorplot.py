@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 
 import numpy as np
+import pytest
 from click.testing import CliRunner
 
 from vaultgram.cli import main
@@ -59,3 +60,36 @@ def test_beside_a_finished_result_the_figure_goes_next_to_it(tmp_path):
     assert result.exit_code == 2 and f"(drawn in {tmp_path / 'out.error.png'})" in result.output
     assert [p.name for p in out.iterdir()] == ["summary.json"] and (out / "summary.json").read_text() == "{}"
     assert red_pixels(tmp_path / "out.error.png") > 20
+
+
+#: A long strip held at one short end only: relaxing its open sides collapses form-diagram edges.
+HELD_AT_ONE_END = {"outer": [[0, 0], [10, 0], [10, 1], [0, 1]], "supports": {"polylines": [[[0, 0], [0, 1]]]}}
+
+
+def test_collapsed_form_edges_are_drawn_too(tmp_path):
+    """A form-finding failure that knows its edges (here: relaxing collapses them) draws them in plan."""
+    plan = tmp_path / "strip.json"
+    plan.write_text(json.dumps(HELD_AT_ONE_END))
+    out = tmp_path / "out"
+    result = design(plan, out)
+    assert result.exit_code == 2 and "Traceback" not in result.output
+    (line,) = result.output.strip().splitlines()
+    assert "collapsed" in line and line.endswith(f"(drawn in {out / 'error.png'})")
+    assert [p.name for p in out.iterdir()] == ["error.png"]
+    assert red_pixels(out / "error.png") > 20
+
+
+def test_form_finding_errors_carry_the_plan_segments_of_their_edges():
+    """The places of a horizontal-equilibrium failure are the flipped edges' segments in plan."""
+    from vaultgram.errors import HorizontalEquilibriumError
+    from vaultgram.formfinding.formdiagram import form_diagram
+    from vaultgram.formfinding.horizontal import horizontal
+    from vaultgram.geometry.meshes import grid_mesh
+
+    v, f = grid_mesh(3, 1)
+    form = form_diagram(v, f, supports=[0])
+    with pytest.raises(HorizontalEquilibriumError) as info:
+        horizontal(form)
+    edges, segments = info.value.edges, np.asarray(info.value.places)
+    assert len(edges) > 0 and segments.shape == (len(edges), 2, 2)
+    assert np.array_equal(segments, form.xy[form.edges[edges]])

@@ -499,4 +499,5 @@ def _no_compression(res: HorizontalResult, act: np.ndarray, force_lengths: np.nd
             f"{len(flipped)} force edges flipped (tension) and {len(collapsed)} collapsed to zero length, "
             f"e.g. {desc}. Straight unsupported edges cannot be in compression: bend the openings more "
             f"(--sag, --relax-mode all), move the pattern or support more of the boundary (--supports)")
-    return HorizontalEquilibriumError(message, edges=act[bad].tolist(), angles=angles[bad].tolist(), result=res)
+    return HorizontalEquilibriumError(message, edges=act[bad].tolist(), angles=angles[bad].tolist(), result=res,
+                                      places=res.form.xy[res.form.edges[act[bad]]])

@@ -306,7 +306,7 @@ def _check_not_collapsed(form: FormDiagram, out: FormDiagram) -> None:
         raise FormFindingError(
             f"relaxing the openings collapsed {len(short)} edges, e.g. {form.edge_name(int(short[0]))} "
             f"(length {l0[short[0]]:.3g} -> {l1[short[0]]:.3g}): the supports cannot hold the open edges "
-            f"apart; add supports or relax with a larger sag")
+            f"apart; add supports or relax with a larger sag", places=form.xy[form.edges[short]])
 
 
 def _check_not_folded(out: FormDiagram) -> None:

@@ -362,7 +362,7 @@ class BoundaryRecoveryError(DomainError):
     holds the end points of every such segment (:mod:`vaultgram.topology.recovery` refines there)."""
 
     def __init__(self, message: str, segments: np.ndarray):
-        super().__init__(message)
+        super().__init__(message, places=segments)
         self.segments = segments
 
 

@@ -1,8 +1,10 @@
 """The figure of a failure: where in the plan a stage failed on a geometric problem (the inverted
-faces of a mesh that folds, a patch with more than four sides), over the domain's boundaries.
+faces of a mesh that folds, a patch with more than four sides, boundary segments the triangulation
+misses, form-diagram edges that flip or collapse in form finding), over the domain's boundaries.
 
 ``vaultgram design`` runs inside :func:`error_figure`: when a stage raises a
-:class:`~vaultgram.errors.DomainError` that knows its ``places``, the figure is written and the
+:class:`~vaultgram.errors.DomainError` or :class:`~vaultgram.errors.FormFindingError` that knows
+its ``places``, the figure is written and the
 error's one line says where it is; nothing else is written. Where it goes keeps the output folder
 complete or untouched (issue 17):
 
@@ -36,7 +38,7 @@ from typing import Iterator
 
 import numpy as np
 
-from vaultgram.errors import DomainError
+from vaultgram.errors import DomainError, FormFindingError
 from vaultgram.io.figures import style
 
 NAME = "error.png"
@@ -58,12 +60,12 @@ def clear_error_figures(out: Path) -> None:
 
 @contextmanager
 def error_figure(out: Path, domain) -> Iterator[None]:
-    """Run the block; a :class:`DomainError` with ``places`` leaves its figure (:func:`error_figure_path`)
-    and says so at the end of its message, then goes on up. A block that succeeds clears the error
-    figures of earlier runs."""
+    """Run the block; a :class:`DomainError` or :class:`FormFindingError` with ``places`` leaves its
+    figure (:func:`error_figure_path`) and says so at the end of its message, then goes on up. A block
+    that succeeds clears the error figures of earlier runs."""
     try:
         yield
-    except DomainError as exc:
+    except (DomainError, FormFindingError) as exc:
         if not exc.places:
             raise
         path = error_figure_path(out)
