@@ -58,6 +58,8 @@ class _Group(click.Group):
         except click.Abort:
             click.echo("Aborted!", err=True)
             sys.exit(1)
+        except KeyboardInterrupt:  # after the command ended (click turns one during it into Abort)
+            sys.exit(130)
         sys.exit(code if isinstance(code, int) else 0)
 
 

@@ -147,3 +147,18 @@ def test_design_interrupted_at_random_points_leaves_out_absent_or_complete(tmp_p
         if out.exists():
             assert _contents(out) == expected
         assert "Traceback" not in proc.stderr.read()
+
+
+
+def test_an_interrupt_after_the_command_ended_exits_130_without_a_traceback(monkeypatch):
+    """A Ctrl-C that lands once click has returned (the folder is complete) ends the run with the
+    shell's code for an interrupt, not with a KeyboardInterrupt traceback."""
+    import click
+
+    def interrupted(*_args, **_kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(click.Group, "main", interrupted)
+    with pytest.raises(SystemExit) as exit_info:
+        main(["--help"])
+    assert exit_info.value.code == 130
