@@ -32,15 +32,24 @@ def red_pixels(png) -> int:
     return int((np.abs(rgb - [214, 39, 40]).sum(axis=-1) < 30).sum())
 
 
-def test_a_fold_draws_error_png_and_writes_nothing_else(tmp_path):
-    plan = tmp_path / "folding.json"
-    plan.write_text(json.dumps(FOLDING))
+def failed_design(tmp_path, plan_data: dict, name: str):
+    """``design`` of ``plan_data`` (written to ``tmp_path/name``) into ``tmp_path/out``: it fails with
+    one line ending with the error figure's path, and the folder holds that figure alone. Returns the
+    line, the plan's path and the folder."""
+    plan = tmp_path / name
+    plan.write_text(json.dumps(plan_data))
     out = tmp_path / "out"
     result = design(plan, out)
     assert result.exit_code == 2 and "Traceback" not in result.output
     (line,) = result.output.strip().splitlines()
-    assert "the mesh folds" in line and line.endswith(f"(drawn in {out / 'error.png'})")
+    assert line.endswith(f"(drawn in {out / 'error.png'})")
     assert [p.name for p in out.iterdir()] == ["error.png"]
+    return line, plan, out
+
+
+def test_a_fold_draws_error_png_and_writes_nothing_else(tmp_path):
+    line, plan, out = failed_design(tmp_path, FOLDING, "folding.json")
+    assert "the mesh folds" in line
     assert sorted(p.name for p in tmp_path.iterdir()) == ["folding.json", "out"]  # no staging folder left
     png = (out / "error.png").read_bytes()
     assert png.startswith(b"\x89PNG\r\n\x1a\n")
@@ -68,14 +77,8 @@ HELD_AT_ONE_END = {"outer": [[0, 0], [10, 0], [10, 1], [0, 1]], "supports": {"po
 
 def test_collapsed_form_edges_are_drawn_too(tmp_path):
     """A form-finding failure that knows its edges (here: relaxing collapses them) draws them in plan."""
-    plan = tmp_path / "strip.json"
-    plan.write_text(json.dumps(HELD_AT_ONE_END))
-    out = tmp_path / "out"
-    result = design(plan, out)
-    assert result.exit_code == 2 and "Traceback" not in result.output
-    (line,) = result.output.strip().splitlines()
-    assert "collapsed" in line and line.endswith(f"(drawn in {out / 'error.png'})")
-    assert [p.name for p in out.iterdir()] == ["error.png"]
+    line, _, out = failed_design(tmp_path, HELD_AT_ONE_END, "strip.json")
+    assert "collapsed" in line
     assert red_pixels(out / "error.png") > 20
 
 
