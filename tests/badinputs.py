@@ -46,7 +46,7 @@ def domain_cases() -> list[Case]:
         _domain("top-list", SQUARE), _domain("top-string", "square"), _domain("top-null", None, raw=b"null"),
         _domain("no-outer", {"holes": []}),
         _domain("one-followed-by-309-zeros", None, raw=b'{"outer": [[0, 0], [1' + b"0" * 309 + b', 0], [0, 5]]}'),
-        _domain("far-from-origin", {"outer": [[1e9 + x, 1e9 + y] for x, y in SQUARE]}),
+        _domain("far-from-origin", {"outer": [[1e13 + x, 1e13 + y] for x, y in SQUARE]}),
         _domain("huge-plan-1e200", {"outer": [[0, 0], [1e200, 0], [1e200, 1e200], [0, 1e200]]}),
         _domain("nan-literal", None, raw=b'{"outer": [[0, 0], [NaN, 0], [30, 30]]}'),
         _domain("infinity-literal", None, raw=b'{"outer": [[0, 0], [Infinity, 0], [30, 30]]}'),

@@ -647,7 +647,7 @@ def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities
     supports = read_json(supports_path) if supports_path else domain.supports
     if isinstance(supports, list):
         supports = {"vertices": supports}
-    anchors = support_vertices(mesh.vertices, mesh.faces, supports, domain)
+    anchors = support_vertices(mesh.vertices, mesh.faces, supports, domain, mesh.origin)
     out = Path(out_dir)
     with output_folder(out) as stage:
         write_mesh_files(mesh, stage, anchors, plot=False, formats=formats)
@@ -681,7 +681,7 @@ def stats_command(mesh_path, domain_path, as_json) -> None:
 
     mesh = mesh_from_json(read_json(mesh_path), mesh_path)
     domain = load_domain(domain_path) if domain_path else None
-    stats = mesh_stats(mesh, domain)
+    stats = mesh_stats(mesh.in_frame(domain.origin) if domain is not None else mesh, domain)
     click.echo(json.dumps(stats, indent=1) if as_json else format_stats(stats))
 
 

@@ -15,9 +15,10 @@ SPACING_MAX = 0.2
 #: Largest coordinate a plan may have: beyond, squared lengths and areas overflow (1e200) or keep no
 #: digit of the plan's shape.
 MAX_COORDINATE = 1e15
-#: Largest distance of a plan from the origin, in diagonals of the plan: double precision keeps about
-#: 16 digits, and the stages need some 8 of them for the plan's shape.
-MAX_OFFSET = 1e7
+#: Largest distance of a plan from the origin, in diagonals of the plan: the stages work in a local
+#: frame (:mod:`vaultgram.geometry.frames`), but the files are written in the plan's coordinates, and
+#: double precision keeps about 16 digits: at 1e9 diagonals, 7 of them are left for the plan's shape.
+MAX_OFFSET = 1e9
 #: Default limit on the number of faces of a mesh (``--max-faces``, :mod:`vaultgram.meshing.guards`).
 MAX_FACES = 2_000_000
 #: Peak memory of the whole pipeline (``vaultgram design``) per mesh face, in bytes: about 0.8 GB at

@@ -52,6 +52,7 @@ from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.halfedges import mesh_edges
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.surfaces import area_vectors, vertex_normals
+from vaultgram.geometry.text import plan_frame
 from vaultgram.io.files import collector_paused
 from vaultgram.limits import MAX_FACES
 from vaultgram.meshing.densities import DensitySpec, group_counts
@@ -109,16 +110,23 @@ def decompose(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | Non
     for a replay (``Decomposition.start_graph``); ``chooser`` resolves the rulebook's ``choose`` steps
     (default: the first option; exploration replays a variant's choices).
     """
-    check_feature_layout(domain)
-    rulebook = load_vault_rulebook(rules_dir)
-    with _timed(timings, "discretise"):
-        disc = discretise(domain, spacing)
-    with _timed(timings, "triangulate"):
-        tri = triangulate_recovering(disc)
-    with _timed(timings, "skeleton"):
-        sk = skeleton(tri, smooth=smooth)
-    with _timed(timings, "rules"):
-        return block_decomposition(sk, rulebook, check_invariants, trace, chooser or first_option)
+    with _frame(domain):
+        check_feature_layout(domain)
+        rulebook = load_vault_rulebook(rules_dir)
+        with _timed(timings, "discretise"):
+            disc = discretise(domain, spacing)
+        with _timed(timings, "triangulate"):
+            tri = triangulate_recovering(disc)
+        with _timed(timings, "skeleton"):
+            sk = skeleton(tri, smooth=smooth)
+        with _timed(timings, "rules"):
+            return block_decomposition(sk, rulebook, check_invariants, trace, chooser or first_option)
+
+
+def _frame(domain: Domain):
+    """Messages of the stages name places in the plan's coordinates, also for a plan worked on in its
+    local frame (:mod:`vaultgram.geometry.frames`)."""
+    return plan_frame(domain.origin, domain.diagonal)
 
 
 # --------------------------------------------------------------------------------------------
@@ -137,6 +145,13 @@ def mesh_decomposition(dec: Decomposition, target_length: float | None = None, s
     """
     if smooth < 0:
         raise VaultgramError(f"smoothing iterations must be >= 0, got {smooth}")
+    with _frame(dec.disc.domain):
+        return _meshed(dec, target_length, smooth, densities, allow_folds, timings, max_faces)
+
+
+def _meshed(dec: Decomposition, target_length, smooth: int, densities, allow_folds: bool, timings,
+            max_faces: int) -> QuadMesh:
+    """The stages of :func:`mesh_decomposition`; the mesh in the decomposition's frame."""
     with _timed(timings, "groups"):
         layout = edge_groups(dec)
         counts = group_counts(layout, densities, target_length, max_faces)
@@ -149,7 +164,7 @@ def mesh_decomposition(dec: Decomposition, target_length: float | None = None, s
             x = untangle(x, mesh.faces, mesh.fixed, mesh.constraints)
             x = improve_shapes(x, mesh.faces, mesh.fixed, mesh.constraints)
             x = maximise_min_quality(x, mesh.faces, mesh.fixed, mesh.constraints, still=mesh.feature)
-    mesh = dataclasses.replace(mesh, vertices=x, info=_mesh_info(dec, layout, smooth))
+    mesh = dataclasses.replace(mesh, vertices=x, info=_mesh_info(dec, layout, smooth), origin=dec.origin)
     if smooth > 0 and not allow_folds:
         check_not_folded(mesh, dec)
     return mesh
@@ -199,7 +214,8 @@ def mesh_domain(domain: Domain, spacing: float = 0.02, target_length: float | No
         :class:`~vaultgram.errors.MeshFoldError` when the smoothed mesh has inverted faces (unless
         ``allow_folds``).
     """
-    check_feature_spacing(domain, spacing)
+    with _frame(domain):
+        check_feature_spacing(domain, spacing)
     dec = decompose(domain, spacing, rules_dir, timings=timings)
     return mesh_decomposition(dec, target_length, smooth, densities, allow_folds, timings, max_faces)
 
@@ -322,13 +338,14 @@ def thrust_of_mesh(mesh: QuadMesh, supports=None, domain: Domain | None = None, 
     """
     if isinstance(supports, list):
         supports = {"vertices": supports}
-    anchors = support_vertices(mesh.vertices, mesh.faces, supports, domain)
+    anchors = support_vertices(mesh.vertices, mesh.faces, supports, domain, mesh.origin)
     loads = {int(v): point_load for v in np.flatnonzero(mesh.feature)} if point_load else None
     heights = [zmax] if zmax is not None else [default_rise(mesh.vertices, rise) for rise in RISES]
     for k, height in enumerate(heights):
         try:
-            return form_find(mesh.vertices, mesh.faces, anchors, point_loads=loads, timings=timings, zmax=height,
-                             **options)
+            network = form_find(mesh.vertices, mesh.faces, anchors, point_loads=loads, timings=timings, zmax=height,
+                                **options)
+            return dataclasses.replace(network, origin=mesh.origin)
         except VerticalEquilibriumError:
             if k == len(heights) - 1:
                 raise
@@ -413,7 +430,7 @@ def tessellate(surface: ThrustSurface, rhythm: int = 2, thickness: float = 1.0,
         summary = summarise(x, normals, layout, max_concavity, {**kept, "refined_strips": refined}, surface.holes,
                             solid_volumes(solids, layout.n_voussoirs))
     return Tessellation(layout, x, normals, solids, courses, zones, tuple(voussoir_names(courses, zones)),
-                        {**summary, "rhythm": rhythm, "thickness": thickness})
+                        {**summary, "rhythm": rhythm, "thickness": thickness}, surface.origin)
 
 
 def _bond(cut: CutMesh, me, supported: np.ndarray, rhythm: int, max_concavity: float):
@@ -545,7 +562,8 @@ def design(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None =
     """
     timings: dict = {}
     done = on_stage if on_stage is not None else (lambda name, value: None)
-    check_feature_spacing(domain, spacing)
+    with _frame(domain):
+        check_feature_spacing(domain, spacing)
     done("domain", domain)
     dec = decompose(domain, spacing, rules_dir, timings=timings, trace=trace)
     done("decomposition", dec)
@@ -553,7 +571,7 @@ def design(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None =
     done("mesh", mesh)
     spec = domain.supports if supports is None else supports
     spec = {"vertices": spec} if isinstance(spec, list) else spec
-    anchors = support_vertices(mesh.vertices, mesh.faces, spec, domain)
+    anchors = support_vertices(mesh.vertices, mesh.faces, spec, domain, mesh.origin)
     done("supports", anchors)
     # the specification itself, not its vertices: a failure's hint names the holes it leaves open
     network = thrust_of_mesh(mesh, spec, domain, point_load, timings, zmax=zmax, thickness=thickness, **options)

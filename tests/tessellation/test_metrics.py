@@ -64,7 +64,7 @@ def test_the_summary_reads_as_text():
     s = summarise(v, np.tile(UP, (len(v), 1)), layout_of(v, f, ONE_IN_LINE), 190.0,
                   {"concavity": 1, "taken": 2, "aligned": 3, "moved": 5, "joined": 6, "courses": 4}, 0, np.ones(6))
     text = format_summary({**s, "rhythm": 2, "thickness": 0.3})
-    assert "6 voussoirs" in text and "2 of 3, 1 of 4" in text and "66.7% of 3" in text
+    assert "6 voussoirs" in text and "2 where 3 meet, 1 where 4 meet" in text and "66.7% of three" in text
     assert "V - E + F = 1" in text and "4 courses" in text and "faces moved 5, pairs joined 6" in text
 
 

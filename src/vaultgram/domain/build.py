@@ -17,7 +17,9 @@ import shapely
 from vaultgram.domain.model import REL_TOL, Domain
 from vaultgram.domain.validation import check_finite, validate_domain
 from vaultgram.errors import DomainError
+from vaultgram.geometry.frames import local_origin, to_local
 from vaultgram.geometry.polygons import bbox_diagonal, signed_area
+from vaultgram.geometry.text import plan_frame
 from vaultgram.limits import MAX_COORDINATE, MAX_OFFSET
 
 __all__ = ["build_domain", "as_coords", "prefixed", "default_name", "POINT_SNAP"]
@@ -145,29 +147,40 @@ def build_domain(
     supports: Any,
     units: str | None = None,
 ) -> Domain:
-    """Normalise raw arrays into a validated Domain (every reader ends here)."""
+    """Normalise raw arrays into a validated Domain (every reader ends here); a plan far from the
+    origin is moved to its local frame (:mod:`vaultgram.geometry.frames`), its messages still naming
+    the plan's coordinates."""
     check_finite(outer, "outer ring")
     check_offset(outer)
+    origin = local_origin(outer)
+    with plan_frame(origin, bbox_diagonal(outer)):
+        return _normalised(name, to_local(outer, origin), [to_local(h, origin) for h in holes],
+                           to_local(np.asarray(points, dtype=np.float64).reshape(-1, 2), origin),
+                           [to_local(c, origin) for c in curves], supports, units, origin)
+
+
+def _normalised(name, outer, holes, points, curves, supports, units, origin) -> Domain:
+    """The Domain of :func:`build_domain`, its rings and features already in their local frame."""
     tol = REL_TOL * bbox_diagonal(outer)
     outer = normalise_ring(outer, "outer ring", ccw=True, tol=tol)
     holes = tuple(
         normalise_ring(h, f"hole {i}", ccw=False, tol=tol) for i, h in enumerate(holes)
     )
-    points = np.ascontiguousarray(np.asarray(points, dtype=np.float64).reshape(-1, 2))
+    points = np.ascontiguousarray(points)
     curves = tuple(np.ascontiguousarray(np.asarray(c, dtype=np.float64)) for c in curves)
     supports = normalise_supports(supports)
     points = snap_points(outer, holes, points, POINT_SNAP * bbox_diagonal(outer))
     for arr in (outer, *holes, points, *curves):
         arr.setflags(write=False)
-    dom = Domain(str(name), outer, holes, points, curves, supports, units)
+    dom = Domain(str(name), outer, holes, points, curves, supports, units, origin)
     validate_domain(dom)
     return dom
 
 
 def check_offset(outer: np.ndarray) -> None:
     """Refuse a plan lying so far from the origin, for its size, that double precision keeps too few
-    digits of its shape to mesh it (more than :data:`~vaultgram.limits.MAX_OFFSET` diagonals away: a
-    10 x 10 square at (1e9, 1e9) read as a ring of zero area)."""
+    digits of its shape to write it back (more than :data:`~vaultgram.limits.MAX_OFFSET` diagonals
+    away); nearer far plans are worked on in a local frame."""
     if len(outer) < 2:
         return
     diagonal = bbox_diagonal(outer)

@@ -24,6 +24,7 @@ from __future__ import annotations
 import shapely
 
 from vaultgram.errors import DomainError
+from vaultgram.geometry.text import fmt_point
 
 __all__ = ["check_feature_layout"]
 
@@ -46,7 +47,7 @@ def check_feature_layout(domain) -> None:
             at_end = min(_dist(p, other[0]), _dist(p, other[-1])) <= tol
             if not at_end and shapely.distance(shapely.Point(p), lines[j]) <= tol:
                 raise DomainError(
-                    f"point feature {i} at ({p[0]:g}, {p[1]:g}) lies on curve feature {j} away from its ends: the "
+                    f"point feature {i} at {fmt_point(p)} lies on curve feature {j} away from its ends: the "
                     "rules cannot decompose a point on a curve yet; move it off the curve or to one of its ends")
 
 
@@ -55,11 +56,11 @@ def _check_end_on_curve(k: int, end, j: int, other, line, tol: float) -> None:
     if min(_dist(end, other[0]), _dist(end, other[-1])) <= tol:
         if k < j:
             raise DomainError(
-                f"curve features {k} and {j} share an end at ({end[0]:g}, {end[1]:g}) inside the plan: the rules "
+                f"curve features {k} and {j} share an end at {fmt_point(end)} inside the plan: the rules "
                 "cannot decompose curves meeting inside the plan yet; join them into one curve feature")
     elif shapely.distance(shapely.Point(end), line) <= tol:
         raise DomainError(
-            f"curve feature {k} ends on curve feature {j} at ({end[0]:g}, {end[1]:g}), away from its ends (a T of "
+            f"curve feature {k} ends on curve feature {j} at {fmt_point(end)}, away from its ends (a T of "
             "curves): the rules cannot decompose it yet; end it short of the other curve, or split that curve there")
 
 

@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import shapely
 
+from vaultgram.geometry.frames import NO_ORIGIN
 from vaultgram.geometry.polygons import bbox_diagonal, signed_area
 
 __all__ = ["Domain", "ring_name", "REL_TOL"]
@@ -68,6 +69,12 @@ class Domain:
     units : str or None
         The length unit of a CAD drawing (``"m"``, ``"mm"``, ...) as its file declares it; None when
         the file says nothing (vaultgram JSON and GeoJSON). Written back to CAD outputs.
+    origin : tuple of float
+        Where the domain's frame starts in the plan's own coordinates: (0, 0) for a plan near the
+        origin; for a far one (site coordinates) the readers move the rings and features by it, so
+        that the stages keep their digits, and the writers add it back
+        (:mod:`vaultgram.geometry.frames`). The supports and density regions stay in the plan's
+        coordinates.
 
     Example
     -------
@@ -83,6 +90,7 @@ class Domain:
     curves: tuple = ()
     supports: object | None = None
     units: str | None = None
+    origin: tuple = NO_ORIGIN
 
     @property
     def diagonal(self) -> float:

@@ -20,6 +20,7 @@ import numpy as np
 import shapely
 
 from vaultgram.errors import FormFindingError, VaultgramError
+from vaultgram.geometry.frames import NO_ORIGIN, to_local
 from vaultgram.geometry.meshes import boundary_loops
 from vaultgram.geometry.polygons import bbox_diagonal, signed_area
 from vaultgram.io import strict
@@ -42,11 +43,13 @@ def outer_loop(vertices: np.ndarray, faces: Sequence[Sequence[int]]) -> list[int
     return max(loops, key=lambda loop: abs(signed_area(xy[loop])) if len(loop) >= 3 else 0.0)
 
 
-def support_vertices(vertices, faces, spec=None, domain=None) -> np.ndarray:
+def support_vertices(vertices, faces, spec=None, domain=None, origin=NO_ORIGIN) -> np.ndarray:
     """Sorted indices of the supported vertices for a support specification (see the module docstring).
 
     ``domain`` is needed to resolve ``rings`` (which mesh boundary loop is which ring). Boundary
     vertices count as lying on a ring or polyline when within 1e-3 of the mesh's bounding-box diagonal.
+    The polylines are in the plan's coordinates, the vertices (and the domain's rings) in the frame
+    starting at ``origin`` (:mod:`vaultgram.geometry.frames`).
 
     Example
     -------
@@ -61,7 +64,7 @@ def support_vertices(vertices, faces, spec=None, domain=None) -> np.ndarray:
     if not isinstance(spec, dict) or len(set(spec) - {"comment"}) != 1:
         raise FormFindingError('supports: expected one of {"rings": ...}, {"polylines": ...} or {"vertices": ...}')
     try:
-        chosen = _chosen(xy, faces, spec, domain)
+        chosen = _chosen(xy, faces, spec, domain, origin)
     except FormFindingError:
         raise
     except VaultgramError as exc:  # a type or range error of the specification
@@ -71,12 +74,12 @@ def support_vertices(vertices, faces, spec=None, domain=None) -> np.ndarray:
     return chosen
 
 
-def _chosen(xy: np.ndarray, faces, spec: dict, domain) -> np.ndarray:
+def _chosen(xy: np.ndarray, faces, spec: dict, domain, origin) -> np.ndarray:
     """The vertices a specification of one key names (none found is not an error here)."""
     if "vertices" in spec:
         chosen = _listed_vertices(spec["vertices"], len(xy))
     elif "polylines" in spec:
-        chosen = _boundary_on_lines(xy, faces, _polylines(spec["polylines"]))
+        chosen = _boundary_on_lines(xy, faces, [to_local(p, origin) for p in _polylines(spec["polylines"])])
     elif "rings" in spec:
         chosen = _boundary_on_lines(xy, faces, _ring_lines(strict.json_list(spec["rings"], "supports.rings"), domain))
     else:

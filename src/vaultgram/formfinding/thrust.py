@@ -21,7 +21,7 @@ three-dimensional equilibrium", J. IASS 48(3), 2007; M. Rippmann, L. Lachauer an
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -29,6 +29,7 @@ from vaultgram.formfinding.forcediagram import ForceDiagram
 from vaultgram.formfinding.formdiagram import FormDiagram
 from vaultgram.formfinding.horizontal import HorizontalResult
 from vaultgram.formfinding.vertical import VerticalResult
+from vaultgram.geometry.frames import NO_ORIGIN, to_plan
 
 __all__ = ["ThrustNetwork", "thrust_network", "format_summary"]
 
@@ -65,6 +66,9 @@ class ThrustNetwork:
         Counts, max angle deviation, residuals, total load, reaction sum, scale, iterations.
     form, force : FormDiagram, ForceDiagram
         The diagrams after horizontal equilibrium.
+    origin : tuple of float
+        Where the frame of the plan coordinates starts in the plan's (the mesh's ``origin``,
+        :mod:`vaultgram.geometry.frames`); the force diagram has no place in the plan.
     """
 
     vertices: np.ndarray
@@ -80,6 +84,16 @@ class ThrustNetwork:
     summary: dict
     form: FormDiagram = field(repr=False)
     force: ForceDiagram = field(repr=False)
+    origin: tuple = NO_ORIGIN
+
+    def in_frame(self, origin=NO_ORIGIN) -> "ThrustNetwork":
+        """The network and its form diagram in the frame starting at ``origin`` (by default the plan's
+        own coordinates, as the files have them; itself when it is in that frame already)."""
+        if self.origin == origin:
+            return self
+        o = (self.origin[0] - origin[0], self.origin[1] - origin[1])
+        return replace(self, vertices=to_plan(self.vertices, o), origin=origin,
+                       form=self.form.with_xy(to_plan(self.form.xy, o)))
 
     def to_json(self) -> dict:
         """JSON-serialisable description (for ``thrust.json``)."""

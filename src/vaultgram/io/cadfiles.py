@@ -29,6 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from vaultgram.errors import VaultgramError
+from vaultgram.geometry.frames import to_plan
 
 __all__ = ["Item", "drawing", "write_3dm", "write_dxf", "voussoir_solids", "LAYERS"]
 
@@ -77,7 +78,8 @@ def _fmt(value: float) -> str:
 
 
 def drawing(decomposition=None, mesh=None, network=None, tessellation=None) -> dict:
-    """The layers (name -> list of :class:`Item`) of the stages given, in pipeline order.
+    """The layers (name -> list of :class:`Item`) of the stages given, in pipeline order, in the plan's
+    coordinates (:mod:`vaultgram.geometry.frames`).
 
     Examples
     --------
@@ -89,15 +91,15 @@ def drawing(decomposition=None, mesh=None, network=None, tessellation=None) -> d
     """
     layers: dict = {}
     if decomposition is not None:
-        layers["patches"] = [Item("polyline", _xyz(p.polygon()), closed=True,
+        layers["patches"] = [Item("polyline", _xyz(to_plan(p.polygon(), decomposition.origin)), closed=True,
                                   strings=(("patch", str(p.id)), ("sides", str(len(p.sides)))))
                              for p in decomposition.patches]
     if mesh is not None:
-        layers["mesh"] = [Item("mesh", _xyz(mesh.vertices), tuple(tuple(f) for f in mesh.faces))]
+        layers["mesh"] = [Item("mesh", _xyz(mesh.in_frame().vertices), tuple(tuple(f) for f in mesh.faces))]
     if network is not None:
-        layers.update(_network_layers(network))
+        layers.update(_network_layers(network.in_frame()))
     if tessellation is not None:
-        layers.update(_voussoir_layers(tessellation))
+        layers.update(_voussoir_layers(tessellation.in_frame()))
     return layers
 
 

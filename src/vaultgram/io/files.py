@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import gc
 import json
+import math
 import os
 import shutil
 import signal
@@ -209,13 +210,32 @@ def write_json(path: str | Path, data) -> None:
 
 
 def _obj_vertices(vertices: np.ndarray) -> str:
-    """``v`` lines (``%.12g``), in one format call over the flat coordinates."""
+    """``v`` lines (``%.12g``, more digits for site coordinates: :func:`_obj_digits`), in one format
+    call over the flat coordinates."""
     import numpy as np
 
     v = np.asarray(vertices, dtype=float)
     if v.shape[1] == 2:
         v = np.column_stack([v, np.zeros(len(v))])
-    return ("v %.12g %.12g %.12g\n" * len(v)) % tuple(v.ravel().tolist())
+    number = f"%.{_obj_digits(v)}g"
+    return (f"v {number} {number} {number}\n" * len(v)) % tuple(v.ravel().tolist())
+
+
+def _obj_digits(v: np.ndarray) -> int:
+    """Significant digits that keep 12 of the shape: 12, and those the offset takes on top when the
+    points lie farther from the origin than 10 times their extent (:mod:`vaultgram.geometry.frames`).
+
+    >>> import numpy as np
+    >>> _obj_digits(np.array([[0.0, 0, 0], [10, 10, 0]])), _obj_digits(np.array([[1e9, 1e9, 0], [1e9 + 10, 1e9, 0]]))
+    (12, 17)
+    """
+    import numpy as np
+
+    extent = float(np.ptp(v[:, :2], axis=0).max()) if len(v) else 0.0
+    far = float(np.abs(v[:, :2]).max()) if len(v) else 0.0
+    if extent == 0.0 or far <= 10 * extent:
+        return 12
+    return min(17, 12 + math.ceil(math.log10(far / extent)))
 
 
 def _obj_faces(faces) -> str:

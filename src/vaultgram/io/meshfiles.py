@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from vaultgram.errors import VaultgramError
+from vaultgram.geometry.frames import local_origin, to_local
 from vaultgram.geometry.meshcheck import check_plan_mesh
 from vaultgram.io import strict
 from vaultgram.io.files import read_json, write_json, write_obj
@@ -26,7 +27,8 @@ def mesh_to_json(mesh: QuadMesh, supports=None) -> dict:
     """``{"vertices": [[x, y, z], ...], "faces": [...], "labels": {...}, "turning": [[v, deg], ...],
     "face_patch": [...], "edge_groups": [...], "info": {...}}``, and ``"supports"`` (the indices of the
     vertices that bear thrust) when given: ``vaultgram formfind mesh.json`` then supports the mesh as
-    the domain did."""
+    the domain did. In the plan's coordinates (:meth:`QuadMesh.in_frame`)."""
+    mesh = mesh.in_frame()
     x = np.asarray(mesh.vertices, dtype=float)
     if x.shape[1] == 2:
         x = np.column_stack([x, np.zeros(len(x))])
@@ -54,7 +56,8 @@ def mesh_from_json(data: dict, where: str = "mesh", polygons: bool = False) -> Q
     Validated before use (:mod:`vaultgram.io.strict`, :func:`vaultgram.geometry.meshcheck.check_plan_mesh`):
     strict types (an index is an integer, a coordinate a finite number), indices in range, faces of
     distinct vertices, a manifold and consistently oriented mesh; the error names ``where``, the
-    element and its index.
+    element and its index. A mesh far from the origin comes in its local frame
+    (:mod:`vaultgram.geometry.frames`): its ``origin`` says where.
     """
     try:
         return _mesh_from_json(data, polygons)
@@ -69,6 +72,8 @@ def _mesh_from_json(data, polygons: bool) -> QuadMesh:
         if key not in data:
             raise VaultgramError(f"not a mesh: needs 'vertices' and 'faces' (no '{key}')")
     x = strict.points(data["vertices"], "vertices")
+    origin = local_origin(x)  # a mesh in site coordinates is worked on in its local frame
+    x = to_local(x, origin)
     n = len(x)
     faces = [tuple(strict.indices(f, n, f"faces[{k}]").tolist())
              for k, f in enumerate(strict.json_list(data["faces"], "faces"))]
@@ -104,7 +109,7 @@ def _mesh_from_json(data, polygons: bool) -> QuadMesh:
                     mask("pole"), mask("feature"), node, mask("singular_node"),
                     tuple(strict.json_list(data.get("edge_groups", []), "edge_groups")), (),
                     dict(strict.json_object(data.get("info", {}), "info")), curve, mask("curve_extremity"),
-                    chains, lines)
+                    chains, tuple(to_local(line, origin) for line in lines), origin)
 
 
 def _per_item(data: dict, key: str, n: int, of: str) -> np.ndarray:
@@ -138,7 +143,7 @@ def write_mesh(mesh: QuadMesh, out_dir: str | Path, supports=None) -> tuple[Path
     out = Path(out_dir)
     paths = out / "mesh.json", out / "mesh.obj"
     write_json(paths[0], mesh_to_json(mesh, supports))
-    write_obj(paths[1], mesh.vertices, mesh.faces)
+    write_obj(paths[1], mesh.in_frame().vertices, mesh.faces)
     return paths
 
 

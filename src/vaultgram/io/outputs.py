@@ -86,7 +86,8 @@ def write_decomposition(dec: Decomposition, out: Path, plot: bool = True, format
 
 def write_mesh_files(mesh: QuadMesh, out: Path, supports=None, plot: bool = True, formats=DEFAULT_FORMATS) -> None:
     """``mesh.json`` (with the supported vertices, if given), ``mesh.obj``, ``mesh.compas.json`` and, if
-    ``plot``, ``mesh.png``, as ``formats`` ask."""
+    ``plot``, ``mesh.png``, as ``formats`` ask; in the plan's coordinates (:mod:`vaultgram.geometry.frames`)."""
+    mesh = mesh.in_frame()
     if "json" in formats:
         write_json(out / "mesh.json", mesh_to_json(mesh, supports))
         if plot:
@@ -99,7 +100,9 @@ def write_mesh_files(mesh: QuadMesh, out: Path, supports=None, plot: bool = True
 
 def write_thrust(network: ThrustNetwork, out: Path, plot: bool = False, formats=DEFAULT_FORMATS) -> None:
     """``form.json``, ``force.json``, ``thrust.json``, ``summary.json`` and, if ``plot``, ``thrust.png``;
-    ``thrust.obj``; ``thrust.compas.json`` and ``form.compas.json``, as ``formats`` ask."""
+    ``thrust.obj``; ``thrust.compas.json`` and ``form.compas.json``, as ``formats`` ask; in the plan's
+    coordinates."""
+    network = network.in_frame()
     if "json" in formats:
         write_json(out / "form.json", network.form.to_json())
         write_json(out / "force.json", network.force.to_json())
@@ -121,9 +124,11 @@ def write_tessellation(tessellation: Tessellation, out: Path, summary: bool = Fa
                        formats=DEFAULT_FORMATS) -> None:
     """``tessellation.json``, ``voussoirs.obj`` (one closed solid ``o voussoir_N`` per voussoir, in the
     order of ``voussoirs``), ``voussoirs.compas.json`` and, if ``plot``, ``tessellation.png``; with
-    ``summary``, also ``summary.json`` (the tessellation's alone); as ``formats`` ask."""
+    ``summary``, also ``summary.json`` (the tessellation's alone); as ``formats`` ask; in the plan's
+    coordinates."""
     if "json" in formats:
         write_json(out / "tessellation.json", tessellation.to_json())
+    tessellation = tessellation.in_frame()  # after the JSON: its areas are measured in the local frame
     if "obj" in formats:
         solids = tessellation.solids
         write_obj_groups(out / "voussoirs.obj", solids.vertices, solids.triangles, solids.owner, "voussoir_")

@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from vaultgram.errors import VaultgramError
+from vaultgram.geometry.frames import to_local
 from vaultgram.geometry.polylines import chord_deviation, resample_polyline
 from vaultgram.io import strict
 from vaultgram.io.files import read_json
@@ -161,14 +162,16 @@ def _checked_target(spec: DensitySpec, target_length: float | None, diag: float)
 
 def _local_values(layout: Layout, spec: DensitySpec) -> list:
     """Per group, the designer's ``("count", n)`` or ``("length", L)``, or None: from the regions
-    containing a midpoint of one of its sides (a later region wins), then from the group ids."""
+    containing a midpoint of one of its sides (a later region wins; the regions are in the plan's
+    coordinates, the layout in its domain's frame), then from the group ids."""
     n = layout.n_groups
     local = [None] * n
     if spec.regions:
         import shapely
 
+        origin = layout.decomposition.disc.domain.origin
         for poly, value in spec.regions:
-            region = shapely.Polygon(np.asarray(poly, dtype=float))
+            region = shapely.Polygon(to_local(poly, origin))
             for g in layout.groups:
                 if shapely.contains_xy(region, g.midpoints[:, 0], g.midpoints[:, 1]).any():
                     local[g.id] = _value(value, f"region {np.asarray(poly).tolist()}")

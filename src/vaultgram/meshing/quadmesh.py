@@ -8,10 +8,11 @@ boundary and curve vertices slide (:func:`slide`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from vaultgram.geometry.frames import NO_ORIGIN, to_plan
 from vaultgram.geometry.polylines import project_to_polyline
 
 __all__ = ["QuadMesh", "SlideConstraint", "slide"]
@@ -70,6 +71,9 @@ class QuadMesh:
         For each curve feature, its mesh vertices in order along it: a chain of mesh edges.
     curve_lines : tuple of ndarray (k, 2)
         For each curve feature, its polyline (the discretised input curve).
+    origin : tuple of float
+        Where the frame of the coordinates starts in the plan's (the domain's ``origin``,
+        :mod:`vaultgram.geometry.frames`): the files add it back.
     """
 
     vertices: np.ndarray
@@ -91,6 +95,17 @@ class QuadMesh:
     extremity: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool))
     curves: tuple = ()
     curve_lines: tuple = ()
+    origin: tuple = NO_ORIGIN
+
+    def in_frame(self, origin=NO_ORIGIN) -> "QuadMesh":
+        """The mesh in the frame starting at ``origin`` (by default the plan's own coordinates, as the
+        files have them; itself when it is in that frame already)."""
+        if self.origin == origin:
+            return self
+        o = (self.origin[0] - origin[0], self.origin[1] - origin[1])
+        return replace(self, vertices=to_plan(self.vertices, o), origin=origin,
+                       constraints=tuple(replace(c, polyline=to_plan(c.polyline, o)) for c in self.constraints),
+                       curve_lines=tuple(to_plan(c, o) for c in self.curve_lines))
 
     @property
     def n_vertices(self) -> int:

@@ -158,13 +158,13 @@ def summarise(x: np.ndarray, normals: np.ndarray, layout: VoussoirLayout, max_an
 
 def format_summary(s: dict) -> str:
     """A few readable lines from a tessellation summary."""
-    meet = ", ".join(f"{n} of {k}" for k, n in s["meeting_points"].items()) or "none"
+    meet = ", ".join(f"{n} where {k} meet" for k, n in s["meeting_points"].items()) or "none"
     kept = s["edges_kept"]
     a = s["areas"]
     return "\n".join([
         f"tessellation: {s['voussoirs']} voussoirs, {s['keystones']} keystones, {s['joints']} joints "
         f"(rhythm {s['rhythm']}, thickness {s['thickness']:g})",
-        f"meeting points: {meet} ({100 * s['meeting_points_of_3']:.1f}% of 3); concave voussoirs "
+        f"meeting points: {meet} ({100 * s['meeting_points_of_3']:.1f}% of three); concave voussoirs "
         f"{s['concave_voussoirs']} (largest corner {s['largest_corner_deg']:.1f} deg)",
         f"areas:      min {a['min']:.4g}, mean {a['mean']:.4g}, max {a['max']:.4g}, cv {a['cv']:.3f}",
         f"joints:     force angle median {s['joint_force_angle_regular_deg']['median']:.1f} deg in regular areas "

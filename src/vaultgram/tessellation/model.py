@@ -8,11 +8,12 @@ and names, with a summary; :meth:`Tessellation.to_json` is ``tessellation.json``
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from vaultgram.geometry.arrays import distinct
+from vaultgram.geometry.frames import NO_ORIGIN, to_plan
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.geometry.meshes import Faces
 from vaultgram.geometry.surfaces import surface_areas
@@ -89,6 +90,9 @@ class Tessellation:
         Construction course (voussoirs from a support) and support zone of each voussoir.
     names : tuple of str
     summary : dict
+    origin : tuple of float
+        Where the frame of the coordinates starts in the plan's (the thrust network's ``origin``,
+        :mod:`vaultgram.geometry.frames`).
     """
 
     layout: VoussoirLayout
@@ -99,13 +103,25 @@ class Tessellation:
     zones: np.ndarray
     names: tuple
     summary: dict
+    origin: tuple = NO_ORIGIN
+
+    def in_frame(self, origin=NO_ORIGIN) -> "Tessellation":
+        """The voussoirs in the frame starting at ``origin`` (by default the plan's own coordinates, as
+        the files have them; itself when it is in that frame already)."""
+        if self.origin == origin:
+            return self
+        o, lay = (self.origin[0] - origin[0], self.origin[1] - origin[1]), self.layout
+        solids = replace(self.solids, vertices=to_plan(self.solids.vertices, o))
+        layout = replace(lay, mesh=replace(lay.mesh, vertices=to_plan(lay.mesh.vertices, o)))
+        return replace(self, vertices=to_plan(self.vertices, o), solids=solids, layout=layout, origin=origin)
 
     def to_json(self) -> dict:
-        """``tessellation.json``: vertices, voussoir loops, keystones, neighbours, joints, courses..."""
+        """``tessellation.json``: vertices (in the plan's coordinates), voussoir loops, keystones,
+        neighbours, joints, courses..."""
         lay = self.layout
         pairs = lay.joint_voussoirs()
         return {
-            "vertices": self.vertices.tolist(),
+            "vertices": to_plan(self.vertices, self.origin).tolist(),
             "voussoirs": _lists(lay.loops),
             "keystones": lay.keystones.tolist(),
             "names": list(self.names),

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from vaultgram.errors import MeshError, TessellationError
+from vaultgram.geometry.frames import NO_ORIGIN, local_origin, to_local
 from vaultgram.geometry.halfedges import MeshEdges, mesh_edges
 from vaultgram.geometry.meshes import Faces, boundary_loops
 
@@ -34,12 +35,15 @@ class ThrustSurface:
         Vertices bearing thrust (the supports).
     edges : MeshEdges
         The faces' edges and the faces beside them.
+    origin : tuple of float
+        Where the frame of the coordinates starts in the plan's (:mod:`vaultgram.geometry.frames`).
     """
 
     vertices: np.ndarray
     faces: tuple
     supported: np.ndarray
     edges: MeshEdges
+    origin: tuple = NO_ORIGIN
 
     @property
     def holes(self) -> int:
@@ -93,8 +97,12 @@ def _checked_edges(faces: tuple, n: int, where: str) -> MeshEdges:
     return me
 
 
-def _surface(vertices, faces, supported_ids, where: str) -> ThrustSurface:
+def _surface(vertices, faces, supported_ids, where: str, origin=None) -> ThrustSurface:
+    """The checked surface; vertices in site coordinates (``origin`` None) are moved to their local frame."""
     x = _checked_vertices(vertices, where)
+    if origin is None:
+        origin = local_origin(x)
+        x = to_local(x, origin)
     faces = _checked_faces(faces, len(x), where)
     me = _checked_edges(faces, len(x), where)
     supported = np.zeros(len(x), dtype=bool)
@@ -102,16 +110,18 @@ def _surface(vertices, faces, supported_ids, where: str) -> ThrustSurface:
     if len(ids) and (ids.min() < 0 or ids.max() >= len(x)):
         raise TessellationError(f"{where}: a support names a vertex outside 0..{len(x) - 1}")
     supported[ids] = True
-    return ThrustSurface(x, faces, supported, me)
+    return ThrustSurface(x, faces, supported, me, origin)
 
 
 def surface_from_network(network) -> ThrustSurface:
     """The surface of a :class:`~vaultgram.formfinding.thrust.ThrustNetwork`."""
-    return _surface(network.vertices, network.faces, np.flatnonzero(network.anchors), "thrust network")
+    return _surface(network.vertices, network.faces, np.flatnonzero(network.anchors), "thrust network",
+                    network.origin)
 
 
 def surface_from_json(data, where: str = "thrust") -> ThrustSurface:
-    """The surface of a ``thrust.json`` document (``vertices`` with heights, ``faces``, ``anchors``)."""
+    """The surface of a ``thrust.json`` document (``vertices`` with heights, ``faces``, ``anchors``), in
+    its local frame when it lies far from the origin."""
     if not isinstance(data, dict) or "vertices" not in data or "faces" not in data:
         raise TessellationError(f"{where}: not a thrust network (needs 'vertices' and 'faces')")
     return _surface(data["vertices"], data["faces"], data.get("anchors", []), where)

@@ -31,6 +31,7 @@ from vaultgram.engine.graph import HostGraph
 from vaultgram.engine.rulebook import Rulebook
 from vaultgram.engine.strategy import Chooser, Runner, first_option
 from vaultgram.errors import DomainError, RewriteError
+from vaultgram.geometry.frames import NO_ORIGIN, to_plan
 from vaultgram.geometry.polylines import arc_lengths
 from vaultgram.geometry.text import fmt_point
 from vaultgram.topology.discretise import RING_POINT, Discretisation
@@ -106,13 +107,20 @@ class Decomposition:
         """Number of patch-layout edges (branches, rebranches, boundary pieces) at node ``n``."""
         return self.graph.degree(n, PLAN_EDGES)
 
+    @property
+    def origin(self) -> tuple:
+        """Where the frame of the decomposition's coordinates starts in the plan's (its domain's
+        ``origin``, :mod:`vaultgram.geometry.frames`): the JSON adds it back."""
+        return self.disc.domain.origin
+
     def to_json(self) -> dict:
-        """The typed graph: nodes with types and attributes, edges with types and polylines."""
-        g = self.graph
+        """The typed graph, in the plan's coordinates: nodes with types and attributes, edges with types
+        and polylines."""
+        g, origin = self.graph, self.origin
         return {
             "name": self.disc.domain.name,
             "spacing": self.disc.spacing,
-            "nodes": [{"id": n, "type": g.node_type(n), **_plain_attrs(g.node_attrs(n))} for n in g.nodes()],
+            "nodes": [{"id": n, "type": g.node_type(n), **_plain_attrs(g.node_attrs(n), origin)} for n in g.nodes()],
             "edges": [self._edge_json(e) for e in g.edges()],
             "rules": [{"step": r.step, "applications": r.applications} for r in self.reports],
         }
@@ -124,13 +132,13 @@ class Decomposition:
         out = {"id": e, "type": g.edge_type(e), "source": u, "target": v}
         if g.edge_type(e) == PATCH_CORNER:
             return {**out, "index": g.get_edge(e, "index")}
-        return {**out, "polyline": half_edge_polyline(g, e, u).tolist()}
+        return {**out, "polyline": to_plan(half_edge_polyline(g, e, u), self.origin).tolist()}
 
     def patches_json(self) -> dict:
-        """The patches: corners and sides, and how many have 3 and 4 sides."""
+        """The patches: corners and sides (in the plan's coordinates), and how many have 3 and 4 sides."""
         return {
             "name": self.disc.domain.name,
-            "patches": [p.to_json() for p in self.patches],
+            "patches": [p.to_json(self.origin) for p in self.patches],
             "counts": {str(k): sum(p.n_sides == k for p in self.patches) for k in (3, 4)},
         }
 
@@ -274,9 +282,11 @@ def _add_loop_vertex(g: HostGraph, sk: Skeleton, poly: np.ndarray, faces, i: int
     return n
 
 
-def _plain_attrs(attrs) -> dict:
-    """Node attributes for JSON: tuples (positions) as lists."""
-    return {k: list(v) if isinstance(v, tuple) else v for k, v in attrs.items()}
+def _plain_attrs(attrs, origin=NO_ORIGIN) -> dict:
+    """Node attributes for JSON: tuples (positions) as lists, in the frame of the plan (``origin`` added)."""
+    moved = origin != NO_ORIGIN
+    return {k: (to_plan(v, origin).tolist() if moved else list(v)) if isinstance(v, tuple) else v
+            for k, v in attrs.items()}
 
 
 def _plain(poly: np.ndarray) -> tuple:

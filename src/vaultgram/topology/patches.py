@@ -17,6 +17,7 @@ import shapely
 from vaultgram.engine.embedding import faces
 from vaultgram.engine.graph import HostGraph
 from vaultgram.errors import DomainError, RewriteError
+from vaultgram.geometry.frames import NO_ORIGIN, to_plan
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.text import fmt_point
 from vaultgram.topology.discretise import Discretisation
@@ -55,13 +56,14 @@ class Patch:
         """Signed area of the outline (positive: counter-clockwise)."""
         return float(signed_area(self.polygon()))
 
-    def to_json(self) -> dict:
-        """Corners, side count and side polylines, for ``patches.json``."""
+    def to_json(self, origin=NO_ORIGIN) -> dict:
+        """Corners, side count and side polylines (in the plan's frame: ``origin`` added, see
+        :mod:`vaultgram.geometry.frames`), for ``patches.json``."""
         return {
             "id": self.id,
             "corners": list(self.corners),
             "n_sides": self.n_sides,
-            "sides": [s.tolist() for s in self.sides],
+            "sides": [to_plan(s, origin).tolist() for s in self.sides],
         }
 
 
