@@ -17,6 +17,7 @@ from .checker import CompiledRule
 from .columnar import Table, nac_rows, run_columnar
 from .errors import RewriteError
 from .graph import HostGraph
+from .memo import TableMemo
 from .plan import Bound, Check, Extend, Scan, Step, build_plan
 from .rewriter import footprint
 
@@ -98,9 +99,11 @@ class Rejection(NamedTuple):
 
 
 class Matcher:
-    """Matches of one rule in one graph, for given parameter values."""
+    """Matches of one rule in one graph, for given parameter values; with a ``memo``, whole-graph
+    searches at a graph state searched before are looked up (:mod:`.memo`)."""
 
-    def __init__(self, rule: CompiledRule, graph: HostGraph, params: Mapping[str, object] | None = None):
+    def __init__(self, rule: CompiledRule, graph: HostGraph, params: Mapping[str, object] | None = None,
+                 memo: TableMemo | None = None):
         self.rule = rule
         self.graph = graph
         params = dict(params or {})
@@ -117,6 +120,7 @@ class Matcher:
                 raise RewriteError(f"rule {rule.name}: parameter {name} = {node} is not a node of the graph")
         self._plans: dict[frozenset[str], list[Step]] = {}
         self._nac_plans: list[list[Step]] = []
+        self.memo, self._memo_key = memo, _memo_key(rule.name, self.fixed, self.values) if memo is not None else None
 
     # -- public ----------------------------------------------------------------------------------
 
@@ -125,7 +129,18 @@ class Matcher:
         return Matches(self.rule.name, self.rule.key_vars, self.table())
 
     def table(self) -> Table:
-        """Every match as columns (one per pattern variable), sorted by key: the whole-graph search."""
+        """Every match as columns (one per pattern variable), sorted by key: the whole-graph search
+        (looked up in the memo when this state was searched before)."""
+        if self._memo_key is None:
+            return self._table()
+        key = (self._memo_key, self.graph.state_id())
+        table = self.memo.get(key)
+        if table is None:
+            table = self._table()
+            self.memo.put(key, table)
+        return table
+
+    def _table(self) -> Table:
         rule = self.rule
         plan = self.plan(frozenset(self.fixed))
         table = run_columnar(self.graph, plan, Table.start(self.fixed), self.values, rule.name)
@@ -219,6 +234,17 @@ class Matcher:
         used_edges = {binding[e.var] for e in self.rule.pattern.edges}
         plan = self._nac_plan(i)
         return next(run_plan(self.graph, plan, dict(binding), used_nodes, used_edges, self.rule.name, {}), None)
+
+
+def _memo_key(rule: str, fixed: dict, values: dict) -> tuple | None:
+    """What, beside the graph state, a rule's matches depend on: its name and parameter values
+    (None when a value cannot be hashed: such a matcher does not use the memo)."""
+    key = (rule, tuple(sorted(fixed.items())), tuple(sorted(values.items())))
+    try:
+        hash(key)
+    except TypeError:
+        return None
+    return key
 
 
 def _row_bindings(table: Table):

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from typing import Sequence
 
 from vaultgram.engine.graph import HostGraph
+from vaultgram.engine.memo import TableMemo
 from vaultgram.engine.rulebook import Rulebook, describe_step
 from vaultgram.engine.strategy import Option, Runner
 from vaultgram.engine.trace import Trace
@@ -129,7 +130,9 @@ class Stepper:
 
     def __post_init__(self):
         self.program = decomposition_program(self.rulebook)
-        self.runner = Runner(self.rulebook, self.graph, self._choose)
+        # the memo: a step run again at a state (each option of a choice point, the completion from
+        # it) looks its searches up instead of repeating them
+        self.runner = Runner(self.rulebook, self.graph, self._choose, memo=TableMemo())
         self._pending: int | None = None
         self._default = False
 
