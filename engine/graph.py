@@ -388,6 +388,19 @@ class HostGraph:
         """Incident edge ids in cyclic (counter-clockwise when the graph has an angle function) order."""
         return list(self._rot[n])
 
+    def before_around(self, n: int, e: int, types: AbstractSet[str]) -> int:
+        """The edge of ``types`` just before ``e`` (itself of ``types``) in the rotation around ``n``,
+        cyclically (``e`` when it is the only one): a face walk's next step, without copying or
+        filtering the whole rotation."""
+        rot, edge_type = self._rot[n], self._edge_type
+        if edge_type[e] not in types:
+            raise ValueError(f"edge {e} is not of the types {sorted(types)}")
+        i = rot.index(e)
+        while True:
+            i -= 1
+            if edge_type[rot[i]] in types:  # i runs below zero: Python wraps round to the end
+                return rot[i]
+
     def next_around(self, n: int, e: int, step: int = 1) -> int:
         """The edge ``step`` places after ``e`` in the rotation around ``n`` (negative: before)."""
         rot = self._rot[n]

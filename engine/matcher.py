@@ -9,6 +9,7 @@ variables in declaration order, so "the first match" never depends on hash seeds
 
 from __future__ import annotations
 
+import itertools
 from typing import Iterator, Mapping, NamedTuple, Sequence
 
 import numpy as np
@@ -160,6 +161,11 @@ class Matcher:
     def first(self) -> Match | None:
         matches = self.all()
         return matches[0] if matches else None
+
+    def count_upto(self, limit: int) -> int:
+        """How many matches there are, counting no further than ``limit``: a depth-first search that
+        stops at the ``limit``-th match (in no particular order) instead of finding every one."""
+        return sum(1 for _ in itertools.islice(self._search(dict(self.fixed)), limit)) if limit > 0 else 0
 
     def anchored(self, var: str, node: int) -> Iterator[Match]:
         """Matches in which ``var`` is bound to ``node`` (used to re-match near a change)."""

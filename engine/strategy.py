@@ -165,6 +165,19 @@ class Runner:
         else:
             self._fixpoint(matchers, step.max_steps or DEFAULT_MAX_STEPS, step.choose)
 
+    def offers_choice(self, step: ast.Step) -> bool:
+        """Whether running a ``choose`` step now would ask the chooser at once, before it applies
+        anything: two options or more (``once``: matches of its rules together; ``all`` and
+        ``fixpoint``: rules with a match). Found by depth-first searches that stop at the second
+        match, not by finding every match: exploration stops there and finds the options only for
+        the states it expands."""
+        found = 0
+        for matcher in self._group(step):
+            found += matcher.count_upto(2 - found if step.mode == "once" else 1)
+            if found >= 2:
+                return True
+        return False
+
     # -- modes -----------------------------------------------------------------------------------
 
     def _group(self, step: ast.Step) -> list[Matcher]:
