@@ -9,6 +9,7 @@ variables in declaration order, so "the first match" never depends on hash seeds
 
 from __future__ import annotations
 
+import functools
 import itertools
 from typing import Iterator, Mapping, NamedTuple, Sequence
 
@@ -184,6 +185,25 @@ class Matcher:
             if pe.var not in given or not g.has_edge(given[pe.var]):
                 return False
         return any(True for _ in self._search(given))
+
+    def still_matches(self, binding: Mapping[str, int]) -> bool:
+        """:meth:`check` for a match found in this graph when only creations happened since (no
+        element deleted, retyped or set: an ``all`` step of rules that only create). Its elements,
+        types and attributes are as they were; when its conditions only test attributes, only its
+        NACs may have changed, so only they are searched (none: it still matches)."""
+        if not self._attribute_tests_only:
+            return self.check(binding)
+        return not self.rule.nacs or self.rejection({**self.values, **binding}) is None
+
+    @functools.cached_property
+    def _attribute_tests_only(self) -> bool:
+        """Whether every condition of the pattern (``where`` and inline) compares an attribute of a
+        matched element with parameters and literals (no degree, no function): creations elsewhere
+        cannot change it."""
+        pattern = self.rule.pattern
+        tests = [*pattern.conditions, *(c for n in pattern.nodes.values() for c in n.checks),
+                 *(c for e in pattern.edges for c in e.checks)]
+        return all(c.column is not None and c.column.types is None for c in tests)
 
     def scope(self, match: Match) -> dict:
         """Parameter values and bindings: what the rewrite's expressions see."""

@@ -244,14 +244,16 @@ class Runner:
                     selected.append(match)
                     reads |= r
                     writes |= w
-            applied.extend(self._apply_selected(matcher, selected))
+            applied.extend(self._apply_selected(matcher, selected, independent))
         return applied
 
-    def _apply_selected(self, matcher: Matcher, selected) -> list[Application]:
-        """Apply the selected matches in order, each checked again first."""
+    def _apply_selected(self, matcher: Matcher, selected, only_creations: bool) -> list[Application]:
+        """Apply the selected matches in order, each checked again first (``only_creations``: the
+        step only creates, so :meth:`Matcher.still_matches` checks what creations may change)."""
         applied = []
+        check = matcher.still_matches if only_creations else matcher.check
         for match in selected:
-            if matcher.check(match.binding):
+            if check(match.binding):
                 app = self.apply(matcher, match)
                 if app is not None:
                     applied.append(app)

@@ -30,6 +30,7 @@ rule one { match { a: A { w: 1 } } set a.w = 5 }
 rule two { match { a: A { w: 2 } } set a.w = 6 }
 rule link { match { a: A  b: A  a -E- b } not { c: C  a -D-> c } create c: C  create a -D-> c }
 rule lift { match { a: A { w: 1 } } set a.w = 3 }
+rule thicken { match { a: A  b: A  a -E- b } where degree(a, E) < 3 create a -E- b }
 strategy s_once { choose { one, two } once }
 strategy s_fix { choose { one, two } fixpoint }
 strategy s_all { choose { one, two } all }
@@ -90,3 +91,12 @@ def test_all_for_rules_that_only_create_checks_each_match_again(rb):
     apps = Runner(rb, g).apply_all("link")
     # the NAC is checked again before each application: each node gets one C, the first time
     assert sorted(app.binding["a"] for app in apps) == [0, 1, 2] and g.count(["C"]) == 3
+
+
+def test_all_for_rules_that_only_create_checks_a_degree_condition_again(rb):
+    g = path(rb, [0, 0, 0])  # degrees 1, 2, 1: all four (a, b) pairs match at first
+    apps = Runner(rb, g).apply_all("thicken")
+    # (0, 1) makes node 1's degree 3, so (1, 0) and (1, 2) no longer hold; (2, 1) still does
+    assert [(app.binding["a"], app.binding["b"]) for app in apps] == [(0, 1), (2, 1)]
+    assert not Matcher(rb.rules["thicken"], g)._attribute_tests_only
+    assert Matcher(rb.rules["link"], g)._attribute_tests_only
