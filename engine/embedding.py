@@ -38,13 +38,12 @@ def faces(graph: HostGraph, edge_types: Iterable[str]) -> list[list[HalfEdge]]:
 def face_walk(graph: HostGraph, edge_types: Iterable[str], start: HalfEdge) -> list[HalfEdge]:
     """The face to the left of the half-edge ``start`` = (edge, node it leaves from), as the cycle of
     half-edges around it; only edges of ``edge_types`` take part. Costs the length of that face."""
-    types = set(edge_types)
+    types = edge_types if isinstance(edge_types, (set, frozenset)) else set(edge_types)
     face = [start]
     edge, u = start
     while True:
         v = graph.other(edge, u)
-        rot = [e for e in graph.rotation(v) if graph.edge_type(e) in types]
-        edge, u = rot[(rot.index(edge) - 1) % len(rot)], v
+        edge, u = graph.before_around(v, edge, types), v
         if (edge, u) == start:
             return face
         face.append((edge, u))

@@ -280,6 +280,8 @@ class HostGraph:
         self._next_node = 0
         self._next_edge = 0
         self._journal: list = []  # of the records above
+        self._serials: list[int] = []  # per journal record: ``changes`` just after it (unique, see state_id)
+        self._base_serial = 0  # the state id of the graph when its journal is empty
         self.changes = 0  # bumped by every change and every undo, never reset: a cache key for any state
         self.version = 0  # bumped by every change of structure or types (caches key on it)
         # the same typed structure as flat arrays indexed by id (-1: unused id), for whole-graph search
@@ -385,6 +387,19 @@ class HostGraph:
     def rotation(self, n: int) -> list[int]:
         """Incident edge ids in cyclic (counter-clockwise when the graph has an angle function) order."""
         return list(self._rot[n])
+
+    def before_around(self, n: int, e: int, types: AbstractSet[str]) -> int:
+        """The edge of ``types`` just before ``e`` (itself of ``types``) in the rotation around ``n``,
+        cyclically (``e`` when it is the only one): a face walk's next step, without copying or
+        filtering the whole rotation."""
+        rot, edge_type = self._rot[n], self._edge_type
+        if edge_type[e] not in types:
+            raise ValueError(f"edge {e} is not of the types {sorted(types)}")
+        i = rot.index(e)
+        while True:
+            i -= 1
+            if edge_type[rot[i]] in types:  # i runs below zero: Python wraps round to the end
+                return rot[i]
 
     def next_around(self, n: int, e: int, step: int = 1) -> int:
         """The edge ``step`` places after ``e`` in the rotation around ``n`` (negative: before)."""
@@ -593,6 +608,7 @@ class HostGraph:
         """Journal a change (for undo) and count it."""
         self._journal.append(entry)
         self.changes += 1
+        self._serials.append(self.changes)
 
     def mark(self) -> int:
         """A point in the journal to roll back to."""
@@ -602,7 +618,24 @@ class HostGraph:
         """Undo every change made since ``mark``, restoring the graph (ids, rotations, counters) exactly."""
         while len(self._journal) > mark:
             self._journal.pop().undo(self)
+            self._serials.pop()
             self.changes += 1
+
+    def state_id(self) -> int:
+        """An id of the graph's current state that is the same again after a rollback to it: the
+        serial of the last journal record (``changes`` just after it was made; unique, as ``changes``
+        never repeats). Records below the last one can only go after it, so the id stands for the
+        whole journal, hence for the contents. A cache of results computed from the graph can key
+        on it (:class:`~.memo.TableMemo`); ``changes`` cannot, as undo moves it on.
+
+        >>> from vaultgram.engine.rulebook import rulebook_from_text
+        >>> g = HostGraph(rulebook_from_text("schema s { node A }").schema)
+        >>> before = g.state_id(); mark = g.mark(); n = g.add_node("A")
+        >>> after = g.state_id(); g.rollback(mark)
+        >>> g.state_id() == before != after
+        True
+        """
+        return self._serials[-1] if self._serials else self._base_serial
 
     @contextmanager
     def transaction(self):
@@ -616,7 +649,9 @@ class HostGraph:
 
     def forget(self) -> None:
         """Drop the undo log (after a run whose changes will never be undone)."""
+        self._base_serial = self.state_id()  # the same state: the same id
         self._journal.clear()
+        self._serials.clear()
 
     def changes_since(self, mark: int) -> ChangeSet:
         """The nodes and types touched by the changes after ``mark``."""

@@ -9,6 +9,8 @@ variables in declaration order, so "the first match" never depends on hash seeds
 
 from __future__ import annotations
 
+import functools
+import itertools
 from typing import Iterator, Mapping, NamedTuple, Sequence
 
 import numpy as np
@@ -17,6 +19,7 @@ from .checker import CompiledRule
 from .columnar import Table, nac_rows, run_columnar
 from .errors import RewriteError
 from .graph import HostGraph
+from .memo import TableMemo
 from .plan import Bound, Check, Extend, Scan, Step, build_plan
 from .rewriter import footprint
 
@@ -98,9 +101,11 @@ class Rejection(NamedTuple):
 
 
 class Matcher:
-    """Matches of one rule in one graph, for given parameter values."""
+    """Matches of one rule in one graph, for given parameter values; with a ``memo``, whole-graph
+    searches at a graph state searched before are looked up (:mod:`.memo`)."""
 
-    def __init__(self, rule: CompiledRule, graph: HostGraph, params: Mapping[str, object] | None = None):
+    def __init__(self, rule: CompiledRule, graph: HostGraph, params: Mapping[str, object] | None = None,
+                 memo: TableMemo | None = None):
         self.rule = rule
         self.graph = graph
         params = dict(params or {})
@@ -117,6 +122,7 @@ class Matcher:
                 raise RewriteError(f"rule {rule.name}: parameter {name} = {node} is not a node of the graph")
         self._plans: dict[frozenset[str], list[Step]] = {}
         self._nac_plans: list[list[Step]] = []
+        self.memo, self._memo_key = memo, _memo_key(rule.name, self.fixed, self.values) if memo is not None else None
 
     # -- public ----------------------------------------------------------------------------------
 
@@ -125,7 +131,18 @@ class Matcher:
         return Matches(self.rule.name, self.rule.key_vars, self.table())
 
     def table(self) -> Table:
-        """Every match as columns (one per pattern variable), sorted by key: the whole-graph search."""
+        """Every match as columns (one per pattern variable), sorted by key: the whole-graph search
+        (looked up in the memo when this state was searched before)."""
+        if self._memo_key is None:
+            return self._table()
+        key = (self._memo_key, self.graph.state_id())
+        table = self.memo.get(key)
+        if table is None:
+            table = self._table()
+            self.memo.put(key, table)
+        return table
+
+    def _table(self) -> Table:
         rule = self.rule
         plan = self.plan(frozenset(self.fixed))
         table = run_columnar(self.graph, plan, Table.start(self.fixed), self.values, rule.name)
@@ -146,6 +163,11 @@ class Matcher:
         matches = self.all()
         return matches[0] if matches else None
 
+    def count_upto(self, limit: int) -> int:
+        """How many matches there are, counting no further than ``limit``: a depth-first search that
+        stops at the ``limit``-th match (in no particular order) instead of finding every one."""
+        return sum(1 for _ in itertools.islice(self._search(dict(self.fixed)), limit)) if limit > 0 else 0
+
     def anchored(self, var: str, node: int) -> Iterator[Match]:
         """Matches in which ``var`` is bound to ``node`` (used to re-match near a change)."""
         if var in self.fixed and self.fixed[var] != node:
@@ -163,6 +185,25 @@ class Matcher:
             if pe.var not in given or not g.has_edge(given[pe.var]):
                 return False
         return any(True for _ in self._search(given))
+
+    def still_matches(self, binding: Mapping[str, int]) -> bool:
+        """:meth:`check` for a match found in this graph when only creations happened since (no
+        element deleted, retyped or set: an ``all`` step of rules that only create). Its elements,
+        types and attributes are as they were; when its conditions only test attributes, only its
+        NACs may have changed, so only they are searched (none: it still matches)."""
+        if not self._attribute_tests_only:
+            return self.check(binding)
+        return not self.rule.nacs or self.rejection({**self.values, **binding}) is None
+
+    @functools.cached_property
+    def _attribute_tests_only(self) -> bool:
+        """Whether every condition of the pattern (``where`` and inline) compares an attribute of a
+        matched element with parameters and literals (no degree, no function): creations elsewhere
+        cannot change it."""
+        pattern = self.rule.pattern
+        tests = [*pattern.conditions, *(c for n in pattern.nodes.values() for c in n.checks),
+                 *(c for e in pattern.edges for c in e.checks)]
+        return all(c.column is not None and c.column.types is None for c in tests)
 
     def scope(self, match: Match) -> dict:
         """Parameter values and bindings: what the rewrite's expressions see."""
@@ -219,6 +260,17 @@ class Matcher:
         used_edges = {binding[e.var] for e in self.rule.pattern.edges}
         plan = self._nac_plan(i)
         return next(run_plan(self.graph, plan, dict(binding), used_nodes, used_edges, self.rule.name, {}), None)
+
+
+def _memo_key(rule: str, fixed: dict, values: dict) -> tuple | None:
+    """What, beside the graph state, a rule's matches depend on: its name and parameter values
+    (None when a value cannot be hashed: such a matcher does not use the memo)."""
+    key = (rule, tuple(sorted(fixed.items())), tuple(sorted(values.items())))
+    try:
+        hash(key)
+    except TypeError:
+        return None
+    return key
 
 
 def _row_bindings(table: Table):

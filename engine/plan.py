@@ -8,7 +8,11 @@ A plan is a list of steps (GP 2 and GrGen.NET compile rules the same way):
   plan scans the variable with the fewest candidates, and only when nothing bound is adjacent;
 * ``Extend(edge, from, to)`` -- follow the typed adjacency of a bound node along the pattern edge,
   binding the edge and, unless it is already bound, the node at its other end;
-* ``Check(condition)`` -- a ``where`` condition, placed right after its last variable is bound.
+* ``Check(condition)`` -- a ``where`` condition (one conjunct of it), placed right after its last
+  variable is bound; but a conjunct that is not a plain attribute or degree test (a host function,
+  arithmetic) also waits for the conjuncts written before it, so that it runs only where they hold,
+  as ``and`` reads: ``where long(p) and diagonal(p, x, o)`` never computes the diagonal of a patch
+  that is not long, even when ``long`` needs a variable bound later.
 
 The greedy order prefers closing cycles (both ends bound: a check, no branching), then extending
 along the rarest edge type, and scans only to start a new connected component.
@@ -104,10 +108,13 @@ def build_plan(
     conditions = list(pattern.conditions)
 
     def place_conditions():
+        blocked = False  # an earlier-written condition is still waiting for its variables
         for c in list(conditions):
-            if c.reads <= bound:
+            if c.reads <= bound and (c.column is not None or not blocked):
                 steps.append(Check(c))
                 conditions.remove(c)
+            else:
+                blocked = True
 
     for var, node in pattern.nodes.items():
         if var in given:

@@ -156,6 +156,13 @@ _FOOTPRINTS = {
 }
 
 
+def only_creates(statements) -> bool:
+    """Whether statements (foreach bodies included) only create: then every footprint is empty, so
+    an ``all`` step need not compute footprints to keep its matches independent."""
+    return all(isinstance(s, (CCreateNode, CCreateEdge)) or (isinstance(s, CForeach) and only_creates(s.body))
+               for s in statements)
+
+
 class _Run:
     """The state of one application while its statements execute.
 

@@ -70,3 +70,19 @@ def test_complete_skipping_the_no_op_steps_makes_the_default_decomposition(name)
     patches = stepper.complete()
     assert sorted(p.corners for p in patches) == sorted(p.corners for p in dec.patches)
     assert stepper.graph.snapshot() == dec.graph.snapshot()
+
+
+def test_a_stepper_that_defers_options_stops_at_the_same_choice_points():
+    domain = load_domain(EXAMPLES / "fig5_boundary_points.json")
+    book = load_vault_rulebook()
+    dec = decompose(domain, 0.05)
+    full = Stepper(book, decomposition_graph(dec.skeleton, book), dec.disc)
+    lazy = Stepper(book, decomposition_graph(dec.skeleton, book), dec.disc, defer_options=True)
+    options, deferred = full.advance(), lazy.advance()
+    assert deferred is None  # the first choice point is at the start of its step: not searched
+    for _ in range(3):  # a later one may come inside a fixpoint step, with its options found
+        assert (lazy.pc, lazy.answers) == (full.pc, full.answers)
+        found = lazy.options() if deferred is None else deferred  # nothing applied: still stopped
+        assert found == options and lazy.pc == full.pc and lazy.graph.snapshot() == full.graph.snapshot()
+        options, deferred = full.take(1), lazy.take(1)
+        assert lazy.records() == full.records()

@@ -94,7 +94,7 @@ def test_best_first_expands_the_least_costly_state_of_its_frontier():
             for s in result.states}
     done: set[int] = set()
     for state_id, made in result.expanded:
-        waiting = [s for s in result.states[:made] if s.id not in done and s.id != state_id and s.options]
+        waiting = [s for s in result.states[:made] if s.id not in done and s.id != state_id and s.options != []]
         assert all((cost[s.id], s.id) > (cost[state_id], state_id) for s in waiting)
         done.add(state_id)
     assert len(result.states) == 20 and len(result.expanded) >= 2

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from typing import Sequence
 
 from vaultgram.engine.graph import HostGraph
+from vaultgram.engine.memo import TableMemo
 from vaultgram.engine.rulebook import Rulebook, describe_step
 from vaultgram.engine.strategy import Option, Runner
 from vaultgram.engine.trace import Trace
@@ -107,9 +108,9 @@ class Scripted:
 class _Suspend(Exception):
     """Raised by the stepper's chooser to stop a run at a choice point."""
 
-    def __init__(self, options: Sequence[Option]):
+    def __init__(self, options: Sequence[Option] | None):
         super().__init__("choice point")
-        self.options = list(options)
+        self.options = None if options is None else list(options)
 
 
 @dataclass
@@ -119,6 +120,12 @@ class Stepper:
     ``pc`` is the instruction to run next (the one that stopped, at a choice point) and ``answers``
     the chooser's answers so far; both are plain values, so a caller that rolls the graph back to an
     earlier state restores them with it.
+
+    ``defer_options``: stop at a ``choose`` step as soon as it is known to offer two options or more
+    (:meth:`Runner.offers_choice`, which stops searching at the second match), without finding them
+    all; :meth:`advance` then returns None, and :meth:`options` finds them later, if they are
+    wanted (a search finds them only for the states it expands). It stops at the same step, with
+    the same answers, as finding them all would.
     """
 
     rulebook: Rulebook
@@ -126,10 +133,13 @@ class Stepper:
     disc: Discretisation
     pc: int = 0
     answers: list = field(default_factory=list)
+    defer_options: bool = False
 
     def __post_init__(self):
         self.program = decomposition_program(self.rulebook)
-        self.runner = Runner(self.rulebook, self.graph, self._choose)
+        # the memo: a step run again at a state (each option of a choice point, the completion from
+        # it) looks its searches up instead of repeating them
+        self.runner = Runner(self.rulebook, self.graph, self._choose, memo=TableMemo())
         self._pending: int | None = None
         self._default = False
 
@@ -144,9 +154,9 @@ class Stepper:
         self.answers.append(k)
         return k
 
-    def advance(self, answer: int | None = None) -> list[Option]:
+    def advance(self, answer: int | None = None) -> list[Option] | None:
         """Run on (the stopped step first answering ``answer``) until the next choice point: its
-        options, or ``[]`` when the program has ended."""
+        options (None: not found yet, ``defer_options``), or ``[]`` when the program has ended."""
         self._pending = answer
         while self.pc < len(self.program):
             try:
@@ -156,9 +166,17 @@ class Stepper:
             self.pc += 1
         return []
 
-    def take(self, k: int) -> list[Option]:
+    def take(self, k: int) -> list[Option] | None:
         """Resume at the current choice point with option ``k``; the next choice point's options."""
         return self.advance(k)
+
+    def options(self) -> list[Option]:
+        """The options of the choice point the stepper stopped at (its step run to find them all)."""
+        defer, self.defer_options = self.defer_options, False
+        try:
+            return self.advance()
+        finally:
+            self.defer_options = defer
 
     def complete(self) -> list[Patch]:
         """Run to the end with the first option at every choice point; the checked patches
@@ -173,10 +191,14 @@ class Stepper:
     def _execute(self, instruction: Instruction) -> None:
         if self._default and instruction.noop_by_default:
             return  # the default option changes nothing: no need to match the others (complete)
-        if instruction.step is None:
+        step = instruction.step
+        if step is None:
             start_patching(self.graph, self.disc, self.runner.trace, bool(patch_strategies_of(self.rulebook)))
-        else:
-            self.runner.run_step(instruction.step)
+            return
+        if (self.defer_options and step.choose and self._pending is None and not self._default
+                and self.runner.offers_choice(step)):
+            raise _Suspend(None)  # the choice point: its options are found if they are asked for
+        self.runner.run_step(step)
 
     def records(self) -> list[dict]:
         """What the runner applied since :meth:`clear_records`, as trace records (for replay)."""

@@ -23,7 +23,8 @@ three-sided patch (a pole). A state without a valid decomposition is expanded la
 graph back (:meth:`HostGraph.rollback`) to their deepest common ancestor and re-applies the rule
 applications recorded on the way down (:func:`vaultgram.engine.trace.replay`, which checks they
 create the same ids); a state's decomposition is made from its choice point, hashed and rolled back.
-No graph is copied.
+No graph is copied. A state's options are found when it is expanded, not when it is made (the
+stepper's ``defer_options``): most states are only hashed.
 
 **De-duplication**: each valid decomposition's :class:`~.layout.PatchLayout` is hashed; a hash seen
 before is confirmed by :func:`~.layout.same_layout`, so two states are one *variant* exactly when
@@ -61,7 +62,8 @@ class State:
     answers: tuple  # the chooser's answers up to this state's choice point (Scripted replays them)
     option: dict | None  # the option taken at the parent's choice point: rule, match, choice
     pc: int = 0
-    options: list = field(default_factory=list)  # of its choice point (empty: the program ended)
+    options: list | None = field(default_factory=list)  # of its choice point (empty: the program ended;
+    # None: not found yet -- they are found when the state is expanded)
     redo: list = field(default_factory=list)  # trace records from the parent's choice point to its own
     hash: str | None = None
     variant: int | None = None
@@ -158,14 +160,17 @@ def search(rulebook: Rulebook, graph: HostGraph, disc: Discretisation, limit: in
         raise VaultgramError(f"--order must be one of {', '.join(ORDERS)}, got {order!r}")
     start = time.perf_counter()
     graph.forget()
-    walker = _Walker(Stepper(rulebook, graph, disc), rulebook)
+    walker = _Walker(Stepper(rulebook, graph, disc, defer_options=True), rulebook)
     result = SearchResult([], [])
     frontier = _Frontier(order == "best", result)
     frontier.push(_new_state(walker, result, None, None, None))
     while frontier and len(result.states) < limit:
         state = frontier.pop()
-        if state.depth >= depth or not state.options:
+        if state.depth >= depth or state.options == []:
             continue
+        if state.options is None:
+            walker.go(_chain(result, state))
+            state.options = walker.stepper.options()
         result.expanded.append((state.id, len(result.states)))
         for k in _order(state, seed):
             if len(result.states) >= limit:
