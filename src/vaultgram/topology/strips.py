@@ -26,12 +26,20 @@ from vaultgram.engine.embedding import face_walk
 from vaultgram.geometry.polygons import interior_angle, signed_area
 from vaultgram.geometry.polylines import arc_lengths, point_at_length
 from vaultgram.topology.patches import half_edge_polyline
-from vaultgram.topology.types import (BOUNDARY, BOUNDARY_VERTEX, BRANCH, CORNER, DIAGONAL, PATCH_CORNER,
-                                      PLAN_EDGES, REBRANCH)
+from vaultgram.topology.types import (
+    BOUNDARY,
+    BOUNDARY_VERTEX,
+    BRANCH,
+    CORNER,
+    DIAGONAL,
+    PATCH_CORNER,
+    PLAN_EDGES,
+    REBRANCH,
+)
 
-__all__ = ["SPLITTABLE", "PatchSides", "patch_sides", "side_edge", "corner_chord_angle", "strip_point", "strip_piece",
-           "side_through", "strip_boundary_end", "strip_start", "strip_from_curve_end", "Walk", "strip_walk",
-           "register_strip_helpers"]
+__all__ = ["SPLITTABLE", "PatchSides", "patch_sides", "side_edge", "corner_chord_angle", "strip_point",
+           "strip_piece", "side_through", "strip_boundary_end", "Walk", "strip_walk", "strip_through", "strip_start",
+           "strip_from_curve_end", "register_strip_helpers"]
 
 #: The plan edges a strip may cut in two (not a curve feature: the layout must not cross it, §4.2;
 #: not the boundary, which a strip ends at, at one of its points).
@@ -187,11 +195,16 @@ def _patches_at(graph, n: int) -> list:
 @dataclass(frozen=True)
 class Walk:
     """The patches a strip crosses from one side on (in order), the plan edges it cuts on the way
-    (the entry edge first), and whether it came back to its entry edge (a closed strip)."""
+    (the entry edge first), and where it ends: the corner of a triangle opposite the strip, a
+    boundary point, or None when it came back to its entry edge (a closed strip)."""
 
     patches: tuple
     edges: tuple
-    closed: bool
+    end: int | None
+
+    @property
+    def closed(self) -> bool:
+        return self.end is None
 
 
 def strip_walk(graph, patch: int, k: int, seen: frozenset = frozenset()) -> Walk | None:
@@ -202,51 +215,55 @@ def strip_walk(graph, patch: int, k: int, seen: frozenset = frozenset()) -> Walk
     a side it may not cut, a patch twice (or one of ``seen``), a chord that leaves its patch.
     """
     entry = side_edge(graph, patch, patch_sides(graph, patch).corners[k]) if patch_sides(graph, patch) else -1
-    patches, edges, closed = [], [entry], False
-    while not closed:
+    patches, edges = [], [entry]
+    while True:
         found = patch_sides(graph, patch)
         if entry < 0 or found is None or patch in patches or patch in seen or len(found.corners) not in (3, 4):
             return None
         patches.append(patch)
         here = strip_point(graph, entry)
         out = found.corners[(k + 2) % len(found.corners)]
-        if len(found.corners) == 3:
-            return Walk(tuple(patches), tuple(edges), False) if _inside(found.outline, here, graph.get(out, "pos")) \
-                else None
-        nxt = side_edge(graph, patch, out)
-        if nxt < 0:
-            end = strip_boundary_end(graph, patch, out)
-            ok = end != out and _inside(found.outline, here, graph.get(end, "pos"))
-            return Walk(tuple(patches), tuple(edges), False) if ok else None
+        nxt = side_edge(graph, patch, out) if len(found.corners) == 4 else -1
+        if nxt < 0:  # the end: the triangle's corner opposite the strip, or a point of a boundary side
+            end = out if len(found.corners) == 3 else strip_boundary_end(graph, patch, out)
+            ok = end != out or len(found.corners) == 3
+            return Walk(tuple(patches), tuple(edges), end) if ok and _inside(found.outline, here, graph.get(
+                end, "pos")) else None
         if not _inside(found.outline, here, strip_point(graph, nxt)):
             return None
-        closed = nxt == edges[0]
-        if not closed:
-            edges.append(nxt)
-            beyond = _across(graph, patch, nxt)
-            patch, k, entry = (beyond[0], beyond[1], nxt) if beyond else (patch, k, -1)
-    return Walk(tuple(patches), tuple(edges), True)
+        if nxt == edges[0]:
+            return Walk(tuple(patches), tuple(edges), None)
+        edges.append(nxt)
+        beyond = _across(graph, patch, nxt)
+        patch, k, entry = (beyond[0], beyond[1], nxt) if beyond else (patch, k, -1)
+
+
+def strip_through(graph, patch: int, corner: int, edge: int) -> tuple[Walk, Walk] | None:
+    """The strip through the plan edge ``edge``, the side of ``patch`` from its corner ``corner``:
+    its walks into ``patch`` and into the patch beyond (the same walk twice for a closed strip), or
+    None where one does not complete or the two cross a patch twice."""
+    found = patch_sides(graph, patch)
+    if side_edge(graph, patch, corner) != edge:
+        return None
+    beyond = _across(graph, patch, edge)
+    one = strip_walk(graph, patch, found.corners.index(corner)) if beyond else None
+    if one is None:
+        return None
+    two = one if one.closed else strip_walk(graph, beyond[0], beyond[1], frozenset(one.patches))
+    return None if two is None else (one, two)
 
 
 def strip_start(graph, patch: int, corner: int, edge: int) -> bool:
     """Whether a strip may start at the plan edge ``edge``, the side of ``patch`` from its corner
-    ``corner``: both walks from it (into ``patch`` and into the patch beyond) complete, cross at
-    least one quad and no patch twice, and this is the strip's one start (its cut edge of the
-    smallest id, from the patch on the left of that edge walked from its source), so that each strip
-    is offered once."""
-    found = patch_sides(graph, patch)
-    if side_edge(graph, patch, corner) != edge or graph.ends(edge)[0] != corner:
+    ``corner`` (:func:`strip_through`): it completes, crosses at least one quad, and this is the
+    strip's one start (its cut edge of the smallest id, from the patch on the left of that edge
+    walked from its source), so that each strip is offered once."""
+    walks = strip_through(graph, patch, corner, edge) if graph.ends(edge)[0] == corner else None
+    if walks is None:
         return False
-    beyond = _across(graph, patch, edge)
-    one = strip_walk(graph, patch, found.corners.index(corner)) if beyond else None
-    if one is None:
-        return False
-    two = one if one.closed else strip_walk(graph, beyond[0], beyond[1], frozenset(one.patches))
-    if two is None:
-        return False
-    crossed = set(one.patches) | set(two.patches)
-    return min(set(one.edges) | set(two.edges)) == edge and any(len(patch_sides(graph, p).corners) == 4
-                                                              for p in crossed)
+    crossed = set(walks[0].patches) | set(walks[1].patches)
+    return (min(set(walks[0].edges) | set(walks[1].edges)) == edge
+            and any(len(patch_sides(graph, p).corners) == 4 for p in crossed))
 
 
 def strip_from_curve_end(graph, patch: int, x: int, edge: int) -> bool:
