@@ -4,15 +4,17 @@ is offered once, and the default decomposition has none."""
 
 from __future__ import annotations
 
+import json
 from collections import Counter
 from functools import lru_cache
 
 import numpy as np
 import pytest
+from click.testing import CliRunner
 
+from vaultgram.cli import main
 from vaultgram.domain import load_domain
 from vaultgram.exploration.evaluate import mesh_metrics
-from vaultgram.exploration.explore import ExploreOptions, explore
 from vaultgram.exploration.program import Scripted, Stepper
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.polylines import arc_lengths
@@ -183,9 +185,20 @@ def test_the_default_decomposition_has_no_strip():
         assert all(r.applications == 0 for r in dec.reports if r.step.startswith("{ absorb_strip_point"))
 
 
-def test_explore_offers_the_strips_of_a_plan_without_other_choices():
-    exp = explore(_domain("l_shape"), ExploreOptions(spacing=SPACING, limit=8, smooth=3))
-    metrics = [ev.metrics for ev in exp.evaluations]
-    assert len(exp.result.variants) == 3  # the rectangles, and a strip across each of the two chords
-    assert sorted(m["patches"] for m in metrics) == [3, 5, 5]
-    assert all(m["inverted_faces"] == 0 and m["patches_by_sides"]["3"] == 0 for m in metrics)
+def test_explore_offers_the_strips_of_a_plan_without_other_choices_and_replays_them(tmp_path):
+    domain = str(EXAMPLES / "l_shape.json")
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["explore", domain, "--out", str(out), "--spacing", str(SPACING), "--limit", "8",
+                                       "--smooth", "3"])
+    assert result.exit_code == 0, result.output
+    variants = json.loads((out / "variants.json").read_text())["variants"]
+    assert len(variants) == 3  # the rectangles, and a strip across each of the two chords
+    assert sorted(v["metrics"]["patches"] for v in variants) == [3, 5, 5]
+    assert all(v["metrics"]["inverted_faces"] == 0 and v["metrics"]["patches_by_sides"]["3"] == 0 for v in variants)
+    space = json.loads((out / "state_space.json").read_text())
+    strip = next(v for v in space["variants"] if v["metrics"]["patches"] == 5)
+    result = CliRunner().invoke(main, ["replay", domain, str(out / "state_space.json"), "--variant", str(strip["id"]),
+                                       "--out", str(tmp_path / "replayed")])
+    assert result.exit_code == 0, result.output
+    for name in ("decomposition.json", "patches.json", "mesh.json"):
+        assert (tmp_path / "replayed" / name).read_bytes() == (out / strip["folder"] / name).read_bytes()
