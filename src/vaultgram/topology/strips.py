@@ -16,6 +16,7 @@ vault pipeline registers the functions (:mod:`vaultgram.topology.functions`).
 
 from __future__ import annotations
 
+import functools
 import weakref
 from dataclasses import dataclass
 
@@ -56,20 +57,34 @@ class PatchSides:
     sides: tuple
     outline: np.ndarray
 
+    @functools.cached_property
+    def polygon(self) -> shapely.Polygon:
+        """The outline as a prepared shapely polygon (for the chords' containment tests)."""
+        polygon = shapely.Polygon(self.outline)
+        shapely.prepare(polygon)
+        return polygon
 
-_SIDES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> (changes, {patch: PatchSides})
+
+_STATE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> (its changes count, {key: value})
+
+
+def _memo(graph) -> dict:
+    """What the helpers worked out in this state of the graph (``graph.changes`` tells a state from
+    every other, undo included): the rules ask for the same sides and strips in every match they try."""
+    cached = _STATE.get(graph)
+    if cached is None or cached[0] != graph.changes:
+        cached = (graph.changes, {})
+        _STATE[graph] = cached
+    return cached[1]
 
 
 def patch_sides(graph, patch: int) -> PatchSides | None:
     """The sides of a Patch node (once per state of the graph); None if no face of the plan at its
     first corner has all its corners (a Patch node out of step with the plan)."""
-    cached = _SIDES.get(graph)
-    if cached is None or cached[0] != graph.changes:
-        cached = (graph.changes, {})
-        _SIDES[graph] = cached
-    if patch not in cached[1]:
-        cached[1][patch] = _walk_sides(graph, patch)
-    return cached[1][patch]
+    memo = _memo(graph)
+    if ("sides", patch) not in memo:
+        memo[("sides", patch)] = _walk_sides(graph, patch)
+    return memo[("sides", patch)]
 
 
 def _walk_sides(graph, patch: int) -> PatchSides | None:
@@ -117,8 +132,14 @@ def corner_chord_angle(graph, patch: int, x: int) -> float:
 
 def _halves(graph, edge: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """An edge's polyline (from its source) cut at half its length: the piece before, the point, the
-    piece after (the point is in neither)."""
-    pts = half_edge_polyline(graph, edge, graph.ends(edge)[0])
+    piece after (the point is in neither); once per state."""
+    memo = _memo(graph)
+    if ("halves", edge) not in memo:
+        memo[("halves", edge)] = _cut_halfway(half_edge_polyline(graph, edge, graph.ends(edge)[0]))
+    return memo[("halves", edge)]
+
+
+def _cut_halfway(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     s = arc_lengths(pts)
     mid = point_at_length(pts, s[-1] / 2)
     j = int(np.searchsorted(s, s[-1] / 2, side="left"))
@@ -172,12 +193,12 @@ def _free_boundary_point(graph, n: int) -> bool:
             and graph.degree(n, PLAN_EDGES) == 2)
 
 
-def _inside(outline: np.ndarray, a, b) -> bool:
+def _inside(found: PatchSides, a, b) -> bool:
     """Whether the straight chord from ``a`` to ``b`` (points of the outline) runs inside the patch,
     touching its outline only at its ends."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
     d = (b - a) * 1e-6
-    return bool(shapely.contains_properly(shapely.Polygon(outline), shapely.LineString([a + d, b - d])))
+    return bool(shapely.contains_properly(found.polygon, shapely.LineString([a + d, b - d])))
 
 
 def _across(graph, patch: int, edge: int) -> tuple[int, int] | None:
@@ -227,9 +248,9 @@ def strip_walk(graph, patch: int, k: int, seen: frozenset = frozenset()) -> Walk
         if nxt < 0:  # the end: the triangle's corner opposite the strip, or a point of a boundary side
             end = out if len(found.corners) == 3 else strip_boundary_end(graph, patch, out)
             ok = end != out or len(found.corners) == 3
-            return Walk(tuple(patches), tuple(edges), end) if ok and _inside(found.outline, here, graph.get(
+            return Walk(tuple(patches), tuple(edges), end) if ok and _inside(found, here, graph.get(
                 end, "pos")) else None
-        if not _inside(found.outline, here, strip_point(graph, nxt)):
+        if not _inside(found, here, strip_point(graph, nxt)):
             return None
         if nxt == edges[0]:
             return Walk(tuple(patches), tuple(edges), None)
@@ -257,13 +278,19 @@ def strip_start(graph, patch: int, corner: int, edge: int) -> bool:
     """Whether a strip may start at the plan edge ``edge``, the side of ``patch`` from its corner
     ``corner`` (:func:`strip_through`): it completes, crosses at least one quad, and this is the
     strip's one start (its cut edge of the smallest id, from the patch on the left of that edge
-    walked from its source), so that each strip is offered once."""
-    walks = strip_through(graph, patch, corner, edge) if graph.ends(edge)[0] == corner else None
-    if walks is None:
+    walked from its source), so that each strip is offered once. A strip is walked once per state:
+    what it is is kept for every edge it cuts."""
+    if graph.ends(edge)[0] != corner or side_edge(graph, patch, corner) != edge:
         return False
-    crossed = set(walks[0].patches) | set(walks[1].patches)
-    return (min(set(walks[0].edges) | set(walks[1].edges)) == edge
-            and any(len(patch_sides(graph, p).corners) == 4 for p in crossed))
+    memo = _memo(graph)
+    if ("strip", edge) not in memo:
+        walks = strip_through(graph, patch, corner, edge)
+        memo[("strip", edge)] = None
+        if walks is not None:
+            edges = set(walks[0].edges) | set(walks[1].edges)
+            quads = any(len(patch_sides(graph, p).corners) == 4 for w in walks for p in w.patches)
+            memo.update({("strip", e): min(edges) if quads else None for e in edges})
+    return memo[("strip", edge)] == edge
 
 
 def strip_from_curve_end(graph, patch: int, x: int, edge: int) -> bool:
@@ -274,7 +301,7 @@ def strip_from_curve_end(graph, patch: int, x: int, edge: int) -> bool:
     if found is None or edge < 0 or x not in found.corners:
         return False
     beyond = _across(graph, patch, edge)
-    return (beyond is not None and _inside(found.outline, graph.get(x, "pos"), strip_point(graph, edge))
+    return (beyond is not None and _inside(found, graph.get(x, "pos"), strip_point(graph, edge))
             and strip_walk(graph, beyond[0], beyond[1], frozenset([patch])) is not None)
 
 
