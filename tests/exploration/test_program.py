@@ -25,7 +25,7 @@ def test_the_program_runs_topology_then_the_patch_step_then_patching():
     strategies = [i.strategy for i in program]
     first_patch = strategies.index("patch nodes")
     assert set(strategies[:first_patch]) == {"topology", "curve_topology", "reflex_corners"}
-    assert set(strategies[first_patch + 1:]) == {"curve_patching", "patching"}
+    assert set(strategies[first_patch + 1:]) == {"curve_patching", "patching", "strip"}  # strip: run by both
 
 
 def test_no_answers_is_the_default_decomposition():

@@ -22,6 +22,7 @@ from vaultgram.geometry.polygons import interior_angle, regular_valence, signed_
 from vaultgram.geometry.polylines import arc_lengths, point_at_length
 from vaultgram.topology import corners
 from vaultgram.topology.patches import enclosed_holes, half_edge_polyline, hole_rings, plan_faces
+from vaultgram.topology.strips import register_strip_helpers
 from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE, DUAL, PATCH_CORNER, PLAN_EDGES
 
 __all__ = ["vault_functions", "distance", "midpoint", "lerp", "move_end", "move_branch_end", "angle_between",
@@ -411,6 +412,7 @@ def vault_functions() -> Functions:
                               ("plan_crossings", plan_crossings, "int")):
         f.register(name, fn, (), returns, uses_graph=True, local=False)
     _register_corner_helpers(f)
+    register_strip_helpers(f)
     return f
 
 

@@ -1,0 +1,319 @@
+"""Strips of quads across the patch layout: the helpers of ``rules/strips.vgr``.
+
+A *strip insertion* (the chord that inserts a row of quads, and the paper's Figure 8 split of a
+quad at a curve extremity to the midpoint of the opposite side, §4.2) puts a new corner in the
+middle of a side. Where that side is shared with a neighbouring patch, the new corner is a
+T-junction there: the neighbour must be split too, from the new corner to the middle of its
+opposite side, and so on across quads until the strip reaches the boundary, ends in a triangle
+(split to its opposite corner) or closes on itself. The rules do the rewriting one patch at a time;
+the functions here let them start a strip only where it certainly completes as a valid layout
+(:func:`strip_start`, :func:`strip_from_curve_end`): they walk it first across the patches it
+would cross, and refuse it where it would meet a patch that is no quad or triangle, a side it
+cannot split (a curve, a boundary stretch without a free point, a side of several edges), the
+same patch twice, or a chord that would leave its patch. The engine knows nothing of this; the
+vault pipeline registers the functions (:mod:`vaultgram.topology.functions`).
+"""
+
+from __future__ import annotations
+
+import functools
+import weakref
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+from vaultgram.engine.embedding import face_walk
+from vaultgram.geometry.polygons import interior_angle, signed_area
+from vaultgram.geometry.polylines import arc_lengths, point_at_length
+from vaultgram.topology.patches import half_edge_polyline
+from vaultgram.topology.types import (
+    BOUNDARY,
+    BOUNDARY_VERTEX,
+    BRANCH,
+    CORNER,
+    DIAGONAL,
+    PATCH_CORNER,
+    PLAN_EDGES,
+    REBRANCH,
+)
+
+__all__ = ["SPLITTABLE", "PatchSides", "patch_sides", "side_edge", "corner_chord_angle", "strip_point",
+           "strip_piece", "side_through", "strip_boundary_end", "Walk", "strip_walk", "strip_through", "strip_start",
+           "strip_from_curve_end", "register_strip_helpers"]
+
+#: The plan edges a strip may cut in two (not a curve feature: the layout must not cross it, §4.2;
+#: not the boundary, which a strip ends at, at one of its points).
+SPLITTABLE = (BRANCH, REBRANCH, DIAGONAL)
+
+
+@dataclass(frozen=True)
+class PatchSides:
+    """A Patch node's corners by index and its sides: side ``k`` is the list of half-edges
+    ``(edge, start node)`` from corner ``k`` to corner ``k + 1``, counter-clockwise; ``outline``
+    the closed polygon of the face."""
+
+    corners: tuple
+    sides: tuple
+    outline: np.ndarray
+
+    @functools.cached_property
+    def polygon(self) -> shapely.Polygon:
+        """The outline as a prepared shapely polygon (for the chords' containment tests)."""
+        polygon = shapely.Polygon(self.outline)
+        shapely.prepare(polygon)
+        return polygon
+
+
+_STATE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> (its changes count, {key: value})
+
+
+def _memo(graph) -> dict:
+    """What the helpers worked out in this state of the graph (``graph.changes`` tells a state from
+    every other, undo included): the rules ask for the same sides and strips in every match they try."""
+    cached = _STATE.get(graph)
+    if cached is None or cached[0] != graph.changes:
+        cached = (graph.changes, {})
+        _STATE[graph] = cached
+    return cached[1]
+
+
+def patch_sides(graph, patch: int) -> PatchSides | None:
+    """The sides of a Patch node (once per state of the graph); None if no face of the plan at its
+    first corner has all its corners (a Patch node out of step with the plan)."""
+    memo = _memo(graph)
+    if ("sides", patch) not in memo:
+        memo[("sides", patch)] = _walk_sides(graph, patch)
+    return memo[("sides", patch)]
+
+
+def _walk_sides(graph, patch: int) -> PatchSides | None:
+    by_index = sorted((graph.get_edge(e, "index"), graph.ends(e)[1]) for e in graph.incident(patch, [PATCH_CORNER]))
+    corners = tuple(c for _, c in by_index)
+    if not corners:
+        return None
+    for first in graph.rotation(corners[0]):
+        if graph.edge_type(first) not in PLAN_EDGES:
+            continue
+        face = face_walk(graph, PLAN_EDGES, (first, corners[0]))
+        nodes = [u for _, u in face]
+        if not set(corners) <= set(nodes):
+            continue
+        outline = np.vstack([half_edge_polyline(graph, e, u)[:-1] for e, u in face])
+        if signed_area(np.vstack([outline, outline[:1]])) <= 0:
+            continue
+        starts = [nodes.index(c) for c in corners] + [len(face)]
+        if starts != sorted(starts):
+            return None
+        return PatchSides(corners, tuple(tuple(face[a:b]) for a, b in zip(starts, starts[1:])), outline)
+    return None
+
+
+def side_edge(graph, patch: int, corner: int) -> int:
+    """The plan edge that is the whole side of a Patch node from its corner ``corner``, when a strip
+    may cut it (one edge of :data:`SPLITTABLE`); -1 otherwise."""
+    found = patch_sides(graph, patch)
+    if found is None or corner not in found.corners:
+        return -1
+    side = found.sides[found.corners.index(corner)]
+    return side[0][0] if len(side) == 1 and graph.edge_type(side[0][0]) in SPLITTABLE else -1
+
+
+def corner_chord_angle(graph, patch: int, x: int) -> float:
+    """The interior angle (degrees) of a Patch node at its corner ``x`` between the chords to its two
+    neighbouring corners (as split_quad_at_curve_end measures it); NaN if ``x`` is not a corner."""
+    found = patch_sides(graph, patch)
+    if found is None or x not in found.corners:
+        return float("nan")
+    k, n = found.corners.index(x), len(found.corners)
+    before, after = found.corners[(k - 1) % n], found.corners[(k + 1) % n]
+    return interior_angle(graph.get(before, "pos"), graph.get(x, "pos"), graph.get(after, "pos"))
+
+
+def _halves(graph, edge: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """An edge's polyline (from its source) cut at half its length: the piece before, the point, the
+    piece after (the point is in neither); once per state."""
+    memo = _memo(graph)
+    if ("halves", edge) not in memo:
+        memo[("halves", edge)] = _cut_halfway(half_edge_polyline(graph, edge, graph.ends(edge)[0]))
+    return memo[("halves", edge)]
+
+
+def _cut_halfway(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    s = arc_lengths(pts)
+    mid = point_at_length(pts, s[-1] / 2)
+    j = int(np.searchsorted(s, s[-1] / 2, side="left"))
+    after = j + int(bool(np.allclose(pts[j], mid)))
+    return pts[:j], mid, pts[after:]
+
+
+def strip_point(graph, edge: int) -> tuple[float, float]:
+    """Where a strip cuts a plan edge: halfway along it."""
+    mid = _halves(graph, edge)[1]
+    return float(mid[0]), float(mid[1])
+
+
+def strip_piece(graph, edge: int, end: int) -> tuple:
+    """The part of a plan edge from its end ``end`` to the strip point, as a polyline."""
+    before, mid, after = _halves(graph, edge)
+    piece = np.vstack([before, mid[None]]) if graph.ends(edge)[0] == end else np.vstack([after[::-1], mid[None]])
+    return tuple((float(x), float(y)) for x, y in piece)
+
+
+def side_through(graph, patch: int, corner: int, m: int) -> bool:
+    """Whether the side of a Patch node from its corner ``corner`` is two plan edges meeting at
+    ``m``: a strip point that the patch does not have as a corner yet."""
+    found = patch_sides(graph, patch)
+    if found is None or corner not in found.corners:
+        return False
+    side = found.sides[found.corners.index(corner)]
+    return len(side) == 2 and side[1][1] == m
+
+
+def strip_boundary_end(graph, patch: int, corner: int) -> int:
+    """The point where a strip ends on a boundary side of a Patch node (the side from ``corner``, all
+    boundary pieces): the free boundary point nearest its middle by arc length (no patch's corner, no
+    feature, no polygon corner), or ``corner`` itself where there is none or the side is not on the
+    boundary."""
+    found = patch_sides(graph, patch)
+    if found is None or corner not in found.corners:
+        return corner
+    side = found.sides[found.corners.index(corner)]
+    if any(graph.edge_type(e) != BOUNDARY for e, _ in side):
+        return corner
+    pieces = [half_edge_polyline(graph, e, u) for e, u in side]
+    at = np.concatenate([[0.0], np.cumsum([arc_lengths(piece)[-1] for piece in pieces])])
+    inner = [(abs(at[k] - at[-1] / 2), u) for k, (_, u) in enumerate(side) if k > 0 and _free_boundary_point(graph, u)]
+    return min(inner)[1] if inner else corner
+
+
+def _free_boundary_point(graph, n: int) -> bool:
+    return (graph.schema.is_subtype(graph.node_type(n), BOUNDARY_VERTEX) and graph.node_type(n) != CORNER
+            and not graph.get(n, "feature") and graph.degree(n, [PATCH_CORNER]) == 0
+            and graph.degree(n, PLAN_EDGES) == 2)
+
+
+def _inside(found: PatchSides, a, b) -> bool:
+    """Whether the straight chord from ``a`` to ``b`` (points of the outline) runs inside the patch,
+    touching its outline only at its ends."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    d = (b - a) * 1e-6
+    return bool(shapely.contains_properly(found.polygon, shapely.LineString([a + d, b - d])))
+
+
+def _across(graph, patch: int, edge: int) -> tuple[int, int] | None:
+    """The Patch node on the other side of a plan edge that is a whole side of ``patch``, and the
+    index of that side there; None where there is none (or more than one)."""
+    found = [(q, k) for q in _patches_at(graph, graph.ends(edge)[0]) if q != patch and patch_sides(graph, q)
+             for k, side in enumerate(patch_sides(graph, q).sides) if len(side) == 1 and side[0][0] == edge]
+    return found[0] if len(found) == 1 else None
+
+
+def _patches_at(graph, n: int) -> list:
+    return sorted({graph.ends(e)[0] for e in graph.incident(n, [PATCH_CORNER])})
+
+
+@dataclass(frozen=True)
+class Walk:
+    """The patches a strip crosses from one side on (in order), the plan edges it cuts on the way
+    (the entry edge first), and where it ends: the corner of a triangle opposite the strip, a
+    boundary point, or None when it came back to its entry edge (a closed strip)."""
+
+    patches: tuple
+    edges: tuple
+    end: int | None
+
+    @property
+    def closed(self) -> bool:
+        return self.end is None
+
+
+def strip_walk(graph, patch: int, k: int, seen: frozenset = frozenset()) -> Walk | None:
+    """The strip that enters ``patch`` through the middle of its side ``k`` (a plan edge it may cut),
+    walked on: across a quad to the middle of its opposite side, into the patch beyond, until it
+    ends on the boundary (at a free point of a boundary side), in a triangle (at its corner opposite
+    the entry), or back at its entry edge. None where it cannot: a patch that is no quad or triangle,
+    a side it may not cut, a patch twice (or one of ``seen``), a chord that leaves its patch.
+    """
+    entry = side_edge(graph, patch, patch_sides(graph, patch).corners[k]) if patch_sides(graph, patch) else -1
+    patches, edges = [], [entry]
+    while True:
+        found = patch_sides(graph, patch)
+        if entry < 0 or found is None or patch in patches or patch in seen or len(found.corners) not in (3, 4):
+            return None
+        patches.append(patch)
+        here = strip_point(graph, entry)
+        out = found.corners[(k + 2) % len(found.corners)]
+        nxt = side_edge(graph, patch, out) if len(found.corners) == 4 else -1
+        if nxt < 0:  # the end: the triangle's corner opposite the strip, or a point of a boundary side
+            end = out if len(found.corners) == 3 else strip_boundary_end(graph, patch, out)
+            ok = end != out or len(found.corners) == 3
+            return Walk(tuple(patches), tuple(edges), end) if ok and _inside(found, here, graph.get(
+                end, "pos")) else None
+        if not _inside(found, here, strip_point(graph, nxt)):
+            return None
+        if nxt == edges[0]:
+            return Walk(tuple(patches), tuple(edges), None)
+        edges.append(nxt)
+        beyond = _across(graph, patch, nxt)
+        patch, k, entry = (beyond[0], beyond[1], nxt) if beyond else (patch, k, -1)
+
+
+def strip_through(graph, patch: int, corner: int, edge: int) -> tuple[Walk, Walk] | None:
+    """The strip through the plan edge ``edge``, the side of ``patch`` from its corner ``corner``:
+    its walks into ``patch`` and into the patch beyond (the same walk twice for a closed strip), or
+    None where one does not complete or the two cross a patch twice."""
+    found = patch_sides(graph, patch)
+    if side_edge(graph, patch, corner) != edge:
+        return None
+    beyond = _across(graph, patch, edge)
+    one = strip_walk(graph, patch, found.corners.index(corner)) if beyond else None
+    if one is None:
+        return None
+    two = one if one.closed else strip_walk(graph, beyond[0], beyond[1], frozenset(one.patches))
+    return None if two is None else (one, two)
+
+
+def strip_start(graph, patch: int, corner: int, edge: int) -> bool:
+    """Whether a strip may start at the plan edge ``edge``, the side of ``patch`` from its corner
+    ``corner`` (:func:`strip_through`): it completes, crosses at least one quad, and this is the
+    strip's one start (its cut edge of the smallest id, from the patch on the left of that edge
+    walked from its source), so that each strip is offered once. A strip is walked once per state:
+    what it is is kept for every edge it cuts."""
+    if graph.ends(edge)[0] != corner or side_edge(graph, patch, corner) != edge:
+        return False
+    memo = _memo(graph)
+    if ("strip", edge) not in memo:
+        walks = strip_through(graph, patch, corner, edge)
+        memo[("strip", edge)] = None
+        if walks is not None:
+            edges = set(walks[0].edges) | set(walks[1].edges)
+            quads = any(len(patch_sides(graph, p).corners) == 4 for w in walks for p in w.patches)
+            memo.update({("strip", e): min(edges) if quads else None for e in edges})
+    return memo[("strip", edge)] == edge
+
+
+def strip_from_curve_end(graph, patch: int, x: int, edge: int) -> bool:
+    """Whether the quad ``patch`` may be split from its corner ``x`` (a curve extremity) to the middle
+    of its side ``edge`` (Figure 8, §4.2): the chord runs inside the quad, and the strip that the new
+    corner starts in the patch beyond completes (:func:`strip_walk`)."""
+    found = patch_sides(graph, patch)
+    if found is None or edge < 0 or x not in found.corners:
+        return False
+    beyond = _across(graph, patch, edge)
+    return (beyond is not None and _inside(found, graph.get(x, "pos"), strip_point(graph, edge))
+            and strip_walk(graph, beyond[0], beyond[1], frozenset([patch])) is not None)
+
+
+def register_strip_helpers(f) -> None:
+    """Register the strip helpers with a function registry (``rules/strips.vgr`` calls them)."""
+    for name, fn, params, returns in (
+            ("side_edge", side_edge, ("node", "node"), "edge"),
+            ("side_through", side_through, ("node", "node", "node"), "bool"),
+            ("corner_chord_angle", corner_chord_angle, ("node", "node"), "float"),
+            ("strip_point", strip_point, ("edge",), "vec2"),
+            ("strip_piece", strip_piece, ("edge", "node"), "list"),
+            ("strip_boundary_end", strip_boundary_end, ("node", "node"), "node"),
+            ("strip_start", strip_start, ("node", "node", "edge"), "bool"),
+            ("strip_from_curve_end", strip_from_curve_end, ("node", "node", "edge"), "bool")):
+        f.register(name, fn, params, returns, uses_graph=True, local=False)

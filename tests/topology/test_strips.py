@@ -1,0 +1,204 @@
+"""Strips of quads (rules/strips.vgr, vaultgram.topology.strips): every strip option is a valid
+decomposition that meshes without folds, a strip splits exactly the patches it crosses, each strip
+is offered once, and the default decomposition has none."""
+
+from __future__ import annotations
+
+import json
+from collections import Counter
+from functools import lru_cache
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from vaultgram.cli import main
+from vaultgram.domain import load_domain
+from vaultgram.exploration.evaluate import mesh_metrics
+from vaultgram.exploration.program import Scripted, Stepper
+from vaultgram.geometry.polygons import signed_area
+from vaultgram.geometry.polylines import arc_lengths
+from vaultgram.pipeline import decompose, mesh_decomposition
+from vaultgram.topology import strips
+from vaultgram.topology.decomposition import block_decomposition, decomposition_graph
+from vaultgram.topology.patches import half_edge_polyline
+from vaultgram.topology.rulebook import load_vault_rulebook
+
+from paths import EXAMPLES
+
+SPACING = 0.05
+STARTS = ("start_strip", "split_quad_at_curve_end_to_side")  # the rules that start a strip
+
+
+@lru_cache(maxsize=None)
+def _domain(name):
+    return load_domain(EXAMPLES / f"{name}.json")
+
+
+class _Recording:
+    """The default chooser, recording the rules of the options at every choice point."""
+
+    def __init__(self):
+        self.rules = []
+
+    def __call__(self, options):
+        self.rules.append([o.rule for o in options])
+        return 0
+
+
+@lru_cache(maxsize=None)
+def _strip_options(name) -> tuple:
+    """(answers, rule) for every option of the strip choice points on the default path."""
+    rec = _Recording()
+    decompose(_domain(name), SPACING, chooser=rec)
+    return tuple(((0,) * i + (k,), rule) for i, rules in enumerate(rec.rules)
+                 for k, rule in enumerate(rules) if rule in STARTS)
+
+
+def _area(domain):
+    return abs(signed_area(domain.outer)) - sum(abs(signed_area(h)) for h in domain.holes)
+
+
+@lru_cache(maxsize=None)
+def _skeleton(name):
+    return decompose(_domain(name), SPACING).skeleton
+
+
+def _variant(name, answers, check_invariants=False):
+    return block_decomposition(_skeleton(name), load_vault_rulebook(), check_invariants, chooser=Scripted(answers))
+
+
+@pytest.mark.parametrize("name", ["fig7_curves", "quad_with_hole"])
+def test_every_strip_option_tiles_the_domain_with_three_and_four_sided_patches_and_meshes_without_folds(name):
+    domain = _domain(name)
+    options = _strip_options(name)
+    assert {rule for _, rule in options} == ({"start_strip", "split_quad_at_curve_end_to_side"} if name == "fig7_curves"
+                                            else {"start_strip"})
+    smoothed = set()
+    for answers, rule in options:
+        dec = _variant(name, answers, check_invariants=True)  # the rulebook's invariants: planar, tiling, Euler
+        assert {p.n_sides for p in dec.patches} <= {3, 4}
+        assert sum(p.area() for p in dec.patches) == pytest.approx(_area(domain), rel=1e-6)
+        g = dec.graph
+        assert not any(g.get_edge(e, "strip") for e in g.of_types(["PatchCorner"]))  # every strip crossed
+        around = Counter(c for p in dec.patches for c in p.corners)
+        assert all(around[n] == 4 for n in g.nodes() if g.node_type(n) == "StripPoint")  # regular, inside
+        smooth = 3 if rule not in smoothed else 0  # the raw Coons patches of every option, smoothed once a rule
+        smoothed.add(rule)
+        stats = mesh_metrics(mesh_decomposition(dec, None, smooth, allow_folds=True), domain)
+        assert stats["faces"] > 0 and stats["inverted_faces"] == 0, answers
+
+
+def _at_start_strip(name):
+    """A stepper stopped at the start_strip choice point of the default path."""
+    book = load_vault_rulebook()
+    sk = _skeleton(name)
+    stepper = Stepper(book, decomposition_graph(sk, book), sk.triangulation.disc)
+    options = stepper.advance()
+    while options and options[1].rule != "start_strip":
+        options = stepper.take(0)
+    return stepper, options
+
+
+def _corners_around(graph) -> Counter:
+    return Counter(graph.ends(e)[1] for e in graph.of_types(["PatchCorner"]))
+
+
+@pytest.mark.parametrize("name", ["quad_with_hole", "fig6_inner_points"])
+def test_a_strip_splits_each_patch_it_crosses_in_two_and_changes_valences_only_at_its_ends(name):
+    stepper, options = _at_start_strip(name)
+    g, pc, answers, mark = stepper.graph, stepper.pc, list(stepper.answers), stepper.graph.mark()
+    walks = []
+    for k in range(1, len(options)):
+        g.rollback(mark)  # back at the choice point (the undo journal, as the search does)
+        stepper.pc, stepper.answers = pc, list(answers)
+        b = options[k].match.binding
+        one, two = strips.strip_through(g, b["p"], b["u"], b["e"])
+        walks.append(set(one.edges) | set(two.edges))
+        crossed = set(one.patches) | set(two.patches)
+        sides = Counter(g.get(p, "sides") for p in g.nodes() if g.node_type(p) == "Patch")
+        before = _corners_around(g)
+        split = Counter(g.get(p, "sides") for p in crossed)
+        ends = Counter(w.end for w in {one, two} if w.end is not None)
+        stepper.take(k)
+        patches = stepper.complete()
+        assert Counter(p.n_sides for p in patches) == sides + split  # each crossed patch: two of its sides
+        after = Counter(c for p in patches for c in p.corners)
+        new = {n for n in after if n not in before}
+        assert all(after[n] == before[n] + ends[n] for n in before), k  # old points: +1 at a triangle's end
+        assert all(g.node_type(n) == "StripPoint" and after[n] == 4 or after[n] == 2 and ends[n] for n in new), k
+    assert all(not (a & c) for i, a in enumerate(walks) for c in walks[i + 1:])  # each strip offered once
+
+
+def test_every_strip_the_plan_allows_is_offered():
+    stepper, options = _at_start_strip("quad_with_hole")
+    g = stepper.graph
+    offered = set().union(*(_edges(g, o.match.binding) for o in options[1:]))
+    possible = set()
+    for p in (n for n in g.nodes() if g.node_type(n) == "Patch"):
+        for c in strips.patch_sides(g, p).corners:
+            e = strips.side_edge(g, p, c)
+            walks = strips.strip_through(g, p, c, e) if e >= 0 else None
+            if walks and any(g.get(q, "sides") == 4 for w in walks for q in w.patches):
+                possible.add(e)
+    assert possible and offered == possible
+
+
+def _edges(g, b):
+    one, two = strips.strip_through(g, b["p"], b["u"], b["e"])
+    return set(one.edges) | set(two.edges)
+
+
+def test_a_cut_edge_is_split_halfway_into_two_pieces_that_make_it_up():
+    stepper, _ = _at_start_strip("fig7_curves")
+    g = stepper.graph
+    edges = [e for e in g.of_types(list(strips.SPLITTABLE))]
+    assert edges
+    for e in edges:
+        u, v = g.ends(e)
+        poly = half_edge_polyline(g, e, u)
+        first, second = np.array(strips.strip_piece(g, e, u)), np.array(strips.strip_piece(g, e, v))
+        mid = np.array(strips.strip_point(g, e))
+        assert np.allclose(first[-1], mid) and np.allclose(second[-1], mid)
+        assert np.allclose(first[0], poly[0]) and np.allclose(second[0], poly[-1])
+        length = arc_lengths(poly)[-1]
+        assert arc_lengths(first)[-1] == pytest.approx(length / 2) == arc_lengths(second)[-1]
+
+
+def test_figure_8_to_the_side_makes_the_curve_end_a_triangle_pole_and_carries_the_strip_on():
+    for answers, rule in _strip_options("fig7_curves"):
+        if rule != "split_quad_at_curve_end_to_side":
+            continue
+        dec = _variant("fig7_curves", answers)
+        g = dec.graph
+        ends = [n for n in g.nodes() if g.node_type(n) == "CurveExtremity"]
+        poles = {g.ends(e)[1] for e in g.of_types(["PatchCorner"]) if g.get_edge(e, "pole")}
+        cut = [n for n in g.nodes() if g.node_type(n) == "StripPoint"]
+        assert cut and any(x in poles for x in ends)
+        assert any(g.other(e, x) in cut for x in ends for e in g.incident(x, ["Diagonal"]))
+
+
+def test_the_default_decomposition_has_no_strip():
+    for name in ("fig7_curves", "quad_with_hole"):
+        dec = decompose(_domain(name), SPACING)
+        assert not any(dec.graph.node_type(n) == "StripPoint" for n in dec.graph.nodes())
+        assert all(r.applications == 0 for r in dec.reports if r.step.startswith("{ absorb_strip_point"))
+
+
+def test_explore_offers_the_strips_of_a_plan_without_other_choices_and_replays_them(tmp_path):
+    domain = str(EXAMPLES / "l_shape.json")
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["explore", domain, "--out", str(out), "--spacing", str(SPACING), "--limit", "8",
+                                       "--smooth", "3"])
+    assert result.exit_code == 0, result.output
+    variants = json.loads((out / "variants.json").read_text())["variants"]
+    assert len(variants) == 3  # the rectangles, and a strip across each of the two chords
+    assert sorted(v["metrics"]["patches"] for v in variants) == [3, 5, 5]
+    assert all(v["metrics"]["inverted_faces"] == 0 and v["metrics"]["patches_by_sides"]["3"] == 0 for v in variants)
+    space = json.loads((out / "state_space.json").read_text())
+    strip = next(v for v in space["variants"] if v["metrics"]["patches"] == 5)
+    result = CliRunner().invoke(main, ["replay", domain, str(out / "state_space.json"), "--variant", str(strip["id"]),
+                                       "--out", str(tmp_path / "replayed")])
+    assert result.exit_code == 0, result.output
+    for name in ("decomposition.json", "patches.json", "mesh.json"):
+        assert (tmp_path / "replayed" / name).read_bytes() == (out / strip["folder"] / name).read_bytes()
