@@ -12,9 +12,16 @@ pattern twenty times.
 :class:`ForceDensityMatrix` assembles ``Cm^T diag(q) Cm`` for many ``q`` on one fixed pattern by a
 precomputed sparse map from edge densities to the matrix entries (one sparse product per ``q``,
 no sparse matrix-matrix product), so the symbolic factorisation stays valid.
+
+Determinism: cvxopt reads CHOLMOD's settings from one module-level dict (``cvxopt.cholmod.options``)
+that any code in the process may change (``supernodal = 0`` makes it an ``L D L^T`` factorisation,
+with other rounding). Each call here runs under :data:`SETTINGS`, whatever that dict holds, and
+leaves it as it found it: form finding gives the same bits whatever ran before it in the process.
 """
 
 from __future__ import annotations
+
+from contextlib import contextmanager
 
 import numpy as np
 import scipy.sparse as sp
@@ -22,7 +29,24 @@ from cvxopt import cholmod, matrix, spmatrix
 
 from vaultgram.errors import FormFindingError
 
-__all__ = ["Cholesky", "ForceDensityMatrix"]
+__all__ = ["Cholesky", "ForceDensityMatrix", "SETTINGS"]
+
+#: The CHOLMOD settings of every factorisation and solve: supernodal ``L L^T``, postordered, the
+#: orderings CHOLMOD picks from by default (AMD here).
+SETTINGS = {"supernodal": 2, "postorder": True, "nmethods": 0}
+
+
+@contextmanager
+def _settings():
+    """Run with :data:`SETTINGS` as cvxopt's CHOLMOD options, then put back what was there."""
+    saved = dict(cholmod.options)
+    cholmod.options.clear()
+    cholmod.options.update(SETTINGS)
+    try:
+        yield
+    finally:
+        cholmod.options.clear()
+        cholmod.options.update(saved)
 
 
 class Cholesky:
@@ -44,7 +68,8 @@ class Cholesky:
         self.n, self.what, self.hint = n, what, hint
         self._rows, self._cols = np.asarray(rows, dtype=np.int64), np.asarray(cols, dtype=np.int64)
         M = self._matrix(values)
-        self._factor = cholmod.symbolic(M)
+        with _settings():
+            self._factor = cholmod.symbolic(M)
         self._numeric(M)
 
     @classmethod
@@ -59,7 +84,8 @@ class Cholesky:
 
     def _numeric(self, M: spmatrix) -> None:
         try:
-            cholmod.numeric(M, self._factor)
+            with _settings():
+                cholmod.numeric(M, self._factor)
         except ArithmeticError:
             raise FormFindingError(f"singular {self.what} (not positive definite){self.hint}") from None
 
@@ -73,7 +99,8 @@ class Cholesky:
         """``A^{-1} b`` for a vector or for the columns of an (n, k) array."""
         b = np.asarray(b, dtype=float)
         B = matrix(np.asfortranarray(b.reshape(self.n, -1)))
-        cholmod.solve(self._factor, B)
+        with _settings():
+            cholmod.solve(self._factor, B)
         return np.array(B).reshape(b.shape)
 
 
