@@ -33,8 +33,9 @@ def test_perturbed_grid_converges_or_fails_clearly(mesh, alpha):
     assert abs(tn.vertices[:, 2].max() - 1.5) < 1e-6
     ang = angle_deviations(tn.form.edge_vectors()[tn.force.form_edge], tn.force.edge_vectors())
     assert ang.max() < 0.5
-    # with alpha = 100 the plan is kept exactly
-    if alpha == 100.0:
+    # with alpha = 100 the plan is kept exactly, unless the pattern as meshed had no compression-only
+    # equilibrium and was relaxed (relax_mode "all", the fallback of "auto")
+    if alpha == 100.0 and s["relax_mode"] == "none":
         assert np.array_equal(tn.form.xy, v[tn.vertex_ids, :2])
 
 

@@ -24,23 +24,14 @@ from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.sparse.linalg import splu
 
-from vaultgram.errors import FormFindingError
+from vaultgram.formfinding.cholesky import Cholesky, ForceDensityMatrix
 from vaultgram.formfinding.diagrams import Diagram, connectivity_matrix
 from vaultgram.formfinding.formdiagram import FormDiagram
 
 __all__ = ["ForceDiagram", "force_diagram", "PinnedLaplacian", "WeightedFit"]
 
 _DISCONNECTED = "; a part of the diagram is not connected to a fixed vertex"
-
-
-def _factorised(A: sp.spmatrix, what: str, hint: str = "", **options):
-    """Sparse LU of ``A``; a singular system is a :class:`FormFindingError` naming ``what`` it was."""
-    try:
-        return splu(A, **options)
-    except RuntimeError as exc:  # pragma: no cover - guarded by connectivity checks
-        raise FormFindingError(f"singular {what} ({exc}){hint}") from None
 
 
 def _split_columns(C: sp.csr_matrix, pinned: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -54,13 +45,14 @@ class PinnedLaplacian:
     """Factorised graph Laplacian ``C^T C`` with some vertices held fixed.
 
     Solves ``min |C x - t|^2`` over the unpinned vertices for many right-hand sides ``t`` with one
-    sparse LU factorisation (the pattern and values of ``C^T C`` never change during the
+    sparse Cholesky factorisation (the pattern and values of ``C^T C`` never change during the
     parallelisation iterations).
 
     Example
     -------
     >>> C = connectivity_matrix(np.array([[0, 1], [1, 2]]), 3)           # a path 0 - 1 - 2, 0 fixed
-    >>> PinnedLaplacian(C, np.array([0])).solve(np.array([[1.0, 0.0], [0.0, 2.0]]), np.zeros((3, 2))).tolist()
+    >>> x = PinnedLaplacian(C, np.array([0])).solve(np.array([[1.0, 0.0], [0.0, 2.0]]), np.zeros((3, 2)))
+    >>> np.round(x, 12).tolist()
     [[0.0, 0.0], [1.0, 0.0], [1.0, 2.0]]
     """
 
@@ -70,8 +62,8 @@ class PinnedLaplacian:
         self.Cu = C[:, self.unpinned].tocsc()
         self.Cp = C[:, self.pinned].tocsc()
         self.CuT = self.Cu.T.tocsr()
-        self.lu = _factorised((self.CuT @ self.Cu).tocsc(), "least-squares system", _DISCONNECTED,
-                              permc_spec="MMD_AT_PLUS_A")
+        self.lu = ForceDensityMatrix(C, self.unpinned).factorised(np.ones(C.shape[0]), "least-squares system",
+                                                                  _DISCONNECTED)
 
     def solve(self, t: np.ndarray, x: np.ndarray) -> np.ndarray:
         """New positions: pinned rows of ``x`` kept, others solving the least-squares problem."""
@@ -88,10 +80,9 @@ class WeightedFit:
     ``t`` (k, 2), with the per-edge weight ``W_e = n_e n_e^T + mu f_e f_e^T`` in a fixed frame: ``f_e`` a
     unit direction (the edge's target direction), ``n_e`` its normal. A deviation *across* the
     direction costs ``1 / mu`` times more than one *along* it (a change of length); ``mu = 1`` is
-    the plain fit of :class:`PinnedLaplacian`. x and y are coupled, so the unknowns are interleaved
-    per vertex and ordered by the minimum-degree ordering of the graph Laplacian ``C^T C`` (the
-    2 x 2 block pattern keeps that ordering good), then factorised once without pivoting (the
-    matrix is symmetric positive definite when every component has a pinned vertex).
+    the plain fit of :class:`PinnedLaplacian`. x and y are coupled, so all ``2 N`` unknowns are
+    factorised together, once, by a sparse Cholesky factorisation with its own fill-reducing ordering
+    (the matrix is symmetric positive definite when every component has a pinned vertex).
     """
 
     def __init__(self, C: sp.csr_matrix, pinned: np.ndarray, frame: np.ndarray, mu: float):
@@ -102,21 +93,10 @@ class WeightedFit:
         # W = n n^T + mu f f^T with n = (-fy, fx)
         self.w = (fy * fy + mu * fx * fx, -fx * fy + mu * fx * fy, fx * fx + mu * fy * fy)
         wxx, wxy, wyy = (sp.diags(w) for w in self.w)
-        A = sp.bmat([[Cu.T @ wxx @ Cu, Cu.T @ wxy @ Cu], [Cu.T @ wxy @ Cu, Cu.T @ wyy @ Cu]]).tocsr()
+        A = sp.bmat([[Cu.T @ wxx @ Cu, None], [Cu.T @ wxy @ Cu, Cu.T @ wyy @ Cu]])
         self.N = len(self.unpinned)
-        self.P = self._interleaved_order(Cu)
-        self.lu = _factorised(A[self.P][:, self.P].tocsc(), "weighted least-squares system", permc_spec="NATURAL",
-                              diag_pivot_thresh=0.0, options=dict(SymmetricMode=True))
+        self.lu = Cholesky.of(A, "weighted least-squares system", _DISCONNECTED)
         self.CuT = Cu.T.tocsr()
-
-    def _interleaved_order(self, Cu: sp.csc_matrix) -> np.ndarray:
-        """The minimum-degree order of ``Cu^T Cu``, each vertex's x and y unknowns side by side."""
-        lap = _factorised((Cu.T @ Cu).tocsc(), "least-squares system", _DISCONNECTED, permc_spec="MMD_AT_PLUS_A")
-        order = np.argsort(lap.perm_c)
-        P = np.empty(2 * self.N, dtype=np.int64)
-        P[0::2] = order
-        P[1::2] = order + self.N
-        return P
 
     def solve(self, t: np.ndarray, x: np.ndarray) -> np.ndarray:
         """New positions: pinned rows of ``x`` kept, others solving the weighted least-squares fit."""
@@ -125,9 +105,7 @@ class WeightedFit:
         wxx, wxy, wyy = self.w
         bx = self.CuT @ (wxx * r[:, 0] + wxy * r[:, 1])
         by = self.CuT @ (wxy * r[:, 0] + wyy * r[:, 1])
-        b = np.concatenate([bx, by])[self.P]
-        z = np.empty(2 * self.N)
-        z[self.P] = self.lu.solve(b)
+        z = self.lu.solve(np.concatenate([bx, by]))
         out[self.unpinned, 0] = z[:self.N]
         out[self.unpinned, 1] = z[self.N:]
         return out

@@ -101,8 +101,12 @@ class FormDiagram(Diagram):
         return ~(self.anchors[self.edges[:, 0]] & self.anchors[self.edges[:, 1]])
 
     @cached_property
-    def loaded_faces(self) -> tuple[tuple[int, ...], ...]:
-        return tuple(f for f, ld in zip(self.faces, self.loaded) if ld)
+    def loaded_faces(self) -> Faces:
+        """The mesh faces (the first ones of :attr:`faces`), their corner arrays cut from those of all."""
+        fid, vert, _, _ = corner_arrays(self.faces)
+        k = int(self.loaded.sum())
+        lens = np.bincount(fid, minlength=self.n_faces)[:k]
+        return Faces.from_flat(vert[: int(lens.sum())], lens, self.faces[:k])
 
     @cached_property
     def opening_faces(self) -> tuple[tuple[int, ...], ...]:
@@ -181,13 +185,20 @@ def _checked_mesh(vertices, faces) -> tuple[np.ndarray, list[tuple[int, ...]]]:
     V = np.asarray(vertices, dtype=float)
     if V.ndim != 2 or V.shape[1] not in (2, 3):
         raise FormFindingError(f"vertices must have shape (n, 2) or (n, 3), got {V.shape}")
-    faces = Faces(tuple(map(int, f)) for f in faces)
+    faces = faces if isinstance(faces, Faces) else _as_faces(faces)
     if not faces:
         raise FormFindingError("the mesh has no faces")
     bad = _first_bad_face(faces, len(V))
     if bad is not None:
         _check_face(bad, faces[bad], len(V))
     return V[:, :2], faces
+
+
+def _as_faces(faces) -> Faces:
+    """Faces as tuples of Python ints, their corner arrays made on the way (one pass over the faces)."""
+    faces = list(faces)
+    lens = np.fromiter(map(len, faces), dtype=np.int64, count=len(faces))
+    return Faces.from_flat(corner_arrays(faces)[1], lens)
 
 
 def _first_bad_face(faces: Faces, n: int) -> int | None:
@@ -309,16 +320,16 @@ def _drop_supported_edges(xy: np.ndarray, faces, anchors: np.ndarray, drop: bool
                 f"use update_boundaries=False")
 
 
-def _without_vertices(index: list[int], faces, dead: np.ndarray) -> tuple[list[int], list[tuple[int, ...]]]:
+def _without_vertices(index: list[int], faces, dead: np.ndarray) -> tuple[list[int], Faces]:
     """The faces (and their input indices) with the ``dead`` vertices dropped; faces left with < 3 go."""
     fid, vert, _, _ = corner_arrays(faces)
-    touched = np.zeros(len(faces), dtype=bool)
-    touched[fid[dead[vert]]] = True
-    shrunk = [(k, tuple(i for i in f if not dead[i]) if t else f) for k, f, t in zip(index, faces, touched.tolist())]
-    shrunk = [(k, f) for k, f in shrunk if len(f) >= 3]
-    if not shrunk:
+    alive = ~dead[vert]
+    lens = np.bincount(fid[alive], minlength=len(faces))
+    kept = lens >= 3
+    if not kept.any():
         raise FormFindingError("every edge joins two supports: nothing is left to form-find")
-    return [k for k, _ in shrunk], Faces(f for _, f in shrunk)
+    corners = alive & kept[fid]
+    return np.asarray(index)[kept].tolist(), Faces.from_flat(vert[corners], lens[kept])
 
 
 class _Network(NamedTuple):
@@ -328,7 +339,7 @@ class _Network(NamedTuple):
     anchors: np.ndarray
     vertex_ids: np.ndarray
     edges: np.ndarray       # (m, 2), u < v, sorted
-    faces: list             # the loaded faces
+    faces: Faces            # the loaded faces
 
 
 def _renumbered(xy0: np.ndarray, anchors0: np.ndarray, faces, edges: _Edges) -> _Network:
@@ -342,10 +353,8 @@ def _renumbered(xy0: np.ndarray, anchors0: np.ndarray, faces, edges: _Edges) -> 
         raise FormFindingError("no supports left after removing fully supported edges")
     renumbered = np.stack([new[edges.u], new[edges.v]], axis=1)
     renumbered = renumbered[np.lexsort((renumbered[:, 1], renumbered[:, 0]))]
-    _, vert, _, _ = corner_arrays(faces)
-    flat = new[vert].tolist()
-    ends = np.cumsum(np.fromiter(map(len, faces), dtype=np.int64, count=len(faces))).tolist()
-    loaded = [tuple(flat[a:b]) for a, b in zip([0, *ends[:-1]], ends)]
+    fid, vert, _, _ = corner_arrays(faces)
+    loaded = Faces.from_flat(new[vert], np.bincount(fid, minlength=len(faces)))
     return _Network(xy0[vertex_ids].copy(), anchors, vertex_ids, renumbered, loaded)
 
 
@@ -410,7 +419,7 @@ def _edge_faces(edges: np.ndarray, faces, is_open: np.ndarray, n: int) -> np.nda
     """``(left, right)`` face of every edge ``(u, v)``: the faces with the halfedges ``u -> v`` and
     ``v -> u`` (-1 where there is none). An open opening face has no halfedge on its closing chord."""
     af, au, av, _ = corner_arrays(faces)
-    ends = np.concatenate([[0], np.cumsum([len(f) for f in faces])])
+    ends = np.concatenate([[0], np.cumsum(np.bincount(af, minlength=len(faces)))])
     real = np.ones(len(af), dtype=bool)
     real[(ends[1:] - 1)[is_open]] = False
     af, au, av = af[real], au[real], av[real]
@@ -429,7 +438,12 @@ def _edge_faces(edges: np.ndarray, faces, is_open: np.ndarray, n: int) -> np.nda
 
 def _assembled(net: _Network, openings: list[_Opening]) -> FormDiagram:
     """The frozen diagram: loaded faces, then opening faces, and the faces beside every edge."""
-    faces = tuple(net.faces) + tuple(o.vertices for o in openings)
+    _, vert, _, _ = corner_arrays(net.faces)
+    opening_vertices = [np.asarray(o.vertices, dtype=np.int64) for o in openings]
+    lens = np.concatenate([np.bincount(corner_arrays(net.faces)[0], minlength=len(net.faces)),
+                           np.array([len(o) for o in opening_vertices], dtype=np.int64)])
+    faces = Faces.from_flat(np.concatenate([vert, *opening_vertices]), lens,
+                            tuple(net.faces) + tuple(o.vertices for o in openings))
     loaded = np.zeros(len(faces), dtype=bool)
     loaded[: len(net.faces)] = True
     is_open = np.concatenate([np.zeros(len(net.faces), dtype=bool), np.array([o.open for o in openings], dtype=bool)])

@@ -30,43 +30,56 @@ class TributaryAreas:
     """Precomputed corner arrays of the loaded faces, callable on vertex coordinates.
 
     ``TributaryAreas(faces, n)(xyz)`` returns the (n,) tributary areas. Build it once and call it at
-    every iteration of vertical equilibrium.
+    every iteration of vertical equilibrium. The corner quadrilateral of corner ``k`` is half the
+    triangle (``p_k``, ``p_k+1``, centroid) plus half the triangle (``p_k-1``, ``p_k``, centroid), so each
+    call measures one triangle per corner (``|(p_k - c) x (p_k+1 - c)| / 2``) and hands a quarter of
+    its cross product to each of its two mesh vertices by one sparse product (:attr:`spread`).
     """
 
     n: int
+    face: np.ndarray
     vert: np.ndarray
     nxt: np.ndarray
-    prv: np.ndarray
-    centroid: sp.csr_matrix   # (corners x n): row k averages the vertices of the face of corner k
+    centroid: sp.csr_matrix   # (faces x n): row f averages the vertices of face f
+    spread: sp.csr_matrix     # (n x corners): 1/4 at corner k's vertex and at the next one
 
     @classmethod
     def from_faces(cls, faces, n: int) -> "TributaryAreas":
-        face, vert, nxt, prv = corner_arrays(faces)
+        face, vert, nxt, _ = corner_arrays(faces)
         if len(face) == 0:
             z = np.zeros(0, dtype=np.int64)
-            return cls(n, z, z, z, sp.csr_matrix((0, n)))
+            return cls(n, z, z, z, sp.csr_matrix((0, n)), sp.csr_matrix((n, 0)))
         lens = np.bincount(face)
         F = sp.csr_matrix((1.0 / lens[face], (face, vert)), shape=(len(lens), n))
-        # corner k -> its face row of F
-        S = sp.csr_matrix((np.ones(len(face)), (np.arange(len(face)), face)), shape=(len(face), len(lens)))
-        return cls(n, vert, nxt, prv, (S @ F).tocsr())
+        k = np.arange(len(face))
+        S = sp.csr_matrix((np.full(2 * len(k), 0.25), (np.concatenate([vert, nxt]), np.concatenate([k, k]))),
+                          shape=(n, len(k)))
+        return cls(n, face, vert, nxt, F, S)
 
     def __call__(self, xyz: np.ndarray) -> np.ndarray:
         if len(self.vert) == 0:
             return np.zeros(self.n)
-        c = self.centroid @ xyz
-        p0 = xyz[self.vert]
-        cp = c - p0
-        a = _cross_norms(xyz[self.nxt] - p0, cp)
-        a += _cross_norms(xyz[self.prv] - p0, cp)
-        return 0.25 * np.bincount(self.vert, weights=a, minlength=self.n)
+        xyz = np.asarray(xyz, dtype=float)
+        columns = np.ascontiguousarray(xyz.T)      # one gather per coordinate: 2x faster at 10^6 faces
+        centroids = np.ascontiguousarray((self.centroid @ xyz).T)
+        a = [columns[k][self.vert] - centroids[k][self.face] for k in range(3)]
+        b = [columns[k][self.nxt] - centroids[k][self.face] for k in range(3)]
+        return self.spread @ _cross_norms(a, b)
 
 
-def _cross_norms(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """``|a_i x b_i|`` of rows of 3-vectors, by components (``np.cross`` copies its operands)."""
-    ax, ay, az = a.T
-    bx, by, bz = b.T
-    return np.sqrt((ay * bz - az * by) ** 2 + (az * bx - ax * bz) ** 2 + (ax * by - ay * bx) ** 2)
+def _cross_norms(a: list[np.ndarray], b: list[np.ndarray]) -> np.ndarray:
+    """``|a_i x b_i|`` of 3-vectors given by their coordinate arrays, with few temporaries."""
+    ax, ay, az = a
+    bx, by, bz = b
+    s = ay * bz
+    s -= az * by
+    s *= s
+    for u, v, w, x in ((az, bx, ax, bz), (ax, by, ay, bx)):
+        t = u * v
+        t -= w * x
+        t *= t
+        s += t
+    return np.sqrt(s, out=s)
 
 
 def tributary_areas(xyz: np.ndarray, faces, n: int | None = None) -> np.ndarray:

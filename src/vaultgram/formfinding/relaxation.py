@@ -17,10 +17,9 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-import scipy.sparse as sp
-from scipy.sparse.linalg import splu
 
 from vaultgram.errors import FormFindingError
+from vaultgram.formfinding.cholesky import Cholesky, ForceDensityMatrix
 from vaultgram.formfinding.formdiagram import FormDiagram
 from vaultgram.geometry.meshes import face_areas
 from vaultgram.geometry.polygons import signed_area
@@ -193,7 +192,9 @@ def _is_run(vs: np.ndarray, anchors: np.ndarray) -> bool:
 
 class _ForceDensities:
     """The plan force-density system ``Cm^T Q Cm x_m = -Cm^T Q Cs x_s`` for the moving vertices, with
-    ``q_b = exp(logq[j])`` on the edges of opening ``j`` (an edge on two openings takes the larger)."""
+    ``q_b = exp(logq[j])`` on the edges of opening ``j`` (an edge on two openings takes the larger).
+    Every solve has the same pattern: its Cholesky factorisation's symbolic part is made once, on the
+    first solve, and each further solve only refactorises the values."""
 
     def __init__(self, form: FormDiagram, moving: np.ndarray, eo: np.ndarray, fo: np.ndarray, q_interior: float):
         openings = np.flatnonzero(~form.loaded)
@@ -202,9 +203,11 @@ class _ForceDensities:
         self.eo, self.slot_of_edge = eo, slot[fo]
         self.q_interior, self.m = float(q_interior), form.n_edges
         self.mv, st = np.flatnonzero(moving), np.flatnonzero(~moving)
-        self.Cm, self.Cs = form.C[:, self.mv].tocsc(), form.C[:, st].tocsc()
+        self.K = ForceDensityMatrix(form.C, self.mv)
+        self.CmT, self.Cs = form.C[:, self.mv].T.tocsr(), form.C[:, st].tocsc()
         self.xy0 = np.asarray(form.xy)
         self.xs = self.xy0[st]
+        self._factor: Cholesky | None = None
 
     def densities(self, logq: np.ndarray) -> np.ndarray:
         """Force density per form edge for the opening force densities ``exp(logq)``."""
@@ -214,11 +217,13 @@ class _ForceDensities:
 
     def solve(self, logq: np.ndarray) -> np.ndarray:
         """Plan positions in equilibrium for the opening force densities ``exp(logq)``."""
-        Q = sp.diags(self.densities(logq))
-        A = (self.Cm.T @ Q @ self.Cm).tocsc()
-        b = -(self.Cm.T @ (Q @ (self.Cs @ self.xs)))
+        q = self.densities(logq)
+        if self._factor is None:
+            self._factor = self.K.factorised(q, "force-density system of the relaxation")
+        else:
+            self._factor.refactor(self.K.values(q))
         xy = self.xy0.copy()
-        xy[self.mv] = splu(A, permc_spec="MMD_AT_PLUS_A").solve(b)
+        xy[self.mv] = self._factor.solve(-(self.CmT @ (q[:, None] * (self.Cs @ self.xs))))
         return xy
 
 

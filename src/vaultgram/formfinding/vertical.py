@@ -26,9 +26,9 @@ from typing import NamedTuple
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.sparse.linalg import splu
 
 from vaultgram.errors import FormFindingError, VerticalEquilibriumError
+from vaultgram.formfinding.cholesky import Cholesky, ForceDensityMatrix
 from vaultgram.formfinding.formdiagram import FormDiagram
 from vaultgram.formfinding.loads import TributaryAreas
 
@@ -217,29 +217,25 @@ def _checked_densities(form: FormDiagram, q, scale: float, kmax: int) -> np.ndar
 
 
 class _HeightSystem(NamedTuple):
-    """``Ci^T Q0 Ci`` factorised once for the input force densities ``Q0``: with a thrust scale ``s``
-    the free heights are ``a t + b`` with ``a = lu.solve(p_i)``, ``t = 1 / s`` and ``b`` the part due
-    to the support heights ``z_f``."""
+    """``Ci^T Q0 Ci`` factorised once (sparse Cholesky, :mod:`vaultgram.formfinding.cholesky`) for the
+    input force densities ``Q0``: with a thrust scale ``s`` the free heights are ``a t + b`` with
+    ``a = lu.solve(p_i)``, ``t = 1 / s`` and ``b`` the part due to the support heights ``z_f``."""
 
-    lu: object
+    lu: Cholesky
     z_fixed: np.ndarray
     b: np.ndarray
 
     @classmethod
     def factorised(cls, form: FormDiagram, q0: np.ndarray, z_fixed) -> "_HeightSystem":
-        Ci = form.C[:, form.free].tocsc()
-        Cf = form.C[:, form.fixed].tocsc()
-        Q0 = sp.diags(q0)
-        try:
-            lu = splu((Ci.T @ Q0 @ Ci).tocsc(), permc_spec="MMD_AT_PLUS_A")
-        except RuntimeError as exc:
-            raise FormFindingError(f"vertical equilibrium system is singular ({exc}); is every part supported?"
-                                   ) from None
+        lu = ForceDensityMatrix(form.C, form.free).factorised(q0, "vertical equilibrium system",
+                                                              "; is every part supported?")
         zf = np.zeros(len(form.fixed)) if z_fixed is None else np.asarray(z_fixed, dtype=float).ravel()
         if zf.shape != (len(form.fixed),):
             raise FormFindingError(f"z_fixed needs {len(form.fixed)} entries (one per anchor)")
-        b = -lu.solve(Ci.T @ (Q0 @ (Cf @ zf))) if zf.any() else np.zeros(len(form.free))
-        return cls(lu, zf, b)
+        if not zf.any():
+            return cls(lu, zf, np.zeros(len(form.free)))
+        Ci, Cf = form.C[:, form.free].tocsc(), form.C[:, form.fixed].tocsc()
+        return cls(lu, zf, -lu.solve(Ci.T @ (q0 * (Cf @ zf))))
 
 
 @dataclass(frozen=True)
