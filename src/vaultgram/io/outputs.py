@@ -88,7 +88,7 @@ def write_mesh_files(mesh: QuadMesh, out: Path, supports=None, plot: bool = True
     """``mesh.json`` (with the supported vertices, if given), ``mesh.obj``, ``mesh.compas.json`` and, if
     ``plot``, ``mesh.png``, as ``formats`` ask."""
     if "json" in formats:
-        write_json(out / "mesh.json", mesh_to_json(mesh, supports))
+        write_json(out / "mesh.json", mesh_to_json(mesh, supports, arrays=True))
         if plot:
             plot_mesh(mesh, out / "mesh.png")
     if "obj" in formats:
