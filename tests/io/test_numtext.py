@@ -28,7 +28,10 @@ def test_float_lines_are_percent_g12_at_the_edges_and_on_random_coordinates():
     rng = np.random.default_rng(5)
     random = np.concatenate([rng.uniform(-50, 50, 3000), np.round(rng.uniform(-9, 9, 3000), 3),
                              rng.normal(size=3000) * 10.0 ** rng.integers(-9, 15, 3000)])
-    for x in (np.concatenate([EDGES, -EDGES]), random):
+    # twelve digits and a half, give or take less and more than the shortcut leaves to Python
+    ties = ((rng.integers(10**11, 10**12, 3000) + rng.choice([0.5, 0.5 + 7e-5, 0.5 - 1.1e-4], 3000))
+            / 10.0 ** rng.integers(0, 16, 3000))
+    for x in (np.concatenate([EDGES, -EDGES]), random, np.concatenate([ties, np.nextafter(ties, 0)])):
         rows = rng.permutation(x)[: len(x) // 3 * 3].reshape(-1, 3)
         assert float_lines(b"v ", rows) == python_lines("v ", rows, "%.12g")
         assert float_lines(b"x", rows[:, :1]) == python_lines("x", rows[:, :1], "%.12g")

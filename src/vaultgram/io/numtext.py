@@ -26,7 +26,9 @@ import numpy as np
 __all__ = ["float_lines", "int_lines", "rounded_g12"]
 
 DIGITS = 12  # significant digits of %.12g
-_TIE = 1e-3  # a scaled value this close to an integer and a half is left to Python (its error is < 2e-4)
+# a scaled value this close to an integer and a half is left to Python: scaled values are below 2^40, so
+# the product's rounding error is at most half a unit in the last place, 2^-14 (6.1e-5)
+_TIE = 1e-4
 
 
 def int_lines(prefix: bytes, values: np.ndarray) -> bytes:
