@@ -48,6 +48,8 @@ def test_int_lines_are_percent_d():
     rows = np.array([[0, 1, 9], [10, 99, 100], [-5, 123456789012, 7]])
     assert int_lines(b"f ", rows) == python_lines("f ", rows, "%d")
     assert int_lines(b"f ", np.zeros((0, 3), dtype=int)) == b""
+    indices = np.random.default_rng(2).integers(0, 12000, (3000, 4))  # looked up in a table of digits
+    assert int_lines(b"f ", indices) == python_lines("f ", indices, "%d")
 
 
 def test_obj_files_hold_every_line_in_order(tmp_path):

@@ -23,8 +23,9 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["float_lines", "int_lines", "rounded_g12"]
+__all__ = ["float_lines", "int_lines", "rounded_g12", "PAD"]
 
+PAD = 0  # the byte that pads the digits of a number in :func:`_digit_table`, dropped from the text
 DIGITS = 12  # significant digits of %.12g
 # a scaled value this close to an integer and a half is left to Python: scaled values are below 2^40, so
 # the product's rounding error is at most half a unit in the last place, 2^-14 (6.1e-5)
@@ -33,12 +34,39 @@ _TIE = 1e-4
 
 def int_lines(prefix: bytes, values: np.ndarray) -> bytes:
     """One line per row of the integer matrix ``values``: ``prefix``, the row's numbers (``%d``)
-    separated by spaces, a newline.
+    separated by spaces, a newline. Indices (no negative number, none above eight times their count)
+    are looked up in a table of their digits (:func:`_digit_table`), 1.7 times faster than orjson on
+    the 4 million of voussoirs.obj at 10^5 faces; other numbers go through orjson.
 
     >>> int_lines(b"l ", np.array([[7, -1]]))
     b'l 7 -1\\n'
+    >>> int_lines(b"f ", np.array([[1, 20, 3], [300, 0, 9]]))
+    b'f 1 20 3\\nf 300 0 9\\n'
     """
-    return _lines(prefix, np.ascontiguousarray(values, dtype=np.int64))
+    v = np.ascontiguousarray(values, dtype=np.int64)
+    if not v.size or v.min() < 0 or v.max() > 8 * v.size + 1000:
+        return _lines(prefix, v)
+    cells = _digit_table(int(v.max()) + 1)[v]  # (rows, columns, digits and a space)
+    cells[:, -1, -1] = ord("\n")
+    lines = np.concatenate([np.broadcast_to(np.frombuffer(prefix, dtype=np.uint8), (len(v), len(prefix))),
+                            cells.reshape(len(v), -1)], axis=1).ravel()
+    return lines[lines != PAD].tobytes()
+
+
+def _digit_table(n: int) -> np.ndarray:
+    """Row ``k`` (0 <= k < n): the digits of ``k``, :data:`PAD` bytes up to the widest's width, a space.
+
+    >>> _digit_table(11)[[0, 10]].tolist()
+    [[48, 0, 32], [49, 48, 32]]
+    """
+    width = len(str(max(n - 1, 0)))
+    k = np.arange(n, dtype=np.int64)
+    size = np.floor(np.log10(np.maximum(k, 1))).astype(np.int64) + 1  # digits of k
+    table = np.full((n, width + 1), ord(" "), dtype=np.uint8)
+    for col in range(width):
+        place = size - 1 - col  # the power of ten of the digit in this column
+        table[:, col] = np.where(place >= 0, k // 10 ** np.maximum(place, 0) % 10 + ord("0"), PAD)
+    return table
 
 
 def float_lines(prefix: bytes, values: np.ndarray) -> bytes:
