@@ -11,8 +11,9 @@ writes into a fresh folder. Each row gives the faces, the seconds of the design,
 thrust network's during the design, :data:`vaultgram.io.figures.worker.BACKGROUND_FACES`), of the
 figures on the critical path (the wait for the background process, or the drawing), the background
 process's CPU seconds, the report, all the outputs together (``outputs``: the run's seconds after the
-design), the figures' share of the whole run, and whether a second write (no figures, every file in
-this process) gave byte-identical data files. The load average is printed first: the machine's other
+design, and ``out cpu`` this process's CPU seconds of them, which the load changes less), the
+figures' share of the whole run, and whether a second write (no figures, every file in this process)
+gave byte-identical data files. The load average is printed first: the machine's other
 work slows everything. Floors: 10^5 faces write their outputs in under 2 s; figures under 10% of the
 run.
 """
@@ -53,15 +54,16 @@ def measure(faces_wanted: int, plots: bool, background: bool) -> str:
             result = design(domain, target_length=math.sqrt(domain.area / faces_wanted), zmax=3.0,
                             on_stage=worker if plots and background else None)
             seconds = time.perf_counter() - start
-            start = time.perf_counter()
+            start, cpu = time.perf_counter(), time.process_time()
             timings = write_design(result, a, plots=plots, report=plots, figures=worker if background else None)
-            outputs = time.perf_counter() - start
+            outputs, cpu = time.perf_counter() - start, time.process_time() - cpu
         write_design(result, b, plots=False, report=False)
         same = all(folder_bytes(a).get(k) == v for k, v in folder_bytes(b).items())
     figures, report = timings.get("figures", 0.0), outputs - timings["write"] - timings.get("figures", 0.0)
     share = figures / (seconds + outputs)
     return (f"{len(result.mesh.faces):>8} {seconds:>8.2f} {timings['write']:>8.2f} {figures:>8.2f} "
-            f"{worker.seconds:>8.2f} {report:>8.2f} {outputs:>8.2f} {share:>7.1%} {'yes' if same else 'NO':>10}")
+            f"{worker.seconds:>8.2f} {report:>8.2f} {outputs:>8.2f} {cpu:>8.2f} {share:>7.1%} "
+            f"{'yes' if same else 'NO':>10}")
 
 
 def main() -> None:
@@ -72,7 +74,7 @@ def main() -> None:
     args = ap.parse_args()
     print(f"load average {' '.join(f'{x:.1f}' for x in os.getloadavg())}")
     head = (f"{'faces':>8} {'design':>8} {'write':>8} {'figures':>8} {'fig cpu':>8} {'report':>8} {'outputs':>8} "
-            f"{'fig %':>7} {'identical':>10}")
+            f"{'out cpu':>8} {'fig %':>7} {'identical':>10}")
     print(head)
     print("-" * len(head))
     for size in (int(float(s)) for s in args.sizes.split(",")):
