@@ -178,15 +178,17 @@ def _receive(conn, inbox: queue.Queue) -> None:
 def _write_files(data, stage: str, out: Path, formats, from_faces: int) -> dict | None:
     """The data files of the stage just received, if the process writes them (:func:`writes_files`):
     the mesh's once its supports are known (then its quality, returned), the thrust network's."""
+    from vaultgram.io.files import collector_paused
     from vaultgram.io.outputs import mesh_quality, write_mesh_files, write_thrust
 
     if data.mesh is None or not writes_files(formats, data.mesh, from_faces):
         return None
-    if stage == "supports":
-        write_mesh_files(data.mesh, out, data.supports, plot=False, formats=formats)
-        return mesh_quality(data.mesh, data.domain)
-    if stage == "network":
-        write_thrust(data.network, out, plot=False, formats=formats)
+    with collector_paused():  # as write_design writes them
+        if stage == "supports":
+            write_mesh_files(data.mesh, out, data.supports, plot=False, formats=formats)
+            return mesh_quality(data.mesh, data.domain)
+        if stage == "network":
+            write_thrust(data.network, out, plot=False, formats=formats)
     return None
 
 
