@@ -569,7 +569,7 @@ def design_command(domain_path, out_dir, spacing, rules_dir, target_length, smoo
         parameters = {k: v for k, v in click.get_current_context().params.items() if k not in ("out_dir", "quiet")}
         # the figures are drawn in the background as the stages end (vaultgram.io.figures.worker); a
         # stage failing on a geometric problem leaves its error figure alone (vaultgram.io.figures.errorplot)
-        with error_figure(out, domain), output_folder(out) as stage, FigureWorker(stage) as figures:
+        with error_figure(out, domain), output_folder(out) as stage, FigureWorker(stage, formats) as figures:
             result = design(
                 domain, spacing, rules_dir, target_length, DEFAULT_ITERATIONS if smooth is None else smooth,
                 load_densities(densities_path) if densities_path else None, allow_folds,

@@ -209,16 +209,22 @@ def write_json(path: str | Path, data) -> None:
                                    | orjson.OPT_SERIALIZE_NUMPY))
 
 
-def _obj_vertices(vertices: np.ndarray) -> str:
-    """``v`` lines (``%.12g``, more digits for site coordinates: :func:`_obj_digits`), in one format
-    call over the flat coordinates."""
+def _obj_vertices(vertices: np.ndarray) -> bytes:
+    """``v`` lines (``%.12g``, a 2D point's z ``0``), every number formatted at once
+    (:func:`vaultgram.io.numtext.float_lines`); site coordinates with the digits their offset takes on
+    top (:func:`_obj_digits`), formatted by Python."""
     import numpy as np
+
+    from vaultgram.io.numtext import float_lines
 
     v = np.asarray(vertices, dtype=float)
     if v.shape[1] == 2:
         v = np.column_stack([v, np.zeros(len(v))])
-    number = f"%.{_obj_digits(v)}g"
-    return (f"v {number} {number} {number}\n" * len(v)) % tuple(v.ravel().tolist())
+    digits = _obj_digits(v)
+    if digits == 12:
+        return float_lines(b"v ", v)
+    number = f"%.{digits}g"
+    return ((f"v {number} {number} {number}\n" * len(v)) % tuple(v.ravel().tolist())).encode()
 
 
 def _obj_digits(v: np.ndarray) -> int:
@@ -238,20 +244,22 @@ def _obj_digits(v: np.ndarray) -> int:
     return min(17, 12 + math.ceil(math.log10(far / extent)))
 
 
-def _obj_faces(faces) -> str:
+def _obj_faces(faces) -> bytes:
     """``f`` lines, 1-based: the indices shifted in one array, the lines of a run of faces of one size
-    in one format call."""
+    formatted at once (:func:`vaultgram.io.numtext.int_lines`)."""
     import numpy as np
 
+    from vaultgram.io.numtext import int_lines
+
     if isinstance(faces, np.ndarray) and faces.ndim == 2:
-        return (("f" + " %d" * faces.shape[1] + "\n") * len(faces)) % tuple((faces.ravel() + 1).tolist())
+        return int_lines(b"f ", faces + 1)
     sizes = np.fromiter((len(f) for f in faces), dtype=np.int64, count=len(faces))
-    flat = (np.fromiter(chain.from_iterable(faces), dtype=np.int64, count=int(sizes.sum())) + 1).tolist()
+    flat = np.fromiter(chain.from_iterable(faces), dtype=np.int64, count=int(sizes.sum())) + 1
     cuts = np.flatnonzero(np.diff(sizes)) + 1
     starts, stops = np.concatenate([[0], cuts]).tolist(), np.concatenate([cuts, [len(sizes)]]).tolist()
     ends = np.concatenate([[0], np.cumsum(sizes)]).tolist()
-    return "".join((("f" + " %d" * int(sizes[a]) + "\n") * (b - a)) % tuple(flat[ends[a]:ends[b]])
-                   for a, b in zip(starts, stops) if b > a)
+    return b"".join(int_lines(b"f ", flat[ends[a]:ends[b]].reshape(b - a, -1)) if sizes[a] else b"f\n" * (b - a)
+                    for a, b in zip(starts, stops) if b > a)
 
 
 def write_obj(path: str | Path, vertices: np.ndarray, faces: Sequence[Sequence[int]],
@@ -259,11 +267,13 @@ def write_obj(path: str | Path, vertices: np.ndarray, faces: Sequence[Sequence[i
     """Write a Wavefront OBJ file (1-based indices); ``edges`` become ``l`` lines if given."""
     import numpy as np
 
-    text = "# vaultgram\n" + _obj_vertices(vertices) + _obj_faces(faces)
+    from vaultgram.io.numtext import int_lines
+
+    text = b"# vaultgram\n" + _obj_vertices(vertices) + _obj_faces(faces)
     if edges is not None:
         e = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
-        text += ("l %d %d\n" * len(e)) % tuple((e.ravel() + 1).tolist())
-    write_text(path, text)
+        text += int_lines(b"l ", e + 1)
+    write_bytes(path, text)
 
 
 def write_obj_groups(path: str | Path, vertices: np.ndarray, triangles: np.ndarray, owner: np.ndarray,
@@ -273,11 +283,16 @@ def write_obj_groups(path: str | Path, vertices: np.ndarray, triangles: np.ndarr
     (1-based); objects ``0 .. owner.max()`` all named, those without triangles too."""
     import numpy as np
 
-    n = int(owner.max()) + 1 if len(owner) else 0
-    counts = np.diff(np.searchsorted(owner, np.arange(n + 1))).tolist()
-    t = np.asarray(triangles, dtype=np.int64)
-    line = "f" + " %d" * (t.shape[1] if t.size else 3) + "\n"
-    name = f"o {prefix.replace('%', '%%')}"
-    # one format call over every index: the template holds each object's line and its faces' lines
-    template = "".join(f"{name}{k}\n" + line * c for k, c in enumerate(counts))
-    write_text(path, "# vaultgram\n" + _obj_vertices(vertices) + template % tuple((t.ravel() + 1).tolist()))
+    from vaultgram.io.numtext import int_lines
+
+    if not len(owner):
+        write_bytes(path, b"# vaultgram\n" + _obj_vertices(vertices))
+        return
+    text = int_lines(b"f ", np.asarray(triangles, dtype=np.int64).reshape(len(owner), -1) + 1)
+    n = int(owner.max()) + 1
+    # each object's line goes before the line of its first face (searchsorted: owner is sorted)
+    ends = np.concatenate([[0], np.flatnonzero(np.frombuffer(text, dtype=np.uint8) == ord("\n")) + 1])
+    at = ends[np.searchsorted(owner, np.arange(n + 1))].tolist()
+    name = f"o {prefix}"
+    pieces = (piece for k in range(n) for piece in (f"{name}{k}\n".encode(), text[at[k]:at[k + 1]]))
+    write_bytes(path, b"".join([b"# vaultgram\n", _obj_vertices(vertices), *pieces]))

@@ -23,24 +23,28 @@ __all__ = ["mesh_to_json", "mesh_from_json", "write_mesh", "read_mesh", "read_ob
            "PATTERN_FORMATS"]
 
 
-def mesh_to_json(mesh: QuadMesh, supports=None) -> dict:
+def mesh_to_json(mesh: QuadMesh, supports=None, arrays: bool = False) -> dict:
     """``{"vertices": [[x, y, z], ...], "faces": [...], "labels": {...}, "turning": [[v, deg], ...],
     "face_patch": [...], "edge_groups": [...], "info": {...}}``, and ``"supports"`` (the indices of the
     vertices that bear thrust) when given: ``vaultgram formfind mesh.json`` then supports the mesh as
-    the domain did. In the plan's coordinates (:meth:`QuadMesh.in_frame`)."""
+    the domain did. In the plan's coordinates (:meth:`QuadMesh.in_frame`). With ``arrays`` the
+    vertices, faces and per-vertex and per-face lists stay numpy arrays and tuples, for
+    :func:`vaultgram.io.files.write_json` (orjson writes them as the same bytes, without first making
+    10^5 Python lists)."""
     mesh = mesh.in_frame()
     x = np.asarray(mesh.vertices, dtype=float)
     if x.shape[1] == 2:
         x = np.column_stack([x, np.zeros(len(x))])
+    listed = np.ascontiguousarray if arrays else np.ndarray.tolist
     tv = np.flatnonzero(mesh.turning != 0)
     return {
-        "vertices": x.tolist(),
-        "faces": [list(f) for f in mesh.faces],
+        "vertices": listed(x),
+        "faces": list(mesh.faces) if arrays else [list(f) for f in mesh.faces],
         "labels": mesh.labels_json(),
-        "ring": mesh.ring.tolist(),
+        "ring": listed(mesh.ring),
         "turning": [[int(k), float(mesh.turning[k])] for k in tv],
-        "node": mesh.node.tolist(),
-        "face_patch": mesh.face_patch.tolist(),
+        "node": listed(mesh.node),
+        "face_patch": listed(mesh.face_patch),
         "curves": [{"vertices": np.asarray(c).tolist(), "polyline": np.asarray(p).tolist()}
                    for c, p in zip(mesh.curves, mesh.curve_lines)],
         "edge_groups": list(mesh.groups),
@@ -142,7 +146,7 @@ def write_mesh(mesh: QuadMesh, out_dir: str | Path, supports=None) -> tuple[Path
     (each to a temporary file, then renamed)."""
     out = Path(out_dir)
     paths = out / "mesh.json", out / "mesh.obj"
-    write_json(paths[0], mesh_to_json(mesh, supports))
+    write_json(paths[0], mesh_to_json(mesh, supports, arrays=True))
     write_obj(paths[1], mesh.in_frame().vertices, mesh.faces)
     return paths
 

@@ -29,7 +29,7 @@ from vaultgram.tessellation.model import Tessellation
 from vaultgram.topology.decomposition import Decomposition
 
 __all__ = ["write_decomposition", "write_mesh_files", "write_thrust", "write_tessellation", "write_design",
-           "write_drawings", "design_summary", "write_design_figures",
+           "write_drawings", "design_summary", "mesh_quality", "write_design_figures",
            "parse_formats", "OUTPUT_FORMATS", "DEFAULT_FORMATS"]
 
 #: The output formats, and the ones written when none are asked for.
@@ -89,7 +89,7 @@ def write_mesh_files(mesh: QuadMesh, out: Path, supports=None, plot: bool = True
     ``plot``, ``mesh.png``, as ``formats`` ask; in the plan's coordinates (:mod:`vaultgram.geometry.frames`)."""
     mesh = mesh.in_frame()
     if "json" in formats:
-        write_json(out / "mesh.json", mesh_to_json(mesh, supports))
+        write_json(out / "mesh.json", mesh_to_json(mesh, supports, arrays=True))
         if plot:
             plot_mesh(mesh, out / "mesh.png")
     if "obj" in formats:
@@ -158,19 +158,26 @@ def write_design(result, out: Path, formats=DEFAULT_FORMATS, trace: bool = False
     stage, these included (the one file that differs between reruns, with the report that shows it).
     Returns the timings."""
     timings = dict(result.timings)
+    background = figures.files if figures is not None else ()  # written by the figure process
     with progress.timed(timings, "write"), collector_paused():
         write_decomposition(result.decomposition, out, plot=False, formats=formats, trace=trace)
-        write_mesh_files(result.mesh, out, result.supports, plot=False, formats=formats)
-        write_thrust(result.network, out, plot=False, formats=formats)
+        if "mesh" not in background:
+            write_mesh_files(result.mesh, out, result.supports, plot=False, formats=formats)
+        if "network" not in background:
+            write_thrust(result.network, out, plot=False, formats=formats)
         if result.tessellation is not None:
             write_tessellation(result.tessellation, out, plot=False, formats=formats)
-        if "json" in formats:
-            write_json(out / "summary.json", design_summary(result, parameters))
         write_drawings(out, formats, result.domain.units, decomposition=result.decomposition, mesh=result.mesh,
                        network=result.network, tessellation=result.tessellation)
     if plots and "json" in formats:
         with progress.timed(timings, "figures"), collector_paused():
             write_design_figures(result, out, figures)
+    elif background:
+        figures.finish()  # the data files it writes
+    if "json" in formats:  # after the figure process: its thrust.json wrote the network's summary.json
+        with progress.timed(timings, "write"):
+            quality = figures.mesh_quality if background else None
+            write_json(out / "summary.json", design_summary(result, parameters, quality))
     write_json(out / "timings.json", timings)
     if report and "json" in formats:
         from vaultgram.io.report import write_report
@@ -179,23 +186,28 @@ def write_design(result, out: Path, formats=DEFAULT_FORMATS, trace: bool = False
     return timings
 
 
-def design_summary(result, parameters: dict | None = None) -> dict:
+def design_summary(result, parameters: dict | None = None, quality: dict | None = None) -> dict:
     """``summary.json`` of a design: each stage's summary (:meth:`vaultgram.pipeline.Design.summary`), the
-    decomposition's counts, the mesh's quality (:func:`vaultgram.meshing.quality.mesh_stats`, without
-    its vertex lists) and the ``parameters`` of the run."""
-    from vaultgram.meshing.quality import mesh_stats
-
+    decomposition's counts, the mesh's ``quality`` (:func:`mesh_quality`, worked out here if not given)
+    and the ``parameters`` of the run."""
     dec = result.decomposition
     counts = dec.patches_json()["counts"]
-    stats = mesh_stats(result.mesh, result.domain)
     summary = {**result.summary(),
                "decomposition": {"patches": len(dec.patches), "four_sided": counts["4"], "three_sided": counts["3"],
                                  "singularities": len(dec.singularities()),
                                  "rule_applications": sum(r.applications for r in dec.reports)},
-               "mesh_quality": {k: v for k, v in stats.items() if not isinstance(v, (list, tuple, dict))}}
+               "mesh_quality": quality if quality is not None else mesh_quality(result.mesh, result.domain)}
     if parameters is not None:
         summary["parameters"] = parameters
     return summary
+
+
+def mesh_quality(mesh: QuadMesh, domain) -> dict:
+    """The mesh's quality for ``summary.json``: :func:`vaultgram.meshing.quality.mesh_stats` without its
+    vertex lists."""
+    from vaultgram.meshing.quality import mesh_stats
+
+    return {k: v for k, v in mesh_stats(mesh, domain).items() if not isinstance(v, (list, tuple, dict))}
 
 
 def write_design_figures(result, out: Path, worker=None) -> None:

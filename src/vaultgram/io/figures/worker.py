@@ -12,6 +12,14 @@ so the output folder stays complete or untouched; on a failure or interrupt :met
 ends the process before the staging folder is removed. The figures are the same bytes as
 :func:`vaultgram.io.figures.write_figures` writes in one process.
 
+Given the run's data ``formats``, the process also writes the mesh's files (and works out its quality
+for ``summary.json``) when the supports arrive, and the thrust network's when it arrives, if the mesh
+has at least :data:`BACKGROUND_FACES` faces (:func:`writes_files`): at 10^5 faces they took about 2 s
+of the run's writing, and the process has time to spare while form finding and the tessellation run
+(its figures took 12 s of a 38 s design). On a smaller mesh the figures take longer than the later
+stages, so the process is the one the run waits for, and the files are written after the design
+(:func:`vaultgram.io.outputs.write_design` writes what the process did not).
+
 Example
 -------
 >>> import tempfile
@@ -38,17 +46,30 @@ from pathlib import Path
 
 #: The stages the pipeline reports after the decomposition, in its order (:class:`vaultgram.io.figures.Stages` fields).
 LATER = ("mesh", "supports", "network", "tessellation")
+#: The stages whose data files the process writes, from this many mesh faces on.
+BACKGROUND = ("mesh", "network")
+BACKGROUND_FACES = 20_000
+
+
+def writes_files(formats, mesh, from_faces: int = BACKGROUND_FACES) -> bool:
+    """Whether the figure process writes the data files of :data:`BACKGROUND` for a run with these
+    ``formats`` (None: figures only) and this mesh: if it has ``from_faces`` faces or more."""
+    return formats is not None and len(mesh.faces) >= from_faces
 
 
 class FigureWorker:
     """The background figure process of one run, writing into ``out`` (a staging folder)."""
 
-    def __init__(self, out: Path):
+    def __init__(self, out: Path, formats=None, from_faces: int = BACKGROUND_FACES):
         self.out = Path(out)
+        self.formats = formats  # the data files' formats, or None: figures only
+        self.from_faces = from_faces
         self.process = None
         self.conn = None
         self.seconds = 0.0  # the figures' own time, in the background process
         self.domain = None
+        self.files: tuple = ()  # the stages whose data files the process writes (BACKGROUND or none)
+        self.mesh_quality = None  # the mesh's quality (vaultgram.io.outputs.mesh_quality), if it wrote them
 
     def __enter__(self) -> FigureWorker:
         return self
@@ -63,6 +84,8 @@ class FigureWorker:
         elif stage == "decomposition":
             self._start(value)
         elif stage in LATER and self.conn is not None:
+            if stage == "mesh":
+                self.files = BACKGROUND if writes_files(self.formats, value, self.from_faces) else ()
             self.conn.send((stage, value))
 
     def _start(self, decomposition) -> None:
@@ -75,7 +98,8 @@ class FigureWorker:
         context = multiprocessing.get_context("fork")
         mine, theirs = context.Pipe()
         data = Stages(self.domain, decomposition)
-        self.process = context.Process(target=_serve, args=(data, self.out, theirs), daemon=True)
+        self.process = context.Process(target=_serve, args=(data, self.out, theirs, (self.formats, self.from_faces)),
+                                       daemon=True)
         self.process.start()
         theirs.close()
         self.conn = mine
@@ -86,11 +110,13 @@ class FigureWorker:
             return []
         self.conn.send(("done", None))
         try:
-            status, payload, seconds = self.conn.recv()
+            status, payload, seconds, self.mesh_quality = self.conn.recv()
         except EOFError:
             status, payload, seconds = "error", "the figure process ended without a word", 0.0
         self.seconds = seconds
         self.close()
+        if status == "oserror":
+            raise OSError(*payload)
         if status != "ok":
             raise RuntimeError(f"figures: {payload}")
         return payload
@@ -107,23 +133,29 @@ class FigureWorker:
             self.process = None
 
 
-def _serve(data, out: Path, conn) -> None:
-    """The figure process: draw what is ready, then after each stage received what became ready. A
-    thread takes the stages off the pipe as they come, so the pipeline never waits for a drawing."""
+def _serve(data, out: Path, conn, files=(None, BACKGROUND_FACES)) -> None:
+    """The figure process: draw what is ready, then after each stage received its data files if due
+    (``files``: the formats and the mesh size of :func:`writes_files`) and the figures that became
+    ready. A thread takes the stages off the pipe as they come, so the pipeline never waits for a
+    drawing."""
     signal.signal(signal.SIGTERM, signal.SIG_DFL)  # the parent's handler unwinds the parent's stack
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # an interrupt is the parent's to handle: it ends this process
     start = time.process_time()
     inbox: queue.Queue = queue.Queue()
     threading.Thread(target=_receive, args=(conn, inbox), daemon=True).start()
     written: list[str] = []
+    quality = None
     try:
         written += _draw_ready(data, out, written)
         for stage, value in iter(inbox.get, ("done", None)):
             data = _with(data, stage, value)
+            quality = _write_files(data, stage, out, *files) or quality
             written += _draw_ready(data, out, written)
-        reply = ("ok", written, time.process_time() - start)
+        reply = ("ok", written, time.process_time() - start, quality)
+    except OSError as exc:  # a data file or figure that cannot be written: the parent names it in one line
+        reply = ("oserror", (exc.errno, exc.strerror, exc.filename), time.process_time() - start, None)
     except Exception:  # noqa: BLE001 -- reported to the parent, which raises
-        reply = ("error", traceback.format_exc(limit=3), time.process_time() - start)
+        reply = ("error", traceback.format_exc(limit=3), time.process_time() - start, None)
     try:
         conn.send(reply)
     except OSError:  # the parent has gone (it failed or was interrupted)
@@ -141,6 +173,23 @@ def _receive(conn, inbox: queue.Queue) -> None:
         inbox.put(message)
         if message[0] == "done":
             return
+
+
+def _write_files(data, stage: str, out: Path, formats, from_faces: int) -> dict | None:
+    """The data files of the stage just received, if the process writes them (:func:`writes_files`):
+    the mesh's once its supports are known (then its quality, returned), the thrust network's."""
+    from vaultgram.io.files import collector_paused
+    from vaultgram.io.outputs import mesh_quality, write_mesh_files, write_thrust
+
+    if data.mesh is None or not writes_files(formats, data.mesh, from_faces):
+        return None
+    with collector_paused():  # as write_design writes them
+        if stage == "supports":
+            write_mesh_files(data.mesh, out, data.supports, plot=False, formats=formats)
+            return mesh_quality(data.mesh, data.domain)
+        if stage == "network":
+            write_thrust(data.network, out, plot=False, formats=formats)
+    return None
 
 
 def _with(data, stage: str, value):
