@@ -102,7 +102,19 @@ def split_patterns(layout: Layout, counts) -> frozenset:
             m, n = _pole_counts(pat, side_count)
             if n % 2 == 0 and n < 2 * m:
                 out.add(k)
-    return frozenset(_keep_feature_poles(layout, side_count, out))
+    return frozenset(_keep_feature_poles(layout, side_count, _whole_poles(layout, side_count, out)))
+
+
+def _whole_poles(layout: Layout, side_count: np.ndarray, split: set) -> set:
+    """``split`` without the splits at a pole that keeps another fan below the floor (too wide, too
+    sharp or with counts that do not allow it): that fan bounds the pole's corners anyway, so the
+    quads would gain nothing there (rv_pillow: its 19 degree triangle beside a fan of 44 in 180)."""
+    def pole(k):
+        return layout.patterns[k].corners[layout.patterns[k].pole]
+
+    stuck = {pole(k) for k, p in enumerate(layout.patterns)
+             if p.pole is not None and k not in split and _fan_of(layout, p, side_count) < FAN_FLOOR}
+    return {k for k in split if pole(k) not in stuck}
 
 
 def _keep_feature_poles(layout: Layout, side_count: np.ndarray, split: set) -> set:
@@ -139,15 +151,28 @@ def _regular_faces(dec, node: int) -> int:
 
 
 def split_counts(layout: Layout, counts: np.ndarray, free: np.ndarray) -> np.ndarray:
-    """``counts`` raised where ``free`` (groups whose count comes from a length) so that every thin
-    fan can be split: its opposite side's count even, its pole sides' count above half of it. Only
-    raises, so it settles; a group that is not free is never changed (its fan may stay)."""
+    """``counts`` raised where ``free`` (groups whose count comes from a length) so that the thin fans
+    can be split: the opposite side's count even, the pole sides' count above half of it. Raised
+    only for the fans that then split (:func:`split_patterns`), so that a fan that stays keeps its
+    counts. Only raises, so it settles; a group that is not free is never changed (its fan stays)."""
+    wanted = split_patterns(layout, _raised(layout, counts, free))
+    side_count = np.asarray(counts)[layout.group_of]
+    free = np.array(free, dtype=bool)
+    for k, pat in enumerate(layout.patterns):  # a fan that stays below the floor gets no more triangles
+        if pat.pole is not None and k not in wanted and _fan_of(layout, pat, side_count) < FAN_FLOOR:
+            free[layout.group_of[pat.sides[(pat.pole + 1) % 3][0]]] = False
+    return _raised(layout, counts, free, wanted)
+
+
+def _raised(layout: Layout, counts: np.ndarray, free: np.ndarray, only=None) -> np.ndarray:
+    """``counts`` raised (where ``free``) until every thin fan (of the patterns ``only``, if given) can
+    be split."""
     counts = np.array(counts, dtype=np.int64)
     for _ in range(MAX_ROUNDS):
         before = counts.copy()
         side_count = counts[layout.group_of]
-        for pat in layout.patterns:
-            if not _thin(layout, pat, side_count):
+        for k, pat in enumerate(layout.patterns):
+            if (only is not None and k not in only) or not _thin(layout, pat, side_count):
                 continue
             gm, gn = (int(layout.group_of[pat.sides[(pat.pole + j) % 3][0]]) for j in (0, 1))
             if counts[gn] % 2 and free[gn]:
