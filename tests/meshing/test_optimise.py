@@ -42,8 +42,8 @@ MIN_MISSES = {
 }
 # Inner point features keep their fans (vaultgram.meshing.splits._inner_point_feature: the tessellation
 # follows their radial force flow); split, rv_lips reached 0.562, square_point_loads 0.337 and
-# two_holes_five_points 0.228, but square_point_loads' joints turned 11.4 degrees from the force flow. fig5_boundary_points was bound by its fans (0.151) until thin fans
-# became three quads.
+# two_holes_five_points 0.228, but square_point_loads' joints turned 11.4 degrees from the force flow.
+# fig5_boundary_points was bound by its fans (0.151) until thin fans became three quads.
 MIN_PASS = ["armadillo_vault", "armadillo_vault_plan", "british_museum_map", "hiroshi_senju_museum",
             "mexico_airport", "rv_quad_pattern", "rv_ring_pattern",
             "rv_star_pattern", "l_shape", "quad_with_hole", "fig5_boundary_points"]
