@@ -59,8 +59,9 @@ from vaultgram.meshing.densities import DensitySpec, group_counts
 from vaultgram.meshing.layout import Layout, edge_groups
 from vaultgram.meshing.optimise import maximise_min_quality
 from vaultgram.meshing.quadmesh import QuadMesh
-from vaultgram.meshing.quality import check_not_folded
+from vaultgram.meshing.quality import check_not_folded, face_scaled_jacobians
 from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS, laplacian_smooth
+from vaultgram.meshing.splits import split_patterns
 from vaultgram.meshing.untangle import improve_shapes, untangle
 from vaultgram.meshing.weld import weld
 from vaultgram.tessellation.courses import support_zones, voussoir_courses, voussoir_names
@@ -155,8 +156,24 @@ def _meshed(dec: Decomposition, target_length, smooth: int, densities, allow_fol
     with _timed(timings, "groups"):
         layout = edge_groups(dec)
         counts = group_counts(layout, densities, target_length, max_faces)
+    mesh, x = _welded_and_smoothed(layout, counts, smooth, timings)
+    if smooth > 0 and face_scaled_jacobians(x, mesh.faces).min() <= 0:
+        # issue 12: where the three-quad splits of thin fans (or the counts they need) fold, Figure 3's fans
+        plain = group_counts(layout, densities, target_length, max_faces, split=False)
+        if split_patterns(layout, counts) or not np.array_equal(plain, counts):
+            mesh, x = _welded_and_smoothed(layout, plain, smooth, timings, split=False)
+    mesh = dataclasses.replace(mesh, vertices=x, info=_mesh_info(dec, layout, smooth), origin=dec.origin)
+    if smooth > 0 and not allow_folds:
+        check_not_folded(mesh, dec)
+    return mesh
+
+
+def _welded_and_smoothed(layout: Layout, counts, smooth: int, timings: dict | None,
+                         split: bool = True) -> tuple[QuadMesh, np.ndarray]:
+    """The welded mesh (with or without the three-quad splits of :mod:`vaultgram.meshing.splits`) and
+    its vertices after smoothing, untangling and the max-min optimisation (§3.2)."""
     with _timed(timings, "weld"):
-        mesh = weld(layout, counts)
+        mesh = weld(layout, counts, split)
     with _timed(timings, "smooth"):
         x = laplacian_smooth(mesh.vertices, mesh.faces, smooth, mesh.fixed, mesh.constraints)
     with _timed(timings, "untangle"):
@@ -164,10 +181,7 @@ def _meshed(dec: Decomposition, target_length, smooth: int, densities, allow_fol
             x = untangle(x, mesh.faces, mesh.fixed, mesh.constraints)
             x = improve_shapes(x, mesh.faces, mesh.fixed, mesh.constraints)
             x = maximise_min_quality(x, mesh.faces, mesh.fixed, mesh.constraints, still=mesh.feature)
-    mesh = dataclasses.replace(mesh, vertices=x, info=_mesh_info(dec, layout, smooth), origin=dec.origin)
-    if smooth > 0 and not allow_folds:
-        check_not_folded(mesh, dec)
-    return mesh
+    return mesh, x
 
 
 def _mesh_info(dec: Decomposition, layout: Layout, smooth: int) -> dict:

@@ -12,12 +12,7 @@ from click.testing import CliRunner
 
 from vaultgram.cli import main
 
-#: Two curves too close to each other and to the boundary for the default mesh density: it folds
-#: (tests/meshing/test_quality.py).
-FOLDING = {"outer": [[0, 0], [8.969219944792723, 0], [8.969219944792723, 9.230049115216001], [0, 9.230049115216001]],
-           "points": [[8.969219944792723, 6.564436888431961]],
-           "curves": [[[1.3319402748322131, 3.237878824185768], [2.6869734415206787, 4.09028434005551]],
-                      [[5.04737783905793, 1.5446644739170763], [3.2519501197955387, 0.8942200737782218]]]}
+from folding import FOLDING
 
 
 def design(plan, out):

@@ -295,13 +295,15 @@ def test_regression_figure8_diagonal_through_the_neighbouring_patch():
 def test_boundary_feature_in_the_middle_of_a_side_is_a_pole(point):
     """§4.1 on the quad with a hole: a boundary point feature where no branch arrives (the last one
     on the hole) is a flat corner of its patch; split_at_boundary_feature cuts the patch at it, so it
-    is a fixed mesh vertex and a pole, and no other boundary vertex is singular."""
+    is a fixed mesh vertex and a pole (more than the 3 edges of a flat boundary vertex: where a fan would
+    be too thin its triangle is three quads, vaultgram.meshing.splits), and no other boundary vertex is
+    singular."""
     data = json.loads((EXAMPLES / "quad_with_hole.json").read_text())
     domain = domain_from_dict(dict(data, points=[point]))
     mesh = mesh_domain(domain)
     stats = mesh_stats(mesh, domain)
     assert_feature_properties(domain, mesh, stats)
-    assert stats["feature_point_valences"][0] > 4
+    assert stats["feature_point_valences"][0] > 3
     assert stats["min_scaled_jacobian"] > 0
 
 

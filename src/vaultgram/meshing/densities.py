@@ -28,6 +28,7 @@ from vaultgram.io.files import read_json
 from vaultgram.limits import MAX_COUNT
 from vaultgram.meshing.guards import check_mesh_size
 from vaultgram.meshing.layout import EdgeGroup, Layout, kept_points, side_anchors
+from vaultgram.meshing.splits import split_counts
 
 __all__ = ["DensitySpec", "group_counts", "curve_min_counts", "densities_from_dict", "load_densities",
            "TARGET_FRACTION", "CHORD_TOLERANCE"]
@@ -80,7 +81,7 @@ class DensitySpec:
 
 
 def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length: float | None = None,
-                 max_faces: int | None = None) -> np.ndarray:
+                 max_faces: int | None = None, split: bool = True) -> np.ndarray:
     """Number of subdivisions of each edge group (§3.2).
 
     Parameters
@@ -93,6 +94,9 @@ def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length:
     max_faces : int, optional
         Refuse counts that make a mesh of more faces (:func:`vaultgram.meshing.guards.check_mesh_size`),
         checked before the boundary sides are searched for their chord counts too.
+    split : bool
+        Raise the counts so that thin fans can be meshed as three quads
+        (:func:`vaultgram.meshing.splits.split_counts`); False: Figure 3's fans everywhere.
 
     Returns
     -------
@@ -135,6 +139,10 @@ def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length:
         if counts[g.id] <= CHORD_SEARCH_LIMIT:
             counts[g.id] = max(counts[g.id], _chord_count(layout, g, counts[g.id], CHORD_TOLERANCE * diag))
     counts = np.maximum(counts, curve_min_counts(layout))
+    if split:  # issue 12: thin fans become three quads
+        free = np.zeros(layout.n_groups, dtype=bool)
+        free[[g.id for g in by_length]] = True
+        counts = split_counts(layout, counts, free)
     if max_faces is not None:
         check_mesh_size(layout, counts, max_faces)
     return counts

@@ -16,6 +16,7 @@ import numpy as np
 
 from vaultgram.errors import VaultgramError
 from vaultgram.limits import BYTES_PER_FACE, MAX_FACES
+from vaultgram.meshing.splits import split_patterns
 
 __all__ = ["MAX_FACES", "BYTES_PER_FACE", "MeshEstimate", "estimate_mesh", "check_mesh_size"]
 
@@ -49,10 +50,12 @@ def estimate_mesh(layout, counts) -> MeshEstimate:
     True
     """
     c = np.asarray(counts, dtype=float)[layout.group_of]
+    split = split_patterns(layout, counts)
     faces = 0.0
-    for pat in layout.patterns:
+    for i, pat in enumerate(layout.patterns):
         k = pat.pole or 0
-        faces += c[pat.sides[k][0]] * c[pat.sides[(k + 1) % len(pat.sides)][0]]
+        m, n = c[pat.sides[k][0]], c[pat.sides[(k + 1) % len(pat.sides)][0]]
+        faces += n // 2 * (2 * m - n // 2) if i in split else m * n  # three quads: n/2 (n/2 + 2 (m - n/2))
     return MeshEstimate(int(min(faces, 2.0**62)), int(min(faces * BYTES_PER_FACE, 2.0**62)))
 
 

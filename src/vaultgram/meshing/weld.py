@@ -31,11 +31,12 @@ from vaultgram.geometry.polylines import resample_polyline
 from vaultgram.meshing.coons import coons_grid, grid_faces
 from vaultgram.meshing.layout import Layout, PatchPattern, is_feature_node, kept_points, side_anchors
 from vaultgram.meshing.quadmesh import QuadMesh, SlideConstraint
+from vaultgram.meshing.splits import split_patterns, split_points
 
 __all__ = ["weld"]
 
 
-def weld(layout: Layout, counts) -> QuadMesh:
+def weld(layout: Layout, counts, split: bool = True) -> QuadMesh:
     """Mesh every patch with a discrete Coons patch and weld them into one :class:`QuadMesh`.
 
     Parameters
@@ -44,6 +45,9 @@ def weld(layout: Layout, counts) -> QuadMesh:
         Patches, patterns, sides and groups (:func:`vaultgram.meshing.layout.edge_groups`).
     counts : sequence of int
         Subdivisions per edge group (:func:`vaultgram.meshing.densities.group_counts`).
+    split : bool
+        Mesh thin fans as three quads (:func:`vaultgram.meshing.splits.split_patterns`); False: every
+        three-sided patch as Figure 3's fan.
 
     Raises
     ------
@@ -65,9 +69,11 @@ def weld(layout: Layout, counts) -> QuadMesh:
     table = _VertexTable()
     vid_of_node = _corner_vertices(layout, table)
     sides = _side_samples(layout, counts[layout.group_of], table, vid_of_node)
-    faces, face_patch = _patch_faces(layout, sides, table)
+    split = split_patterns(layout, counts) if split else frozenset()
+    faces, face_patch, centres = _patch_faces(layout, sides, table, split)
     vertices, disc_point, node = table.arrays()
     labels = _vertex_labels(layout, sides, vid_of_node, disc_point)
+    labels["singular"][centres] = True  # the inner point of a split triangle: valence 3
     chains = _curve_chains(layout, sides)
     constraints = _boundary_constraints(layout, sides, labels["fixed"])
     constraints += _curve_constraints(layout.decomposition.disc, chains, vertices, labels["fixed"])
@@ -185,12 +191,18 @@ def _side_samples(layout: Layout, side_count: np.ndarray, table: _VertexTable,
     return out
 
 
-def _patch_faces(layout: Layout, sides: list[_SideSamples], table: _VertexTable) -> tuple[list, np.ndarray]:
-    """Mesh every patch with its Coons grid (adding the interior grid points as vertices): the faces,
-    quads first then triangles, and the patch of each face."""
-    quads, tris, quad_patch, tri_patch = [], [], [], []
-    for pat in layout.patterns:
-        q, t = _mesh_patch(pat, _coons_sides(pat, sides), table)
+def _patch_faces(layout: Layout, sides: list[_SideSamples], table: _VertexTable,
+                 split: frozenset = frozenset()) -> tuple[list, np.ndarray, np.ndarray]:
+    """Mesh every patch with its Coons grid (adding the interior grid points as vertices), the
+    patterns in ``split`` as three quads (:mod:`vaultgram.meshing.splits`): the faces, quads first then
+    triangles, the patch of each face, and the inner points of the split patches."""
+    quads, tris, quad_patch, tri_patch, centres = [], [], [], [], []
+    for k, pat in enumerate(layout.patterns):
+        if k in split:
+            q, t, centre = _mesh_split(pat, sides, table)
+            centres.append(centre)
+        else:
+            q, t = _mesh_patch(pat.patch, _coons_sides(pat, sides), table, pat.pole is not None)
         quads.append(q)
         tris.append(t)
         quad_patch.append(np.full(len(q), pat.patch))
@@ -198,7 +210,7 @@ def _patch_faces(layout: Layout, sides: list[_SideSamples], table: _VertexTable)
     q = np.vstack(quads) if quads else np.zeros((0, 4), dtype=np.int64)
     t = np.vstack(tris) if tris else np.zeros((0, 3), dtype=np.int64)
     faces = [tuple(f) for f in q.tolist()] + [tuple(f) for f in t.tolist()]
-    return faces, np.concatenate(quad_patch + tri_patch).astype(np.int64)
+    return faces, np.concatenate(quad_patch + tri_patch).astype(np.int64), np.array(centres, dtype=np.int64)
 
 
 def _coons_sides(pat: PatchPattern, sides: list[_SideSamples]) -> tuple:
@@ -219,17 +231,57 @@ def _oriented(sides: list[_SideSamples], ref: tuple) -> tuple[np.ndarray, np.nda
     return sides[s].oriented(reverse)
 
 
-def _mesh_patch(pat: PatchPattern, coons_sides: tuple, table: _VertexTable) -> tuple[np.ndarray, np.ndarray]:
-    """The quads and triangles of one patch's Coons grid, whose boundary is its sides' vertices."""
+def _mesh_patch(patch: int, coons_sides: tuple, table: _VertexTable,
+                pole: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """The quads and triangles of one patch's Coons grid, whose boundary is its sides' vertices (a
+    fan of triangles at the collapsed left side if ``pole``)."""
     (bi, bp), (ri, rp), (ti, tp), (li, lp) = coons_sides
     if len(bi) != len(ti) or len(li) != len(ri):
-        raise VaultgramError(f"patch {pat.patch}: opposite sides have different counts (internal error)")
+        raise VaultgramError(f"patch {patch}: opposite sides have different counts (internal error)")
     grid = coons_grid(bp, rp, tp, lp)
     m, n = len(bi) - 1, len(li) - 1
     ids = np.empty((m + 1, n + 1), dtype=np.int64)
     ids[1:-1, 1:-1] = table.add(grid[1:-1, 1:-1].reshape(-1, 2)).reshape(m - 1, n - 1)
     ids[:, 0], ids[:, -1], ids[0, :], ids[-1, :] = bi, ti, li, ri
-    return grid_faces(ids, pole=pat.pole is not None)
+    return grid_faces(ids, pole=pole)
+
+
+def _mesh_split(pat: PatchPattern, sides: list[_SideSamples], table: _VertexTable) -> tuple:
+    """A three-sided patch as three quads meeting at an inner point ``O`` (:mod:`vaultgram.meshing.splits`):
+    ``O`` is the mean of the split points on the sides, the spokes from it to them are straight, and
+    each quad is a Coons grid. Returns ``(quads, no triangles, the vertex id of O)``."""
+    (ai, ap), (bi, bp), (ci, cp) = (_oriented(sides, pat.sides[(pat.pole + j) % 3]) for j in range(3))
+    m, n = len(ai) - 1, len(bi) - 1
+    h_ab, h_bc, h_ca = split_points(m, n)
+    centre = (ap[h_ab] + bp[h_bc] + cp[h_ca]) / 3.0
+    o = int(table.add(centre[None])[0])
+    s_ab, s_bc, s_ca = (_spoke(o, centre, i[h], p[h], c, table)
+                        for (i, p), h, c in (((ai, ap), h_ab, n // 2), ((bi, bp), h_bc, m - n // 2),
+                                             ((ci, cp), h_ca, n // 2)))
+    quads = [
+        (_cut(ai, ap, 0, h_ab), _rev(s_ab), _rev(s_ca), _rev(_cut(ci, cp, h_ca, m))),  # at the pole A
+        (_cut(ai, ap, h_ab, m), _cut(bi, bp, 0, h_bc), s_bc, _rev(s_ab)),  # at B
+        (_rev(s_ca), s_bc, _rev(_cut(bi, bp, h_bc, n)), _rev(_cut(ci, cp, 0, h_ca))),  # at C
+    ]
+    q = np.vstack([_mesh_patch(pat.patch, sides4, table)[0] for sides4 in quads])
+    return q, np.zeros((0, 3), dtype=np.int64), o
+
+
+def _spoke(o: int, centre: np.ndarray, end: int, end_point: np.ndarray, count: int, table: _VertexTable) -> tuple:
+    """A straight spoke of ``count`` segments from the inner point ``o`` to the side sample ``end``."""
+    t = np.linspace(0.0, 1.0, count + 1)[:, None]
+    pts = (1 - t) * centre + t * end_point
+    ids = np.concatenate([[o], table.add(pts[1:-1]), [end]])
+    return ids, pts
+
+
+def _cut(ids: np.ndarray, pts: np.ndarray, a: int, b: int) -> tuple:
+    """Samples ``a`` to ``b`` (inclusive) of a side."""
+    return ids[a:b + 1], pts[a:b + 1]
+
+
+def _rev(side: tuple) -> tuple:
+    return side[0][::-1], side[1][::-1]
 
 
 # --------------------------------------------------------------------------------------------
@@ -248,7 +300,7 @@ def _vertex_labels(layout: Layout, sides: list[_SideSamples], vid_of_node: dict[
     corner, turning = _corner_labels(layout, vid_of_node, disc_point)
     feature, singular, extremity = _node_labels(layout, vid_of_node, disc_point)
     pole = np.zeros(nv, dtype=bool)
-    for pat in layout.patterns:
+    for pat in layout.patterns:  # a split triangle's pole too: the corner its pattern chose (§3.2)
         if pat.pole is not None:
             pole[vid_of_node[pat.corners[pat.pole]]] = True
     fixed = _fixed_vertices(layout, sides, vid_of_node, disc_point, corner != 0, feature, curve)

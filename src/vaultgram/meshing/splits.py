@@ -1,0 +1,197 @@
+"""Three-sided patches meshed as three quads where Figure 3's fan would be too thin (issue 12).
+
+Figure 3 meshes a three-sided patch as a quad with one side collapsed to the pole: ``n`` triangles
+fan round the pole, ``n`` the count of the side opposite it. Their corners at the pole share the
+patch's angle there, so with ``n`` large for that angle no smoothing can give them a scaled Jacobian
+above the floor (:func:`vaultgram.meshing.fans.fan_bounds`; 12 triangles in a 90 degree corner reach
+0.15 at best, issue 12 asks for 0.3).
+
+Where a fan's triangles would be thinner than :data:`FAN_FLOOR` the patch is meshed instead as three
+quads meeting at an inner point ``O`` (the midpoint subdivision of a triangle). With the pole ``A``,
+its sides ``AB`` and ``AC`` of count ``m`` (one edge group, §3.2) and the opposite side ``BC`` of
+count ``n``, the spokes from ``O`` to the three sides have counts ``n/2`` (to ``AB`` and ``AC``) and
+``m - n/2`` (to ``BC``): the quad at ``A`` is ``n/2 x n/2``, those at ``B`` and ``C`` are
+``n/2 x (m - n/2)``. So the split needs ``n`` even and ``n < 2m``; :func:`split_counts` raises the
+counts (length-given groups only, never a designer's) until every thin fan can split. The pole keeps
+one quad of this patch instead of ``n`` triangles, and ``O`` is one interior vertex of valence 3.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from vaultgram.geometry.polygons import regular_valence
+from vaultgram.meshing.layout import Layout, PatchPattern, _outside_angle, is_feature_node
+
+__all__ = ["FAN_FLOOR", "fan_estimate", "split_patterns", "split_counts", "split_points"]
+
+#: A three-sided patch whose fan triangles would have a worse scaled Jacobian than this (equal
+#: triangles, :func:`fan_estimate`) is split into three quads: issue 12's floor.
+FAN_FLOOR = 0.3
+#: No split where the pole's angle is wider: the quad there would keep a flat or reflex corner
+#: (a fan spans any angle).
+MAX_SPLIT_ANGLE = 160.0
+#: Rounds of :func:`split_counts` (each only raises counts; two or three settle every plan).
+MAX_ROUNDS = 32
+
+
+def fan_estimate(angle: float, n: int) -> float:
+    """The scaled Jacobian of ``n`` equal triangles sharing ``angle`` degrees at a pole (each corner's
+    sine, scaled so that an equilateral triangle has 1).
+
+    >>> round(fan_estimate(90.0, 6), 4)  # 15 degree corners
+    0.2989
+    """
+    return 2.0 / math.sqrt(3.0) * math.sin(math.radians(min(angle / max(n, 1), 90.0)))
+
+
+def _pole_angle(layout: Layout, pat: PatchPattern) -> float:
+    """The patch's interior angle (degrees) at its pole."""
+    patch = layout.decomposition.patches[pat.patch]
+    k = pat.pole
+    return 360.0 - _outside_angle(patch.sides[k - 1], patch.sides[k])
+
+
+def _thin(layout: Layout, pat: PatchPattern, side_count: np.ndarray) -> bool:
+    """A triangle whose fan is below :data:`FAN_FLOOR` and whose split can do better: the quad corner
+    at the pole keeps about the patch's angle there, so its sine must reach the floor (a sliver's
+    pole stays a fan: a quad of a 5 degree corner folds in smoothing) and the angle be at most
+    :data:`MAX_SPLIT_ANGLE`. An inner point feature keeps its fan (:func:`_inner_point_feature`)."""
+    if pat.pole is None or _inner_point_feature(layout, pat.corners[pat.pole]):
+        return False
+    angle = _pole_angle(layout, pat)
+    if angle > MAX_SPLIT_ANGLE or math.sin(math.radians(angle)) < FAN_FLOOR:
+        return False
+    return fan_estimate(angle, int(side_count[pat.sides[(pat.pole + 1) % 3][0]])) < FAN_FLOOR
+
+
+def _inner_point_feature(layout: Layout, node: int) -> bool:
+    """A point feature inside the domain: a point load or a column, whose high-valency pole gives "a
+    large number of load paths" (§4) -- the voussoirs follow its radial force flow: split, the
+    joints of square_point_loads turned 11.4 degrees from the force flow (median; 8.3 with the fans,
+    the tessellation's floor is 10). Boundary features and curve extremities split."""
+    dec = layout.decomposition
+    graph = dec.graph
+    return (is_feature_node(dec, node) and graph.node_type(node) != "CurveExtremity"
+            and not graph.schema.is_subtype(graph.node_type(node), "BoundaryVertex"))
+
+
+def _pole_counts(pat: PatchPattern, side_count: np.ndarray) -> tuple[int, int]:
+    """``(m, n)``: the count of the sides at the pole and of the side opposite it."""
+    return int(side_count[pat.sides[pat.pole][0]]), int(side_count[pat.sides[(pat.pole + 1) % 3][0]])
+
+
+def split_patterns(layout: Layout, counts) -> frozenset:
+    """Indices (into ``layout.patterns``) of the three-sided patches meshed as three quads: thin fans
+    (see the module docstring) whose counts allow the split (``n`` even, ``n < 2m``).
+
+    >>> from vaultgram.domain import load_domain
+    >>> from vaultgram.meshing.densities import group_counts
+    >>> from vaultgram.meshing.layout import edge_groups
+    >>> from vaultgram.pipeline import decompose
+    >>> layout = edge_groups(decompose(load_domain("examples/fig5_boundary_points.json")))
+    >>> len(split_patterns(layout, group_counts(layout)))  # 6 triangles in each 45 degrees
+    8
+    """
+    side_count = np.asarray(counts)[layout.group_of]
+    out = set()
+    for k, pat in enumerate(layout.patterns):
+        if _thin(layout, pat, side_count):
+            m, n = _pole_counts(pat, side_count)
+            if n % 2 == 0 and n < 2 * m:
+                out.add(k)
+    return frozenset(_keep_feature_poles(layout, side_count, _whole_poles(layout, side_count, out)))
+
+
+def _whole_poles(layout: Layout, side_count: np.ndarray, split: set) -> set:
+    """``split`` without the splits at a pole that keeps another fan below the floor (too wide, too
+    sharp or with counts that do not allow it): that fan bounds the pole's corners anyway, so the
+    quads would gain nothing there (rv_pillow: its 19 degree triangle beside a fan of 44 in 180)."""
+    def pole(k):
+        return layout.patterns[k].corners[layout.patterns[k].pole]
+
+    stuck = {pole(k) for k, p in enumerate(layout.patterns)
+             if p.pole is not None and k not in split and _fan_of(layout, p, side_count) < FAN_FLOOR}
+    return {k for k in split if pole(k) not in stuck}
+
+
+def _keep_feature_poles(layout: Layout, side_count: np.ndarray, split: set) -> set:
+    """``split`` without the splits that would leave a point feature regular (§4.1: point features
+    are poles): at such a feature, its split patches are meshed as fans again, the least thin first,
+    until its number of faces is irregular."""
+    dec = layout.decomposition
+    for node in sorted({layout.patterns[k].corners[layout.patterns[k].pole] for k in split}):
+        if not is_feature_node(dec, node):
+            continue
+        mine = sorted((k for k in split if layout.patterns[k].corners[layout.patterns[k].pole] == node),
+                      key=lambda k: (-_fan_of(layout, layout.patterns[k], side_count), k))
+        while mine and _faces_at(layout, node, side_count, split) == _regular_faces(dec, node):
+            split.discard(mine.pop(0))
+    return split
+
+
+def _fan_of(layout: Layout, pat: PatchPattern, side_count: np.ndarray) -> float:
+    return fan_estimate(_pole_angle(layout, pat), _pole_counts(pat, side_count)[1])
+
+
+def _faces_at(layout: Layout, node: int, side_count: np.ndarray, split: set) -> int:
+    """Faces at a patch corner: 1 per patch, the opposite side's count at the pole of a fan."""
+    return sum(_pole_counts(p, side_count)[1] if p.pole is not None and p.corners[p.pole] == node and k not in split
+               else 1 for k, p in enumerate(layout.patterns) if node in p.corners)
+
+
+def _regular_faces(dec, node: int) -> int:
+    """The regular number of faces at a node: 4 inside, by the angle's regular valence on a ring."""
+    disc = dec.disc
+    if 0 <= node < disc.n_points and disc.ring[node] >= 0:
+        return int(regular_valence(np.array([180.0 - disc.turning[node]]))[0]) - 1
+    return 4
+
+
+def split_counts(layout: Layout, counts: np.ndarray, free: np.ndarray) -> np.ndarray:
+    """``counts`` raised where ``free`` (groups whose count comes from a length) so that the thin fans
+    can be split: the opposite side's count even, the pole sides' count above half of it. Raised
+    only for the fans that then split (:func:`split_patterns`), so that a fan that stays keeps its
+    counts. Only raises, so it settles; a group that is not free is never changed (its fan stays)."""
+    wanted = split_patterns(layout, _raised(layout, counts, free))
+    side_count = np.asarray(counts)[layout.group_of]
+    free = np.array(free, dtype=bool)
+    for k, pat in enumerate(layout.patterns):  # a fan that stays below the floor gets no more triangles
+        if pat.pole is not None and k not in wanted and _fan_of(layout, pat, side_count) < FAN_FLOOR:
+            free[layout.group_of[pat.sides[(pat.pole + 1) % 3][0]]] = False
+    return _raised(layout, counts, free, wanted)
+
+
+def _raised(layout: Layout, counts: np.ndarray, free: np.ndarray, only=None) -> np.ndarray:
+    """``counts`` raised (where ``free``) until every thin fan (of the patterns ``only``, if given) can
+    be split."""
+    counts = np.array(counts, dtype=np.int64)
+    for _ in range(MAX_ROUNDS):
+        before = counts.copy()
+        side_count = counts[layout.group_of]
+        for k, pat in enumerate(layout.patterns):
+            if (only is not None and k not in only) or not _thin(layout, pat, side_count):
+                continue
+            gm, gn = (int(layout.group_of[pat.sides[(pat.pole + j) % 3][0]]) for j in (0, 1))
+            if counts[gn] % 2 and free[gn]:
+                counts[gn] += 1
+            if counts[gm] <= counts[gn] // 2 and free[gm]:
+                counts[gm] = counts[gn] // 2 + 1
+            side_count = counts[layout.group_of]
+        if np.array_equal(before, counts):
+            break
+    return counts
+
+
+def split_points(m: int, n: int) -> tuple[int, int, int]:
+    """Sample indices of the split points on the sides ``A->B``, ``B->C`` and ``C->A`` (from each
+    side's first corner), and the spoke counts follow: ``n/2`` to ``AB`` and ``CA``, ``m - n/2`` to
+    ``BC``.
+
+    >>> split_points(7, 6)
+    (3, 3, 4)
+    """
+    h = n // 2
+    return h, h, m - h

@@ -1,0 +1,14 @@
+"""A plan whose mesh folds at the default settings, for the tests of the fold error (its message,
+its figure, the CLI's exit code)."""
+
+#: Draw 74 of benchmarks/reliability.py's plans: three points and a curve in an octagon; the patches
+#: between the curve and the point (0.05, 5.74) fold (39 inverted faces) whatever smoothing, untangling, the
+#: optimiser and the three-quad splits do. (The rectangle with two curves that these tests used before
+#: meshes since thin fans became three quads, vaultgram.meshing.splits.)
+FOLDING = {"outer": [[5.388755136395837, 2.6384309882897248], [2.272610268283502, 6.6329147511377],
+                     [-2.33842148645929, 4.776013036590429], [-5.030664895556137, 1.7236375148607566],
+                     [-6.297157131259193, -3.0832008678643037], [-2.4261781222834715, -7.081122918773187],
+                     [3.4991589610352656, -7.146713674920552], [9.23604221728679, -3.164509897810106]],
+           "points": [[3.510862245437796, 1.1791723000490535], [8.274220447064053, -1.7137746762851482],
+                      [0.04897158689832004, 5.737436537232383]],
+           "curves": [[[-5e-324, 1.1063395951484711], [-1.3568401035271442, 2.0108613012609426]]]}
