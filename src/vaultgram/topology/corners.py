@@ -23,6 +23,7 @@ import weakref
 import numpy as np
 
 from vaultgram.geometry.polygons import cross_z, regular_valence
+from vaultgram.topology.statecache import per_state
 from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE_POINT, FEATURE_POINT
 
 __all__ = ["rectilinear_rings", "chord_feet", "ray_hit", "boundary_angle", "rectilinear_plan", "chord_end",
@@ -118,30 +119,31 @@ def chord_feet(rings) -> list[np.ndarray]:
 # The rule helpers (registered by vaultgram.topology.functions.vault_functions)
 # --------------------------------------------------------------------------------------------
 
-_RINGS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> (changes, rings, nodes)
+_RINGS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> {state: (rings, nodes, memo)}
 
 
 def _graph_rings(graph) -> tuple[list, list]:
     """The rings of the rule graph's boundary vertices, in ring order: their positions and node ids
     (computed once per state of the graph)."""
-    cached = _RINGS.get(graph)
-    if cached is None or cached[0] != graph.changes:
-        by_ring: dict[int, list] = {}
-        for n in graph.of_types(graph.schema.subtypes(BOUNDARY_VERTEX)):
-            by_ring.setdefault(graph.get(n, "ring"), []).append((graph.get(n, "index"), n))
-        nodes = [[n for _, n in sorted(v)] for _, v in sorted(by_ring.items())]
-        rings = [np.array([graph.get(n, "pos") for n in ids], dtype=float) for ids in nodes]
-        where = {n: (r, k) for r, ids in enumerate(nodes) for k, n in enumerate(ids)}
-        angles = {n: float(a) for ids, ring in zip(nodes, rings) for n, a in zip(ids, _ring_angles(ring))}
-        cached = (graph.changes, rings, nodes, {"where": where, "angle": angles})
-        _RINGS[graph] = cached
-    return cached[1], cached[2]
+    rings, nodes, _ = per_state(_RINGS, graph, _rings_now)
+    return rings, nodes
+
+
+def _rings_now(graph) -> tuple[list, list, dict]:
+    """The rings of :func:`_graph_rings` worked out, with each vertex's place and angle."""
+    by_ring: dict[int, list] = {}
+    for n in graph.of_types(graph.schema.subtypes(BOUNDARY_VERTEX)):
+        by_ring.setdefault(graph.get(n, "ring"), []).append((graph.get(n, "index"), n))
+    nodes = [[n for _, n in sorted(v)] for _, v in sorted(by_ring.items())]
+    rings = [np.array([graph.get(n, "pos") for n in ids], dtype=float) for ids in nodes]
+    where = {n: (r, k) for r, ids in enumerate(nodes) for k, n in enumerate(ids)}
+    angles = {n: float(a) for ids, ring in zip(nodes, rings) for n, a in zip(ids, _ring_angles(ring))}
+    return rings, nodes, {"where": where, "angle": angles}
 
 
 def _cache(graph) -> dict:
     """A per-state memo of the rule helpers (the chord ends a rule asks for at every candidate)."""
-    _graph_rings(graph)
-    return _RINGS[graph][3]
+    return per_state(_RINGS, graph, _rings_now)[2]
 
 
 def boundary_angle(graph, v: int) -> float:

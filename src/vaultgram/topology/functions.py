@@ -22,6 +22,7 @@ from vaultgram.geometry.polygons import interior_angle, regular_valence, signed_
 from vaultgram.geometry.polylines import arc_lengths, point_at_length
 from vaultgram.topology import corners
 from vaultgram.topology.patches import enclosed_holes, half_edge_polyline, hole_rings, plan_faces
+from vaultgram.topology.statecache import per_state
 from vaultgram.topology.strips import register_strip_helpers
 from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE, DUAL, PATCH_CORNER, PLAN_EDGES
 
@@ -164,7 +165,7 @@ def _patch_outline(graph, patch: int, x: int) -> tuple[list, np.ndarray] | None:
     patch's corners (a Patch node out of step with the plan, which decompose reports at the end). Only
     the faces at ``x`` are walked, once per state of the graph (the rules ask for the same outlines
     in every match they try)."""
-    outlines = _per_state(_OUTLINES, graph, lambda g: {})
+    outlines = per_state(_OUTLINES, graph, lambda g: {})
     if (patch, x) not in outlines:
         outlines[(patch, x)] = _walk_patch_outline(graph, patch, x)
     return outlines[(patch, x)]
@@ -274,7 +275,7 @@ def path_clear(graph, path) -> bool:
 def _plan_segments(graph) -> tuple[np.ndarray, np.ndarray]:
     """Start and end points of every straight piece of every plan edge (once per state: every
     diagonal a rule tries in one state is checked against the same plan)."""
-    return _per_state(_SEGMENTS, graph, _all_plan_segments)
+    return per_state(_SEGMENTS, graph, _all_plan_segments)
 
 
 def _all_plan_segments(graph) -> tuple[np.ndarray, np.ndarray]:
@@ -309,25 +310,15 @@ def _resample(chain: np.ndarray, t: np.ndarray) -> np.ndarray:
 
 # -- measures of the whole plan, for the rulebook's invariants (rules/invariants.vgr) -------------
 
-_FACES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> (its changes count, its faces)
-_SEGMENTS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> (its changes count, segments)
-_OUTLINES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> (changes, {(patch, x): outline})
-
-
-def _per_state(cache: weakref.WeakKeyDictionary, graph, make):
-    """``make(graph)`` computed once per state of the graph (``graph.changes`` tells a state from
-    every other, undo included)."""
-    cached = cache.get(graph)
-    if cached is None or cached[0] != graph.changes:
-        cached = (graph.changes, make(graph))
-        cache[graph] = cached
-    return cached[1]
+_FACES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> {state: its faces}
+_SEGMENTS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> {state: its segments}
+_OUTLINES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> {state: {(patch, x): outline}}
 
 
 def _faces(graph) -> list:
     """:func:`plan_faces` of the graph as it is now, computed once per state (several invariants ask
     for them in one check)."""
-    return _per_state(_FACES, graph, lambda g: plan_faces(g, PLAN_EDGES))
+    return per_state(_FACES, graph, lambda g: plan_faces(g, PLAN_EDGES))
 
 
 def plan_area(graph) -> float:

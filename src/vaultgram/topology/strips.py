@@ -27,6 +27,7 @@ from vaultgram.engine.embedding import face_walk
 from vaultgram.geometry.polygons import interior_angle, signed_area
 from vaultgram.geometry.polylines import arc_lengths, point_at_length
 from vaultgram.topology.patches import half_edge_polyline
+from vaultgram.topology.statecache import per_state
 from vaultgram.topology.types import (
     BOUNDARY,
     BOUNDARY_VERTEX,
@@ -65,17 +66,13 @@ class PatchSides:
         return polygon
 
 
-_STATE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> (its changes count, {key: value})
+_STATE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> {state: {key: value}}
 
 
 def _memo(graph) -> dict:
-    """What the helpers worked out in this state of the graph (``graph.changes`` tells a state from
-    every other, undo included): the rules ask for the same sides and strips in every match they try."""
-    cached = _STATE.get(graph)
-    if cached is None or cached[0] != graph.changes:
-        cached = (graph.changes, {})
-        _STATE[graph] = cached
-    return cached[1]
+    """What the helpers worked out in this state of the graph (:mod:`vaultgram.topology.statecache`):
+    the rules ask for the same sides and strips in every match they try."""
+    return per_state(_STATE, graph, lambda g: {})
 
 
 def patch_sides(graph, patch: int) -> PatchSides | None:
