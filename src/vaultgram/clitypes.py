@@ -31,6 +31,16 @@ class Finite(click.FloatRange):
 
     name = "finite float"
 
+    def _describe_range(self) -> str:
+        """The range for ``--help``: click's own shows ``x<=None`` for a float range without bounds.
+
+        >>> Finite()._describe_range(), Finite(min=0.0, min_open=True)._describe_range()
+        ('finite', 'x>0.0')
+        """
+        if self.min is None and self.max is None:
+            return "finite"
+        return super()._describe_range()
+
     def convert(self, value, param, ctx):
         number = super().convert(value, param, ctx)
         if not math.isfinite(number):
