@@ -190,7 +190,7 @@ def tessellate(network: ThrustNetwork, **options) -> Tessellation:
     >>> from vaultgram.pipeline import form_find
     >>> t = vaultgram.tessellate(form_find(*grid_mesh(8), zmax=2.0), thickness=0.2)
     >>> t.summary["voussoirs"]
-    29
+    28
     """
     return _tessellate(surface_from_network(network), **options)
 

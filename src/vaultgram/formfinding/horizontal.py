@@ -60,6 +60,7 @@ from vaultgram.errors import ConvergenceError, FormFindingError, HorizontalEquil
 from vaultgram.formfinding.forcediagram import ForceDiagram, PinnedLaplacian, WeightedFit, force_diagram
 from vaultgram.formfinding.formdiagram import FormDiagram
 from vaultgram.formfinding.relaxation import opening_edges, relax_openings  # their former home: still importable
+from vaultgram.geometry.arrays import steady
 
 __all__ = ["HorizontalResult", "horizontal", "angle_deviations", "compression_lp",
            "relax_openings", "opening_edges"]
@@ -458,7 +459,8 @@ def _failure(res: HorizontalResult, act: np.ndarray, end: _Settled, min_force: f
              lp_max_edges: int, tol_deg: float) -> FormFindingError | ConvergenceError:
     """The error that explains why ``res`` did not converge: no compression-only equilibrium (the LP
     found none, or without the LP, edges flipped or collapsed), or plain non-convergence."""
-    flipped, collapsed = np.flatnonzero(res.angles > 90.0), _collapsed(end.force_lengths, min_force)
+    collapsed = _collapsed(end.force_lengths, min_force)
+    flipped = np.setdiff1d(np.flatnonzero(res.angles > 90.0), collapsed)  # a zero vector's angle is round-off
     disproved = end.lp_s is not None and end.lp_s <= 1e-9
     if not (disproved or (end.lp_s is None and (len(flipped) or len(collapsed)))):
         return _not_converged(res, act, tol_deg)
@@ -483,10 +485,11 @@ def _no_compression(res: HorizontalResult, act: np.ndarray, force_lengths: np.nd
     """No compression-only reciprocal: the flipped (tension) and collapsed edges, or, when every force
     edge is in compression, the angle floor of a form that is only approximately balanceable."""
     angles, k, amax = res.angles, res.iterations, res.max_angle
-    bad = np.union1d(flipped, collapsed)
-    bad = np.argsort(-angles)[:8] if len(bad) == 0 else bad
-    desc = "; ".join(f"{res.form.edge_name(act[i])}: {angles[i]:.1f} deg, force length {force_lengths[i]:.2g}"
-                     for i in bad[np.argsort(-angles[bad])][:8])
+    bad = np.concatenate([flipped[np.argsort(-steady(angles[flipped], 180.0), kind="stable")], collapsed])
+    bad = np.argsort(-steady(angles, 180.0), kind="stable")[:8] if len(bad) == 0 else bad
+    gone = set(collapsed.tolist())  # no direction to report
+    desc = "; ".join(f"{res.form.edge_name(act[i])}: " + ("collapsed" if i in gone else
+                     f"{angles[i]:.1f} deg, force length {force_lengths[i]:.2g}") for i in bad[:8])
     if len(flipped) == 0 and len(collapsed) == 0:
         message = (
             f"horizontal equilibrium stalled at a max angle deviation of {amax:.3g} deg > {tol_deg} deg after "

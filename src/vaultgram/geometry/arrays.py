@@ -3,13 +3,28 @@
 The meshes' bookkeeping reduces to sets of integer keys (an edge ``lo * n + hi``, a voussoir at a
 vertex ``group * n + vertex``). ``np.unique`` without ``return_*`` uses a hash table in numpy 2.3 and
 later, some 30 times slower than sorting on 10^5-10^6 such keys; :func:`distinct` sorts.
+
+The choices the stages make between computed values (the largest score, the nearest edge) meet ties
+wherever a plan is symmetric: mirror edges have equal scores in exact arithmetic, and which of them
+wins then follows the last bits of the arithmetic, which differ between machines (the BLAS kernels
+of the form finding's solvers). :func:`steady` and :func:`nearest` take values within :data:`TIE`
+of each other as equal and give a tie to the lowest index, so the same plan gives the same pattern
+everywhere.
 """
 
 from __future__ import annotations
 
 import numpy as np
+from scipy.spatial import cKDTree
 
-__all__ = ["distinct", "run_starts", "row_dot", "unit_rows"]
+__all__ = ["TIE", "TIED", "distinct", "nearest", "row_dot", "run_starts", "steady", "unit_rows"]
+
+#: Relative difference under which two computed values are a tie (round-off differs between
+#: machines by some 1e-15 relative; the stages' real differences are far above 1e-9).
+TIE = 1e-9
+#: How many points as near as the nearest :func:`nearest` looks through (a vertex of a regular grid
+#: has four neighbours at one distance, a point of a regular triangulation six).
+TIED = 8
 
 
 def distinct(values) -> np.ndarray:
@@ -48,3 +63,49 @@ def unit_rows(v: np.ndarray) -> np.ndarray:
     [[0.6, 0.8], [0.0, 0.0]]
     """
     return v / np.maximum(np.sqrt(row_dot(v, v)), 1e-300)[:, None]
+
+
+def steady(values, scale: float | None = None) -> np.ndarray:
+    """``values`` rounded to multiples of a power of two near :data:`TIE` times ``scale`` (by default
+    their largest magnitude), so that ``np.argmax`` or a stable sort of them treats round-off as a tie
+    and takes the lowest index, the same on every machine. Sums and differences of up to some 10^6
+    such values are exact (integers times the step, within 53 bits), so comparisons between them are
+    steady too.
+
+    >>> a = np.array([0.3, 0.1 + 0.2])  # equal in exact arithmetic, not in floating point
+    >>> int(np.argmax(a)), int(np.argmax(steady(a)))
+    (1, 0)
+    """
+    values = np.asarray(values, dtype=float)
+    if scale is None:
+        scale = float(np.abs(values).max()) if values.size else 1.0
+    step = 2.0 ** np.floor(np.log2(TIE * (scale if scale > 0 else 1.0)))
+    return np.round(values / step) * step
+
+
+def nearest(points: np.ndarray, queries: np.ndarray) -> np.ndarray:
+    """Per row of ``queries``, the index of the nearest row of ``points``; of up to :data:`TIED` points
+    as near within :data:`TIE` of the extent of both, the lowest index (a KD tree's own answer then
+    follows round-off). Two neighbours are asked for each query, more only where the two tie.
+
+    >>> nearest(np.array([[1.0, 0.0], [0.0, 1.0], [3.0, 3.0]]), np.array([[0.0, 0.0], [2.0, 2.5]])).tolist()
+    [0, 2]
+    """
+    points, queries = np.asarray(points, dtype=float), np.asarray(queries, dtype=float)
+    both = np.vstack([points, queries])
+    tol = TIE * max(float(np.ptp(both, axis=0).max()) if len(both) else 0.0, 1e-300)
+    tree = cKDTree(points)
+    found = _lowest_of_nearest(tree, queries, min(2, len(points)), tol)
+    tied = np.flatnonzero(found[1])
+    if len(tied):
+        found[0][tied] = _lowest_of_nearest(tree, queries[tied], min(TIED, len(points)), tol)[0]
+    return found[0]
+
+
+def _lowest_of_nearest(tree: cKDTree, queries: np.ndarray, k: int, tol: float) -> tuple[np.ndarray, np.ndarray]:
+    """The lowest index among the ``k`` nearest points within ``tol`` of the nearest, and whether all
+    ``k`` were that near (more might be)."""
+    d, i = tree.query(queries, k=k, workers=-1)
+    d, i = d.reshape(len(queries), k), i.reshape(len(queries), k)
+    near = d <= d[:, :1] + tol
+    return np.where(near, i, tree.n).min(axis=1), near.all(axis=1) & (k > 1)

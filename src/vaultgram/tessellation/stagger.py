@@ -40,9 +40,8 @@ from collections import deque
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial import cKDTree
 
-from vaultgram.geometry.arrays import distinct, row_dot, unit_rows
+from vaultgram.geometry.arrays import distinct, nearest, row_dot, steady, unit_rows
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.tessellation.strips import Strip, strip_directions
 
@@ -101,8 +100,7 @@ def preferential_directions(x: np.ndarray, me: MeshEdges, supported: np.ndarray,
     ref = free if len(free) else boundary
     ref = np.concatenate([ref, np.asarray(rings, dtype=np.int64)])
     a, b = x[edges[ref, 0], :2], x[edges[ref, 1], :2]
-    _, nearest = cKDTree(0.5 * (a + b)).query(0.5 * (x[edges[:, 0], :2] + x[edges[:, 1], :2]), workers=-1)
-    return unit_rows(b - a)[nearest]
+    return unit_rows(b - a)[nearest(0.5 * (a + b), 0.5 * (x[edges[:, 0], :2] + x[edges[:, 1], :2]))]
 
 
 def quad_directions(x: np.ndarray, me: MeshEdges, pref: np.ndarray, is_quad: np.ndarray) -> np.ndarray:
@@ -117,7 +115,7 @@ def quad_directions(x: np.ndarray, me: MeshEdges, pref: np.ndarray, is_quad: np.
     f, side = me.corner_face[c], me.corner_side[c]
     score = np.zeros((len(is_quad), 2))
     np.add.at(score, (f, side % 2), align[me.corner_edge[c]])
-    choice = np.where(is_quad, np.argmax(score, axis=1), -1)
+    choice = np.where(is_quad, np.argmax(steady(score), axis=1), -1)
     ambiguous = is_quad & (np.abs(score[:, 0] - score[:, 1]) < 2 * AMBIGUITY)
     twin = me.corner_twin[c]
     ok = (twin >= 0) & quad_corner[np.maximum(twin, 0)]

@@ -15,7 +15,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-from vaultgram.geometry.arrays import distinct
+from vaultgram.geometry.arrays import TIE, distinct
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.geometry.meshes import Faces, corner_arrays
 from vaultgram.geometry.surfaces import loop_corner_angles, loop_planes
@@ -148,7 +148,7 @@ def max_corner_angles(x: np.ndarray, loops: list[np.ndarray]) -> tuple[np.ndarra
     owner, vertex, _, _ = corner_arrays(loops)
     start = np.concatenate([[0], np.cumsum(np.bincount(owner, minlength=len(loops)))[:-1]])
     largest = np.maximum.reduceat(angles, start)
-    at = np.flatnonzero(angles == largest[owner])  # the first corner of each loop at its largest angle
+    at = np.flatnonzero(angles >= largest[owner] - TIE * 180.0)  # each loop's first corner at its largest angle
     first = at[np.searchsorted(owner[at], np.arange(len(loops)))]
     return largest, vertex[first]
 
