@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from formfinding.cases import assert_network_ok
 
-from vaultgram.formfinding.loads import tributary_areas
+from vaultgram.formfinding.loads import TributaryAreas, tributary_areas
 from vaultgram.geometry.meshes import grid_index, grid_mesh
 from vaultgram.pipeline import form_find
 
@@ -24,6 +24,21 @@ def test_tributary_areas_sum_to_face_areas():
         for i in range(len(face)):
             total += 0.5 * np.linalg.norm(np.cross(p[i] - c, p[(i + 1) % len(face)] - c))
     assert a.sum() == pytest.approx(total, rel=1e-12)
+
+def test_areas_over_a_fixed_plan_are_the_3d_areas():
+    """The heights-only areas of vertical equilibrium agree with the 3D areas at every height field,
+    on quads and triangles (a grid with one face split), and are the plan areas at z = 0."""
+    rng = np.random.default_rng(5)
+    v, f = grid_mesh(6)
+    f = [(f[0][0], f[0][1], f[0][2]), (f[0][0], f[0][2], f[0][3]), *f[1:]]
+    areas = TributaryAreas.from_faces(f, len(v))
+    over = areas.over_plan(v[:, :2])
+    for _ in range(3):
+        xyz = v.copy()
+        xyz[:, 2] = rng.uniform(-1, 3, len(v))
+        assert np.allclose(over(xyz[:, 2]), areas(xyz), rtol=1e-13, atol=1e-15)
+    assert over(np.zeros(len(v))).sum() == pytest.approx(36.0, rel=1e-13)
+
 
 def test_grid_form_find_with_point_loads():
     v, f = grid_mesh(10)

@@ -30,7 +30,7 @@ import scipy.sparse as sp
 from vaultgram.errors import FormFindingError, VerticalEquilibriumError
 from vaultgram.formfinding.cholesky import Cholesky, ForceDensityMatrix
 from vaultgram.formfinding.formdiagram import FormDiagram
-from vaultgram.formfinding.loads import TributaryAreas
+from vaultgram.formfinding.loads import HeightAreas, TributaryAreas
 
 __all__ = ["VerticalResult", "vertical", "point_load_vector"]
 
@@ -241,10 +241,11 @@ class _HeightSystem(NamedTuple):
 @dataclass(frozen=True)
 class _Loads:
     """Vertical loads at a geometry: point loads, plus self-weight (3D tributary area x thickness x
-    density, :mod:`vaultgram.formfinding.loads`) when there is any."""
+    density, :mod:`vaultgram.formfinding.loads`) when there is any. The plan is the form diagram's:
+    only the heights of ``xyz`` are read."""
 
     points: np.ndarray
-    areas: TributaryAreas
+    areas: HeightAreas
     thickness: np.ndarray
     density: float
     selfweight: bool
@@ -252,11 +253,12 @@ class _Loads:
     @classmethod
     def of(cls, form: FormDiagram, point_loads, thickness, density: float, selfweight: bool) -> "_Loads":
         thick = np.broadcast_to(np.asarray(thickness, dtype=float), (form.n_vertices,))
-        return cls(point_load_vector(form, point_loads), TributaryAreas.from_faces(form.loaded_faces, form.n_vertices),
-                   thick, density, selfweight and density != 0 and bool(np.any(thick != 0)))
+        areas = TributaryAreas.from_faces(form.loaded_faces, form.n_vertices).over_plan(form.xy)
+        weighs = selfweight and density != 0 and bool(np.any(thick != 0))
+        return cls(point_load_vector(form, point_loads), areas, thick, density, weighs)
 
     def __call__(self, xyz: np.ndarray) -> np.ndarray:
-        return self.points + self.areas(xyz) * self.thickness * self.density if self.selfweight else self.points
+        return self.points + self.areas(xyz[:, 2]) * self.thickness * self.density if self.selfweight else self.points
 
 
 def _iterate_heights(form: FormDiagram, system: _HeightSystem, loads: _Loads, t: float, zmax: float | None,

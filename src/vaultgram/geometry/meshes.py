@@ -174,11 +174,12 @@ def _corners_of(vert: np.ndarray, lens: np.ndarray) -> tuple[np.ndarray, np.ndar
     if len(lens) == 0:
         return vert, vert, vert, vert
     face = np.repeat(np.arange(len(lens)), lens)
-    start = np.concatenate([[0], np.cumsum(lens)[:-1]])
-    pos = np.arange(len(vert)) - np.repeat(start, lens)
-    nxt_pos = np.repeat(start, lens) + (pos + 1) % np.repeat(lens, lens)
-    prv_pos = np.repeat(start, lens) + (pos - 1) % np.repeat(lens, lens)
-    return face, vert, vert[nxt_pos], vert[prv_pos]
+    end = np.cumsum(lens)
+    start = end - lens
+    nxt, prv = np.roll(vert, -1), np.roll(vert, 1)  # the next and previous corner in the whole array,
+    nxt[end - 1] = vert[start]  # but a face's last corner is followed by its first
+    prv[start] = vert[end - 1]
+    return face, vert, nxt, prv
 
 
 def corner_vectors(x: np.ndarray, u: np.ndarray, v: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
