@@ -153,6 +153,8 @@ def corner_arrays(faces: Sequence[Sequence[int]]) -> tuple[np.ndarray, np.ndarra
 
     >>> [a.tolist() for a in corner_arrays([(0, 1, 2), (2, 1, 3)])]
     [[0, 0, 0, 1, 1, 1], [0, 1, 2, 2, 1, 3], [1, 2, 0, 1, 3, 2], [2, 0, 1, 3, 2, 1]]
+    >>> [a.tolist() for a in corner_arrays([(4, 5), (), (6,)])]  # short and empty faces too
+    [[0, 0, 2], [4, 5, 6], [5, 4, 6], [5, 4, 6]]
     """
     return faces.corners if isinstance(faces, Faces) else _flattened(faces)
 
@@ -174,8 +176,8 @@ def _corners_of(vert: np.ndarray, lens: np.ndarray) -> tuple[np.ndarray, np.ndar
     if len(lens) == 0:
         return vert, vert, vert, vert
     face = np.repeat(np.arange(len(lens)), lens)
-    end = np.cumsum(lens)
-    start = end - lens
+    end = np.cumsum(lens)[lens > 0]  # an empty face (bad input, reported by the caller) has no corner
+    start = end - lens[lens > 0]
     nxt, prv = np.roll(vert, -1), np.roll(vert, 1)  # the next and previous corner in the whole array,
     nxt[end - 1] = vert[start]  # but a face's last corner is followed by its first
     prv[start] = vert[end - 1]
