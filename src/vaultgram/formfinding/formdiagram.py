@@ -36,7 +36,7 @@ from vaultgram.errors import FormFindingError
 from vaultgram.formfinding.diagrams import Diagram, connectivity_matrix
 from vaultgram.formfinding.supports import outer_loop
 from vaultgram.geometry.arrays import distinct
-from vaultgram.geometry.meshes import Faces, boundary_halfedges, boundary_loops, corner_arrays, face_areas
+from vaultgram.geometry.meshes import Faces, boundary_halfedges, corner_arrays, face_areas, loops_of
 
 __all__ = ["FormDiagram", "form_diagram", "connectivity_matrix"]
 
@@ -207,9 +207,9 @@ def _first_bad_face(faces: Faces, n: int) -> int | None:
     fid, vert, _, _ = corner_arrays(faces)
     lens = np.bincount(fid, minlength=len(faces))
     bad = (lens < 3) | (np.bincount(fid, weights=((vert < 0) | (vert >= n)), minlength=len(faces)) > 0)
-    order = np.lexsort((vert, fid))
-    repeated = (np.diff(fid[order]) == 0) & (np.diff(vert[order]) == 0)
-    bad[fid[order][1:][repeated]] = True
+    m = max(n, int(vert.max()) + 1 if len(vert) else 1, 1)  # every index below m, bad ones too
+    codes = np.sort(fid * m + np.where(vert < 0, m - 1, vert))  # (face, vertex) pairs: a repeat is a pair twice
+    bad[codes[1:][np.diff(codes) == 0] // m] = True
     return int(np.argmax(bad)) if bad.any() else None
 
 
@@ -241,7 +241,9 @@ def _check_orientation(xy: np.ndarray, faces, scale: float) -> None:
             f"seen from +z" + (f" ({len(bad)} such faces)" if len(bad) > 1 else ""))
     fid, u, v, _ = corner_arrays(faces)
     codes = u * len(xy) + v
-    order = np.argsort(codes, kind="stable")
+    if not (np.diff(np.sort(codes)) == 0).any():
+        return
+    order = np.argsort(codes, kind="stable")  # only to name the first repeated halfedge
     dup = np.flatnonzero(np.diff(codes[order]) == 0)
     if len(dup):
         a, b = order[dup[0]], order[dup[0] + 1]
@@ -375,16 +377,18 @@ def _opening_faces(faces, anchors: np.ndarray, vertex_ids: np.ndarray) -> list[_
     An opening lies beyond the boundary: it is traversed along the twins of the boundary halfedges,
     i.e. each boundary loop reversed (from the end of its first halfedge), then cut at its anchors.
     """
-    _check_not_pinched(faces, vertex_ids)
+    starts, ends = boundary_halfedges(faces)
+    _check_not_pinched(ends, vertex_ids)
     openings: list[_Opening] = []
-    for loop in boundary_loops(faces):
+    for loop in loops_of(starts, ends):
         openings += _cut_at_anchors([loop[1], loop[0], *loop[:1:-1]], anchors)
     return openings
 
 
-def _check_not_pinched(faces, vertex_ids: np.ndarray) -> None:
+def _check_not_pinched(ends: np.ndarray, vertex_ids: np.ndarray) -> None:
     """No vertex ends two boundary halfedges (two boundary loops touching there)."""
-    _, ends = boundary_halfedges(faces)
+    if len(ends) == 0 or np.bincount(ends).max() < 2:
+        return
     again = np.ones(len(ends), dtype=bool)
     again[np.unique(ends, return_index=True)[1]] = False
     if again.any():

@@ -24,6 +24,7 @@ __all__ = [
     "grid_index",
     "remove_faces",
     "boundary_loops",
+    "loops_of",
     "corner_arrays",
     "Faces",
     "corner_vectors",
@@ -228,9 +229,17 @@ def boundary_loops(faces: Sequence[Sequence[int]]) -> list[list[int]]:
     >>> boundary_loops(grid_mesh(1)[1])
     [[0, 1, 3, 2]]
     """
-    _, u, v, _ = corner_arrays(faces)
-    free = ~has_twin(u, v)
-    return _walk_loops(_next_boundary_vertex(u[free].tolist(), v[free].tolist()))
+    return loops_of(*boundary_halfedges(faces))
+
+
+def loops_of(starts: np.ndarray, ends: np.ndarray) -> list[list[int]]:
+    """The boundary loops walked along the boundary halfedges ``starts[k] -> ends[k]`` (those of
+    :func:`boundary_halfedges`, when a caller has them already), each from its first halfedge.
+
+    >>> loops_of(np.array([0, 1, 2, 5, 6]), np.array([1, 2, 0, 6, 5]))
+    [[0, 1, 2], [5, 6]]
+    """
+    return _walk_loops(_next_boundary_vertex(starts.tolist(), ends.tolist()))
 
 
 def _next_boundary_vertex(starts: list[int], ends: list[int]) -> dict[int, int]:
