@@ -60,7 +60,9 @@ def _cut_quad(q: list, directions: set[int], mid, centre: int) -> list[list[int]
 
 def _refined(x: np.ndarray, faces, cuts: dict[int, set[int]]) -> tuple[np.ndarray, list, list, list]:
     """The mesh with the quads cut: vertices, faces, for each new vertex the vertices it is the mean
-    of, and for each face the face it was cut from."""
+    of, and for each face the face it was cut from. Only the cut quads are visited one by one; the
+    other faces are copied in runs, and a face gets the midpoints of its sides inserted only if one
+    of its sides was cut (:func:`_touched`)."""
     points, parents, index = [], [], {}
 
     def mid(a: int, b: int) -> int:
@@ -71,23 +73,34 @@ def _refined(x: np.ndarray, faces, cuts: dict[int, set[int]]) -> tuple[np.ndarra
             parents.append(key)
         return index[key]
 
-    out, origin = [], []
-    for f, face in enumerate(faces):
-        directions = cuts.get(f)
-        if not directions:
-            out.append(list(face))
-            origin.append(f)
-            continue
+    out, counts, done = [], np.ones(len(faces), dtype=np.int64), 0
+    for f in sorted(cuts):
+        out.extend(faces[done:f])
+        face, directions = list(faces[f]), cuts[f]
         centre = -1
         if len(directions) == 2:
             centre = len(x) + len(points)
-            points.append(x[list(face)].mean(axis=0))
+            points.append(x[face].mean(axis=0))
             parents.append(tuple(face))
-        pieces = _cut_quad(list(face), directions, mid, centre)
+        pieces = _cut_quad(face, directions, mid, centre)
         out.extend(pieces)
-        origin.extend([f] * len(pieces))
-    out = [with_midpoints(f, index) for f in out]
-    return np.vstack([x, *points]) if points else x, out, parents, origin
+        counts[f], done = len(pieces), f + 1
+    out.extend(faces[done:])
+    origin = np.repeat(np.arange(len(faces)), counts)
+    touched = _touched(faces, index, len(x))[origin]
+    out = [with_midpoints(f, index) if t else tuple(f) for f, t in zip(out, touched.tolist())]
+    return np.vstack([x, *points]) if points else x, out, parents, origin.tolist()
+
+
+def _touched(faces, index: dict, n: int) -> np.ndarray:
+    """Per face, whether one of its sides is among the cut sides ``index`` (pairs ``(lo, hi)``)."""
+    fid, u, v, _ = corner_arrays(faces)
+    cut = np.sort(np.array([a * n + b for a, b in index], dtype=np.int64))
+    if not len(cut):
+        return np.zeros(len(faces), dtype=bool)
+    sides = np.minimum(u, v) * n + np.maximum(u, v)
+    hit = cut[np.minimum(np.searchsorted(cut, sides), len(cut) - 1)] == sides
+    return np.bincount(fid[hit], minlength=len(faces)) > 0
 
 
 def refine_large_faces(x: np.ndarray, faces, large: float = LARGE, passes: int = PASSES
