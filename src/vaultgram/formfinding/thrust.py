@@ -29,7 +29,7 @@ from vaultgram.formfinding.forcediagram import ForceDiagram
 from vaultgram.formfinding.formdiagram import FormDiagram
 from vaultgram.formfinding.horizontal import HorizontalResult
 from vaultgram.formfinding.vertical import VerticalResult
-from vaultgram.geometry.frames import NO_ORIGIN, to_plan
+from vaultgram.geometry.frames import NO_ORIGIN, between, to_plan
 
 __all__ = ["ThrustNetwork", "thrust_network", "format_summary"]
 
@@ -91,7 +91,7 @@ class ThrustNetwork:
         own coordinates, as the files have them; itself when it is in that frame already)."""
         if self.origin == origin:
             return self
-        o = (self.origin[0] - origin[0], self.origin[1] - origin[1])
+        o = between(self.origin, origin)
         return replace(self, vertices=to_plan(self.vertices, o), origin=origin,
                        form=self.form.with_xy(to_plan(self.form.xy, o)))
 

@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 
-__all__ = ["FAR", "NO_ORIGIN", "local_origin", "to_local", "to_plan"]
+__all__ = ["FAR", "NO_ORIGIN", "between", "local_origin", "to_local", "to_plan"]
 
 #: A plan whose bounding box lies more than ``FAR`` of its diagonals from the origin is moved to a
 #: local frame; nearer ones keep their coordinates.
@@ -70,6 +70,16 @@ def to_plan(points, origin) -> np.ndarray:
     [[1000000001.5, 999999998.0]]
     """
     return _moved(points, origin, 1.0)
+
+
+def between(origin, target) -> tuple[float, float]:
+    """The offset that :func:`to_plan` adds to move points of the frame starting at ``origin`` into
+    the frame starting at ``target`` (how an object's ``in_frame`` moves its arrays).
+
+    >>> between((1e9, 0.0), (0.0, 0.0)), to_plan(np.array([[0.5, 1.0]]), between((4.0, 2.0), (1.0, 2.0))).tolist()
+    ((1000000000.0, 0.0), [[3.5, 1.0]])
+    """
+    return (origin[0] - target[0], origin[1] - target[1])
 
 
 def _moved(points, origin, sign: float) -> np.ndarray:

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from vaultgram.geometry.frames import NO_ORIGIN, to_plan
+from vaultgram.geometry.frames import NO_ORIGIN, between, to_plan
 from vaultgram.geometry.polylines import project_to_polyline
 
 __all__ = ["QuadMesh", "SlideConstraint", "slide"]
@@ -102,7 +102,7 @@ class QuadMesh:
         files have them; itself when it is in that frame already)."""
         if self.origin == origin:
             return self
-        o = (self.origin[0] - origin[0], self.origin[1] - origin[1])
+        o = between(self.origin, origin)
         return replace(self, vertices=to_plan(self.vertices, o), origin=origin,
                        constraints=tuple(replace(c, polyline=to_plan(c.polyline, o)) for c in self.constraints),
                        curve_lines=tuple(to_plan(c, o) for c in self.curve_lines))

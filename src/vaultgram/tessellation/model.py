@@ -13,7 +13,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from vaultgram.geometry.arrays import distinct
-from vaultgram.geometry.frames import NO_ORIGIN, to_plan
+from vaultgram.geometry.frames import NO_ORIGIN, between, to_plan
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.geometry.meshes import Faces
 from vaultgram.geometry.surfaces import surface_areas
@@ -110,7 +110,7 @@ class Tessellation:
         the files have them; itself when it is in that frame already)."""
         if self.origin == origin:
             return self
-        o, lay = (self.origin[0] - origin[0], self.origin[1] - origin[1]), self.layout
+        o, lay = between(self.origin, origin), self.layout
         solids = replace(self.solids, vertices=to_plan(self.solids.vertices, o))
         layout = replace(lay, mesh=replace(lay.mesh, vertices=to_plan(lay.mesh.vertices, o)))
         return replace(self, vertices=to_plan(self.vertices, o), solids=solids, layout=layout, origin=origin)
