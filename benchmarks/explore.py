@@ -25,6 +25,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from benchpaths import ARCHITECTURE, EXAMPLES
 
 from vaultgram.domain import load_domain
 from vaultgram.exploration.explore import ExploreOptions, explore
@@ -34,9 +35,7 @@ from vaultgram.pipeline import decompose
 from vaultgram.topology.decomposition import decomposition_graph
 from vaultgram.topology.rulebook import load_vault_rulebook
 
-REPO = Path(__file__).resolve().parents[1]
-QUAD = REPO / "examples" / "quad_with_hole.json"
-ARCHITECTURE = REPO.parent / "shared" / "data" / "architecture"
+QUAD = EXAMPLES / "quad_with_hole.json"
 TWO_HOLES = ARCHITECTURE / "two_holes_five_points.json"
 ROLEX = ARCHITECTURE / "rolex_learning_centre.json"
 

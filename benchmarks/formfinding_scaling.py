@@ -46,6 +46,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from benchpaths import ARCHITECTURE
 
 from vaultgram.formfinding.forcediagram import force_diagram
 from vaultgram.formfinding.formdiagram import form_diagram
@@ -220,7 +221,7 @@ def run_plans(plans, face_counts) -> None:
     from vaultgram.domain import load_domain
     from vaultgram.pipeline import mesh_domain, thrust_of_mesh
 
-    folder = Path(__file__).resolve().parents[2] / "shared" / "data" / "architecture"
+    folder = ARCHITECTURE
     print("\nshared plans, defaults of vaultgram design; times in seconds, dz = max height difference to the "
           "previous resolution / zmax")
     head = (f"{'plan':>16} {'faces':>8} {'mesh':>7} {'form find':>9} {'relax':>6} {'h_it':>5} {'angle':>9} "

@@ -21,8 +21,8 @@ import sys
 import tempfile
 from pathlib import Path
 
-REPO = Path(__file__).resolve().parents[1]
-ARCHITECTURE = REPO.parent / "shared" / "data" / "architecture"
+from benchpaths import ARCHITECTURE, REPO
+
 KEPT = (".json", ".obj")
 TIMED = {"timings.json"}  # the seconds of every stage: differ on every run
 

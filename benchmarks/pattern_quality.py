@@ -19,7 +19,8 @@ from __future__ import annotations
 import argparse
 import os
 import time
-from pathlib import Path
+
+from benchpaths import ARCHITECTURE, EXAMPLES
 
 from vaultgram import pipeline
 from vaultgram.domain import domain_from_dict, load_domain
@@ -29,15 +30,11 @@ from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import mesh_domain
 from vaultgram.testing.orthogonal import RECTILINEAR_PLANS
 
-ROOT = Path(__file__).resolve().parent.parent
-SHARED = next((d / "shared" / "data" / "architecture" for d in (ROOT.parent, ROOT.parent.parent)
-               if (d / "shared").is_dir()), ROOT.parent / "shared" / "data" / "architecture")
-
 
 def plans() -> dict:
     """The plans by name: shared plans, examples (domain files only), rectilinear plans."""
     out = {}
-    for path in sorted(SHARED.glob("*.json")) + sorted((ROOT / "examples").glob("*.json")):
+    for path in sorted(ARCHITECTURE.glob("*.json")) + sorted(EXAMPLES.glob("*.json")):
         try:
             out[path.stem] = load_domain(path)
         except VaultgramError:

@@ -31,6 +31,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from benchpaths import ARCHITECTURE, EXAMPLES
 
 from vaultgram.domain import domain_from_dict, load_domain
 from vaultgram.errors import VaultgramError
@@ -39,9 +40,6 @@ from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import mesh_domain
 from vaultgram.testing.orthogonal import RECTILINEAR_PLANS
 
-HERE = Path(__file__).resolve().parent
-EXAMPLES = HERE.parent / "examples"
-ARCHITECTURE = HERE.parent.parent / "shared" / "data" / "architecture"
 MESHERS = {"frontal": {"Mesh.Algorithm": 8, "Mesh.RecombinationAlgorithm": 1},
            "quadqs": {"Mesh.Algorithm": 11, "Mesh.RecombinationAlgorithm": 1}}
 

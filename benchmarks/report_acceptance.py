@@ -15,7 +15,8 @@ import sys
 import tempfile
 from pathlib import Path
 
-REPO = Path(__file__).resolve().parents[1]
+from benchpaths import ARCHITECTURE, REPO
+
 sys.path.insert(0, str(REPO / "tests"))
 
 from browser import render  # noqa: E402
@@ -23,7 +24,7 @@ from browser import render  # noqa: E402
 from vaultgram.io.figures import CATALOGUE  # noqa: E402
 from vaultgram.io.report import SECTIONS  # noqa: E402
 
-ARMADILLO = REPO.parent / "shared" / "data" / "architecture" / "armadillo_vault.json"
+ARMADILLO = ARCHITECTURE / "armadillo_vault.json"
 
 
 def plans() -> list[Path]:
