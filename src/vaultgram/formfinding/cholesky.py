@@ -115,7 +115,7 @@ class ForceDensityMatrix:
     >>> C = connectivity_matrix(np.array([[0, 1], [1, 2]]), 3)          # a path 0 - 1 - 2
     >>> K = ForceDensityMatrix(C, np.array([1, 2]))                    # vertex 0 held
     >>> K.rows.tolist(), K.cols.tolist(), K.values(np.array([2.0, 3.0])).tolist()
-    ([0, 1, 1], [0, 0, 1], [5.0, -3.0, 3.0])
+    ([0, 1, 1], [0, 1, 0], [5.0, 3.0, -3.0])
     """
 
     def __init__(self, C: sp.spmatrix, cols: np.ndarray):
@@ -126,11 +126,14 @@ class ForceDensityMatrix:
         edge = np.repeat(np.arange(m), count)
         both = np.flatnonzero(count == 2)                  # edges with two moving ends
         first = Cm.indptr[both]
-        keys = np.concatenate([col * (self.n + 1), col[first + 1] * self.n + col[first]])  # diagonal, then below
+        # the entries: the diagonal (every moving vertex), then one below it per edge with two moving
+        # ends (edges are distinct, so no entry twice): an index map, no sort of the entries
+        below = self.n + np.arange(len(both))
+        entry = np.concatenate([col, below])
         signs = np.concatenate([Cm.data * Cm.data, Cm.data[first] * Cm.data[first + 1]])
-        unique, entry = np.unique(keys, return_inverse=True)
-        self.rows, self.cols = unique // self.n, unique % self.n
-        self._map = sp.csr_matrix((signs, (entry, np.concatenate([edge, both]))), shape=(len(unique), m))
+        self.rows = np.concatenate([np.arange(self.n), col[first + 1]])
+        self.cols = np.concatenate([np.arange(self.n), col[first]])
+        self._map = sp.csr_matrix((signs, (entry, np.concatenate([edge, both]))), shape=(self.n + len(both), m))
 
     def values(self, q: np.ndarray) -> np.ndarray:
         """The entries of ``Cm^T diag(q) Cm`` at ``rows, cols``."""

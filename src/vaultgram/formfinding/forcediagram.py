@@ -139,7 +139,8 @@ class ForceDiagram(Diagram):
     def pins(self) -> np.ndarray:
         """One vertex per connected component, held fixed (the diagram floats otherwise)."""
         ncomp, labels = self.components
-        _, first = np.unique(labels, return_index=True)
+        first = np.full(ncomp, len(labels), dtype=np.int64)
+        np.minimum.at(first, labels, np.arange(len(labels)))  # each component's first vertex, no sort
         return np.sort(first)
 
     def to_json(self) -> dict:
