@@ -1,7 +1,7 @@
 """Form finding on fine meshes (issue 18): shared plans meshed at about 10^4 faces converge with the
 defaults -- compression only, max angle below the tolerance -- where the pattern as meshed has no
 compression-only reciprocal (every boundary supported) or the openings' arches fold it: the pattern is
-relaxed with equal force densities (and arches in the openings)."""
+relaxed with equal force densities (and arches in the openings), unequal where equal ones fold it."""
 
 from __future__ import annotations
 
