@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from formfinding.cases import holed_grid
+from formfinding.cases import holed_grid, notched_grid
 
 from vaultgram.formfinding.formdiagram import form_diagram
 from vaultgram.formfinding.relaxation import relax_openings
@@ -61,3 +61,81 @@ def test_interacting_openings_all_meet_their_sag():
     assert np.allclose(relax_openings(form, 0.1, mode="all").xy, xy)
     stale = relaxation._bisect_sag(system, arches, target, 60)
     assert np.max(np.abs(relaxation._sags(system.solve(stale), form.xy, arches) / target - 1)) > 1.0
+
+
+def _unit_density_areas(form):
+    """Face areas of the relaxation with every force density 1 (each free vertex at its neighbours' mean)."""
+    from vaultgram.formfinding import relaxation
+    from vaultgram.geometry.meshes import face_areas
+
+    eo, fo = relaxation.opening_edges(form)
+    system = relaxation._ForceDensities(form, relaxation._moving_vertices(form, eo, "all"), eo, fo, 1.0)
+    return face_areas(system.solve(np.zeros(0)), form.loaded_faces)
+
+
+def test_unequal_densities_unfold_a_notch():
+    """Equal densities pull the grid lines along the notch straight, over its reflex corner: faces fold.
+    The relaxation makes the densities unequal (all positive) until every face keeps 5% of its area, in
+    exact equilibrium with them; the largest densities hold the first rows to the corner."""
+    from vaultgram.formfinding.relaxation import relax
+    from vaultgram.geometry.meshes import face_areas
+
+    v, f, outer = notched_grid()
+    form = form_diagram(v, f, supports=outer)
+    assert (_unit_density_areas(form) <= 0).sum() == 2
+    r = relax(form, mode="all")
+    ratio = face_areas(r.form.xy, form.loaded_faces) / face_areas(form.xy, form.loaded_faces)
+    assert ratio.min() >= 0.05
+    assert np.all(r.q > 0) and r.q.max() / r.q.min() > 2
+    residual = form.C[:, form.free].T @ (r.q[:, None] * (form.C @ r.form.xy))
+    assert np.abs(residual).max() < 1e-12 * np.abs(r.q[:, None] * (form.C @ r.form.xy)).max()
+    corner = int(np.argmin(np.linalg.norm(form.xy - [0.5, 0.5], axis=1)))
+    assert form.anchors[corner] and corner in form.edges[np.argmax(r.q)]
+    assert np.array_equal(relax(form, mode="all").form.xy, r.form.xy)        # deterministic
+
+
+def test_a_shallow_notch_keeps_equal_densities():
+    """Nothing folds at a shallow notch: the densities stay equal (every free vertex at its neighbours'
+    mean), the relaxation as it was."""
+    from vaultgram.formfinding.relaxation import relax
+
+    v, f, outer = notched_grid(depth=0.3)
+    form = form_diagram(v, f, supports=outer)
+    assert (_unit_density_areas(form) > 0).all()
+    assert np.all(relax(form, mode="all").q == 1.0)
+
+
+def test_unfolding_gradient_is_the_penalty_derivative():
+    """The adjoint gradient of the fold penalty in the log densities matches central differences."""
+    from vaultgram.formfinding import relaxation
+
+    v, f, outer = notched_grid()
+    form = form_diagram(v, f, supports=outer)
+    eo, fo = relaxation.opening_edges(form)
+    system = relaxation._ForceDensities(form, relaxation._moving_vertices(form, eo, "all"), eo, fo, 1.0)
+    folds = relaxation._Folds(form)
+    rng = np.random.default_rng(0)
+    system.base = np.exp(rng.uniform(-0.3, 0.3, form.n_edges))
+    base = system.base.copy()
+    xy = system.solve(np.zeros(0))
+    grad = base * system.density_gradient(xy, folds.penalty(xy)[1])
+    active = np.flatnonzero(np.abs(grad) > 1e-3 * np.abs(grad).max())[:8]
+    assert len(active) >= 4
+    for e in active:
+        p = []
+        for h in (1e-6, -1e-6):
+            system.base = base.copy()
+            system.base[e] *= np.exp(h)
+            p.append(folds.penalty(system.solve(np.zeros(0)))[0])
+        assert (p[0] - p[1]) / 2e-6 == pytest.approx(grad[e], rel=1e-4)
+
+
+def test_form_finding_over_a_notch_is_reciprocal_at_once():
+    from formfinding.cases import assert_network_ok
+
+    from vaultgram.pipeline import form_find
+
+    v, f, outer = notched_grid()
+    tn = form_find(v, f, outer, zmax=0.3, relax_mode="all")
+    assert_network_ok(tn)
+    assert tn.summary["relax_mode"] == "all" and tn.summary["horizontal_iterations"] == 0

@@ -21,7 +21,7 @@ import numpy as np
 from vaultgram.errors import FormFindingError
 from vaultgram.formfinding.cholesky import Cholesky, ForceDensityMatrix
 from vaultgram.formfinding.formdiagram import FormDiagram
-from vaultgram.geometry.meshes import face_areas
+from vaultgram.geometry.meshes import corner_arrays, face_areas
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.polylines import polyline_length
 
@@ -117,7 +117,10 @@ def relax(form: FormDiagram, sag: float = 0.1, *, mode: str = "boundary", q_inte
     """:func:`relax_openings`, with the force densities of the relaxed diagram.
 
     In mode ``"all"`` a diagram without openings is relaxed too (every edge ``q_interior``: each free
-    vertex at the mean of its neighbours), and the result is in exact equilibrium with ``q > 0``.
+    vertex at the mean of its neighbours), and the result is in exact equilibrium with ``q > 0``. Where
+    equal densities fold the diagram (near reflex corners of the supported boundary, which a convex
+    combination does not respect), the interior densities are made unequal until it unfolds
+    (:func:`_unfolded`): still every ``q > 0``, still in exact equilibrium.
 
     Example
     -------
@@ -135,6 +138,8 @@ def relax(form: FormDiagram, sag: float = 0.1, *, mode: str = "boundary", q_inte
     arches = [_arch(form, k, moving) for k in np.flatnonzero(~form.loaded)]
     system = _ForceDensities(form, moving, eo, fo, q_interior)
     logq, xy = _sag_search(system, arches, sag, iterations)
+    if mode == "all":
+        logq, xy = _unfolded(system, _Folds(form), arches, sag, logq, xy)
     out = form.with_xy(xy)
     _check_not_collapsed(form, out)
     _check_not_folded(out)
@@ -192,7 +197,8 @@ def _is_run(vs: np.ndarray, anchors: np.ndarray) -> bool:
 
 class _ForceDensities:
     """The plan force-density system ``Cm^T Q Cm x_m = -Cm^T Q Cs x_s`` for the moving vertices, with
-    ``q_b = exp(logq[j])`` on the edges of opening ``j`` (an edge on two openings takes the larger).
+    ``q_b = exp(logq[j])`` on the edges of opening ``j`` (an edge on two openings takes the larger) and
+    ``base`` on the others (``q_interior`` unless :func:`_unfold` changed them).
     Every solve has the same pattern: its Cholesky factorisation's symbolic part is made once, on the
     first solve, and each further solve only refactorises the values."""
 
@@ -201,8 +207,11 @@ class _ForceDensities:
         slot = np.full(form.n_faces, -1)
         slot[openings] = np.arange(len(openings))
         self.eo, self.slot_of_edge = eo, slot[fo]
-        self.q_interior, self.m = float(q_interior), form.n_edges
+        self.base = np.full(form.n_edges, float(q_interior))
+        self.interior = np.ones(form.n_edges, dtype=bool)
+        self.interior[eo] = False
         self.mv, st = np.flatnonzero(moving), np.flatnonzero(~moving)
+        self.Cm = form.C[:, self.mv].tocsr()
         self.K = ForceDensityMatrix(form.C, self.mv)
         self.CmT, self.Cs = form.C[:, self.mv].T.tocsr(), form.C[:, st].tocsc()
         self.xy0 = np.asarray(form.xy)
@@ -211,7 +220,7 @@ class _ForceDensities:
 
     def densities(self, logq: np.ndarray) -> np.ndarray:
         """Force density per form edge for the opening force densities ``exp(logq)``."""
-        q = np.full(self.m, self.q_interior)
+        q = self.base.copy()
         np.maximum.at(q, self.eo, np.exp(logq[self.slot_of_edge]))
         return q
 
@@ -225,6 +234,14 @@ class _ForceDensities:
         xy = self.xy0.copy()
         xy[self.mv] = self._factor.solve(-(self.CmT @ (q[:, None] * (self.Cs @ self.xs))))
         return xy
+
+    def density_gradient(self, xy: np.ndarray, g: np.ndarray) -> np.ndarray:
+        """``dF/dq_e`` of a function ``F`` of the plan positions with gradient ``g`` (per vertex), at the
+        positions ``xy`` of the last :meth:`solve`, by the adjoint: differentiating
+        ``Cm^T Q (C x) = 0`` gives ``dx_m/dq_e = -K^{-1} Cm_e^T u_e`` (``u_e``: edge ``e``'s vector),
+        so ``dF/dq_e = -(Cm lam)_e . u_e`` with ``K lam = g_m``: one more solve for every edge."""
+        lam = self._factor.solve(g[self.mv])
+        return -np.einsum("ij,ij->i", self.Cm @ lam, self.Cm @ xy[self.mv] + self.Cs @ self.xs)
 
 
 #: Width of the bisection bracket on ``log q_b`` at which :func:`_bisect_sag` hands over to
@@ -301,6 +318,90 @@ def _sags(xy: np.ndarray, xy0: np.ndarray, arches: list[_Arch]) -> np.ndarray:
     """Largest displacement of each arch's vertices along their outward normals."""
     return np.array([np.max(np.einsum("ij,ij->i", xy[a.vertices] - xy0[a.vertices], a.normals))
                      if len(a.vertices) else 0.0 for a in arches])
+
+
+#: Unfolding (:func:`_unfold`): the penalty acts on faces thinner than ``_THIN`` of their meshed area
+#: and the descent stops once every face has half that; at most ``_UNFOLD_STEPS`` steps (on the
+#: multiple-lobes plan at 6,400 faces 15), each changing a density by at most a factor ``e``, and
+#: ``_UNFOLD_ROUNDS`` rounds of unfolding and re-met sags.
+_THIN = 0.1
+_UNFOLD_STEPS = 100
+_UNFOLD_ROUNDS = 3
+
+
+class _Folds:
+    """The loaded faces' signed areas relative to their meshed ones, ``r_f = a_f / a0_f`` (positive: the
+    form diagram checks that its faces are counter-clockwise), and the penalty
+    ``P = sum_f max(0, _THIN - r_f)^2`` on the thin and folded ones."""
+
+    def __init__(self, form: FormDiagram):
+        self.faces = form.loaded_faces
+        self.face, self.u, self.v, _ = corner_arrays(self.faces)
+        self.a0 = face_areas(form.xy, self.faces)
+        self.n = form.n_vertices
+
+    def ratios(self, xy: np.ndarray) -> np.ndarray:
+        return face_areas(xy, self.faces) / self.a0
+
+    def penalty(self, xy: np.ndarray) -> tuple[float, np.ndarray]:
+        """``P`` and its gradient in the plan positions, ``(n, 2)``: a face's area (the shoelace) has
+        ``dA/dx_u = y_v / 2`` and ``dA/dy_u = -x_v / 2`` over its halfedges ``u -> v``, the opposite at ``v``."""
+        h = np.maximum(0.0, _THIN - self.ratios(xy))
+        w = (-h / self.a0)[self.face]                     # half of dP/dA per corner
+        u, v, n = self.u, self.v, self.n
+        gx = np.bincount(u, w * xy[v, 1], n) - np.bincount(v, w * xy[u, 1], n)
+        gy = np.bincount(v, w * xy[u, 0], n) - np.bincount(u, w * xy[v, 0], n)
+        return float(h @ h), np.column_stack([gx, gy])
+
+
+def _unfolded(system: _ForceDensities, folds: _Folds, arches: list[_Arch], sag: float, logq: np.ndarray,
+              xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The relaxation of mode ``"all"`` without folded faces. Equal force densities place every free
+    vertex at a convex combination of its neighbours, which folds the diagram where the supported
+    boundary has reflex corners (Tutte's embedding needs a convex one): the edge lines along the
+    boundary pull straight across a notch and drag the first rows of faces over its corner. There the
+    interior densities are made unequal (:func:`_unfold`) and the openings' sags met again, for at most
+    :data:`_UNFOLD_ROUNDS` rounds; unchanged if nothing is folded. Returns ``log q_b`` and the positions."""
+    target = sag * np.array([a.span for a in arches])
+    for _ in range(_UNFOLD_ROUNDS):
+        if folds.ratios(xy).min() > 0:
+            break
+        xy = _unfold(system, folds, system.solve(logq), logq)
+        if arches:
+            logq, xy = _coupled_sag(system, arches, target, logq)
+    return logq, xy
+
+
+def _unfold(system: _ForceDensities, folds: _Folds, xy: np.ndarray, logq: np.ndarray) -> np.ndarray:
+    """Descent on the log densities of the interior edges (so every ``q`` stays positive, and the
+    positions stay in exact equilibrium with them) against :class:`_Folds`' penalty, gradient by the
+    adjoint (:meth:`_ForceDensities.density_gradient`), steps of at most ``eta`` in any log density,
+    halved until the penalty drops; it stops when every face keeps half of :data:`_THIN` of its area.
+    On the multiple-lobes plan the densities grow on the edges holding the first rows to the notches'
+    corners and drop on those along the boundary. ``xy``: the positions of the last solve; returns the
+    final ones (``system.base`` holds the densities)."""
+    inner = system.interior
+    penalty, g = folds.penalty(xy)
+    eta = 0.5
+    for _ in range(_UNFOLD_STEPS):
+        if folds.ratios(xy).min() >= 0.5 * _THIN:
+            break
+        grad = (system.base * system.density_gradient(xy, g))[inner]
+        if not np.any(grad):
+            break
+        s = np.log(system.base[inner])
+        while eta > 1e-6:
+            system.base[inner] = np.exp(s - eta * grad / np.abs(grad).max())
+            trial = system.solve(logq)
+            p_trial, g_trial = folds.penalty(trial)
+            if p_trial < penalty:
+                xy, penalty, g, eta = trial, p_trial, g_trial, min(1.5 * eta, 1.0)
+                break
+            eta *= 0.5
+        else:
+            system.base[inner] = np.exp(s)
+            return system.solve(logq)
+    return xy
 
 
 def _check_not_collapsed(form: FormDiagram, out: FormDiagram) -> None:
