@@ -100,3 +100,18 @@ def test_empty_meshes():
     assert boundary_loops([]) == []
     assert all(len(a) == 0 for a in corner_arrays([]))
     assert adjacency(3, []).nnz == 0
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.integers(0, 6), max_size=30), st.integers(0, 10 ** 6))
+def test_faces_from_flat_arrays_are_the_faces_cut_face_by_face(sizes, seed):
+    """Faces.from_flat makes each run of equal-sized faces in one pass; the tuples are the slices of
+    the flat vertex array, sizes 0 to 6 mixed in any order."""
+    from vaultgram.geometry.meshes import Faces
+
+    lens = np.array(sizes, dtype=np.int64)
+    vert = np.random.default_rng(seed).integers(0, 50, int(lens.sum()))
+    ends = np.cumsum(lens)
+    expected = tuple(tuple(vert[e - k:e].tolist()) for e, k in zip(ends, lens))
+    faces = Faces.from_flat(vert, lens)
+    assert faces == expected and all(type(v) is int for f in faces for v in f)
