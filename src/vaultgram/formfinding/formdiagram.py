@@ -35,7 +35,7 @@ import scipy.sparse as sp
 from vaultgram.errors import FormFindingError
 from vaultgram.formfinding.diagrams import Diagram, connectivity_matrix
 from vaultgram.formfinding.supports import outer_loop
-from vaultgram.geometry.arrays import distinct
+from vaultgram.geometry.arrays import distinct, lookup
 from vaultgram.geometry.meshes import Faces, boundary_halfedges, corner_arrays, face_areas, loops_of
 
 __all__ = ["FormDiagram", "form_diagram", "connectivity_matrix"]
@@ -431,12 +431,12 @@ def _edge_faces(edges: np.ndarray, faces, is_open: np.ndarray, n: int) -> np.nda
     order = np.argsort(codes)
     codes, owner = codes[order], af[order]
 
-    def lookup(wanted: np.ndarray) -> np.ndarray:
-        pos = np.minimum(np.searchsorted(codes, wanted), len(codes) - 1)
-        return np.where(codes[pos] == wanted, owner[pos], -1)
+    def face_of(wanted: np.ndarray) -> np.ndarray:
+        pos, found = lookup(codes, wanted)
+        return np.where(found, owner[pos], -1)
 
-    left = lookup(edges[:, 0] * n + edges[:, 1])
-    right = lookup(edges[:, 1] * n + edges[:, 0])
+    left = face_of(edges[:, 0] * n + edges[:, 1])
+    right = face_of(edges[:, 1] * n + edges[:, 0])
     return np.stack([left, right], axis=1)
 
 

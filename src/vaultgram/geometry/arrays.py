@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
-__all__ = ["TIE", "TIED", "distinct", "nearest", "row_dot", "run_starts", "steady", "unit_rows"]
+__all__ = ["TIE", "TIED", "distinct", "lookup", "nearest", "row_dot", "run_starts", "steady", "unit_rows"]
 
 #: Relative difference under which two computed values are a tie (round-off differs between
 #: machines by some 1e-15 relative; the stages' real differences are far above 1e-9).
@@ -35,6 +35,22 @@ def distinct(values) -> np.ndarray:
     """
     s = np.sort(np.asarray(values).ravel())
     return s[run_starts(s)]
+
+
+def lookup(keys: np.ndarray, wanted) -> tuple[np.ndarray, np.ndarray]:
+    """Where each of ``wanted`` is in the sorted 1-d ``keys``, and whether it is there at all (the
+    position is then meaningless): a sorted search, where ``np.isin`` is some 50 times slower on
+    10^6 keys (numpy 2.4).
+
+    >>> pos, found = lookup(np.array([2, 5, 9]), np.array([9, 4, 2, 12]))
+    >>> pos[found].tolist(), found.tolist()
+    ([2, 0], [True, False, True, False])
+    """
+    wanted = np.asarray(wanted)
+    if len(keys) == 0:
+        return np.zeros(wanted.shape, dtype=np.int64), np.zeros(wanted.shape, dtype=bool)
+    pos = np.minimum(np.searchsorted(keys, wanted), len(keys) - 1)
+    return pos, keys[pos] == wanted
 
 
 def run_starts(keys: np.ndarray) -> np.ndarray:

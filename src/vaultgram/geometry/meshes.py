@@ -16,6 +16,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from vaultgram.errors import MeshError, NonManifoldVertexError
+from vaultgram.geometry.arrays import lookup
 
 __all__ = [
     "MeshError",
@@ -224,9 +225,7 @@ def has_twin(u: np.ndarray, v: np.ndarray, n: int | None = None) -> np.ndarray:
         return np.zeros(0, dtype=bool)
     if n is None:
         n = int(max(u.max(), v.max())) + 1
-    codes = np.sort(u * n + v)  # a sorted search: np.isin is ~50x slower here (numpy 2.4)
-    twin = v * n + u
-    return codes[np.minimum(np.searchsorted(codes, twin), len(codes) - 1)] == twin
+    return lookup(np.sort(u * n + v), v * n + u)[1]
 
 
 def boundary_loops(faces: Sequence[Sequence[int]]) -> list[list[int]]:

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from vaultgram.geometry.arrays import lookup
 from vaultgram.geometry.halfedges import MeshEdges, mesh_edges
 from vaultgram.geometry.meshes import Faces, corner_arrays, with_midpoints
 from vaultgram.geometry.surfaces import surface_areas
@@ -96,10 +97,7 @@ def _touched(faces, index: dict, n: int) -> np.ndarray:
     """Per face, whether one of its sides is among the cut sides ``index`` (pairs ``(lo, hi)``)."""
     fid, u, v, _ = corner_arrays(faces)
     cut = np.sort(np.array([a * n + b for a, b in index], dtype=np.int64))
-    if not len(cut):
-        return np.zeros(len(faces), dtype=bool)
-    sides = np.minimum(u, v) * n + np.maximum(u, v)
-    hit = cut[np.minimum(np.searchsorted(cut, sides), len(cut) - 1)] == sides
+    hit = lookup(cut, np.minimum(u, v) * n + np.maximum(u, v))[1]
     return np.bincount(fid[hit], minlength=len(faces)) > 0
 
 

@@ -15,7 +15,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-from vaultgram.geometry.arrays import TIE, distinct
+from vaultgram.geometry.arrays import TIE, distinct, lookup
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.geometry.meshes import Faces, corner_arrays
 from vaultgram.geometry.surfaces import loop_corner_angles, loop_planes
@@ -114,8 +114,8 @@ def member_corners(me: MeshEdges, owner: np.ndarray, face: np.ndarray
     n_faces = len(me.face_start) - 1
     keys = owner * n_faces + face  # sorted, as the members are
     wanted = owner[member] * n_faces + me.corner_face[np.maximum(twin, 0)]
-    found = np.minimum(np.searchsorted(keys, wanted), len(keys) - 1)
-    return member, corner, np.where((twin >= 0) & (keys[found] == wanted), found, -1)
+    pos, found = lookup(keys, wanted)
+    return member, corner, np.where((twin >= 0) & found, pos, -1)
 
 
 def _ranks_from_start(successor: np.ndarray, owner: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
