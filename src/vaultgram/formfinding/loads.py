@@ -61,19 +61,19 @@ class TributaryAreas:
             return np.zeros(self.n)
         xyz = np.asarray(xyz, dtype=float)
         columns = np.ascontiguousarray(xyz.T)      # one gather per coordinate: 2x faster at 10^6 faces
-        a, b = zip(*(self._sides(columns[k]) for k in range(3)))
+        a, b = zip(*(self.corner_sides(columns[k]) for k in range(3)))
         return self.spread @ _cross_norms(a, b)
 
     def over_plan(self, xy: np.ndarray) -> "HeightAreas":
         """The areas as a function of the heights alone, over the plan positions ``xy`` (n, 2)."""
         xy = np.asarray(xy, dtype=float)
-        (ax, bx), (ay, by) = self._sides(np.ascontiguousarray(xy[:, 0])), self._sides(np.ascontiguousarray(xy[:, 1]))
+        (ax, bx), (ay, by) = (self.corner_sides(np.ascontiguousarray(xy[:, k])) for k in range(2))
         plan = ax * by
         plan -= ay * bx
         plan *= plan
         return HeightAreas(self, ax, ay, bx, by, plan)
 
-    def _sides(self, coordinate: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def corner_sides(self, coordinate: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """One coordinate of each corner triangle's two sides from the face centroid: to the corner's
         vertex and to the next one."""
         c = (self.centroid @ coordinate)[self.face]
@@ -97,7 +97,7 @@ class HeightAreas:
     def __call__(self, z: np.ndarray) -> np.ndarray:
         if len(self.areas.vert) == 0:
             return np.zeros(self.areas.n)
-        az, bz = self.areas._sides(np.ascontiguousarray(z, dtype=float))
+        az, bz = self.areas.corner_sides(np.ascontiguousarray(z, dtype=float))
         s = self.ay * bz
         s -= az * self.by
         s *= s
