@@ -213,7 +213,7 @@ class _ForceDensities:
         self.mv, st = np.flatnonzero(moving), np.flatnonzero(~moving)
         self.Cm = form.C[:, self.mv].tocsr()
         self.K = ForceDensityMatrix(form.C, self.mv)
-        self.CmT, self.Cs = form.C[:, self.mv].T.tocsr(), form.C[:, st].tocsc()
+        self.CmT, self.Cs = self.Cm.T.tocsr(), form.C[:, st].tocsc()
         self.xy0 = np.asarray(form.xy)
         self.xs = self.xy0[st]
         self._factor: Cholesky | None = None
