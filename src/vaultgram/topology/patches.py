@@ -9,6 +9,7 @@ sides; any other face is an error naming where it is.
 
 from __future__ import annotations
 
+from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
@@ -113,11 +114,67 @@ def plan_faces(graph: HostGraph, edge_types) -> list[tuple[list, list, np.ndarra
     polylines and its outline (counter-clockwise, not closed)."""
     out = []
     for face in faces(graph, edge_types):
-        polys = [half_edge_polyline(graph, e, u) for e, u in face]
-        outline = np.vstack([p[:-1] for p in polys])
-        if signed_area(outline) > 0 and not _is_hole(graph, face):  # not the unbounded face, nor a hole
-            out.append((face, polys, outline))
+        found = face_outline(graph, face)
+        if found.area > 0 and not _is_hole(graph, face):  # not the unbounded face, nor a hole
+            out.append((face, list(found.polylines), found.outline))
     return out
+
+
+@dataclass(frozen=True)
+class FaceOutline:
+    """A face's half-edge polylines, its outline (not closed) and the outline's signed area, open and
+    closed (its first point repeated at the end, as :func:`vaultgram.topology.strips.patch_sides`
+    tests it). The arrays are read-only: they are shared by every state of the graph with that face."""
+
+    polylines: tuple
+    outline: np.ndarray
+    area: float
+    closed_area: float
+
+
+#: The face outlines kept (the most recently asked) by :func:`face_outline`.
+OUTLINES = 4096
+_OUTLINES: OrderedDict = OrderedDict()
+
+
+def face_outline(graph: HostGraph, face) -> FaceOutline:
+    """The outline of a face of the plan (its half-edges), kept by what it is made of: each half-edge's
+    polyline attribute and direction, or its ends' positions (:func:`_half_edge_key`). Exploration
+    (issue 13) asks for the same faces in state after state, each rewrite changing only a few; a
+    key by content is right in every state (ids are reused across the branches of a search, the
+    geometry they carry is not)."""
+    key = tuple(_half_edge_key(graph, e, u) for e, u in face)
+    found = _OUTLINES.get(key)
+    if found is not None:
+        _OUTLINES.move_to_end(key)
+        return found
+    polys = tuple(_key_polyline(k) for k in key)
+    outline = np.vstack([p[:-1] for p in polys])
+    for array in (*polys, outline):
+        array.flags.writeable = False
+    found = _OUTLINES[key] = FaceOutline(polys, outline, float(signed_area(outline)),
+                                         float(signed_area(np.vstack([outline, outline[:1]]))))
+    if len(_OUTLINES) > OUTLINES:
+        _OUTLINES.popitem(last=False)
+    return found
+
+
+def _half_edge_key(graph: HostGraph, edge: int, start: int) -> tuple:
+    """What :func:`half_edge_polyline` makes the half-edge's points from: the edge's polyline and
+    whether it runs from ``start``, or the positions of ``start`` and the other end."""
+    poly = graph.edge_attrs(edge).get("polyline") or ()
+    if len(poly) < 2:
+        return (graph.get(start, "pos"), graph.get(graph.other(edge, start), "pos"))
+    return (poly, graph.ends(edge)[0] == start)
+
+
+def _key_polyline(key: tuple) -> np.ndarray:
+    """The points of a half-edge from its :func:`_half_edge_key` (as :func:`half_edge_polyline`)."""
+    points, forward = key
+    if isinstance(forward, bool):
+        pts = np.asarray(points, dtype=float)
+        return pts if forward else pts[::-1]
+    return np.asarray(key, dtype=float)
 
 
 def hole_rings(graph: HostGraph) -> list[np.ndarray]:
@@ -134,12 +191,17 @@ def hole_rings(graph: HostGraph) -> list[np.ndarray]:
 def enclosed_holes(outlines, holes) -> list[tuple[int, int]]:
     """The pairs (outline k, hole h) where outline ``k`` has hole ``h`` inside it: a face of the plan
     that encloses a hole is no disk, whatever its number of sides (§3.1: every patch is a disk). A
-    hole is inside when a point inside the hole is (each hole is tested at one such point)."""
+    hole is inside when a point inside the hole is (each hole is tested at one such point; all the
+    outlines at once, as one array of polygons)."""
     if not holes:
         return []
     inside = np.array([_point_inside(ring) for ring in holes])
-    return [(k, int(h)) for k, outline in enumerate(outlines)
-            for h in np.flatnonzero(shapely.contains_xy(shapely.Polygon(outline), inside[:, 0], inside[:, 1]))]
+    if not len(outlines):
+        return []
+    sizes = [len(outline) for outline in outlines]
+    rings = shapely.linearrings(np.vstack(outlines), indices=np.repeat(np.arange(len(sizes)), sizes))
+    within = shapely.contains_xy(shapely.polygons(rings)[:, None], inside[None, :, 0], inside[None, :, 1])
+    return [(int(k), int(h)) for k, h in np.argwhere(within)]
 
 
 def check_no_enclosed_holes(graph: HostGraph, patches) -> None:
@@ -167,17 +229,38 @@ def _point_inside(ring: np.ndarray) -> np.ndarray:
     return np.array([point.x, point.y])
 
 
+#: The faces cut at their corners kept (the most recently asked) by :func:`_sides`.
+SIDES = 4096
+_SIDES: OrderedDict = OrderedDict()
+
+
 def _sides(graph: HostGraph, face: list, polys: list, outline: np.ndarray, types) -> tuple[tuple, tuple, tuple]:
     """A face of the plan cut at its corners: the corners, the side polylines between them and the
-    half-edges along each side, starting at the first corner of the face's walk."""
-    start = next((i for i, (_, u) in enumerate(face) if _is_corner(graph, u, types)), None)
+    half-edges along each side, starting at the first corner of the face's walk. Kept by the face's
+    half-edges, which of their nodes are corners and its outline (one of :func:`face_outline`'s, kept
+    alive with the entry, so that its ``id`` names it): the same face in another state of the graph
+    is cut the same way (issue 13)."""
+    corner = tuple(_is_corner(graph, u, types) for _, u in face)
+    key = (tuple(face), corner, id(outline))
+    found = _SIDES.get(key)
+    if found is not None and found[0] is outline:
+        _SIDES.move_to_end(key)
+        return found[1]
+    found = _SIDES[key] = (outline, _cut_at_corners(face, polys, corner, outline))
+    if len(_SIDES) > SIDES:
+        _SIDES.popitem(last=False)
+    return found[1]
+
+
+def _cut_at_corners(face: list, polys: list, corner: tuple, outline: np.ndarray) -> tuple[tuple, tuple, tuple]:
+    """:func:`_sides` for a face whose nodes ``corner`` says are corners (or not)."""
+    start = next((i for i, c in enumerate(corner) if c), None)
     if start is None:
         raise DomainError(f"a region around {_where(outline)} has no corner at all; it cannot be a patch")
-    face = face[start:] + face[:start]
-    polys = polys[start:] + polys[:start]
+    face, polys, corner = face[start:] + face[:start], polys[start:] + polys[:start], corner[start:] + corner[:start]
     corners, sides, side_edges = [], [], []
-    for (e, u), poly in zip(face, polys):
-        if _is_corner(graph, u, types):
+    for (e, u), poly, is_corner in zip(face, polys, corner):
+        if is_corner:
             corners.append(u)
             sides.append([poly])
             side_edges.append([(e, u)])

@@ -24,9 +24,9 @@ import numpy as np
 import shapely
 
 from vaultgram.engine.embedding import face_walk
-from vaultgram.geometry.polygons import interior_angle, signed_area
+from vaultgram.geometry.polygons import interior_angle
 from vaultgram.geometry.polylines import arc_lengths, point_at_length
-from vaultgram.topology.patches import half_edge_polyline
+from vaultgram.topology.patches import face_outline, half_edge_polyline
 from vaultgram.topology.statecache import per_state
 from vaultgram.topology.types import (
     BOUNDARY,
@@ -96,9 +96,10 @@ def _walk_sides(graph, patch: int) -> PatchSides | None:
         nodes = [u for _, u in face]
         if not set(corners) <= set(nodes):
             continue
-        outline = np.vstack([half_edge_polyline(graph, e, u)[:-1] for e, u in face])
-        if signed_area(np.vstack([outline, outline[:1]])) <= 0:
+        found = face_outline(graph, face)
+        if found.closed_area <= 0:
             continue
+        outline = found.outline
         starts = [nodes.index(c) for c in corners] + [len(face)]
         if starts != sorted(starts):
             return None
