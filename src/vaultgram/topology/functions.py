@@ -21,7 +21,7 @@ from vaultgram.errors import RuleError
 from vaultgram.geometry.polygons import interior_angle, regular_valence, signed_area
 from vaultgram.geometry.polylines import arc_lengths, point_at_length
 from vaultgram.topology import corners
-from vaultgram.topology.patches import enclosed_holes, half_edge_polyline, hole_rings, plan_faces
+from vaultgram.topology.patches import enclosed_holes, face_outline, half_edge_polyline, hole_rings, plan_faces
 from vaultgram.topology.statecache import per_state
 from vaultgram.topology.strips import register_strip_helpers
 from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE, DUAL, PATCH_CORNER, PLAN_EDGES
@@ -179,11 +179,9 @@ def _walk_patch_outline(graph, patch: int, x: int) -> tuple[list, np.ndarray] | 
         face = face_walk(graph, PLAN_EDGES, (first, x))
         if not corners <= {u for _, u in face}:
             continue
-        pieces = [half_edge_polyline(graph, e, u) for e, u in face]
-        outline = np.vstack([poly[:-1] for poly in pieces] + [pieces[0][:1]])
-        outline.setflags(write=False)
-        if signed_area(outline) > 0:
-            return face, outline
+        found = face_outline(graph, face)  # kept by content across states (issue 13)
+        if found.closed_area > 0:
+            return face, found.closed
     return None
 
 

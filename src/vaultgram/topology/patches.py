@@ -122,12 +122,13 @@ def plan_faces(graph: HostGraph, edge_types) -> list[tuple[list, list, np.ndarra
 
 @dataclass(frozen=True)
 class FaceOutline:
-    """A face's half-edge polylines, its outline (not closed) and the outline's signed area, open and
-    closed (its first point repeated at the end, as :func:`vaultgram.topology.strips.patch_sides`
-    tests it). The arrays are read-only: they are shared by every state of the graph with that face."""
+    """A face's half-edge polylines, its outline (not closed), the outline closed (its first point
+    repeated at the end) and their signed areas (the rule helpers test the closed one). The arrays
+    are read-only: they are shared by every state of the graph with that face."""
 
     polylines: tuple
     outline: np.ndarray
+    closed: np.ndarray
     area: float
     closed_area: float
 
@@ -150,10 +151,11 @@ def face_outline(graph: HostGraph, face) -> FaceOutline:
         return found
     polys = tuple(_key_polyline(k) for k in key)
     outline = np.vstack([p[:-1] for p in polys])
-    for array in (*polys, outline):
+    closed = np.vstack([outline, outline[:1]])
+    for array in (*polys, outline, closed):
         array.flags.writeable = False
-    found = _OUTLINES[key] = FaceOutline(polys, outline, float(signed_area(outline)),
-                                         float(signed_area(np.vstack([outline, outline[:1]]))))
+    found = _OUTLINES[key] = FaceOutline(polys, outline, closed, float(signed_area(outline)),
+                                         float(signed_area(closed)))
     if len(_OUTLINES) > OUTLINES:
         _OUTLINES.popitem(last=False)
     return found
@@ -267,7 +269,10 @@ def _cut_at_corners(face: list, polys: list, corner: tuple, outline: np.ndarray)
         else:
             sides[-1].append(poly[1:])
             side_edges[-1].append((e, u))
-    return tuple(corners), tuple(np.vstack(s) for s in sides), tuple(tuple(s) for s in side_edges)
+    polylines = tuple(np.vstack(s) for s in sides)
+    for side in polylines:
+        side.flags.writeable = False  # shared by every state with this face (see _sides)
+    return tuple(corners), polylines, tuple(tuple(s) for s in side_edges)
 
 
 def _is_corner(graph: HostGraph, n: int, types) -> bool:
