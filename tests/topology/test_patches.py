@@ -7,7 +7,11 @@ from collections import Counter
 import numpy as np
 
 from vaultgram.domain import load_domain
+from vaultgram.engine.embedding import faces
+from vaultgram.geometry.polygons import signed_area
 from vaultgram.pipeline import decompose
+from vaultgram.topology.patches import face_outline, find_patches, half_edge_polyline
+from vaultgram.topology.types import PLAN_EDGES
 
 from paths import EXAMPLES
 
@@ -30,3 +34,38 @@ def test_shared_sides_are_traversed_once_each_way():
     for e in interior_edges:
         u, v = dec.graph.ends(e)
         assert uses[(e, u)] == uses[(e, v)] == 1
+
+
+def test_face_outline_is_the_faces_polylines_kept_by_content():
+    dec = decompose(load_domain(EXAMPLES / "quad_with_hole.json"), 0.05)
+    g = dec.graph
+    all_faces = faces(g, PLAN_EDGES)
+    for face in all_faces:
+        found = face_outline(g, face)
+        polys = [half_edge_polyline(g, e, u) for e, u in face]
+        outline = np.vstack([p[:-1] for p in polys])
+        assert all(np.array_equal(a, b) for a, b in zip(found.polylines, polys))
+        assert np.array_equal(found.outline, outline) and np.array_equal(found.closed, np.vstack([outline, outline[:1]]))
+        assert found.area == signed_area(outline) and found.closed_area == signed_area(found.closed)
+        assert not found.outline.flags.writeable and face_outline(g, face) is found  # shared, read-only
+    assert sum(face_outline(g, f).area > 0 for f in all_faces) == len(dec.patches) + 1  # + each hole's inside
+    # moved geometry is a new outline: a node of a face moved by one unit moves the outline's point
+    face = next(f for f in all_faces if face_outline(g, f).area > 0)
+    before, (e, u) = face_outline(g, face), next((e, u) for e, u in face if not g.edge_attrs(e).get("polyline"))
+    mark, (x, y) = g.mark(), g.get(u, "pos")
+    g.set_node_attr(u, "pos", (x + 1.0, y))
+    after = face_outline(g, face)
+    assert after is not before and np.array_equal(after.outline[face.index((e, u))], [x + 1.0, y])
+    g.rollback(mark)
+    assert np.array_equal(face_outline(g, face).outline, before.outline)
+
+
+def test_find_patches_is_the_same_read_again():
+    # the faces cut at their corners are kept across states (issue 13): reading the patches again
+    # gives equal, read-only patches
+    dec = decompose(load_domain(EXAMPLES / "fig7_curves.json"), 0.05)
+    again = find_patches(dec.graph, dec.disc, PLAN_EDGES)
+    assert [p.corners for p in again] == [p.corners for p in dec.patches]
+    assert [p.side_edges for p in again] == [p.side_edges for p in dec.patches]
+    for p, q in zip(again, dec.patches):
+        assert all(np.array_equal(a, b) and not a.flags.writeable for a, b in zip(p.sides, q.sides))

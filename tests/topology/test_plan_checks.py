@@ -48,6 +48,17 @@ def test_enclosed_holes_finds_a_hole_inside_a_face():
     assert enclosed_holes([square], []) == []
 
 
+def test_enclosed_holes_pairs_every_outline_with_its_holes_in_order():
+    # all outlines are tested at once (one array of polygons): the pairs must come out per outline,
+    # then per hole, for outlines of different sizes
+    square = np.array([[0, 0], [4, 0], [4, 4], [0, 4]], float)
+    pentagon = np.array([[10, 0], [14, 0], [15, 2], [14, 4], [10, 4]], float)
+    holes = [np.array([[11, 1], [11, 2], [12, 2], [12, 1]], float), np.array([[1, 1], [1, 2], [2, 2], [2, 1]], float),
+             np.array([[2.5, 2.5], [2.5, 3], [3, 3], [3, 2.5]], float)]
+    assert enclosed_holes([square, pentagon], holes) == [(0, 1), (0, 2), (1, 0)]
+    assert enclosed_holes([], holes) == []
+
+
 def test_curve_crossings_counts_a_branch_across_a_curve():
     dec = decompose(load_domain(EXAMPLES / "fig7_curves.json"), 0.03)
     g = dec.graph
