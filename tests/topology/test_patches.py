@@ -45,7 +45,8 @@ def test_face_outline_is_the_faces_polylines_kept_by_content():
         polys = [half_edge_polyline(g, e, u) for e, u in face]
         outline = np.vstack([p[:-1] for p in polys])
         assert all(np.array_equal(a, b) for a, b in zip(found.polylines, polys))
-        assert np.array_equal(found.outline, outline) and np.array_equal(found.closed, np.vstack([outline, outline[:1]]))
+        assert np.array_equal(found.outline, outline)
+        assert np.array_equal(found.closed, np.vstack([outline, outline[:1]]))
         assert found.area == signed_area(outline) and found.closed_area == signed_area(found.closed)
         assert not found.outline.flags.writeable and face_outline(g, face) is found  # shared, read-only
     assert sum(face_outline(g, f).area > 0 for f in all_faces) == len(dec.patches) + 1  # + each hole's inside
