@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import weakref
+from collections import OrderedDict
 
 import numpy as np
 import shapely
@@ -21,8 +22,16 @@ from vaultgram.errors import RuleError
 from vaultgram.geometry.polygons import interior_angle, regular_valence, signed_area
 from vaultgram.geometry.polylines import arc_lengths, point_at_length
 from vaultgram.topology import corners
-from vaultgram.topology.patches import enclosed_holes, face_outline, half_edge_polyline, hole_rings, plan_faces
-from vaultgram.topology.statecache import per_state
+from vaultgram.topology.patches import (
+    enclosed_holes,
+    face_outline,
+    half_edge_key,
+    half_edge_polyline,
+    hole_rings,
+    key_polyline,
+    plan_faces,
+)
+from vaultgram.topology.statecache import by_content, per_state
 from vaultgram.topology.strips import register_strip_helpers
 from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE, DUAL, PATCH_CORNER, PLAN_EDGES
 
@@ -276,9 +285,23 @@ def _plan_segments(graph) -> tuple[np.ndarray, np.ndarray]:
     return per_state(_SEGMENTS, graph, _all_plan_segments)
 
 
+#: The plan segments kept by :func:`_all_plan_segments` (the most recently asked plans).
+SEGMENT_PLANS = 256
+_SEGMENT_PLANS: OrderedDict = OrderedDict()
+
+
 def _all_plan_segments(graph) -> tuple[np.ndarray, np.ndarray]:
-    pieces = [half_edge_polyline(graph, e, graph.ends(e)[0]) for e in graph.of_types(PLAN_EDGES)]
-    return np.concatenate([poly[:-1] for poly in pieces]), np.concatenate([poly[1:] for poly in pieces])
+    """Kept by what the plan edges are made of (:func:`~.patches.half_edge_key`): a rewrite that
+    leaves the plan's geometry as it was (a Patch node split, an edge retyped) finds it again."""
+    key = tuple(half_edge_key(graph, e, graph.ends(e)[0]) for e in graph.of_types(PLAN_EDGES))
+    return by_content(_SEGMENT_PLANS, key, lambda: _segments_of(key), SEGMENT_PLANS)
+
+
+def _segments_of(key: tuple) -> tuple[np.ndarray, np.ndarray]:
+    pieces = [key_polyline(k) for k in key]
+    start, end = np.concatenate([poly[:-1] for poly in pieces]), np.concatenate([poly[1:] for poly in pieces])
+    start.flags.writeable = end.flags.writeable = False
+    return start, end
 
 
 def _clear(path: np.ndarray, start: np.ndarray, end: np.ndarray) -> bool:

@@ -22,6 +22,7 @@ from vaultgram.geometry.frames import NO_ORIGIN, to_plan
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.text import fmt_point
 from vaultgram.topology.discretise import Discretisation
+from vaultgram.topology.statecache import by_content
 from vaultgram.topology.types import BOUNDARY, BOUNDARY_VERTEX, CURVE_EXTREMITY, FEATURE_POINT, SKELETON_VERTEX
 
 
@@ -140,28 +141,24 @@ _OUTLINES: OrderedDict = OrderedDict()
 
 def face_outline(graph: HostGraph, face) -> FaceOutline:
     """The outline of a face of the plan (its half-edges), kept by what it is made of: each half-edge's
-    polyline attribute and direction, or its ends' positions (:func:`_half_edge_key`). Exploration
+    polyline attribute and direction, or its ends' positions (:func:`half_edge_key`). Exploration
     (issue 13) asks for the same faces in state after state, each rewrite changing only a few; a
     key by content is right in every state (ids are reused across the branches of a search, the
     geometry they carry is not)."""
-    key = tuple(_half_edge_key(graph, e, u) for e, u in face)
-    found = _OUTLINES.get(key)
-    if found is not None:
-        _OUTLINES.move_to_end(key)
-        return found
-    polys = tuple(_key_polyline(k) for k in key)
+    key = tuple(half_edge_key(graph, e, u) for e, u in face)
+    return by_content(_OUTLINES, key, lambda: _outline_of(key), OUTLINES)
+
+
+def _outline_of(key: tuple) -> FaceOutline:
+    polys = tuple(key_polyline(k) for k in key)
     outline = np.vstack([p[:-1] for p in polys])
     closed = np.vstack([outline, outline[:1]])
     for array in (*polys, outline, closed):
         array.flags.writeable = False
-    found = _OUTLINES[key] = FaceOutline(polys, outline, closed, float(signed_area(outline)),
-                                         float(signed_area(closed)))
-    if len(_OUTLINES) > OUTLINES:
-        _OUTLINES.popitem(last=False)
-    return found
+    return FaceOutline(polys, outline, closed, float(signed_area(outline)), float(signed_area(closed)))
 
 
-def _half_edge_key(graph: HostGraph, edge: int, start: int) -> tuple:
+def half_edge_key(graph: HostGraph, edge: int, start: int) -> tuple:
     """What :func:`half_edge_polyline` makes the half-edge's points from: the edge's polyline and
     whether it runs from ``start``, or the positions of ``start`` and the other end."""
     poly = graph.edge_attrs(edge).get("polyline") or ()
@@ -170,8 +167,8 @@ def _half_edge_key(graph: HostGraph, edge: int, start: int) -> tuple:
     return (poly, graph.ends(edge)[0] == start)
 
 
-def _key_polyline(key: tuple) -> np.ndarray:
-    """The points of a half-edge from its :func:`_half_edge_key` (as :func:`half_edge_polyline`)."""
+def key_polyline(key: tuple) -> np.ndarray:
+    """The points of a half-edge from its :func:`half_edge_key` (as :func:`half_edge_polyline`)."""
     points, forward = key
     if isinstance(forward, bool):
         pts = np.asarray(points, dtype=float)
@@ -243,15 +240,8 @@ def _sides(graph: HostGraph, face: list, polys: list, outline: np.ndarray, types
     alive with the entry, so that its ``id`` names it): the same face in another state of the graph
     is cut the same way (issue 13)."""
     corner = tuple(_is_corner(graph, u, types) for _, u in face)
-    key = (tuple(face), corner, id(outline))
-    found = _SIDES.get(key)
-    if found is not None and found[0] is outline:
-        _SIDES.move_to_end(key)
-        return found[1]
-    found = _SIDES[key] = (outline, _cut_at_corners(face, polys, corner, outline))
-    if len(_SIDES) > SIDES:
-        _SIDES.popitem(last=False)
-    return found[1]
+    return by_content(_SIDES, (tuple(face), corner, id(outline)),
+                      lambda: (outline, _cut_at_corners(face, polys, corner, outline)), SIDES)[1]
 
 
 def _cut_at_corners(face: list, polys: list, corner: tuple, outline: np.ndarray) -> tuple[tuple, tuple, tuple]:

@@ -25,7 +25,7 @@ from __future__ import annotations
 import weakref
 from collections import OrderedDict
 
-__all__ = ["per_state", "STATES"]
+__all__ = ["per_state", "STATES", "by_content"]
 
 #: The states of one graph whose results are kept (the most recently asked).
 STATES = 64
@@ -44,4 +44,23 @@ def per_state(cache: weakref.WeakKeyDictionary, graph, make):
     value = states[key] = make(graph)
     if len(states) > STATES:
         states.popitem(last=False)
+    return value
+
+
+def by_content(cache: OrderedDict, key, make, size: int):
+    """``make()``, kept in ``cache`` under ``key`` (what the result is made of, hashable) for the last
+    ``size`` keys asked. Where a result depends on a few nodes' and edges' values only, keying it by
+    those values finds it again in every state of the graph that has them (a face that a rewrite
+    elsewhere left alone), where :func:`per_state` finds it only in the same state.
+
+    >>> cache, calls = OrderedDict(), []
+    >>> [by_content(cache, k, lambda: calls.append(k) or k * 2, 2) for k in (1, 2, 1, 3, 2)], calls
+    ([2, 4, 2, 6, 4], [1, 2, 3, 2])
+    """
+    if key in cache:
+        cache.move_to_end(key)
+        return cache[key]
+    value = cache[key] = make()
+    if len(cache) > size:
+        cache.popitem(last=False)
     return value
