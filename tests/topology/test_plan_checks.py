@@ -13,6 +13,7 @@ from vaultgram.pipeline import decompose
 from vaultgram.topology import functions as f
 from vaultgram.topology.patches import enclosed_holes
 from vaultgram.topology.rulebook import default_rules_dir, load_vault_rulebook
+from vaultgram.topology.types import PLAN_EDGES
 
 from paths import EXAMPLES
 
@@ -191,3 +192,23 @@ def test_the_heptagon_with_a_hole_and_a_curve_decomposes():
     round three patches (V - E + F 2 off). The engine now keeps the keys it sorts by up to date."""
     dec = decompose(domain_from_dict(HEPTAGON_WITH_HOLE_AND_CURVE), 0.03, check_invariants=True)
     assert {p.n_sides for p in dec.patches} <= {3, 4} and len(dec.patches) == 28
+
+
+def test_plan_segments_are_every_plan_edge_piece_and_kept_by_geometry():
+    dec = decompose(load_domain(EXAMPLES / "fig7_curves.json"), 0.05)
+    g = dec.graph
+    start, end = f._all_plan_segments(g)
+    pieces = [f.half_edge_polyline(g, e, g.ends(e)[0]) for e in g.of_types(PLAN_EDGES)]
+    assert len(start) == sum(len(p) - 1 for p in pieces)
+    assert np.array_equal(start, np.concatenate([p[:-1] for p in pieces]))
+    assert np.array_equal(end, np.concatenate([p[1:] for p in pieces]))
+    assert not start.flags.writeable
+    patch = next(n for n in g.nodes() if g.node_type(n) == "Patch")
+    mark = g.mark()
+    g.set_node_attr(patch, "sides", 4)  # another state, the same plan geometry: the same segments
+    assert f._all_plan_segments(g)[0] is start
+    node = g.ends(next(e for e in g.of_types(PLAN_EDGES) if not g.edge_attrs(e).get("polyline")))[0]
+    g.set_node_attr(node, "pos", (1e3, 1e3))  # moved: new segments, one of them from the new point
+    moved = f._all_plan_segments(g)[0]
+    assert moved is not start and any(np.array_equal(p, [1e3, 1e3]) for p in moved)
+    g.rollback(mark)
