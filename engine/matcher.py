@@ -75,11 +75,20 @@ class Matches(Sequence):
         return Match(self.rule, self.vars, tuple(int(c[k]) for c in self._columns))
 
     def __iter__(self) -> Iterator[Match]:
+        rule, vars = self.rule, self.vars
+        return (Match(rule, vars, key) for key in self.keys())
+
+    def keys(self) -> Iterator[tuple]:
+        """The key of each match, in order (the rows of the table, as Python ints)."""
         for lo in range(0, self._rows, self.BATCH):
             hi = min(lo + self.BATCH, self._rows)
             columns = [c[lo:hi].tolist() for c in self._columns]
-            for key in zip(*columns) if columns else [()] * (hi - lo):
-                yield Match(self.rule, self.vars, key)
+            yield from zip(*columns) if columns else [()] * (hi - lo)
+
+    def bindings(self) -> Iterator[dict[str, int]]:
+        """The binding of each match, in order: a new dict each, without making the Match."""
+        vars = self.vars
+        return (dict(zip(vars, key)) for key in self.keys())
 
     def __eq__(self, other) -> bool:
         if isinstance(other, (Matches, list, tuple)):
