@@ -53,9 +53,10 @@ class Footprint:
         return out
 
 
-@dataclass
+@dataclass(slots=True)
 class Application:
-    """The record of one rule application (the unit of traces and undo)."""
+    """The record of one rule application (the unit of traces and undo; slots: an ``all`` step
+    makes one per match, issue 18)."""
 
     rule: str
     params: dict
