@@ -789,7 +789,7 @@ class HostGraph:
                 inc[type_name] = {e}
             else:
                 bucket.add(e)
-            keys, key = self._rot_keys[n], self._rotation_key(e, n)
+            keys, key = self._rot_keys[n], (0.0, e) if self.angle is None else self._rotation_key(e, n)
             if positions is not None:
                 i = positions[k]
             elif not keys or keys[-1] <= key:  # after every edge there (a new edge, without an angle)
