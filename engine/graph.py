@@ -782,6 +782,7 @@ class HostGraph:
             self._edge_codes, self._edge_ends = _fit(self._edge_codes, e), _fit(self._edge_ends, e)
         self._edge_codes[e] = self.type_code[type_name]
         self._edge_ends[e, 0], self._edge_ends[e, 1] = u, v
+        plain = (0.0, e) if self.angle is None else None  # both ends' rotation key: one tuple for the collector
         for k, n in enumerate((u, v)):
             inc = self._inc[n]
             bucket = inc.get(type_name)
@@ -789,7 +790,7 @@ class HostGraph:
                 inc[type_name] = {e}
             else:
                 bucket.add(e)
-            keys, key = self._rot_keys[n], (0.0, e) if self.angle is None else self._rotation_key(e, n)
+            keys, key = self._rot_keys[n], plain or self._rotation_key(e, n)
             if positions is not None:
                 i = positions[k]
             elif not keys or keys[-1] <= key:  # after every edge there (a new edge, without an angle)
