@@ -53,10 +53,9 @@ class Footprint:
         return out
 
 
-@dataclass(slots=True)
+@dataclass
 class Application:
-    """The record of one rule application (the unit of traces and undo; slots: an ``all`` step
-    makes one per match, issue 18)."""
+    """The record of one rule application (the unit of traces and undo)."""
 
     rule: str
     params: dict
