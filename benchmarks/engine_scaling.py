@@ -12,6 +12,10 @@ edges of type E) of about 10^3, 10^4 and 10^5 nodes. For each size:
 * measure one incremental re-match after a single local change (delete one E edge).
 
 Usage: python benchmarks/engine_scaling.py [--sizes 1000 10000 100000] [--no-baseline] [--construction]
+[--all-only]
+
+``--all-only`` only runs the NAC rule with ``all`` and prints wall and CPU microseconds per
+application (issue 18's floor: under 15 us at 10^5 nodes).
 
 ``--construction`` only times building the host graph: in bulk from arrays, one element at a time,
 and as a networkx Graph (the issue-18 floor: bulk at most 3x networkx; sizes up to 10^6 are cheap).
@@ -243,6 +247,7 @@ def run(size: int, baseline: bool) -> dict:
     runner = Runner(rulebook, g)
     _, row["all_s"] = timed(lambda: runner.run("mark_all"))
     row["all_applied"] = runner.reports[-1].applications
+    row["all_us"] = row["all_s"] / max(row["all_applied"], 1) * 1e6
     _, row["fixpoint_recheck_s"] = timed(lambda: runner.run("mark_fixpoint"))
 
     g2 = grid(rulebook, size)
@@ -269,6 +274,23 @@ def run(size: int, baseline: bool) -> dict:
     return row
 
 
+def mark_all(size: int, repeats: int = 3) -> dict:
+    """``mark all`` alone on fresh grids (best of ``repeats``): wall and CPU microseconds per
+    application (issue 18's floor: under 15 us per application at 10^5 nodes)."""
+    rulebook = rulebook_from_text(RULES)
+    best = None
+    for _ in range(repeats):
+        runner = Runner(rulebook, grid(rulebook, size))
+        cpu = time.process_time()
+        _, wall = timed(lambda: runner.run("mark_all"))
+        cpu = time.process_time() - cpu
+        applied = runner.reports[-1].applications
+        row = {"nodes": len(runner.graph), "applied": applied, "all_s": wall,
+               "wall_us": wall / applied * 1e6, "cpu_us": cpu / applied * 1e6}
+        best = row if best is None or row["cpu_us"] < best["cpu_us"] else best
+    return best
+
+
 def print_cycles(rows: list[dict]) -> None:
     """The 4-cycle table, with the time growth of the engine from one size to the next (issue 18's
     floor: at most 11x from 10^5 to 10^6 nodes, peak memory at most 2 GB)."""
@@ -293,6 +315,8 @@ def main() -> None:
                         help="with --cycles: networkx and/or grandiso (pip install 'vaultgram[peers]')")
     parser.add_argument("--peer-max", type=int, default=100_000,
                         help="with --cycles: run the peers only up to this many nodes (they take minutes beyond)")
+    parser.add_argument("--all-only", action="store_true",
+                        help="only the rule with a NAC applied with all, per application (best of 3 fresh grids)")
     parser.add_argument("--cycle-one", nargs=2, metavar=("SIZE", "TOOL"), help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.cycle_one:
@@ -304,6 +328,14 @@ def main() -> None:
     if args.cycles:
         print_cycles(cycles(args.sizes, args.peers, args.peer_max))
         return
+    if args.all_only:
+        cols = ["nodes", "applied", "all_s", "wall_us", "cpu_us"]
+        print(" ".join(f"{c:>12}" for c in cols))
+        for size in args.sizes:
+            row = mark_all(size)
+            print(" ".join(f"{row[c]:>12.4g}" if isinstance(row[c], float) else f"{row[c]:>12}" for c in cols),
+                  flush=True)
+        return
     if args.construction:
         cols = ["nodes", "edges", "bulk_s", "one_by_one_s", "networkx_s", "bulk_vs_networkx"]
         print(" ".join(f"{c:>16}" for c in cols))
@@ -313,7 +345,7 @@ def main() -> None:
                   flush=True)
         return
     cols = ["nodes", "edges", "matches", "engine_s", "warm_s", "as_objects_s", "networkx_s", "speedup", "all_s",
-            "all_applied", "fixpoint_recheck_s", "fixpoint_s", "fixpoint_applied", "incremental_ms"]
+            "all_applied", "all_us", "fixpoint_recheck_s", "fixpoint_s", "fixpoint_applied", "incremental_ms"]
     print(" ".join(f"{c:>18}" for c in cols))
     for size in args.sizes:
         row = run(size, not args.no_baseline)

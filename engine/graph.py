@@ -290,6 +290,7 @@ class HostGraph:
         self._edge_codes = np.full(64, -1, dtype=np.int64)
         self._edge_ends = np.full((64, 2), -1, dtype=np.int64)
         self.incidence = Incidence(self._node_type, self._edge_type, self._ends, self._inc)
+        self._fitting: set[tuple[str, str, str]] = set()  # (edge type, end types) checked to fit the schema
 
     # ------------------------------------------------------------------------------------------
     # Queries
@@ -438,9 +439,11 @@ class HostGraph:
                 raise SchemaError(f"edge {type_name}: node {end} does not exist")
         if u == v:
             raise SchemaError(f"edge {type_name}: a self-loop at node {u} is not allowed")
-        self._check_endpoints(type_name, u, v)
-        e = self._allocate(id, self._edge_type, "edge")
-        values = self.schema.fill_attrs(type_name, attrs or {}, f"edge {e}")
+        if (type_name, self._node_type[u], self._node_type[v]) not in self._fitting:
+            self._check_endpoints(type_name, u, v)
+            self._fitting.add((type_name, self._node_type[u], self._node_type[v]))
+        e = self._next_edge if id is None else self._allocate(id, self._edge_type, "edge")
+        values = self.schema.fill_attrs(type_name, attrs or {}, f"edge {e}") if attrs or info.attrs else {}
         self._record(_AddEdge(e, self._next_edge))
         self._next_edge = max(self._next_edge, e + 1)
         self._insert_edge(e, type_name, u, v, values, None)
@@ -775,20 +778,27 @@ class HostGraph:
         self._edge_type[e] = type_name
         self._ends[e] = (u, v)
         self._by_type[type_name].add(e)
-        self._edge_codes = _fit(self._edge_codes, e)
-        self._edge_ends = _fit(self._edge_ends, e)
+        if e >= len(self._edge_codes):
+            self._edge_codes, self._edge_ends = _fit(self._edge_codes, e), _fit(self._edge_ends, e)
         self._edge_codes[e] = self.type_code[type_name]
-        self._edge_ends[e] = (u, v)
+        self._edge_ends[e, 0], self._edge_ends[e, 1] = u, v
+        plain = (0.0, e) if self.angle is None else None  # both ends' rotation key: one tuple for the collector
         for k, n in enumerate((u, v)):
-            self._inc[n].setdefault(type_name, set()).add(e)
-            if positions is not None:
-                self._rot[n].insert(positions[k], e)
-                self._rot_keys[n].insert(positions[k], self._rotation_key(e, n))
+            inc = self._inc[n]
+            bucket = inc.get(type_name)
+            if bucket is None:
+                inc[type_name] = {e}
             else:
-                key = self._rotation_key(e, n)
-                i = bisect.bisect(self._rot_keys[n], key)
-                self._rot_keys[n].insert(i, key)
-                self._rot[n].insert(i, e)
+                bucket.add(e)
+            keys, key = self._rot_keys[n], plain or self._rotation_key(e, n)
+            if positions is not None:
+                i = positions[k]
+            elif not keys or keys[-1] <= key:  # after every edge there (a new edge, without an angle)
+                i = len(keys)
+            else:
+                i = bisect.bisect(keys, key)
+            keys.insert(i, key)
+            self._rot[n].insert(i, e)
 
     def _delete_edge(self, e: int) -> None:
         self.version += 1

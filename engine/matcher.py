@@ -75,11 +75,20 @@ class Matches(Sequence):
         return Match(self.rule, self.vars, tuple(int(c[k]) for c in self._columns))
 
     def __iter__(self) -> Iterator[Match]:
+        rule, vars = self.rule, self.vars
+        return (Match(rule, vars, key) for key in self.keys())
+
+    def keys(self) -> Iterator[tuple]:
+        """The key of each match, in order (the rows of the table, as Python ints)."""
         for lo in range(0, self._rows, self.BATCH):
             hi = min(lo + self.BATCH, self._rows)
             columns = [c[lo:hi].tolist() for c in self._columns]
-            for key in zip(*columns) if columns else [()] * (hi - lo):
-                yield Match(self.rule, self.vars, key)
+            yield from zip(*columns) if columns else [()] * (hi - lo)
+
+    def bindings(self) -> Iterator[dict[str, int]]:
+        """The binding of each match, in order: a new dict each, without making the Match."""
+        vars = self.vars
+        return (dict(zip(vars, key)) for key in self.keys())
 
     def __eq__(self, other) -> bool:
         if isinstance(other, (Matches, list, tuple)):
@@ -256,10 +265,18 @@ class Matcher:
 
     def nac_matches(self, i: int, binding: dict) -> dict | None:
         """A binding of NAC ``i`` around the complete positive ``binding``, or None when it has none."""
-        used_nodes = {binding[v] for v in self.rule.pattern.nodes}
-        used_edges = {binding[e.var] for e in self.rule.pattern.edges}
-        plan = self._nac_plan(i)
+        node_vars, edge_vars = self._pattern_vars
+        used_nodes = set(map(binding.__getitem__, node_vars))
+        used_edges = set(map(binding.__getitem__, edge_vars))
+        plans = self._nac_plans
+        plan = plans[i] if i < len(plans) else self._nac_plan(i)
         return next(run_plan(self.graph, plan, dict(binding), used_nodes, used_edges, self.rule.name, {}), None)
+
+    @functools.cached_property
+    def _pattern_vars(self) -> tuple[tuple[str, ...], tuple[str, ...]]:
+        """The pattern's node variables and edge variables."""
+        pattern = self.rule.pattern
+        return tuple(pattern.nodes), tuple(e.var for e in pattern.edges)
 
 
 def _memo_key(rule: str, fixed: dict, values: dict) -> tuple | None:
@@ -303,14 +320,14 @@ class _Search:
         self.node_type, _, self.ends, self.typed = g.incidence
         self.binding, self.used_nodes, self.used_edges = binding, used_nodes, used_edges
         self.rule, self.fixed_edges = rule, fixed_edges
-        self.steps = [(_PHASES[type(step)], step) for step in plan]
+        self.steps = plan
 
     def run(self, i: int) -> Iterator[dict]:
         """The complete bindings that extend the current one from step ``i`` on."""
         if i == len(self.steps):
             return iter((self.binding,))
-        phase, step = self.steps[i]
-        return phase(self, step, i + 1)
+        step = self.steps[i]
+        return _PHASES[type(step)](self, step, i + 1)
 
     def holds(self, conditions) -> bool:
         g, binding = self.g, self.binding

@@ -29,7 +29,7 @@ from .errors import RewriteError, SelfLoop
 from .graph import HostGraph, _collector_paused
 from .incremental import MatchSet
 from .invariants import InvariantError
-from .matcher import Match, Matcher
+from .matcher import Match, Matcher, Matches
 from .memo import TableMemo
 from .rewriter import Application, apply_rule, footprint, only_creates
 from .rulebook import Rulebook, describe_step
@@ -106,12 +106,17 @@ class Runner:
     def apply(self, matcher: Matcher, match: Match) -> Application | None:
         """Apply one match and record it in the trace; None (counted in ``self_loops``) when the
         application would create a self-loop, so the rule does not apply there."""
+        return self.apply_binding(matcher, match.binding)
+
+    def apply_binding(self, matcher: Matcher, binding: dict[str, int]) -> Application | None:
+        """:meth:`apply` for a match given as its binding (pattern variable -> id; the application
+        record keeps this dict), so that ``all`` applies the rows of a match table without making a
+        Match for each (issue 18)."""
         try:
-            app = apply_rule(matcher.rule, self.graph, dict(match.binding), matcher.values)
+            app = apply_rule(matcher.rule, self.graph, binding, matcher.values, {**matcher.values, **matcher.fixed})
         except SelfLoop:
             self.self_loops += 1
             return None
-        app.params = {**matcher.values, **matcher.fixed}
         self.trace.record(app)
         if self.check_invariants:
             self.check("each", app)
@@ -252,9 +257,9 @@ class Runner:
         step only creates, so :meth:`Matcher.still_matches` checks what creations may change)."""
         applied = []
         check = matcher.still_matches if only_creations else matcher.check
-        for match in selected:
-            if check(match.binding):
-                app = self.apply(matcher, match)
+        for binding in selected.bindings() if isinstance(selected, Matches) else (m.binding for m in selected):
+            if check(binding):
+                app = self.apply_binding(matcher, binding)
                 if app is not None:
                     applied.append(app)
         return applied

@@ -155,6 +155,30 @@ def test_rotation_by_id_without_angle(schema):
     assert g.next_around(c, e1, -1) == e3
 
 
+def test_rotation_by_id_with_edges_added_out_of_id_order(schema):
+    g = HostGraph(schema)
+    c = g.add_node("Sing", P())
+    others = [g.add_node("Bnd", P(i)) for i in range(5)]
+    ids = [g.add_edge("Branch", c, others[k], id=i) for k, i in enumerate((40, 10, 50, 20, 60))]
+    extra = g.add_edge("Branch", others[0], c)  # from the counter: after every id there
+    assert g.rotation(c) == sorted(ids) + [extra] == [10, 20, 40, 50, 60, 61]
+    assert g.rotation(others[0]) == [40, 61]
+
+
+def test_endpoint_types_checked_for_every_pair_of_types(schema):
+    g = HostGraph(schema)
+    s, b, o = g.add_node("Sing", P()), g.add_node("Bnd", P(1)), g.add_node("Other", {"need": 1})
+    g.add_edge("Dual", s, b)
+    g.add_edge("Dual", s, g.add_node("Bnd", P(2)))  # the same types again
+    with pytest.raises(SchemaError):
+        g.add_edge("Dual", b, s)  # the same edge type, the ends' types swapped on a directed edge
+    g.retype(b, "Corner")
+    with pytest.raises(SchemaError):
+        g.add_edge("Branch", s, o)
+    g.add_edge("Dual", s, b)  # Corner is a Bnd
+    assert g.num_edges == 3
+
+
 def _angle(g, e, n):
     o = g.other(e, n)
     p, q = g.get(n, "pos"), g.get(o, "pos")

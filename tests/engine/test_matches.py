@@ -38,3 +38,28 @@ def test_first_makes_one_match_object(monkeypatch):
     monkeypatch.setattr(matcher_module, "Match", lambda *a: made.append(a) or Match(*a))
     first = Matcher(BOOK.rules["pair"], path(50)).first()
     assert first.key == (0, 1, 0) and len(made) == 1
+
+
+def test_keys_and_bindings_are_the_rows_of_the_matches(monkeypatch):
+    monkeypatch.setattr(Matches, "BATCH", 3)                 # across batch boundaries
+    found = Matcher(BOOK.rules["pair"], path(5)).all()
+    assert list(found.keys()) == [m.key for m in found]
+    bindings = list(found.bindings())
+    assert bindings == [m.binding for m in found] and len({id(b) for b in bindings}) == len(found) == 8
+    assert list(Matcher(BOOK.rules["pair"], path(1)).all().bindings()) == []
+
+
+def test_all_applies_the_rows_without_match_objects(monkeypatch):
+    from vaultgram.engine.strategy import Runner
+
+    book = rulebook_from_text("schema s { node A  edge E (A -- A)  edge F (A -- A) }\n"
+                              "rule mark { match { a: A  b: A  a -E- b } not { a -F- b } create a -F- b }")
+    made = []
+    monkeypatch.setattr(matcher_module, "Match", lambda *a: made.append(a) or Match(*a))
+    g = HostGraph(book.schema)
+    g.add_nodes("A", range(6))
+    g.add_edges("E", [(i, i + 1) for i in range(5)])
+    apps = Runner(book, g).apply_all("mark")
+    # (a, b) and (b, a) both match each E edge; the first F edge makes the NAC of the second hold
+    assert made == [] and [(a.binding["a"], a.binding["b"]) for a in apps] == [(i, i + 1) for i in range(5)]
+    assert g.num_edges == 5 + 5 and all(g.degree(n, ["F"]) == (1 if n in (0, 5) else 2) for n in g.nodes())
