@@ -303,6 +303,14 @@ def print_cycles(rows: list[dict]) -> None:
                        else f"{row[c]:>16}" for c in cols), flush=True)
 
 
+def print_table(cols, rows, width: int) -> None:
+    """One line of column names, then one per row as it comes (floats to 4 digits, a missing value as nan)."""
+    print(" ".join(f"{c:>{width}}" for c in cols))
+    for row in rows:
+        print(" ".join(f"{row.get(c, float('nan')):>{width}.4g}" if isinstance(row.get(c, 0.0), float)
+                       else f"{row[c]:>{width}}" for c in cols), flush=True)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[1_000, 10_000, 100_000])
@@ -329,28 +337,15 @@ def main() -> None:
         print_cycles(cycles(args.sizes, args.peers, args.peer_max))
         return
     if args.all_only:
-        cols = ["nodes", "applied", "all_s", "wall_us", "cpu_us"]
-        print(" ".join(f"{c:>12}" for c in cols))
-        for size in args.sizes:
-            row = mark_all(size)
-            print(" ".join(f"{row[c]:>12.4g}" if isinstance(row[c], float) else f"{row[c]:>12}" for c in cols),
-                  flush=True)
+        print_table(["nodes", "applied", "all_s", "wall_us", "cpu_us"], map(mark_all, args.sizes), 12)
         return
     if args.construction:
-        cols = ["nodes", "edges", "bulk_s", "one_by_one_s", "networkx_s", "bulk_vs_networkx"]
-        print(" ".join(f"{c:>16}" for c in cols))
-        for size in args.sizes:
-            row = construction(size)
-            print(" ".join(f"{row[c]:>16.4g}" if isinstance(row[c], float) else f"{row[c]:>16}" for c in cols),
-                  flush=True)
+        print_table(["nodes", "edges", "bulk_s", "one_by_one_s", "networkx_s", "bulk_vs_networkx"],
+                    map(construction, args.sizes), 16)
         return
-    cols = ["nodes", "edges", "matches", "engine_s", "warm_s", "as_objects_s", "networkx_s", "speedup", "all_s",
-            "all_applied", "all_us", "fixpoint_recheck_s", "fixpoint_s", "fixpoint_applied", "incremental_ms"]
-    print(" ".join(f"{c:>18}" for c in cols))
-    for size in args.sizes:
-        row = run(size, not args.no_baseline)
-        print(" ".join(f"{row.get(c, float('nan')):>18.4g}" if isinstance(row.get(c, 0.0), float)
-                       else f"{row[c]:>18}" for c in cols), flush=True)
+    print_table(["nodes", "edges", "matches", "engine_s", "warm_s", "as_objects_s", "networkx_s", "speedup", "all_s",
+                 "all_applied", "all_us", "fixpoint_recheck_s", "fixpoint_s", "fixpoint_applied", "incremental_ms"],
+                (run(size, not args.no_baseline) for size in args.sizes), 18)
 
 
 if __name__ == "__main__":
