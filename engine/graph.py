@@ -442,7 +442,7 @@ class HostGraph:
         if (type_name, self._node_type[u], self._node_type[v]) not in self._fitting:
             self._check_endpoints(type_name, u, v)
             self._fitting.add((type_name, self._node_type[u], self._node_type[v]))
-        e = self._next_edge if id is None else self._allocate(id, self._edge_type, "edge")
+        e = self._allocate(id, self._edge_type, "edge")
         values = self.schema.fill_attrs(type_name, attrs or {}, f"edge {e}") if attrs or info.attrs else {}
         self._record(_AddEdge(e, self._next_edge))
         self._next_edge = max(self._next_edge, e + 1)

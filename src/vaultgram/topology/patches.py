@@ -71,13 +71,7 @@ class Patch:
 
 def half_edge_polyline(graph: HostGraph, edge: int, start: int) -> np.ndarray:
     """The points of an edge from ``start`` to its other end (its polyline, or the straight segment)."""
-    attrs = graph.edge_attrs(edge)
-    poly = attrs.get("polyline") or ()
-    if len(poly) < 2:
-        poly = (graph.get(start, "pos"), graph.get(graph.other(edge, start), "pos"))
-        return np.asarray(poly, dtype=float)
-    pts = np.asarray(poly, dtype=float)
-    return pts if graph.ends(edge)[0] == start else pts[::-1]
+    return key_polyline(half_edge_key(graph, edge, start))
 
 
 def find_patches(graph: HostGraph, disc: Discretisation, edge_types, strict: bool = True) -> list[Patch]:
