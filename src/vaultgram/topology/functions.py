@@ -16,7 +16,6 @@ from collections import OrderedDict
 import numpy as np
 import shapely
 
-from vaultgram.engine.embedding import face_walk
 from vaultgram.engine.expressions import Functions
 from vaultgram.errors import RuleError
 from vaultgram.geometry.polygons import interior_angle, regular_valence, signed_area
@@ -24,6 +23,7 @@ from vaultgram.geometry.polylines import arc_lengths, point_at_length
 from vaultgram.topology import corners
 from vaultgram.topology.patches import (
     enclosed_holes,
+    face_from,
     face_outline,
     half_edge_key,
     half_edge_polyline,
@@ -185,7 +185,7 @@ def _walk_patch_outline(graph, patch: int, x: int) -> tuple[list, np.ndarray] | 
     for first in graph.rotation(x):
         if graph.edge_type(first) not in PLAN_EDGES:
             continue
-        face = face_walk(graph, PLAN_EDGES, (first, x))
+        face = face_from(graph, PLAN_EDGES, (first, x))
         if not corners <= {u for _, u in face}:
             continue
         found = face_outline(graph, face)  # kept by content across states (issue 13)

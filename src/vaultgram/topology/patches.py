@@ -9,20 +9,21 @@ sides; any other face is an error naming where it is.
 
 from __future__ import annotations
 
+import weakref
 from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
 import shapely
 
-from vaultgram.engine.embedding import faces
+from vaultgram.engine.embedding import face_walk, faces
 from vaultgram.engine.graph import HostGraph
 from vaultgram.errors import DomainError, RewriteError
 from vaultgram.geometry.frames import NO_ORIGIN, to_plan
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.text import fmt_point
 from vaultgram.topology.discretise import Discretisation
-from vaultgram.topology.statecache import by_content
+from vaultgram.topology.statecache import by_content, per_state
 from vaultgram.topology.types import BOUNDARY, BOUNDARY_VERTEX, CURVE_EXTREMITY, FEATURE_POINT, SKELETON_VERTEX
 
 
@@ -113,6 +114,28 @@ def plan_faces(graph: HostGraph, edge_types) -> list[tuple[list, list, np.ndarra
         if found.area > 0 and not _is_hole(graph, face):  # not the unbounded face, nor a hole
             out.append((face, list(found.polylines), found.outline))
     return out
+
+
+_FACES_AT: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> {state: {types: {half-edge: ...}}}
+
+
+def face_from(graph: HostGraph, edge_types, half_edge: tuple) -> list:
+    """The face to the left of ``half_edge`` from it on, as :func:`~vaultgram.engine.embedding.face_walk`
+    walks it (a new list), each face walked once per state of the graph
+    (:func:`~vaultgram.topology.statecache.per_state`): the rules' helpers look for the face of each
+    Patch node from its first corner, trying the faces there one after another, and neighbouring
+    patches share corners, so the same faces (the unbounded one among them) were walked again and
+    again in each state the search makes (issue 13)."""
+    memo = per_state(_FACES_AT, graph, lambda g: {})
+    types = frozenset(edge_types)
+    at = memo.get(types)
+    if at is None:
+        at = memo[types] = {}
+    if half_edge not in at:
+        face = tuple(face_walk(graph, types, half_edge))
+        at.update({h: (face, i) for i, h in enumerate(face)})
+    face, i = at[half_edge]
+    return list(face[i:] + face[:i])
 
 
 @dataclass(frozen=True)

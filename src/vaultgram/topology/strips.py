@@ -23,10 +23,9 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from vaultgram.engine.embedding import face_walk
 from vaultgram.geometry.polygons import interior_angle
 from vaultgram.geometry.polylines import arc_lengths, point_at_length
-from vaultgram.topology.patches import face_outline, half_edge_polyline
+from vaultgram.topology.patches import face_from, face_outline, half_edge_polyline
 from vaultgram.topology.statecache import per_state
 from vaultgram.topology.types import (
     BOUNDARY,
@@ -92,7 +91,7 @@ def _walk_sides(graph, patch: int) -> PatchSides | None:
     for first in graph.rotation(corners[0]):
         if graph.edge_type(first) not in PLAN_EDGES:
             continue
-        face = face_walk(graph, PLAN_EDGES, (first, corners[0]))
+        face = face_from(graph, PLAN_EDGES, (first, corners[0]))
         nodes = [u for _, u in face]
         if not set(corners) <= set(nodes):
             continue
