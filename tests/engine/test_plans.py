@@ -43,5 +43,6 @@ def test_a_pattern_keeps_a_bounded_number_of_plans(monkeypatch):
     pattern = BOOK.rules["ab"].pattern
     pattern.plans.clear()
     for n in range(1, 6):
-        assert pattern_plan(pattern, frozenset(), star(n, 1).count) == build_plan(pattern, frozenset(), star(n, 1).count)
+        count = star(n, 1).count
+        assert pattern_plan(pattern, frozenset(), count) == build_plan(pattern, frozenset(), count)
     assert len(pattern.plans) == 3 and [key[1] for key in pattern.plans] == [(3, 1), (4, 1), (5, 1)]

@@ -9,6 +9,7 @@ sides; any other face is an error naming where it is.
 
 from __future__ import annotations
 
+import functools
 import weakref
 from collections import OrderedDict
 from dataclasses import dataclass
@@ -92,9 +93,9 @@ def find_patches(graph: HostGraph, disc: Discretisation, edge_types, strict: boo
     (12, {4})
     """
     types = set(edge_types)
-    patches = []
+    patches, corner = [], {}
     for face, polys, outline in plan_faces(graph, types):
-        corners, sides, side_edges = _sides(graph, face, polys, outline, types)
+        corners, sides, side_edges = _sides(graph, face, polys, outline, types, corner)
         if len(corners) < 3 or (strict and len(corners) > 4):
             raise DomainError(
                 f"patch around {_where(outline)} has {len(corners)} sides (corners at "
@@ -149,6 +150,14 @@ class FaceOutline:
     closed: np.ndarray
     area: float
     closed_area: float
+
+    @functools.cached_property
+    def polygon(self) -> shapely.Polygon:
+        """The outline as a prepared shapely polygon (the strip helpers' containment tests), made
+        once for every state of the graph with this face."""
+        polygon = shapely.Polygon(self.outline)
+        shapely.prepare(polygon)
+        return polygon
 
 
 #: The face outlines kept (the most recently asked) by :func:`face_outline`.
@@ -250,13 +259,18 @@ SIDES = 4096
 _SIDES: OrderedDict = OrderedDict()
 
 
-def _sides(graph: HostGraph, face: list, polys: list, outline: np.ndarray, types) -> tuple[tuple, tuple, tuple]:
+def _sides(graph: HostGraph, face: list, polys: list, outline: np.ndarray, types,
+           known: dict) -> tuple[tuple, tuple, tuple]:
     """A face of the plan cut at its corners: the corners, the side polylines between them and the
     half-edges along each side, starting at the first corner of the face's walk. Kept by the face's
     half-edges, which of their nodes are corners and its outline (one of :func:`face_outline`'s, kept
     alive with the entry, so that its ``id`` names it): the same face in another state of the graph
-    is cut the same way (issue 13)."""
-    corner = tuple(_is_corner(graph, u, types) for _, u in face)
+    is cut the same way (issue 13). ``known``: node -> whether it is a corner, filled as the faces
+    are cut (a node is on the faces of each of its edges)."""
+    for _, u in face:
+        if u not in known:
+            known[u] = _is_corner(graph, u, types)
+    corner = tuple(known[u] for _, u in face)
     return by_content(_SIDES, (tuple(face), corner, id(outline)),
                       lambda: (outline, _cut_at_corners(face, polys, corner, outline)), SIDES)[1]
 
@@ -295,10 +309,11 @@ def _is_corner(graph: HostGraph, n: int, types) -> bool:
 
 def _is_hole(graph: HostGraph, face) -> bool:
     """A face made only of boundary edges of one hole ring, walked around the hole."""
+    if any(graph.edge_type(e) != BOUNDARY for e, _ in face):
+        return False
     rings = {graph.get(u, "ring") if graph.schema.is_subtype(graph.node_type(u), BOUNDARY_VERTEX) else -1
              for _, u in face}
-    edge_types = {graph.edge_type(e) for e, _ in face}
-    return edge_types == {BOUNDARY} and len(rings) == 1 and next(iter(rings)) > 0
+    return len(rings) == 1 and next(iter(rings)) > 0
 
 
 def _where(outline: np.ndarray) -> str:

@@ -57,10 +57,13 @@ def by_content(cache: OrderedDict, key, make, size: int):
     >>> [by_content(cache, k, lambda: calls.append(k) or k * 2, 2) for k in (1, 2, 1, 3, 2)], calls
     ([2, 4, 2, 6, 4], [1, 2, 3, 2])
     """
-    if key in cache:
-        cache.move_to_end(key)
-        return cache[key]
-    value = cache[key] = make()
+    value = cache.pop(key, _MISSING)  # hashing a key is most of a hit's cost: once to take it out,
+    if value is _MISSING:  # once to put it back last (the most recently asked)
+        value = make()
+    cache[key] = value
     if len(cache) > size:
         cache.popitem(last=False)
     return value
+
+
+_MISSING = object()
