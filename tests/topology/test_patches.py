@@ -92,6 +92,7 @@ def test_face_from_is_the_face_walk_once_per_state(monkeypatch):
             assert face_from(g, PLAN_EDGES, (e, u)) == face_walk(g, PLAN_EDGES, (e, u))
     before = _distinct_faces(g, lambda h: face_from(g, PLAN_EDGES, h))
     assert len(plan_nodes) - len(plan_edges) + len(before) == 2
+    assert faces(g, PLAN_EDGES, walk=face_from) == faces(g, PLAN_EDGES)  # the faces of the plan, in order
     patch = dec.patches[0]
     mark = g.mark()
     d = g.add_edge(DIAGONAL, patch.corners[0], patch.corners[2])
@@ -99,6 +100,7 @@ def test_face_from_is_the_face_walk_once_per_state(monkeypatch):
     monkeypatch.setattr(patches, "face_walk", lambda *a: walks.append(1) or face_walk(*a))
     after = _distinct_faces(g, lambda h: face_from(g, PLAN_EDGES, h))
     assert len(walks) == len(after)
+    assert faces(g, PLAN_EDGES, walk=face_from) == faces(g, PLAN_EDGES) and len(walks) == len(after)  # none again
     monkeypatch.undo()
     assert after == _distinct_faces(g, lambda h: face_walk(g, PLAN_EDGES, h)) and len(after) == len(before) + 1
     assert face_from(g, PLAN_EDGES, (d, patch.corners[0])) == face_walk(g, PLAN_EDGES, (d, patch.corners[0]))

@@ -110,7 +110,7 @@ def plan_faces(graph: HostGraph, edge_types) -> list[tuple[list, list, np.ndarra
     """The bounded faces of the plan that are not the inside of a hole, each as its half-edges, their
     polylines and its outline (counter-clockwise, not closed)."""
     out = []
-    for face in faces(graph, edge_types):
+    for face in faces(graph, edge_types, walk=face_from):
         found = face_outline(graph, face)
         if found.area > 0 and not _is_hole(graph, face):  # not the unbounded face, nor a hole
             out.append((face, list(found.polylines), found.outline))
