@@ -103,7 +103,7 @@ PLANS_PER_PATTERN = 64
 def pattern_plan(
     pattern: CompiledPattern, given: frozenset[str], count: Callable[[frozenset[str]], int]
 ) -> list[Step]:
-    """:func:`build_plan`, kept on the pattern (never to be changed) under what it is decided by:
+    """:func:`build_plan`, kept on the pattern (shared: never change it) under what decides it:
     the given variables and the counts of the pattern's node and edge types. Every search makes
     a new :class:`~.matcher.Matcher`, and a strategy run makes one per rule and step, so a search
     that steps through many graph states (exploration, issue 13) built the same plan again and

@@ -47,6 +47,9 @@ def per_state(cache: weakref.WeakKeyDictionary, graph, make):
     return value
 
 
+_MISSING = object()  # by_content's mark of a key not kept
+
+
 def by_content(cache: OrderedDict, key, make, size: int):
     """``make()``, kept in ``cache`` under ``key`` (what the result is made of, hashable) for the last
     ``size`` keys asked. Where a result depends on a few nodes' and edges' values only, keying it by
@@ -65,5 +68,3 @@ def by_content(cache: OrderedDict, key, make, size: int):
         cache.popitem(last=False)
     return value
 
-
-_MISSING = object()

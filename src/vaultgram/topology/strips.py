@@ -67,6 +67,7 @@ class PatchSides:
 
     @property
     def polygon(self) -> shapely.Polygon:
+        """The face's outline as a prepared shapely polygon (made once for all states with it)."""
         return self.face.polygon
 
 
