@@ -263,8 +263,9 @@ def diagonal_path(graph, patch: int, x: int, o: int) -> tuple:
                       lambda: (outline, segments, _diagonal(outline, at, p, q, segments)), DIAGONALS)[2]
 
 
-#: The diagonals kept (the most recently asked) by :func:`diagonal_path`.
-DIAGONALS = 1024
+#: The diagonals kept (the most recently asked) by :func:`diagonal_path`; as many as the plans'
+#: segments kept, since each entry keeps its plan's segments alive.
+DIAGONALS = 256
 _DIAGONALS: OrderedDict = OrderedDict()
 
 
