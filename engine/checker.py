@@ -100,6 +100,7 @@ class CompiledPattern:
     conditions: list[Condition]
     outer: frozenset[str]
     pos: object
+    plans: dict = field(default_factory=dict, compare=False, repr=False)  # kept by :func:`.plan.pattern_plan`
 
     @property
     def variables(self) -> list[str]:

@@ -18,18 +18,21 @@ from .graph import HostGraph
 HalfEdge = tuple[int, int]  # (edge id, node it leaves from)
 
 
-def faces(graph: HostGraph, edge_types: Iterable[str]) -> list[list[HalfEdge]]:
+def faces(graph: HostGraph, edge_types: Iterable[str], walk=None) -> list[list[HalfEdge]]:
     """All faces of the planar map formed by edges of ``edge_types``, as cycles of half-edges.
 
     Faces are listed in a deterministic order: by their smallest (edge id, start node) half-edge.
+    ``walk(graph, types, start)``: what :func:`face_walk` gives (the default), for a caller that
+    keeps the faces it walked.
     """
     types = set(edge_types)
+    walk = walk or face_walk
     seen: set[HalfEdge] = set()
     out: list[list[HalfEdge]] = []
     for e in sorted(e for e in graph.edges() if graph.edge_type(e) in types):
         for start in graph.ends(e):
             if (e, start) not in seen:
-                face = face_walk(graph, types, (e, start))
+                face = walk(graph, types, (e, start))
                 seen.update(face)
                 out.append(face)
     return out

@@ -20,7 +20,7 @@ from .columnar import Table, nac_rows, run_columnar
 from .errors import RewriteError
 from .graph import HostGraph
 from .memo import TableMemo
-from .plan import Bound, Check, Extend, Scan, Step, build_plan
+from .plan import Bound, Check, Extend, Scan, Step, pattern_plan
 from .rewriter import footprint
 
 
@@ -223,7 +223,7 @@ class Matcher:
     def plan(self, given: frozenset[str]) -> list[Step]:
         plan = self._plans.get(given)
         if plan is None:
-            plan = build_plan(self.rule.pattern, given | frozenset(self.values), self.graph.count)
+            plan = pattern_plan(self.rule.pattern, given | frozenset(self.values), self.graph.count)
             self._plans[given] = plan
         return plan
 
@@ -260,7 +260,7 @@ class Matcher:
     def _nac_plan(self, i: int) -> list[Step]:
         while len(self._nac_plans) <= i:
             k = len(self._nac_plans)
-            self._nac_plans.append(build_plan(self.rule.nacs[k], self.rule.nacs[k].outer, self.graph.count))
+            self._nac_plans.append(pattern_plan(self.rule.nacs[k], self.rule.nacs[k].outer, self.graph.count))
         return self._nac_plans[i]
 
     def nac_matches(self, i: int, binding: dict) -> dict | None:

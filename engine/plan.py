@@ -96,6 +96,28 @@ class Check:
 Step = Union[Bound, Scan, Extend, Check]  # not `Bound | Scan | ...`: evaluated at import, 3.10+
 
 
+#: Plans a pattern keeps (the most recently built), by given variables and type counts.
+PLANS_PER_PATTERN = 64
+
+
+def pattern_plan(
+    pattern: CompiledPattern, given: frozenset[str], count: Callable[[frozenset[str]], int]
+) -> list[Step]:
+    """:func:`build_plan`, kept on the pattern (shared: never change it) under what decides it:
+    the given variables and the counts of the pattern's node and edge types. Every search makes
+    a new :class:`~.matcher.Matcher`, and a strategy run makes one per rule and step, so a search
+    that steps through many graph states (exploration, issue 13) built the same plan again and
+    again; looking up the counts costs a few of the ``count`` calls that building it makes."""
+    key = (given, tuple(count(node.types) for node in pattern.nodes.values()),
+           tuple(count(edge.types) for edge in pattern.edges))
+    plan = pattern.plans.get(key)
+    if plan is None:
+        plan = pattern.plans[key] = build_plan(pattern, given, count)
+        if len(pattern.plans) > PLANS_PER_PATTERN:
+            del pattern.plans[next(iter(pattern.plans))]
+    return plan
+
+
 def build_plan(
     pattern: CompiledPattern, given: frozenset[str], count: Callable[[frozenset[str]], int]
 ) -> list[Step]:

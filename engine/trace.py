@@ -53,12 +53,20 @@ class Trace:
         for i, app in enumerate(self.applications):
             while edits and edits[0][0] == i:
                 out.append({"rule": None, "edit": asdict(edits.pop(0)[1])})
-            d = asdict(app)
-            d.pop("mark")
-            d["params"] = {k: _plain(v) for k, v in d["params"].items()}
-            out.append(d)
+            out.append(_application_json(app))
         out.extend({"rule": None, "edit": asdict(edit)} for _, edit in edits)
         return out
+
+
+def _application_json(app: Application) -> dict:
+    """An application as a trace record: its fields but ``mark``, the lists and dicts copied
+    (their items are ids, names and attribute values, which the graph keeps immutable), the
+    parameters' tuples as lists. What ``dataclasses.asdict`` gives, without copying every point
+    of every polyline set (exploration records the applications of every state, issue 13)."""
+    return {"rule": app.rule, "params": {k: _plain(v) for k, v in app.params.items()}, "binding": dict(app.binding),
+            "created_nodes": list(app.created_nodes), "created_edges": list(app.created_edges),
+            "deleted_nodes": list(app.deleted_nodes), "deleted_edges": list(app.deleted_edges),
+            "retyped": [list(r) for r in app.retyped], "set": [list(x) for x in app.set], "choice": app.choice}
 
 
 def _plain(value):

@@ -206,6 +206,28 @@ def test_trace_save_and_replay(rb, tmp_path):
     assert g2.snapshot() == g.snapshot()
 
 
+def test_trace_records_are_the_applications_fields_copied(rb):
+    # the records are the applications' fields but the journal mark, parameters' tuples as lists,
+    # equal to dataclasses.asdict's copy and sharing no list or dict with the application
+    from dataclasses import asdict
+
+    g = graph(rb, ("A", "B", "A"))
+    g.add_edge("E", 0, 1)
+    r = Runner(rb, g)
+    r.run("s_group")
+    r.apply_once("grow")
+    r.apply_once("bump", {"k": 2})
+    records = r.trace.to_json()
+    assert len(records) == len(r.trace) >= 3 and any(rec["set"] for rec in records)
+    for app, rec in zip(r.trace.applications, records):
+        expected = {k: v for k, v in asdict(app).items() if k != "mark"}
+        expected["params"] = {k: list(v) if isinstance(v, tuple) else v for k, v in expected["params"].items()}
+        assert rec == expected and list(rec) == list(expected)
+        for name in ("binding", "created_nodes", "created_edges", "retyped", "set"):
+            assert rec[name] is not getattr(app, name)
+        assert all(a is not b for a, b in zip(rec["set"], app.set))
+
+
 def test_replay_refuses_wrong_graph(rb):
     g = graph(rb, ("A",))
     r = Runner(rb, g)

@@ -7,11 +7,12 @@ from collections import Counter
 import numpy as np
 
 from vaultgram.domain import load_domain
-from vaultgram.engine.embedding import faces
+from vaultgram.engine.embedding import face_walk, faces
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.pipeline import decompose
-from vaultgram.topology.patches import face_outline, find_patches, half_edge_polyline
-from vaultgram.topology.types import PLAN_EDGES
+from vaultgram.topology import patches
+from vaultgram.topology.patches import face_from, face_outline, find_patches, half_edge_polyline
+from vaultgram.topology.types import DIAGONAL, PLAN_EDGES
 
 from paths import EXAMPLES
 
@@ -70,3 +71,38 @@ def test_find_patches_is_the_same_read_again():
     assert [p.side_edges for p in again] == [p.side_edges for p in dec.patches]
     for p, q in zip(again, dec.patches):
         assert all(np.array_equal(a, b) and not a.flags.writeable for a, b in zip(p.sides, q.sides))
+
+
+def _distinct_faces(g, walk) -> set:
+    """The faces found from every plan half-edge, each as its set of half-edges."""
+    half_edges = [(e, u) for e in g.edges() if g.edge_type(e) in PLAN_EDGES for u in g.ends(e)]
+    return {frozenset(walk(h)) for h in half_edges}
+
+
+def test_face_from_is_the_face_walk_once_per_state(monkeypatch):
+    # each plan half-edge's face is what face_walk walks from it, each face walked once in a state;
+    # Euler: V - E + F = 2 (connected plan); a diagonal across a patch is one face more in the new
+    # state, none after the rollback
+    dec = decompose(load_domain(EXAMPLES / "quad_with_hole.json"), 0.05)
+    g = dec.graph
+    plan_nodes = {u for e in g.edges() if g.edge_type(e) in PLAN_EDGES for u in g.ends(e)}
+    plan_edges = [e for e in g.edges() if g.edge_type(e) in PLAN_EDGES]
+    for e in plan_edges:
+        for u in g.ends(e):
+            assert face_from(g, PLAN_EDGES, (e, u)) == face_walk(g, PLAN_EDGES, (e, u))
+    before = _distinct_faces(g, lambda h: face_from(g, PLAN_EDGES, h))
+    assert len(plan_nodes) - len(plan_edges) + len(before) == 2
+    assert faces(g, PLAN_EDGES, walk=face_from) == faces(g, PLAN_EDGES)  # the faces of the plan, in order
+    patch = dec.patches[0]
+    mark = g.mark()
+    d = g.add_edge(DIAGONAL, patch.corners[0], patch.corners[2])
+    walks = []
+    monkeypatch.setattr(patches, "face_walk", lambda *a: walks.append(1) or face_walk(*a))
+    after = _distinct_faces(g, lambda h: face_from(g, PLAN_EDGES, h))
+    assert len(walks) == len(after)
+    assert faces(g, PLAN_EDGES, walk=face_from) == faces(g, PLAN_EDGES) and len(walks) == len(after)  # none again
+    monkeypatch.undo()
+    assert after == _distinct_faces(g, lambda h: face_walk(g, PLAN_EDGES, h)) and len(after) == len(before) + 1
+    assert face_from(g, PLAN_EDGES, (d, patch.corners[0])) == face_walk(g, PLAN_EDGES, (d, patch.corners[0]))
+    g.rollback(mark)
+    assert _distinct_faces(g, lambda h: face_from(g, PLAN_EDGES, h)) == before

@@ -212,3 +212,34 @@ def test_plan_segments_are_every_plan_edge_piece_and_kept_by_geometry():
     moved = f._all_plan_segments(g)[0]
     assert moved is not start and any(np.array_equal(p, [1e3, 1e3]) for p in moved)
     g.rollback(mark)
+
+
+def test_diagonal_paths_run_corner_to_corner_inside_and_are_kept_by_geometry():
+    # every quad's diagonal from corner 0 to corner 2 (when there is one) runs from x to o, crosses
+    # no plan edge and stays inside the patch; another state with the same geometry finds the same
+    # path (issue 13), a moved corner a new one ending there, the rollback the first again
+    import shapely
+
+    dec = decompose(load_domain(EXAMPLES / "fig7_curves.json"), 0.05)
+    g = dec.graph
+    quads = [p for p in g.nodes() if g.node_type(p) == "Patch" and g.get(p, "sides") == 4]
+    found = []
+    for p in quads:
+        x, o = f.patch_corner(g, p, 0), f.patch_corner(g, p, 2)
+        path = f.diagonal_path(g, p, x, o)
+        if path:
+            outline = f._patch_outline(g, p, x)[1]
+            assert path[0] == tuple(g.get(x, "pos")) and path[-1] == tuple(g.get(o, "pos")) and f.path_clear(g, path)
+            assert shapely.Polygon(outline).buffer(1e-9).contains(shapely.LineString(path))
+            found.append((p, x, o, path))
+    assert found
+    p, x, o, path = found[0]
+    mark = g.mark()
+    g.set_node_attr(p, "sides", 4)  # another state, the same geometry
+    assert f.diagonal_path(g, p, x, o) is path
+    (ox, oy), (cx, cy) = g.get(o, "pos"), np.mean([g.get(f.patch_corner(g, p, k), "pos") for k in range(4)], axis=0)
+    g.set_node_attr(o, "pos", (ox + 0.1 * (cx - ox), oy + 0.1 * (cy - oy)))  # o moved towards the middle
+    moved = f.diagonal_path(g, p, x, o)
+    assert moved != path and (not moved or moved[-1] == tuple(g.get(o, "pos")))
+    g.rollback(mark)
+    assert f.diagonal_path(g, p, x, o) is path

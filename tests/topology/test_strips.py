@@ -165,6 +165,36 @@ def test_a_cut_edge_is_split_halfway_into_two_pieces_that_make_it_up():
         assert arc_lengths(first)[-1] == pytest.approx(length / 2) == arc_lengths(second)[-1]
 
 
+def test_the_halves_of_an_edge_are_kept_by_its_geometry():
+    # issue 13: the same edge in another state of the graph finds its halves again (read-only);
+    # moved, it is cut anew, at its new middle; rolled back, the old halves again
+    stepper, _ = _at_start_strip("fig7_curves")
+    g = stepper.graph
+    e = next(e for e in g.of_types(list(strips.SPLITTABLE)) if not g.edge_attrs(e).get("polyline"))
+    u, v = g.ends(e)
+    halves = strips._halves(g, e)
+    assert all(not a.flags.writeable for a in halves)
+    mark = g.mark()
+    g.set_node_attr(g.add_node("StripPoint", {"pos": (0.0, 0.0)}), "pos", (1.0, 1.0))  # a change elsewhere
+    assert strips._halves(g, e) is halves
+    (x, y) = g.get(v, "pos")
+    g.set_node_attr(v, "pos", (x + 2.0, y))
+    moved = strips.strip_point(g, e)
+    assert moved != tuple(halves[1]) and np.allclose(moved, (np.add(g.get(u, "pos"), (x + 2.0, y))) / 2)
+    g.rollback(mark)
+    assert strips._halves(g, e) is halves
+
+
+def test_patch_sides_share_the_prepared_polygon_of_their_face():
+    stepper, _ = _at_start_strip("fig7_curves")
+    g = stepper.graph
+    sides = [strips.patch_sides(g, p) for p in g.of_types(["Patch"])]
+    assert sides and all(s is not None for s in sides)
+    for s in sides:
+        assert s.polygon is s.face.polygon and s.polygon.area == pytest.approx(signed_area(s.face.outline))
+        assert s.polygon.contains(s.polygon.representative_point())
+
+
 def test_figure_8_to_the_side_makes_the_curve_end_a_triangle_pole_and_carries_the_strip_on():
     for answers, rule in _strip_options("fig7_curves"):
         if rule != "split_quad_at_curve_end_to_side":

@@ -16,7 +16,6 @@ from collections import OrderedDict
 import numpy as np
 import shapely
 
-from vaultgram.engine.embedding import face_walk
 from vaultgram.engine.expressions import Functions
 from vaultgram.errors import RuleError
 from vaultgram.geometry.polygons import interior_angle, regular_valence, signed_area
@@ -24,6 +23,7 @@ from vaultgram.geometry.polylines import arc_lengths, point_at_length
 from vaultgram.topology import corners
 from vaultgram.topology.patches import (
     enclosed_holes,
+    face_from,
     face_outline,
     half_edge_key,
     half_edge_polyline,
@@ -185,7 +185,7 @@ def _walk_patch_outline(graph, patch: int, x: int) -> tuple[list, np.ndarray] | 
     for first in graph.rotation(x):
         if graph.edge_type(first) not in PLAN_EDGES:
             continue
-        face = face_walk(graph, PLAN_EDGES, (first, x))
+        face = face_from(graph, PLAN_EDGES, (first, x))
         if not corners <= {u for _, u in face}:
             continue
         found = face_outline(graph, face)  # kept by content across states (issue 13)
@@ -209,9 +209,14 @@ def patch_chains(graph, patch: int, x: int, o: int) -> tuple[np.ndarray, np.ndar
     if found is None:
         return None
     face, outline = found
-    nodes = [u for _, u in face]
-    at = sum(len(half_edge_polyline(graph, e, u)) - 1 for e, u in face[: nodes.index(o)])
+    at = _point_of(graph, face, o)
     return outline[: at + 1], outline[at:][::-1]
+
+
+def _point_of(graph, face: list, o: int) -> int:
+    """The index in a face's outline (from :func:`_patch_outline`) of its node ``o``'s point."""
+    nodes = [u for _, u in face]
+    return sum(len(half_edge_polyline(graph, e, u)) - 1 for e, u in face[: nodes.index(o)])
 
 
 def patch_side_starts(graph, patch: int, x: int, y: int) -> bool:
@@ -242,13 +247,33 @@ def diagonal_path(graph, patch: int, x: int, o: int) -> tuple:
     length. Where a side is curved or the patch wraps round a reflex corner (a curve extremity) the
     diagonal thus bends inside the patch instead of cutting across a side or running through the
     neighbouring patch. ``()`` when no such path exists: a rule should then leave the patch whole.
+
+    Kept by what it is made of (issue 13: the rules ask for the same diagonals in state after
+    state): the patch's closed outline (one of :func:`~.patches.face_outline`'s, shared by every
+    state with that face), where ``o`` is along it, the two corners' positions and the plan's
+    segments (shared by every state with that plan geometry, :func:`_all_plan_segments`). The
+    entry keeps the outline and the segments alive, so that their ``id`` names them.
     """
-    p, q = np.asarray(graph.get(x, "pos"), dtype=float), np.asarray(graph.get(o, "pos"), dtype=float)
-    chains = patch_chains(graph, patch, x, o)
-    if chains is None:
+    found = _patch_outline(graph, patch, x)
+    if found is None:
         return ()
-    a, b = chains
-    segments = _plan_segments(graph)
+    outline, at, segments = found[1], _point_of(graph, found[0], o), _plan_segments(graph)
+    p, q = graph.get(x, "pos"), graph.get(o, "pos")
+    return by_content(_DIAGONALS, (id(outline), at, p, q, id(segments)),
+                      lambda: (outline, segments, _diagonal(outline, at, p, q, segments)), DIAGONALS)[2]
+
+
+#: The diagonals kept (the most recently asked) by :func:`diagonal_path`; as many as the plans'
+#: segments kept, since each entry keeps its plan's segments alive.
+DIAGONALS = 256
+_DIAGONALS: OrderedDict = OrderedDict()
+
+
+def _diagonal(outline: np.ndarray, at: int, x_pos, o_pos, segments) -> tuple:
+    """:func:`diagonal_path` in the patch of closed ``outline`` (from corner x) whose corner o is
+    its point ``at``, with the plan's ``segments``."""
+    p, q = np.asarray(x_pos, dtype=float), np.asarray(o_pos, dtype=float)
+    a, b = outline[: at + 1], outline[at:][::-1]
 
     def inside(path):
         return (_within(path[1] - p, a[1] - p, b[1] - p) and _within(path[-2] - q, b[-2] - q, a[-2] - q)

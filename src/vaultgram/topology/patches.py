@@ -9,20 +9,22 @@ sides; any other face is an error naming where it is.
 
 from __future__ import annotations
 
+import functools
+import weakref
 from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
 import shapely
 
-from vaultgram.engine.embedding import faces
+from vaultgram.engine.embedding import face_walk, faces
 from vaultgram.engine.graph import HostGraph
 from vaultgram.errors import DomainError, RewriteError
 from vaultgram.geometry.frames import NO_ORIGIN, to_plan
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.text import fmt_point
 from vaultgram.topology.discretise import Discretisation
-from vaultgram.topology.statecache import by_content
+from vaultgram.topology.statecache import by_content, per_state
 from vaultgram.topology.types import BOUNDARY, BOUNDARY_VERTEX, CURVE_EXTREMITY, FEATURE_POINT, SKELETON_VERTEX
 
 
@@ -91,9 +93,9 @@ def find_patches(graph: HostGraph, disc: Discretisation, edge_types, strict: boo
     (12, {4})
     """
     types = set(edge_types)
-    patches = []
+    patches, corner = [], {}
     for face, polys, outline in plan_faces(graph, types):
-        corners, sides, side_edges = _sides(graph, face, polys, outline, types)
+        corners, sides, side_edges = _sides(graph, face, polys, outline, types, corner)
         if len(corners) < 3 or (strict and len(corners) > 4):
             raise DomainError(
                 f"patch around {_where(outline)} has {len(corners)} sides (corners at "
@@ -108,11 +110,33 @@ def plan_faces(graph: HostGraph, edge_types) -> list[tuple[list, list, np.ndarra
     """The bounded faces of the plan that are not the inside of a hole, each as its half-edges, their
     polylines and its outline (counter-clockwise, not closed)."""
     out = []
-    for face in faces(graph, edge_types):
+    for face in faces(graph, edge_types, walk=face_from):
         found = face_outline(graph, face)
         if found.area > 0 and not _is_hole(graph, face):  # not the unbounded face, nor a hole
             out.append((face, list(found.polylines), found.outline))
     return out
+
+
+_FACES_AT: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> {state: {types: {half-edge: ...}}}
+
+
+def face_from(graph: HostGraph, edge_types, half_edge: tuple) -> list:
+    """The face to the left of ``half_edge`` from it on, as :func:`~vaultgram.engine.embedding.face_walk`
+    walks it (a new list), each face walked once per state of the graph
+    (:func:`~vaultgram.topology.statecache.per_state`): the rules' helpers look for the face of each
+    Patch node from its first corner, trying the faces there one after another, and neighbouring
+    patches share corners, so the same faces (the unbounded one among them) were walked again and
+    again in each state the search makes (issue 13)."""
+    memo = per_state(_FACES_AT, graph, lambda g: {})
+    types = frozenset(edge_types)
+    at = memo.get(types)
+    if at is None:
+        at = memo[types] = {}
+    if half_edge not in at:
+        face = tuple(face_walk(graph, types, half_edge))
+        at.update({h: (face, i) for i, h in enumerate(face)})
+    face, i = at[half_edge]
+    return list(face[i:] + face[:i])
 
 
 @dataclass(frozen=True)
@@ -126,6 +150,14 @@ class FaceOutline:
     closed: np.ndarray
     area: float
     closed_area: float
+
+    @functools.cached_property
+    def polygon(self) -> shapely.Polygon:
+        """The outline as a prepared shapely polygon (the strip helpers' containment tests), made
+        once for every state of the graph with this face."""
+        polygon = shapely.Polygon(self.outline)
+        shapely.prepare(polygon)
+        return polygon
 
 
 #: The face outlines kept (the most recently asked) by :func:`face_outline`.
@@ -227,13 +259,18 @@ SIDES = 4096
 _SIDES: OrderedDict = OrderedDict()
 
 
-def _sides(graph: HostGraph, face: list, polys: list, outline: np.ndarray, types) -> tuple[tuple, tuple, tuple]:
+def _sides(graph: HostGraph, face: list, polys: list, outline: np.ndarray, types,
+           known: dict) -> tuple[tuple, tuple, tuple]:
     """A face of the plan cut at its corners: the corners, the side polylines between them and the
     half-edges along each side, starting at the first corner of the face's walk. Kept by the face's
     half-edges, which of their nodes are corners and its outline (one of :func:`face_outline`'s, kept
     alive with the entry, so that its ``id`` names it): the same face in another state of the graph
-    is cut the same way (issue 13)."""
-    corner = tuple(_is_corner(graph, u, types) for _, u in face)
+    is cut the same way (issue 13). ``known``: node -> whether it is a corner, filled as the faces
+    are cut (a node is on the faces of each of its edges)."""
+    for _, u in face:
+        if u not in known:
+            known[u] = _is_corner(graph, u, types)
+    corner = tuple(known[u] for _, u in face)
     return by_content(_SIDES, (tuple(face), corner, id(outline)),
                       lambda: (outline, _cut_at_corners(face, polys, corner, outline)), SIDES)[1]
 
@@ -272,10 +309,11 @@ def _is_corner(graph: HostGraph, n: int, types) -> bool:
 
 def _is_hole(graph: HostGraph, face) -> bool:
     """A face made only of boundary edges of one hole ring, walked around the hole."""
+    if any(graph.edge_type(e) != BOUNDARY for e, _ in face):
+        return False
     rings = {graph.get(u, "ring") if graph.schema.is_subtype(graph.node_type(u), BOUNDARY_VERTEX) else -1
              for _, u in face}
-    edge_types = {graph.edge_type(e) for e, _ in face}
-    return edge_types == {BOUNDARY} and len(rings) == 1 and next(iter(rings)) > 0
+    return len(rings) == 1 and next(iter(rings)) > 0
 
 
 def _where(outline: np.ndarray) -> str:

@@ -47,6 +47,9 @@ def per_state(cache: weakref.WeakKeyDictionary, graph, make):
     return value
 
 
+_MISSING = object()  # by_content's mark of a key not kept
+
+
 def by_content(cache: OrderedDict, key, make, size: int):
     """``make()``, kept in ``cache`` under ``key`` (what the result is made of, hashable) for the last
     ``size`` keys asked. Where a result depends on a few nodes' and edges' values only, keying it by
@@ -57,10 +60,11 @@ def by_content(cache: OrderedDict, key, make, size: int):
     >>> [by_content(cache, k, lambda: calls.append(k) or k * 2, 2) for k in (1, 2, 1, 3, 2)], calls
     ([2, 4, 2, 6, 4], [1, 2, 3, 2])
     """
-    if key in cache:
-        cache.move_to_end(key)
-        return cache[key]
-    value = cache[key] = make()
+    value = cache.pop(key, _MISSING)  # hashing a key is most of a hit's cost: once to take it out,
+    if value is _MISSING:  # once to put it back last (the most recently asked)
+        value = make()
+    cache[key] = value
     if len(cache) > size:
         cache.popitem(last=False)
     return value
+

@@ -16,18 +16,24 @@ vault pipeline registers the functions (:mod:`vaultgram.topology.functions`).
 
 from __future__ import annotations
 
-import functools
 import weakref
+from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
 import shapely
 
-from vaultgram.engine.embedding import face_walk
 from vaultgram.geometry.polygons import interior_angle
 from vaultgram.geometry.polylines import arc_lengths, point_at_length
-from vaultgram.topology.patches import face_outline, half_edge_polyline
-from vaultgram.topology.statecache import per_state
+from vaultgram.topology.patches import (
+    FaceOutline,
+    face_from,
+    face_outline,
+    half_edge_key,
+    half_edge_polyline,
+    key_polyline,
+)
+from vaultgram.topology.statecache import by_content, per_state
 from vaultgram.topology.types import (
     BOUNDARY,
     BOUNDARY_VERTEX,
@@ -51,19 +57,18 @@ SPLITTABLE = (BRANCH, REBRANCH, DIAGONAL)
 @dataclass(frozen=True)
 class PatchSides:
     """A Patch node's corners by index and its sides: side ``k`` is the list of half-edges
-    ``(edge, start node)`` from corner ``k`` to corner ``k + 1``, counter-clockwise; ``outline``
-    the closed polygon of the face."""
+    ``(edge, start node)`` from corner ``k`` to corner ``k + 1``, counter-clockwise; ``face`` the
+    outline of the face (:func:`~vaultgram.topology.patches.face_outline`, shared by every state
+    with that face, with its prepared polygon for the chords' containment tests)."""
 
     corners: tuple
     sides: tuple
-    outline: np.ndarray
+    face: FaceOutline
 
-    @functools.cached_property
+    @property
     def polygon(self) -> shapely.Polygon:
-        """The outline as a prepared shapely polygon (for the chords' containment tests)."""
-        polygon = shapely.Polygon(self.outline)
-        shapely.prepare(polygon)
-        return polygon
+        """The face's outline as a prepared shapely polygon (made once for all states with it)."""
+        return self.face.polygon
 
 
 _STATE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> {state: {key: value}}
@@ -92,18 +97,17 @@ def _walk_sides(graph, patch: int) -> PatchSides | None:
     for first in graph.rotation(corners[0]):
         if graph.edge_type(first) not in PLAN_EDGES:
             continue
-        face = face_walk(graph, PLAN_EDGES, (first, corners[0]))
+        face = face_from(graph, PLAN_EDGES, (first, corners[0]))
         nodes = [u for _, u in face]
         if not set(corners) <= set(nodes):
             continue
         found = face_outline(graph, face)
         if found.closed_area <= 0:
             continue
-        outline = found.outline
         starts = [nodes.index(c) for c in corners] + [len(face)]
         if starts != sorted(starts):
             return None
-        return PatchSides(corners, tuple(tuple(face[a:b]) for a, b in zip(starts, starts[1:])), outline)
+        return PatchSides(corners, tuple(tuple(face[a:b]) for a, b in zip(starts, starts[1:])), found)
     return None
 
 
@@ -128,13 +132,18 @@ def corner_chord_angle(graph, patch: int, x: int) -> float:
     return interior_angle(graph.get(before, "pos"), graph.get(x, "pos"), graph.get(after, "pos"))
 
 
+#: The edges cut halfway kept (the most recently asked) by :func:`_halves`.
+HALVES = 1024
+_HALVES: OrderedDict = OrderedDict()
+
+
 def _halves(graph, edge: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """An edge's polyline (from its source) cut at half its length: the piece before, the point, the
-    piece after (the point is in neither); once per state."""
-    memo = _memo(graph)
-    if ("halves", edge) not in memo:
-        memo[("halves", edge)] = _cut_halfway(half_edge_polyline(graph, edge, graph.ends(edge)[0]))
-    return memo[("halves", edge)]
+    piece after (the point is in neither; read-only arrays). Kept by what the edge's points are made
+    of (:func:`~vaultgram.topology.patches.half_edge_key`), so every state of the search with that
+    edge finds it (issue 13)."""
+    key = half_edge_key(graph, edge, graph.ends(edge)[0])
+    return by_content(_HALVES, key, lambda: _cut_halfway(key_polyline(key)), HALVES)
 
 
 def _cut_halfway(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -142,7 +151,10 @@ def _cut_halfway(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     mid = point_at_length(pts, s[-1] / 2)
     j = int(np.searchsorted(s, s[-1] / 2, side="left"))
     after = j + int(bool(np.allclose(pts[j], mid)))
-    return pts[:j], mid, pts[after:]
+    halves = pts[:j], mid, pts[after:]
+    for array in halves:
+        array.flags.writeable = False  # shared by every state with this edge (see _halves)
+    return halves
 
 
 def strip_point(graph, edge: int) -> tuple[float, float]:
