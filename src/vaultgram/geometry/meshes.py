@@ -16,7 +16,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from vaultgram.errors import MeshError, NonManifoldVertexError
-from vaultgram.geometry.arrays import lookup
+from vaultgram.geometry.arrays import lookup, plan_rows, row_dot
+from vaultgram.geometry.polygons import cross_z
 
 __all__ = [
     "MeshError",
@@ -27,6 +28,7 @@ __all__ = [
     "boundary_loops",
     "loops_of",
     "corner_arrays",
+    "corner_angles",
     "Faces",
     "corner_vectors",
     "with_midpoints",
@@ -211,9 +213,18 @@ def corner_vectors(x: np.ndarray, u: np.ndarray, v: np.ndarray, p: np.ndarray) -
     >>> [e.tolist() for e in corner_vectors(x, np.array([0]), np.array([1]), np.array([2]))]
     [[[1.0, 0.0]], [[0.0, 1.0]]]
     """
-    xy = x[:, :2]  # rows gathered with take: about 3x faster than x[v, :2] at 10^5 faces
-    at = xy.take(u, axis=0)
-    return xy.take(v, axis=0) - at, xy.take(p, axis=0) - at
+    at = plan_rows(x, u)
+    return plan_rows(x, v) - at, plan_rows(x, p) - at
+
+
+def corner_angles(e1: np.ndarray, e2: np.ndarray) -> np.ndarray:
+    """The signed angle (radians, in [-pi, pi]) from side ``e1`` to side ``e2`` of each corner
+    (:func:`corner_vectors`): positive at a counter-clockwise corner, its interior angle there.
+
+    >>> corner_angles(np.array([[1.0, 0.0], [1.0, 0.0]]), np.array([[0.0, 1.0], [-1.0, -1.0]])).round(4).tolist()
+    [1.5708, -2.3562]
+    """
+    return np.arctan2(cross_z(e1, e2), row_dot(e1, e2))
 
 
 def has_twin(u: np.ndarray, v: np.ndarray, n: int | None = None) -> np.ndarray:
