@@ -32,6 +32,7 @@ __all__ = [
     "Faces",
     "corner_vectors",
     "with_midpoints",
+    "has_side_in",
     "barycentre_operator",
     "has_twin",
     "adjacency",
@@ -297,6 +298,19 @@ def _walk_loops(nxt: dict[int, int]) -> list[list[int]]:
             b = nxt[b]
         loops.append(loop)
     return loops
+
+
+def has_side_in(faces, sides, n: int) -> np.ndarray:
+    """Per face, whether one of its sides is among ``sides`` (pairs ``(lo, hi)`` of vertex ids below
+    ``n``): the faces that :func:`with_midpoints` changes, found without visiting every face in Python.
+
+    >>> has_side_in([(0, 1, 2, 3), (1, 4, 5, 2), (4, 6, 7, 5)], {(1, 2): 9}, 10).tolist()
+    [True, True, False]
+    """
+    fid, u, v, _ = corner_arrays(faces)
+    keys = np.sort(np.array([a * n + b for a, b in sides], dtype=np.int64))
+    hit = lookup(keys, np.minimum(u, v) * n + np.maximum(u, v))[1]
+    return np.bincount(fid[hit], minlength=len(faces)) > 0
 
 
 def with_midpoints(face, midpoint: dict) -> tuple:
