@@ -19,7 +19,7 @@ anchor. Both are checked against each other and against networkx in the tests.
 from __future__ import annotations
 
 import weakref
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -40,6 +40,7 @@ class GraphArrays:
     he_other: np.ndarray  # node at the other end
     he_code: np.ndarray  # edge type code
     he_source: np.ndarray  # True where the half-edge's node is the edge's source
+    degrees: dict = field(default_factory=dict, compare=False)  # edge types -> degree per node (_degrees)
 
 
 #: Attribute values compared as one numpy array (Python compares them the same way).
@@ -196,8 +197,7 @@ _PHASES = {Scan: _scan_phase, Extend: _extend_phase, Check: _check_phase, Bound:
 
 
 def _scan(g: HostGraph, arrays: GraphArrays, step: Scan, table: Table) -> Table:
-    candidates = np.fromiter(g.of_types(step.node.types), dtype=np.int64)
-    candidates.sort()
+    candidates = np.flatnonzero(_type_mask(arrays, step.node.types)[arrays.node_code])  # ids in order
     rows = np.repeat(np.arange(table.rows), len(candidates))
     new = np.tile(candidates, table.rows)
     ok = np.ones(len(new), dtype=bool)
@@ -238,11 +238,17 @@ def _extend(arrays: GraphArrays, step: Extend, table: Table) -> Table:
 
 
 def _degrees(g: HostGraph, types: frozenset) -> np.ndarray:
-    """Per node id, its number of edges of ``types``, from the incidence arrays."""
+    """Per node id, its number of edges of ``types``, from the incidence arrays; kept with them, for
+    the chunks of one search and the searches until the graph changes (each chunk of a scan over
+    10^6 nodes counted every half-edge again)."""
     arrays = graph_arrays(g)
-    counts = np.diff(arrays.he_ptr)
-    owner = np.repeat(np.arange(len(counts)), counts)
-    return np.bincount(owner[_type_mask(arrays, types)[arrays.he_code]], minlength=len(counts))
+    if types not in arrays.degrees:
+        counts = np.diff(arrays.he_ptr)
+        owner = np.repeat(np.arange(len(counts)), counts)
+        degree = np.bincount(owner[_type_mask(arrays, types)[arrays.he_code]], minlength=len(counts))
+        degree.flags.writeable = False  # shared by every search of this version
+        arrays.degrees[types] = degree
+    return arrays.degrees[types]
 
 
 def _column_mask(g: HostGraph, test, ids: np.ndarray, rhs) -> np.ndarray:

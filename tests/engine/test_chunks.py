@@ -50,3 +50,25 @@ def test_a_square_grid_has_four_four_cycle_matches_per_square(monkeypatch):
     keys = [m.key for m in Matcher(book.rules["square"], checkerboard(book, 7)).all()]
     assert len(keys) == 4 * 6 * 6 and len(set(keys)) == len(keys)
     assert keys == sorted(keys)
+
+
+DEGREE_RULES = """
+schema s { node A { w: int = 0 }  node B  edge E (Node -- Node)  edge F (A -- B) }
+rule hub { match { a: A } where degree(a, E) >= 3 }
+"""
+
+
+def test_degrees_are_kept_per_graph_version_and_counted_again_after_a_change(monkeypatch):
+    """The degrees a column test reads are counted once per graph version (every chunk of a scan
+    reads the same array), equal the graph's own, and are counted again when an edge is added."""
+    book = rulebook_from_text(DEGREE_RULES)
+    g = checkerboard(book, 6)
+    monkeypatch.setattr(columnar, "CHUNK_ROWS", 4)
+    hubs = [m.key for m in Matcher(book.rules["hub"], g).all()]
+    kept = columnar._degrees(g, frozenset({"E"}))
+    assert kept is columnar._degrees(g, frozenset({"E"}))
+    assert kept.tolist() == [g.degree(n, ("E",)) for n in range(36)]
+    assert sorted(k[0] for k in hubs) == [n for n in range(36) if g.node_type(n) == "A" and g.degree(n, ("E",)) >= 3]
+    g.add_edge("E", 0, 35)  # a corner of the grid (degree 2) becomes a hub
+    assert columnar._degrees(g, frozenset({"E"}))[0] == 3
+    assert (0,) in [m.key for m in Matcher(book.rules["hub"], g).all()]

@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
-__all__ = ["TIE", "TIED", "distinct", "lookup", "nearest", "row_dot", "run_starts", "steady", "unit_rows"]
+__all__ = ["TIE", "TIED", "distinct", "lookup", "nearest", "plan_rows", "row_dot", "run_starts", "steady", "unit_rows"]
 
 #: Relative difference under which two computed values are a tie (round-off differs between
 #: machines by some 1e-15 relative; the stages' real differences are far above 1e-9).
@@ -60,6 +60,17 @@ def run_starts(keys: np.ndarray) -> np.ndarray:
     [True, False, True, True, False]
     """
     return np.concatenate([[True], keys[1:] != keys[:-1]]) if len(keys) else np.zeros(0, dtype=bool)
+
+
+def plan_rows(x: np.ndarray, index) -> np.ndarray:
+    """The plan coordinates (first two columns) of rows ``index`` of ``x``: ``x[index, :2]``, gathered
+    with ``take`` (the mixed fancy-and-slice index copies element by element: about three times
+    slower on the 10^5-10^6 rows of a mesh's corners or edges).
+
+    >>> plan_rows(np.array([[0.0, 1, 9], [2, 3, 9], [4, 5, 9]]), np.array([2, 0])).tolist()
+    [[4.0, 5.0], [0.0, 1.0]]
+    """
+    return x[:, :2].take(index, axis=0)
 
 
 def row_dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -16,7 +16,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from vaultgram.errors import MeshError, NonManifoldVertexError
-from vaultgram.geometry.arrays import lookup
+from vaultgram.geometry.arrays import lookup, plan_rows, row_dot
+from vaultgram.geometry.polygons import cross_z
 
 __all__ = [
     "MeshError",
@@ -27,9 +28,11 @@ __all__ = [
     "boundary_loops",
     "loops_of",
     "corner_arrays",
+    "corner_angles",
     "Faces",
     "corner_vectors",
     "with_midpoints",
+    "has_side_in",
     "barycentre_operator",
     "has_twin",
     "adjacency",
@@ -211,7 +214,18 @@ def corner_vectors(x: np.ndarray, u: np.ndarray, v: np.ndarray, p: np.ndarray) -
     >>> [e.tolist() for e in corner_vectors(x, np.array([0]), np.array([1]), np.array([2]))]
     [[[1.0, 0.0]], [[0.0, 1.0]]]
     """
-    return x[v, :2] - x[u, :2], x[p, :2] - x[u, :2]
+    at = plan_rows(x, u)
+    return plan_rows(x, v) - at, plan_rows(x, p) - at
+
+
+def corner_angles(e1: np.ndarray, e2: np.ndarray) -> np.ndarray:
+    """The signed angle (radians, in [-pi, pi]) from side ``e1`` to side ``e2`` of each corner
+    (:func:`corner_vectors`): positive at a counter-clockwise corner, its interior angle there.
+
+    >>> corner_angles(np.array([[1.0, 0.0], [1.0, 0.0]]), np.array([[0.0, 1.0], [-1.0, -1.0]])).round(4).tolist()
+    [1.5708, -2.3562]
+    """
+    return np.arctan2(cross_z(e1, e2), row_dot(e1, e2))
 
 
 def has_twin(u: np.ndarray, v: np.ndarray, n: int | None = None) -> np.ndarray:
@@ -284,6 +298,19 @@ def _walk_loops(nxt: dict[int, int]) -> list[list[int]]:
             b = nxt[b]
         loops.append(loop)
     return loops
+
+
+def has_side_in(faces, sides, n: int) -> np.ndarray:
+    """Per face, whether one of its sides is among ``sides`` (pairs ``(lo, hi)`` of vertex ids below
+    ``n``): the faces that :func:`with_midpoints` changes, found without visiting every face in Python.
+
+    >>> has_side_in([(0, 1, 2, 3), (1, 4, 5, 2), (4, 6, 7, 5)], {(1, 2): 9}, 10).tolist()
+    [True, True, False]
+    """
+    fid, u, v, _ = corner_arrays(faces)
+    keys = np.sort(np.array([a * n + b for a, b in sides], dtype=np.int64))
+    hit = lookup(keys, np.minimum(u, v) * n + np.maximum(u, v))[1]
+    return np.bincount(fid[hit], minlength=len(faces)) > 0
 
 
 def with_midpoints(face, midpoint: dict) -> tuple:

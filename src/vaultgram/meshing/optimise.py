@@ -19,6 +19,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from vaultgram.geometry.arrays import plan_rows
 from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.geometry.polylines import project_to_polyline
 from vaultgram.meshing.fans import fan_bounds
@@ -170,7 +171,7 @@ def _goals(x: np.ndarray, faces, t: _Corners, target: float, sliding: np.ndarray
 
 def _vertex_minima(x: np.ndarray, t: _Corners) -> np.ndarray:
     """Per vertex, the smallest scaled Jacobian of the corners it touches (as vertex, next or previous)."""
-    sj = _scaled(x[t.u, :2], x[t.v, :2], x[t.p, :2], t.factor)
+    sj = _scaled(plan_rows(x, t.u), plan_rows(x, t.v), plan_rows(x, t.p), t.factor)
     return t.touch.minimum(np.tile(sj, 3), len(x), np.inf)
 
 
@@ -220,7 +221,7 @@ def _slide_index(n: int, constraints) -> np.ndarray:
 def _trials(x: np.ndarray, t: _Corners, chosen: np.ndarray, slide_of: np.ndarray, constraints) -> np.ndarray:
     """Trial positions (k, m, 2) of the chosen vertices: :data:`_MOVES` times each one's shortest edge
     (at least a quarter of its mean edge), sliding vertices projected onto their polylines."""
-    e = np.hypot(*(x[t.v, :2] - x[t.u, :2]).T)
+    e = np.hypot(*(plan_rows(x, t.v) - plan_rows(x, t.u)).T)
     shortest = np.full(len(x), np.inf)
     np.minimum.at(shortest, t.u, e)
     np.minimum.at(shortest, t.v, e)

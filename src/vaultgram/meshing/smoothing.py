@@ -140,20 +140,22 @@ class _FaceCorners(NamedTuple):
 def _undo_inversions(x: np.ndarray, old: np.ndarray, valid: np.ndarray, corners: _FaceCorners) -> np.ndarray:
     """Give the vertices of every face valid before the step and inverted after it their ``old``
     positions, in place (repeated, since reverting may invert a neighbour); the faces now valid."""
+    now = _valid_faces(x, corners)
     for _ in range(_MAX_REVERTS):
-        broken = valid & ~_valid_faces(x, corners)
+        broken = valid & ~now
         if not broken.any():
             break
         back = distinct(corners.u[broken[corners.face_of]])
         x[back] = old[back]
-    return _valid_faces(x, corners)
+        now = _valid_faces(x, corners)
+    return now
 
 
 def _valid_faces(x: np.ndarray, corners: _FaceCorners) -> np.ndarray:
     """Faces whose every corner turns counter-clockwise (positive cross product, above a relative
     1e-9 of the squared edge lengths)."""
     e1, e2 = corner_vectors(x, corners.u, corners.v, corners.p)
-    scale = (e1 * e1).sum(1) + (e2 * e2).sum(1)
+    scale = e1[:, 0] * e1[:, 0] + e1[:, 1] * e1[:, 1] + (e2[:, 0] * e2[:, 0] + e2[:, 1] * e2[:, 1])
     bad = np.zeros(corners.n_faces, dtype=bool)
     bad[corners.face_of[cross_z(e1, e2) <= 1e-9 * scale]] = True
     return ~bad

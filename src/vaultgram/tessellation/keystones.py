@@ -24,7 +24,7 @@ from vaultgram.engine.graph import HostGraph
 from vaultgram.engine.rulebook import Rulebook, load_rulebook
 from vaultgram.engine.strategy import Runner
 from vaultgram.errors import RuleError
-from vaultgram.geometry.arrays import distinct
+from vaultgram.geometry.arrays import distinct, plan_rows
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.geometry.meshes import Faces, corner_arrays
 from vaultgram.tessellation.functions import tessellation_functions
@@ -95,7 +95,7 @@ def network_graph(x: np.ndarray, me: MeshEdges, rulebook: Rulebook) -> HostGraph
     on_boundary = np.zeros(len(x), dtype=bool)
     on_boundary[me.edges[me.boundary].ravel()] = True
     graph.add_nodes(NODE, range(len(x)), {"pos": x, "index": np.arange(len(x)), "boundary": on_boundary})
-    a, b = x[me.edges[:, 0], :2], x[me.edges[:, 1], :2]
+    a, b = plan_rows(x, me.edges[:, 0]), plan_rows(x, me.edges[:, 1])
     angles = np.column_stack([np.arctan2(b[:, 1] - a[:, 1], b[:, 0] - a[:, 0]),
                               np.arctan2(a[:, 1] - b[:, 1], a[:, 0] - b[:, 0])])  # as _plan_angle gives them
     graph.add_edges(EDGE, me.edges, angles=angles)

@@ -14,9 +14,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from vaultgram.geometry.arrays import lookup
 from vaultgram.geometry.halfedges import MeshEdges, mesh_edges
-from vaultgram.geometry.meshes import Faces, corner_arrays, with_midpoints
+from vaultgram.geometry.meshes import Faces, corner_arrays, has_side_in, with_midpoints
 from vaultgram.geometry.surfaces import surface_areas
 from vaultgram.tessellation.strips import Strip, node_strips, quad_strips, strip_directions
 
@@ -63,7 +62,7 @@ def _refined(x: np.ndarray, faces, cuts: dict[int, set[int]]) -> tuple[np.ndarra
     """The mesh with the quads cut: vertices, faces, for each new vertex the vertices it is the mean
     of, and for each face the face it was cut from. Only the cut quads are visited one by one; the
     other faces are copied in runs, and a face gets the midpoints of its sides inserted only if one
-    of its sides was cut (:func:`_touched`)."""
+    of its sides was cut (:func:`~vaultgram.geometry.meshes.has_side_in`)."""
     points, parents, index = [], [], {}
 
     def mid(a: int, b: int) -> int:
@@ -88,17 +87,9 @@ def _refined(x: np.ndarray, faces, cuts: dict[int, set[int]]) -> tuple[np.ndarra
         counts[f], done = len(pieces), f + 1
     out.extend(faces[done:])
     origin = np.repeat(np.arange(len(faces)), counts)
-    touched = _touched(faces, index, len(x))[origin]
+    touched = has_side_in(faces, index, len(x))[origin]
     out = [with_midpoints(f, index) if t else tuple(f) for f, t in zip(out, touched.tolist())]
     return np.vstack([x, *points]) if points else x, out, parents, origin.tolist()
-
-
-def _touched(faces, index: dict, n: int) -> np.ndarray:
-    """Per face, whether one of its sides is among the cut sides ``index`` (pairs ``(lo, hi)``)."""
-    fid, u, v, _ = corner_arrays(faces)
-    cut = np.sort(np.array([a * n + b for a, b in index], dtype=np.int64))
-    hit = lookup(cut, np.minimum(u, v) * n + np.maximum(u, v))[1]
-    return np.bincount(fid[hit], minlength=len(faces)) > 0
 
 
 def refine_large_faces(x: np.ndarray, faces, large: float = LARGE, passes: int = PASSES

@@ -23,7 +23,7 @@ from scipy.sparse.csgraph import breadth_first_order
 
 from vaultgram.geometry.arrays import run_starts
 from vaultgram.geometry.halfedges import MeshEdges
-from vaultgram.geometry.meshes import Faces, with_midpoints
+from vaultgram.geometry.meshes import Faces, corner_arrays, has_side_in, with_midpoints
 from vaultgram.geometry.surfaces import surface_areas
 from vaultgram.tessellation.voussoirs import face_groups, voussoirs_at_vertices
 
@@ -143,7 +143,8 @@ def split_large_quads(x: np.ndarray, faces, group: np.ndarray, target: float
     area = surface_areas(x, faces)
     size = np.bincount(group, weights=area)
     alone = np.bincount(group)[group] == 1
-    cut = [f for f in range(len(faces)) if alone[f] and len(faces[f]) == 4 and size[group[f]] > UPPER * target]
+    sides = np.bincount(corner_arrays(faces)[0], minlength=len(faces))
+    cut = np.flatnonzero(alone & (sides == 4) & (size[group] > UPPER * target)).tolist()
     if not cut:
         return x, Faces(faces), group, np.zeros((0, 2), dtype=np.int64), 0
     midpoint: dict[tuple[int, int], int] = {}
@@ -156,16 +157,16 @@ def split_large_quads(x: np.ndarray, faces, group: np.ndarray, target: float
             if key not in midpoint:
                 midpoint[key] = len(x) + len(new_points)
                 new_points.append(0.5 * (x[a] + x[b]))
-    faces = [list(f) for f in faces]
-    group = list(group.tolist())
+    out, origin = list(faces), list(range(len(faces)))
     for f in cut:
-        faces[f], half = _halves(faces[f], _split_sides(x, faces[f]), midpoint)
-        faces.append(half)
-        group.append(max(group) + 1)
-    faces = [with_midpoints(f, midpoint) for f in faces]
+        out[f], half = _halves(list(faces[f]), _split_sides(x, faces[f]), midpoint)
+        out.append(half)
+        origin.append(f)
+    touched = has_side_in(faces, midpoint, len(x))[origin].tolist()  # a cut quad's halves: always
+    out = [with_midpoints(f, midpoint) if t else tuple(f) for f, t in zip(out, touched)]
+    group = np.concatenate([group, int(group.max()) + 1 + np.arange(len(cut))])  # a new voussoir per second half
     halved = np.array(sorted(midpoint, key=midpoint.get), dtype=np.int64).reshape(-1, 2)
-    return (np.vstack([x, new_points]), Faces(tuple(f) for f in faces), np.array(group, dtype=np.int64), halved,
-            len(cut))
+    return np.vstack([x, new_points]), Faces(out), group.astype(np.int64), halved, len(cut)
 
 
 def _halves(q: list, sides: tuple[int, int], midpoint: dict) -> tuple[list, list]:

@@ -41,7 +41,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from vaultgram.geometry.arrays import distinct, nearest, row_dot, steady, unit_rows
+from vaultgram.geometry.arrays import distinct, nearest, plan_rows, row_dot, steady, unit_rows
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.tessellation.strips import Strip, strip_directions
 
@@ -99,8 +99,8 @@ def preferential_directions(x: np.ndarray, me: MeshEdges, supported: np.ndarray,
     free = boundary[~(supported[edges[boundary, 0]] & supported[edges[boundary, 1]])]
     ref = free if len(free) else boundary
     ref = np.concatenate([ref, np.asarray(rings, dtype=np.int64)])
-    a, b = x[edges[ref, 0], :2], x[edges[ref, 1], :2]
-    return unit_rows(b - a)[nearest(0.5 * (a + b), 0.5 * (x[edges[:, 0], :2] + x[edges[:, 1], :2]))]
+    a, b = plan_rows(x, edges[ref, 0]), plan_rows(x, edges[ref, 1])
+    return unit_rows(b - a)[nearest(0.5 * (a + b), 0.5 * (plan_rows(x, edges[:, 0]) + plan_rows(x, edges[:, 1])))]
 
 
 def quad_directions(x: np.ndarray, me: MeshEdges, pref: np.ndarray, is_quad: np.ndarray) -> np.ndarray:
@@ -108,7 +108,7 @@ def quad_directions(x: np.ndarray, me: MeshEdges, pref: np.ndarray, is_quad: np.
     face that is not a quad): the pair of opposite sides that runs closer to the preferential
     direction. Where both run about as close (within :data:`AMBIGUITY`), the quad follows the
     majority of its neighbours, :data:`SMOOTHING` times, so courses do not fray along the diagonals."""
-    d = x[me.edges[:, 1], :2] - x[me.edges[:, 0], :2]
+    d = plan_rows(x, me.edges[:, 1]) - plan_rows(x, me.edges[:, 0])
     align = np.abs(row_dot(unit_rows(d), pref))
     quad_corner = is_quad[me.corner_face]
     c = np.flatnonzero(quad_corner)

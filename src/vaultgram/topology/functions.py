@@ -88,7 +88,8 @@ def move_branch_end(graph, polyline, old, new, s: int, t: int) -> tuple:
     """:func:`move_end` for a branch of skeleton vertices ``s`` and ``t`` being merged at ``new``, its
     points next to the moved end dropped where they hook round a radius of the merged circle (from
     ``new`` to a point either circle touches: what the rebranching rule draws, Figure 2e) -- the
-    junction the merge collapses; with no hook, exactly ``move_end``."""
+    junction the merge collapses -- down to the straight segment to the branch's other end; with no
+    hook, exactly ``move_end``."""
     moved = move_end(polyline, old, new)
     ends = [graph.get(graph.ends(e)[1], "pos") for n in (s, t) for e in graph.incident(n, [DUAL])]
     if len(moved) < 3 or not ends:
@@ -100,7 +101,7 @@ def move_branch_end(graph, polyline, old, new, s: int, t: int) -> tuple:
     points = points if at_start else points[::-1]
     if _clear(points, start, end):
         return moved
-    for k in range(2, len(points) - 1):
+    for k in range(2, len(points)):
         candidate = np.vstack([points[:1], points[k:]])
         if _clear(candidate, start, end):
             return _points(candidate if at_start else candidate[::-1])
