@@ -50,7 +50,9 @@ class TributaryAreas:
             z = np.zeros(0, dtype=np.int64)
             return cls(n, z, z, z, sp.csr_matrix((0, n)), sp.csr_matrix((n, 0)))
         lens = np.bincount(face)
-        F = sp.csr_matrix((1.0 / lens[face], (face, vert)), shape=(len(lens), n))
+        # the corners are in face order: CSR rows as they are (columns then sorted within the rows)
+        F = sp.csr_matrix((1.0 / lens[face], vert, np.concatenate([[0], np.cumsum(lens)])), shape=(len(lens), n))
+        F.sort_indices()
         k = np.arange(len(face))
         S = sp.csr_matrix((np.full(2 * len(k), 0.25), (np.concatenate([vert, nxt]), np.concatenate([k, k]))),
                           shape=(n, len(k)))
