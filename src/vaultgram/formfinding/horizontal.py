@@ -114,11 +114,8 @@ def angle_deviations(u: np.ndarray, d: np.ndarray) -> np.ndarray:
 
 def _unit(v: np.ndarray) -> np.ndarray:
     """Rows of ``v`` scaled to unit length (zero rows stay zero)."""
-    n = np.hypot(v[:, 0], v[:, 1])
-    out = np.zeros_like(v)
-    ok = n > 0
-    out[ok] = v[ok] / n[ok, None]
-    return out
+    n = np.hypot(v[:, 0], v[:, 1])[:, None]
+    return np.divide(v, n, out=np.zeros_like(v), where=n > 0)  # no gather of the non-zero rows
 
 
 def _lengths(v: np.ndarray) -> np.ndarray:
