@@ -58,7 +58,7 @@ class MeshEdges:
     @cached_property
     def boundary(self) -> np.ndarray:
         """Edges with a face on one side only."""
-        return (self.faces_of < 0).any(axis=1)
+        return (self.faces_of[:, 0] < 0) | (self.faces_of[:, 1] < 0)
 
     def face_edges(self, f: int) -> np.ndarray:
         """The edges of face ``f``, side by side."""
