@@ -304,7 +304,11 @@ class _Parallelisation:
         self.Cu = form.C[force.form_edge].tocsr()
         self.Cd = force.C
         self.start = self.iterate(np.array(form.xy, dtype=float), np.array(force.xy, dtype=float))
-        self.frame = _targets(self.start.u, self.start.d, a)
+
+    @cached_property
+    def frame(self) -> np.ndarray:
+        """The initial target directions (made on the first step: never when the start is parallel)."""
+        return _targets(self.start.u, self.start.d, self.a)
 
     def iterate(self, xy: np.ndarray, y: np.ndarray) -> _Iterate:
         u, d = self.Cu @ xy, self.Cd @ y
