@@ -162,7 +162,8 @@ def force_diagram(form: FormDiagram, q: np.ndarray | None = None) -> ForceDiagra
     edge from its right face to its left face. The positions minimise ``sum |force_e - q_e form_e|^2``
     (unit force densities ``q`` unless given, one per form edge), one vertex per component held at the
     origin: exact when the form is in equilibrium with these force densities (equal ones on a regular
-    grid, those of a relaxation), otherwise the start of :func:`vaultgram.formfinding.horizontal.horizontal`.
+    grid, those of a relaxation; the reciprocal is then walked out along a tree, :func:`_walked`, not
+    fitted), otherwise the start of :func:`vaultgram.formfinding.horizontal.horizontal`.
 
     Example
     -------
