@@ -284,6 +284,7 @@ def parse_args(argv):
 def main(argv=None) -> None:
     args = parse_args(sys.argv[1:] if argv is None else argv)
     run_vaultgram(4)  # warm up imports
+    print(f"start-up, imports and the n = 4 warm-up: {time.process_time():.2f} s CPU of this process")
     head = (f"{'n':>4} {'verts':>7} {'form':>8} {'force':>8} {'horiz':>8} {'vert':>8} {'total':>8} {'cpu':>8} "
             f"{'h_it':>5} {'v_it':>5} {'angle(deg)':>11} {'res/load':>9}")
     print("vaultgram")

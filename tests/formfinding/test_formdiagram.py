@@ -33,3 +33,50 @@ def test_partially_supported_grid_has_run_openings():
         assert form.anchors[op[0]] and form.anchors[op[-1]] and not form.anchors[list(op[1:-1])].any()
     tn = form_find(v, f, supports=sup, zmax=3.0, sag=0.1)
     assert_network_ok(tn)
+
+
+def _brute_edge_faces(form) -> dict:
+    """``{(u, v): [left, right]}`` from the faces as tuples, one dict entry per side (a reference for
+    the sorted-sides construction)."""
+    out: dict = {}
+    for k, face in enumerate(form.faces):
+        sides = list(zip(face, face[1:] + face[:1]))
+        if not form.loaded[k] and form.anchors[face[0]] and form.anchors[face[-1]] and len(face) > 2 \
+                and (face[-1], face[0]) not in {(u, v) for u, v in sides[:-1]}:
+            sides = sides[:-1]              # an open opening face: no side on its closing chord
+        for a, b in sides:
+            out.setdefault((min(a, b), max(a, b)), [-1, -1])[int(a > b)] = k
+    return out
+
+
+def test_edge_faces_match_the_faces_sides_with_holes_and_runs():
+    """Every edge's left and right faces (loaded and opening) are the faces whose sides run u -> v
+    and v -> u, on a grid with two holes supported on one side only (closed openings and runs)."""
+    from vaultgram.geometry.meshes import remove_faces
+
+    v, f, _ = remove_faces(*grid_mesh(9, 7), drop=[2 * 9 + 2, 4 * 9 + 6, 3 * 9 + 6])   # faces j * nx + i
+    sup = [k for k in range(len(v)) if v[k, 1] == 0.0]
+    form = form_diagram(v, f, supports=sup)
+    ref = _brute_edge_faces(form)
+    got = {tuple(e): list(lr) for e, lr in zip(form.edges.tolist(), form.edge_faces.tolist())}
+    assert got == {e: lr for e, lr in ref.items() if e in got}
+    assert len(got) == form.n_edges and (~form.loaded).sum() == 3   # two holes and one run
+    assert (form.edge_faces[form.active] >= 0).all()
+    # each hole's face has a side on every one of its edges, the run none on its closing chord
+    sides = np.bincount(form.edge_faces[form.edge_faces >= form.loaded.sum()], minlength=form.n_faces)
+    runs = [bool(form.anchors[o[0]] and form.anchors[o[-1]]) for o in form.opening_faces]
+    assert sides[~form.loaded].tolist() == [len(o) - r for o, r in zip(form.opening_faces, runs)]
+    assert sum(runs) == 1
+
+
+def test_dropped_corner_that_turns_a_face_clockwise_is_named():
+    """A supported vertex left without edges is dropped from its face; a face that then turns
+    clockwise is named with its input index and both vertex lists."""
+    import pytest
+
+    from vaultgram.errors import FormFindingError
+
+    v = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [1.0, 0.3], [0.0, 2.0], [1.0, 3.0]])
+    f = [(0, 1, 2, 3), (3, 2, 5, 4), (0, 3, 4)]
+    with pytest.raises(FormFindingError, match=r"face \d+ \[.*\] becomes \[.*\], which is not counter-clockwise"):
+        form_diagram(v, f, supports=[0, 1, 2, 4, 5])

@@ -123,17 +123,19 @@ class ForceDensityMatrix:
         Cm.sort_indices()
         m, self.n = Cm.shape
         count, col = np.diff(Cm.indptr), Cm.indices.astype(np.int64)
-        edge = np.repeat(np.arange(m), count)
         both = np.flatnonzero(count == 2)                  # edges with two moving ends
         first = Cm.indptr[both]
-        # the entries: the diagonal (every moving vertex), then one below it per edge with two moving
-        # ends (edges are distinct, so no entry twice): an index map, no sort of the entries
-        below = self.n + np.arange(len(both))
-        entry = np.concatenate([col, below])
-        signs = np.concatenate([Cm.data * Cm.data, Cm.data[first] * Cm.data[first + 1]])
+        # the entries: the diagonal (every moving vertex: its edges, the columns of Cm), then one below
+        # it per edge with two moving ends (edges are distinct, so no entry twice); the map's rows in
+        # CSR order as they come (Cm's columns by a CSC conversion), no sort of the entries
+        by_vertex = Cm.tocsc()
+        by_vertex.sort_indices()
+        indptr = np.concatenate([by_vertex.indptr, by_vertex.indptr[-1] + 1 + np.arange(len(both))])
+        signs = np.concatenate([by_vertex.data * by_vertex.data, Cm.data[first] * Cm.data[first + 1]])
         self.rows = np.concatenate([np.arange(self.n), col[first + 1]])
         self.cols = np.concatenate([np.arange(self.n), col[first]])
-        self._map = sp.csr_matrix((signs, (entry, np.concatenate([edge, both]))), shape=(self.n + len(both), m))
+        self._map = sp.csr_matrix((signs, np.concatenate([by_vertex.indices, both]), indptr),
+                                  shape=(self.n + len(both), m))
 
     def values(self, q: np.ndarray) -> np.ndarray:
         """The entries of ``Cm^T diag(q) Cm`` at ``rows, cols``."""

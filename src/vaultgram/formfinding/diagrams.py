@@ -33,9 +33,13 @@ def connectivity_matrix(edges: np.ndarray, n: int) -> sp.csr_matrix:
     """
     edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
     m = len(edges)
-    rows = np.repeat(np.arange(m), 2)
-    data = np.tile([-1.0, 1.0], m)
-    return sp.csr_matrix((data, (rows, edges.ravel())), shape=(m, n))
+    # two entries per row, made in CSR order (columns ascending) without a sort of 2m coordinates
+    u, v = edges[:, 0], edges[:, 1]
+    cols = np.column_stack([np.minimum(u, v), np.maximum(u, v)])
+    data = np.empty((m, 2))
+    data[:, 0] = np.where(u < v, -1.0, 1.0)
+    np.negative(data[:, 0], out=data[:, 1])
+    return sp.csr_matrix((data.ravel(), cols.ravel(), np.arange(0, 2 * m + 1, 2)), shape=(m, n))
 
 
 def edge_components(edges: np.ndarray, n: int) -> tuple[int, np.ndarray]:

@@ -34,9 +34,10 @@ import scipy.sparse as sp
 
 from vaultgram.errors import FormFindingError
 from vaultgram.formfinding.diagrams import Diagram, connectivity_matrix
-from vaultgram.formfinding.supports import outer_loop
-from vaultgram.geometry.arrays import distinct, lookup
-from vaultgram.geometry.meshes import Faces, boundary_halfedges, corner_arrays, face_areas, loops_of
+from vaultgram.formfinding.supports import largest_loop, manifold_loops
+from vaultgram.geometry.arrays import lookup
+from vaultgram.geometry.halfedges import MeshEdges, edges_of_sides, repeated_sides, sorted_sides
+from vaultgram.geometry.meshes import Faces, corner_arrays, corners_of_flat, loops_of, shoelace_areas
 
 __all__ = ["FormDiagram", "form_diagram", "connectivity_matrix"]
 
@@ -165,13 +166,13 @@ def form_diagram(vertices, faces: Sequence[Sequence[int]], supports: Iterable[in
     >>> form.n_vertices, form.n_edges, int(form.loaded.sum()), int((~form.loaded).sum())
     (21, 24, 16, 0)
     """
-    xy0, faces = _checked_mesh(vertices, faces)
+    xy0, faces, mesh = _checked_mesh(vertices, faces)
     scale = max(float(np.ptp(xy0, axis=0).max()), 1e-300)
-    _check_orientation(xy0, faces, scale)
-    anchors0 = _anchor_mask(supports, xy0, faces)
-    kept_faces, kept_edges = _drop_supported_edges(xy0, faces, anchors0, update_boundaries, scale)
-    net = _renumbered(xy0, anchors0, kept_faces, kept_edges)
-    openings = _opening_faces(net.faces, net.anchors, net.vertex_ids)
+    sides = _check_orientation(xy0, faces, mesh, scale)
+    anchors0 = _anchor_mask(supports, xy0, sides)
+    kept, keep, degree = _drop_supported_edges(xy0, faces, sides, anchors0, update_boundaries, scale)
+    net = _renumbered(xy0, anchors0, kept, keep, degree)
+    openings = _opening_faces(net)
     form = _assembled(net, openings)
     _check_network(form, scale)
     return form
@@ -180,35 +181,48 @@ def form_diagram(vertices, faces: Sequence[Sequence[int]], supports: Iterable[in
 # ---- phase 1: the mesh as given ------------------------------------------------------------------
 
 
-def _checked_mesh(vertices, faces) -> tuple[np.ndarray, list[tuple[int, ...]]]:
-    """Plan positions (n, 2) and faces as tuples of ints, after checking shapes and indices."""
+class _Corners(NamedTuple):
+    """Faces as corner arrays, never as tuples: corner ``k`` is the side ``vert[k] -> nxt[k]`` of face
+    ``face[k]``; ``lens`` the face sizes, ``index`` each face's index in the input mesh (for errors)."""
+
+    face: np.ndarray
+    vert: np.ndarray
+    nxt: np.ndarray
+    lens: np.ndarray
+    index: np.ndarray
+
+
+def _checked_mesh(vertices, faces) -> tuple[np.ndarray, Sequence, _Corners]:
+    """Plan positions (n, 2), the faces as given (indexable, to name them in errors) and their corner
+    arrays, after checking shapes and indices."""
     V = np.asarray(vertices, dtype=float)
     if V.ndim != 2 or V.shape[1] not in (2, 3):
         raise FormFindingError(f"vertices must have shape (n, 2) or (n, 3), got {V.shape}")
-    faces = faces if isinstance(faces, Faces) else _as_faces(faces)
+    faces = faces if isinstance(faces, (list, tuple)) else list(faces)
     if not faces:
         raise FormFindingError("the mesh has no faces")
-    bad = _first_bad_face(faces, len(V))
+    face, vert, nxt, _ = corner_arrays(faces)
+    mesh = _Corners(face, vert, nxt, np.bincount(face, minlength=len(faces)), np.arange(len(faces)))
+    bad = _first_bad_face(mesh, len(V))
     if bad is not None:
-        _check_face(bad, faces[bad], len(V))
-    return V[:, :2], faces
+        _check_face(bad, _face_tuple(faces, bad), len(V))
+    return V[:, :2], faces, mesh
 
 
-def _as_faces(faces) -> Faces:
-    """Faces as tuples of Python ints, their corner arrays made on the way (one pass over the faces)."""
-    faces = list(faces)
-    lens = np.fromiter(map(len, faces), dtype=np.int64, count=len(faces))
-    return Faces.from_flat(corner_arrays(faces)[1], lens)
+def _face_tuple(faces: Sequence, k: int) -> tuple[int, ...]:
+    """Input face ``k`` as a tuple of Python ints (to name it in an error)."""
+    return tuple(int(w) for w in faces[k])
 
 
-def _first_bad_face(faces: Faces, n: int) -> int | None:
+def _first_bad_face(mesh: _Corners, n: int) -> int | None:
     """The first face that :func:`_check_face` rejects (None if none), found on the corner arrays
     without a Python loop over the faces."""
-    fid, vert, _, _ = corner_arrays(faces)
-    lens = np.bincount(fid, minlength=len(faces))
-    bad = (lens < 3) | (np.bincount(fid, weights=((vert < 0) | (vert >= n)), minlength=len(faces)) > 0)
+    fid, vert, lens = mesh.face, mesh.vert, mesh.lens
+    bad = (lens < 3) | (np.bincount(fid, weights=((vert < 0) | (vert >= n)), minlength=len(lens)) > 0)
     m = max(n, int(vert.max()) + 1 if len(vert) else 1, 1)  # every index below m, bad ones too
-    codes = np.sort(fid * m + np.where(vert < 0, m - 1, vert))  # (face, vertex) pairs: a repeat is a pair twice
+    # (face, vertex) pairs, already in face order: a repeat is a pair twice (a stable sort: timsort
+    # only sorts within the faces here)
+    codes = np.sort(fid * m + np.where(vert < 0, m - 1, vert), kind="stable")
     bad[codes[1:][np.diff(codes) == 0] // m] = True
     return int(np.argmax(bad)) if bad.any() else None
 
@@ -224,40 +238,51 @@ def _check_face(k: int, f: tuple[int, ...], n: int) -> None:
         raise FormFindingError(f"face {k} repeats a vertex: {list(f)}")
 
 
-def _not_counter_clockwise(xy: np.ndarray, faces, scale: float) -> tuple[np.ndarray, np.ndarray]:
+def _not_counter_clockwise(xy: np.ndarray, mesh: _Corners, scale: float) -> tuple[np.ndarray, np.ndarray]:
     """Signed face areas and the indices of faces that are clockwise or (relative to ``scale``) flat."""
-    area = face_areas(xy, faces)
+    area = shoelace_areas(xy, mesh.face, mesh.vert, mesh.nxt, len(mesh.lens))
     return area, np.flatnonzero(area <= 1e-14 * scale * scale)
 
 
-def _check_orientation(xy: np.ndarray, faces, scale: float) -> None:
-    """Every face is counter-clockwise seen from +z and every halfedge belongs to one face only."""
-    area, bad = _not_counter_clockwise(xy, faces, scale)
+def _check_orientation(xy: np.ndarray, faces: Sequence, mesh: _Corners, scale: float) -> MeshEdges:
+    """Every face is counter-clockwise seen from +z and every halfedge belongs to one face only; the
+    mesh's edges and the faces beside them, from one sort of its sides."""
+    area, bad = _not_counter_clockwise(xy, mesh, scale)
     if len(bad):
         k = int(bad[0])
         kind = "clockwise" if area[k] < 0 else "degenerate (zero area)"
         raise FormFindingError(
-            f"face {k} {list(faces[k])} is {kind} (signed area {area[k]:.6g}); faces must be counter-clockwise "
-            f"seen from +z" + (f" ({len(bad)} such faces)" if len(bad) > 1 else ""))
-    fid, u, v, _ = corner_arrays(faces)
-    codes = u * len(xy) + v
-    if not (np.diff(np.sort(codes)) == 0).any():
-        return
-    order = np.argsort(codes, kind="stable")  # only to name the first repeated halfedge
-    dup = np.flatnonzero(np.diff(codes[order]) == 0)
-    if len(dup):
-        a, b = order[dup[0]], order[dup[0] + 1]
+            f"face {k} {list(_face_tuple(faces, k))} is {kind} (signed area {area[k]:.6g}); faces must be "
+            f"counter-clockwise seen from +z" + (f" ({len(bad)} such faces)" if len(bad) > 1 else ""))
+    return _sides_of(mesh, len(xy), check=True)
+
+
+def _sides_of(mesh: _Corners, n: int, check: bool) -> MeshEdges:
+    """The edges of the faces and the faces beside them (:mod:`vaultgram.geometry.halfedges`); with
+    ``check``, a halfedge used by two faces is an error naming it."""
+    sides = sorted_sides(mesh.vert, mesh.nxt, n)
+    repeated = repeated_sides(sides) if check else np.zeros((0, 2), dtype=np.int64)
+    if len(repeated):
+        a, b = repeated[0]
         raise FormFindingError(
-            f"halfedge {u[a]}->{v[a]} is used by faces {fid[a]} and {fid[b]}: inconsistent face orientation "
-            f"or non-manifold edge")
+            f"halfedge {mesh.vert[a]}->{mesh.nxt[a]} is used by faces {mesh.face[a]} and {mesh.face[b]}: "
+            f"inconsistent face orientation or non-manifold edge")
+    return edges_of_sides(mesh.face, mesh.vert, mesh.nxt, mesh.lens, sides, n)
 
 
-def _anchor_mask(supports, xy: np.ndarray, faces) -> np.ndarray:
+def _boundary_sides(edges: MeshEdges) -> tuple[np.ndarray, np.ndarray]:
+    """The halfedges ``u -> v`` that have no twin, in corner order (those of
+    :func:`~vaultgram.geometry.meshes.boundary_halfedges`)."""
+    corners = np.sort(edges.corners_of[edges.boundary].max(axis=1))
+    return edges.corner_vertex[corners], edges.corner_next[corners]
+
+
+def _anchor_mask(supports, xy: np.ndarray, edges: MeshEdges) -> np.ndarray:
     """The supported vertices as a boolean mask (default: the outer boundary loop; holes are open)."""
     n = len(xy)
     anchors = np.zeros(n, dtype=bool)
     if supports is None:
-        anchors[outer_loop(xy, faces)] = True
+        anchors[largest_loop(xy, manifold_loops(*_boundary_sides(edges)))] = True
     else:
         idx = np.asarray(list(supports) if not isinstance(supports, np.ndarray) else supports)
         if idx.dtype == bool:
@@ -278,60 +303,64 @@ def _anchor_mask(supports, xy: np.ndarray, faces) -> np.ndarray:
 # ---- phase 2: remove what is fully supported (§5) -------------------------------------------------
 
 
-class _Edges(NamedTuple):
-    """The undirected edges ``u < v`` of some faces (input-mesh numbering)."""
-
-    u: np.ndarray
-    v: np.ndarray
-    degree: np.ndarray      # edges per vertex
-    in_faces: np.ndarray    # bool per vertex: used by a face
-
-
-def _undirected_edges(faces, anchors: np.ndarray, drop_supported: bool) -> _Edges:
-    """The edges of ``faces``, without those joining two anchors when ``drop_supported``."""
+def _kept_edges(edges: MeshEdges, anchors: np.ndarray, drop_supported: bool
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Which edges stay (not those joining two anchors when ``drop_supported``), the kept edges per
+    vertex, and the vertices used by a face that kept none (to be deleted)."""
     n = len(anchors)
-    _, u, v, _ = corner_arrays(faces)
-    codes = distinct(np.minimum(u, v) * n + np.maximum(u, v))
-    eu, ev = codes // n, codes % n
-    if drop_supported:
-        keep = ~(anchors[eu] & anchors[ev])
-        eu, ev = eu[keep], ev[keep]
+    keep = ~(anchors[edges.edges[:, 0]] & anchors[edges.edges[:, 1]]) if drop_supported else \
+        np.ones(edges.n_edges, dtype=bool)
+    degree = np.bincount(edges.edges[keep].ravel(), minlength=n)
     in_faces = np.zeros(n, dtype=bool)
-    in_faces[u] = True
-    return _Edges(eu, ev, np.bincount(np.concatenate([eu, ev]), minlength=n), in_faces)
+    in_faces[edges.corner_vertex] = True
+    return keep, degree, in_faces & (degree == 0)
 
 
-def _drop_supported_edges(xy: np.ndarray, faces, anchors: np.ndarray, drop: bool, scale: float
-                          ) -> tuple[list[tuple[int, ...]], _Edges]:
+def _drop_supported_edges(xy: np.ndarray, faces: Sequence, edges: MeshEdges, anchors: np.ndarray, drop: bool,
+                          scale: float) -> tuple[MeshEdges, np.ndarray, np.ndarray]:
     """Remove the edges with both ends supported (when ``drop``), then delete the vertices left without
     edges from their faces (a supported corner quad becomes a triangle; faces left with fewer than 3
-    vertices go), until every vertex of a face has an edge: compas_tna's ``update_boundaries``."""
-    current, index = faces, list(range(len(faces)))
+    vertices go), until every vertex of a face has an edge: compas_tna's ``update_boundaries``.
+    Returns the edges of the faces left, which of them are kept, and the kept edges per vertex."""
+    index = np.arange(len(edges.face_start) - 1)
     while True:
-        edges = _undirected_edges(current, anchors, drop)
-        dead = edges.in_faces & (edges.degree == 0)
+        keep, degree, dead = _kept_edges(edges, anchors, drop)
         if not dead.any():
-            return current, edges
-        index, current = _without_vertices(index, current, dead)
-        _, bad = _not_counter_clockwise(xy, current, scale)
+            return edges, keep, degree
+        mesh, changed = _without_vertices(index, edges, dead)
+        _, bad = _not_counter_clockwise(xy, _faces_among(mesh, changed), scale)
         if len(bad):
-            k = index[int(bad[0])]
+            k = int(changed[bad[0]])
+            now = mesh.vert[np.flatnonzero(mesh.face == k)].tolist()
             raise FormFindingError(
-                f"face {k} {list(faces[k])} becomes {list(current[int(bad[0])])}, which is not counter-clockwise, "
-                f"once its supported vertices without edges are removed; support fewer vertices or "
-                f"use update_boundaries=False")
+                f"face {mesh.index[k]} {list(_face_tuple(faces, mesh.index[k]))} becomes {now}, which is not "
+                f"counter-clockwise, once its supported vertices without edges are removed; support fewer "
+                f"vertices or use update_boundaries=False")
+        index, edges = mesh.index, _sides_of(mesh, len(xy), check=False)
 
 
-def _without_vertices(index: list[int], faces, dead: np.ndarray) -> tuple[list[int], Faces]:
-    """The faces (and their input indices) with the ``dead`` vertices dropped; faces left with < 3 go."""
-    fid, vert, _, _ = corner_arrays(faces)
+def _without_vertices(index: np.ndarray, edges: MeshEdges, dead: np.ndarray) -> tuple[_Corners, np.ndarray]:
+    """The faces (and their input indices) with the ``dead`` vertices dropped, faces left with < 3
+    going, and the faces that lost a vertex (to check their orientation again)."""
+    fid, vert = edges.corner_face, edges.corner_vertex
+    old = np.diff(edges.face_start)
     alive = ~dead[vert]
-    lens = np.bincount(fid[alive], minlength=len(faces))
+    lens = np.bincount(fid[alive], minlength=len(old))
     kept = lens >= 3
     if not kept.any():
         raise FormFindingError("every edge joins two supports: nothing is left to form-find")
     corners = alive & kept[fid]
-    return np.asarray(index)[kept].tolist(), Faces.from_flat(vert[corners], lens[kept])
+    face, vert, nxt, _ = corners_of_flat(vert[corners], lens[kept])
+    changed = np.flatnonzero((lens != old)[kept])
+    return _Corners(face, vert, nxt, lens[kept], index[kept]), changed
+
+
+def _faces_among(mesh: _Corners, faces: np.ndarray) -> _Corners:
+    """The corner arrays of some of the faces (sorted indices), numbered from 0 in that order."""
+    rank = np.full(len(mesh.lens), -1, dtype=np.int64)
+    rank[faces] = np.arange(len(faces))
+    at = rank[mesh.face] >= 0
+    return _Corners(rank[mesh.face[at]], mesh.vert[at], mesh.nxt[at], mesh.lens[faces], mesh.index[faces])
 
 
 class _Network(NamedTuple):
@@ -342,22 +371,25 @@ class _Network(NamedTuple):
     vertex_ids: np.ndarray
     edges: np.ndarray       # (m, 2), u < v, sorted
     faces: Faces            # the loaded faces
+    edge_faces: np.ndarray  # (m, 2): the loaded faces left and right of each edge (-1: none)
+    boundary: tuple[np.ndarray, np.ndarray]   # the boundary halfedges u -> v, in corner order
 
 
-def _renumbered(xy0: np.ndarray, anchors0: np.ndarray, faces, edges: _Edges) -> _Network:
-    """Keep the vertices that have an edge and number them consecutively."""
-    keep = edges.degree > 0
+def _renumbered(xy0: np.ndarray, anchors0: np.ndarray, edges: MeshEdges, keep: np.ndarray,
+                degree: np.ndarray) -> _Network:
+    """Keep the vertices that have an edge and number them consecutively (in their order, so the sorted
+    edges stay sorted)."""
+    used = degree > 0
     new = np.full(len(xy0), -1, dtype=np.int64)
-    new[keep] = np.arange(int(keep.sum()))
-    vertex_ids = np.flatnonzero(keep)
+    new[used] = np.arange(int(used.sum()))
+    vertex_ids = np.flatnonzero(used)
     anchors = anchors0[vertex_ids].copy()
     if not anchors.any():
         raise FormFindingError("no supports left after removing fully supported edges")
-    renumbered = np.stack([new[edges.u], new[edges.v]], axis=1)
-    renumbered = renumbered[np.lexsort((renumbered[:, 1], renumbered[:, 0]))]
-    fid, vert, _, _ = corner_arrays(faces)
-    loaded = Faces.from_flat(new[vert], np.bincount(fid, minlength=len(faces)))
-    return _Network(xy0[vertex_ids].copy(), anchors, vertex_ids, renumbered, loaded)
+    loaded = Faces.from_flat(new[edges.corner_vertex], np.diff(edges.face_start))
+    starts, ends = _boundary_sides(edges)
+    return _Network(xy0[vertex_ids].copy(), anchors, vertex_ids, new[edges.edges[keep]], loaded,
+                    edges.faces_of[keep], (new[starts], new[ends]))
 
 
 # ---- phase 3: opening faces, so that the reciprocal diagram exists -------------------------------
@@ -371,17 +403,17 @@ class _Opening(NamedTuple):
     open: bool
 
 
-def _opening_faces(faces, anchors: np.ndarray, vertex_ids: np.ndarray) -> list[_Opening]:
+def _opening_faces(net: _Network) -> list[_Opening]:
     """One opening face per unsupported hole and per boundary run between supports.
 
     An opening lies beyond the boundary: it is traversed along the twins of the boundary halfedges,
     i.e. each boundary loop reversed (from the end of its first halfedge), then cut at its anchors.
     """
-    starts, ends = boundary_halfedges(faces)
-    _check_not_pinched(ends, vertex_ids)
+    starts, ends = net.boundary
+    _check_not_pinched(ends, net.vertex_ids)
     openings: list[_Opening] = []
     for loop in loops_of(starts, ends):
-        openings += _cut_at_anchors([loop[1], loop[0], *loop[:1:-1]], anchors)
+        openings += _cut_at_anchors([loop[1], loop[0], *loop[:1:-1]], net.anchors)
     return openings
 
 
@@ -419,40 +451,34 @@ def _cut_at_anchors(loop: list[int], anchors: np.ndarray) -> list[_Opening]:
 # ---- phase 4: the diagram -------------------------------------------------------------------------
 
 
-def _edge_faces(edges: np.ndarray, faces, is_open: np.ndarray, n: int) -> np.ndarray:
-    """``(left, right)`` face of every edge ``(u, v)``: the faces with the halfedges ``u -> v`` and
-    ``v -> u`` (-1 where there is none). An open opening face has no halfedge on its closing chord."""
-    af, au, av, _ = corner_arrays(faces)
-    ends = np.concatenate([[0], np.cumsum(np.bincount(af, minlength=len(faces)))])
-    real = np.ones(len(af), dtype=bool)
-    real[(ends[1:] - 1)[is_open]] = False
-    af, au, av = af[real], au[real], av[real]
-    codes = au * n + av
-    order = np.argsort(codes)
-    codes, owner = codes[order], af[order]
-
-    def face_of(wanted: np.ndarray) -> np.ndarray:
-        pos, found = lookup(codes, wanted)
-        return np.where(found, owner[pos], -1)
-
-    left = face_of(edges[:, 0] * n + edges[:, 1])
-    right = face_of(edges[:, 1] * n + edges[:, 0])
-    return np.stack([left, right], axis=1)
+def _with_openings(net: _Network, openings: list[_Opening]) -> np.ndarray:
+    """``(left, right)`` face of every edge ``(u, v)`` with the opening faces (numbered after the loaded
+    ones) beside the boundary edges: an opening's side ``a -> b`` is left of the edge when ``a < b``.
+    An open opening face has no side on its closing chord."""
+    edge_faces = net.edge_faces.copy()
+    if not openings:
+        return edge_faces
+    sides = [(k, o.vertices[i], o.vertices[(i + 1) % len(o.vertices)])
+             for k, o in enumerate(openings) for i in range(len(o.vertices) - o.open)]
+    k, a, b = (np.array(c, dtype=np.int64) for c in zip(*sides))
+    n = len(net.xy)
+    pos, found = lookup(net.edges[:, 0] * n + net.edges[:, 1], np.minimum(a, b) * n + np.maximum(a, b))
+    edge_faces[pos[found], (a > b)[found].astype(np.int64)] = len(net.faces) + k[found]
+    return edge_faces
 
 
 def _assembled(net: _Network, openings: list[_Opening]) -> FormDiagram:
     """The frozen diagram: loaded faces, then opening faces, and the faces beside every edge."""
-    _, vert, _, _ = corner_arrays(net.faces)
+    fid, vert, _, _ = corner_arrays(net.faces)
     opening_vertices = [np.asarray(o.vertices, dtype=np.int64) for o in openings]
-    lens = np.concatenate([np.bincount(corner_arrays(net.faces)[0], minlength=len(net.faces)),
+    lens = np.concatenate([np.bincount(fid, minlength=len(net.faces)),
                            np.array([len(o) for o in opening_vertices], dtype=np.int64)])
     faces = Faces.from_flat(np.concatenate([vert, *opening_vertices]), lens,
                             tuple(net.faces) + tuple(o.vertices for o in openings))
     loaded = np.zeros(len(faces), dtype=bool)
     loaded[: len(net.faces)] = True
-    is_open = np.concatenate([np.zeros(len(net.faces), dtype=bool), np.array([o.open for o in openings], dtype=bool)])
     n = len(net.xy)
-    edge_faces = _edge_faces(net.edges, faces, is_open, n)
+    edge_faces = _with_openings(net, openings)
     for arr in (net.xy, net.edges, loaded, net.anchors, net.vertex_ids, edge_faces):
         arr.setflags(write=False)
     return FormDiagram(xy=net.xy, edges=net.edges, faces=faces, loaded=loaded, anchors=net.anchors,

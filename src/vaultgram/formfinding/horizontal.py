@@ -114,11 +114,8 @@ def angle_deviations(u: np.ndarray, d: np.ndarray) -> np.ndarray:
 
 def _unit(v: np.ndarray) -> np.ndarray:
     """Rows of ``v`` scaled to unit length (zero rows stay zero)."""
-    n = np.hypot(v[:, 0], v[:, 1])
-    out = np.zeros_like(v)
-    ok = n > 0
-    out[ok] = v[ok] / n[ok, None]
-    return out
+    n = np.hypot(v[:, 0], v[:, 1])[:, None]
+    return np.divide(v, n, out=np.zeros_like(v), where=n > 0)  # no gather of the non-zero rows
 
 
 def _lengths(v: np.ndarray) -> np.ndarray:
@@ -307,7 +304,11 @@ class _Parallelisation:
         self.Cu = form.C[force.form_edge].tocsr()
         self.Cd = force.C
         self.start = self.iterate(np.array(form.xy, dtype=float), np.array(force.xy, dtype=float))
-        self.frame = _targets(self.start.u, self.start.d, a)
+
+    @cached_property
+    def frame(self) -> np.ndarray:
+        """The initial target directions (made on the first step: never when the start is parallel)."""
+        return _targets(self.start.u, self.start.d, self.a)
 
     def iterate(self, xy: np.ndarray, y: np.ndarray) -> _Iterate:
         u, d = self.Cu @ xy, self.Cd @ y

@@ -41,19 +41,21 @@ class TributaryAreas:
     vert: np.ndarray
     nxt: np.ndarray
     centroid: sp.csr_matrix   # (faces x n): row f averages the vertices of face f
-    spread: sp.csr_matrix     # (n x corners): 1/4 at corner k's vertex and at the next one
+    spread: sp.csc_matrix     # (n x corners): 1/4 at corner k's vertex and at the next one
 
     @classmethod
     def from_faces(cls, faces, n: int) -> "TributaryAreas":
         face, vert, nxt, _ = corner_arrays(faces)
         if len(face) == 0:
             z = np.zeros(0, dtype=np.int64)
-            return cls(n, z, z, z, sp.csr_matrix((0, n)), sp.csr_matrix((n, 0)))
+            return cls(n, z, z, z, sp.csr_matrix((0, n)), sp.csc_matrix((n, 0)))
         lens = np.bincount(face)
-        F = sp.csr_matrix((1.0 / lens[face], (face, vert)), shape=(len(lens), n))
-        k = np.arange(len(face))
-        S = sp.csr_matrix((np.full(2 * len(k), 0.25), (np.concatenate([vert, nxt]), np.concatenate([k, k]))),
-                          shape=(n, len(k)))
+        # the corners are in face order: CSR rows as they are (columns then sorted within the rows)
+        F = sp.csr_matrix((1.0 / lens[face], vert, np.concatenate([[0], np.cumsum(lens)])), shape=(len(lens), n))
+        F.sort_indices()
+        # column k: 1/4 at the corner's vertex and at the next one, in CSC order as they are (no sort)
+        S = sp.csc_matrix((np.full(2 * len(face), 0.25), np.column_stack([vert, nxt]).ravel(),
+                           np.arange(0, 2 * len(face) + 1, 2)), shape=(n, len(face)))
         return cls(n, face, vert, nxt, F, S)
 
     def __call__(self, xyz: np.ndarray) -> np.ndarray:

@@ -21,7 +21,7 @@ import shapely
 
 from vaultgram.errors import FormFindingError, VaultgramError
 from vaultgram.geometry.frames import NO_ORIGIN, to_local
-from vaultgram.geometry.meshes import boundary_loops
+from vaultgram.geometry.meshes import boundary_halfedges, loops_of
 from vaultgram.geometry.polygons import bbox_diagonal, signed_area
 from vaultgram.io import strict
 
@@ -36,7 +36,12 @@ def outer_loop(vertices: np.ndarray, faces: Sequence[Sequence[int]]) -> list[int
     >>> len(outer_loop(v, f))
     12
     """
-    loops = _boundary_loops(faces)
+    return largest_loop(vertices, _boundary_loops(faces))
+
+
+def largest_loop(vertices: np.ndarray, loops: list[list[int]]) -> list[int]:
+    """Of a mesh's boundary ``loops``, the one enclosing the largest area: :func:`outer_loop` for a
+    caller that has the loops already (the form diagram walks them from its own sorted sides)."""
     if not loops:
         raise FormFindingError("the mesh has no boundary, so nothing can be supported by default")
     xy = np.asarray(vertices, dtype=float)[:, :2]
@@ -124,7 +129,13 @@ def _boundary_on_lines(xy: np.ndarray, faces, lines: list[np.ndarray]) -> np.nda
 
 def _boundary_loops(faces) -> list[list[int]]:
     """The mesh's boundary loops; a pinched boundary vertex is a :class:`FormFindingError`."""
+    return manifold_loops(*boundary_halfedges(faces))
+
+
+def manifold_loops(starts: np.ndarray, ends: np.ndarray) -> list[list[int]]:
+    """The boundary loops walked along the boundary halfedges ``starts -> ends``
+    (:func:`~vaultgram.geometry.meshes.loops_of`); a pinched boundary vertex is a :class:`FormFindingError`."""
     try:
-        return boundary_loops(faces)
+        return loops_of(starts, ends)
     except ValueError as exc:
         raise FormFindingError(f"the mesh boundary is not manifold: {exc}; split the vertex or support it") from None

@@ -29,6 +29,7 @@ __all__ = [
     "loops_of",
     "corner_arrays",
     "corner_angles",
+    "corners_of_flat",
     "Faces",
     "corner_vectors",
     "with_midpoints",
@@ -38,6 +39,7 @@ __all__ = [
     "adjacency",
     "boundary_adjacency",
     "face_areas",
+    "shoelace_areas",
     "boundary_halfedges",
 ]
 
@@ -136,7 +138,7 @@ class Faces(tuple):
         """
         vert, lens = np.array(vert, dtype=np.int64), np.array(lens, dtype=np.int64)  # copies: made read-only
         out = cls(_tuples(vert, lens) if faces is None else faces)
-        out.__dict__["corners"] = _read_only(_corners_of(vert, lens))  # the cached_property's slot
+        out.__dict__["corners"] = _read_only(corners_of_flat(vert, lens))  # the cached_property's slot
         return out
 
 
@@ -189,11 +191,16 @@ def _flattened(faces: Sequence[Sequence[int]]) -> tuple[np.ndarray, np.ndarray, 
         vert = np.concatenate(faces).astype(np.int64, copy=False)
     else:
         vert = np.fromiter(itertools.chain.from_iterable(faces), dtype=np.int64, count=int(lens.sum()))
-    return _corners_of(vert, lens)
+    return corners_of_flat(vert, lens)
 
 
-def _corners_of(vert: np.ndarray, lens: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The corner arrays of faces given end to end (``vert``) with their sizes (``lens``)."""
+def corners_of_flat(vert: np.ndarray, lens: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The corner arrays (:func:`corner_arrays`) of faces given end to end (``vert``) with their sizes
+    (``lens``), for a step that holds faces as arrays and not as tuples.
+
+    >>> [a.tolist() for a in corners_of_flat(np.array([0, 1, 2, 2, 1, 3]), np.array([3, 3]))]
+    [[0, 0, 0, 1, 1, 1], [0, 1, 2, 2, 1, 3], [1, 2, 0, 1, 3, 2], [2, 0, 1, 3, 2, 1]]
+    """
     if len(lens) == 0:
         return vert, vert, vert, vert
     face = np.repeat(np.arange(len(lens)), lens)
@@ -386,9 +393,21 @@ def face_areas(xy: np.ndarray, faces: Sequence[Sequence[int]]) -> np.ndarray:
     [4.0, -4.0]
     """
     face, u, v, _ = corner_arrays(faces)
+    return shoelace_areas(xy, face, u, v, len(faces))
+
+
+def shoelace_areas(xy: np.ndarray, face: np.ndarray, u: np.ndarray, v: np.ndarray, n_faces: int) -> np.ndarray:
+    """:func:`face_areas` of faces given by corner arrays (corner ``k``: side ``u[k] -> v[k]`` of face
+    ``face[k]``), for a step that holds a mesh's corners and not its faces as tuples.
+
+    >>> shoelace_areas(np.array([[0.0, 0], [2, 0], [0, 1]]), np.zeros(3, int), np.arange(3), np.array([1, 2, 0]), 1)
+    array([1.])
+    """
     xy = np.asarray(xy)
-    cross = xy[u, 0] * xy[v, 1] - xy[v, 0] * xy[u, 1]
-    return 0.5 * np.bincount(face, weights=cross, minlength=len(faces))
+    x, y = np.ascontiguousarray(xy[:, 0]), np.ascontiguousarray(xy[:, 1])   # one gather per coordinate
+    cross = x[u] * y[v]
+    cross -= x[v] * y[u]
+    return 0.5 * np.bincount(face, weights=cross, minlength=n_faces)
 
 
 def boundary_halfedges(faces: Sequence[Sequence[int]]) -> tuple[np.ndarray, np.ndarray]:
