@@ -241,6 +241,14 @@ def test_an_l_shaped_curve_below_a_straight_one_leaves_no_t_junction():
     assert_curve_is_clean(dec)
 
 
+@pytest.mark.xfail(strict=True, reason="known bug: a T-junction is left on the bent curve's long leg")
+def test_a_bent_curve_above_a_straight_one_leaves_no_t_junction():
+    """Found by the property test above (2026-12-04, on main 6b51d1e too): a curve bent back on itself
+    above a straight one; at spacing 0.02 a T-junction stays at (3.86, 5.86) on its long leg."""
+    dec = decompose(square_with([(5.0, 7.0), (7.0, 7.0), (1.5, 5.0)], [(3.0, 3.0), (8.0, 6.0)]), 0.02)
+    assert_curve_is_clean(dec)
+
+
 @pytest.mark.parametrize("name", ["fig5_boundary_points", "fig6_inner_points", "fig7_curves", "features_combined"])
 def test_feature_examples_decompose(name):
     dec = decompose(load_domain(EXAMPLES / f"{name}.json"), 0.02)
