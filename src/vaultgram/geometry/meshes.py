@@ -16,7 +16,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from vaultgram.errors import MeshError, NonManifoldVertexError
-from vaultgram.geometry.arrays import lookup, plan_rows, row_dot
+from vaultgram.geometry.arrays import lookup, plan_rows, row_dot, sorted_keys
 from vaultgram.geometry.polygons import cross_z
 
 __all__ = [
@@ -246,7 +246,7 @@ def has_twin(u: np.ndarray, v: np.ndarray, n: int | None = None) -> np.ndarray:
         return np.zeros(0, dtype=bool)
     if n is None:
         n = int(max(u.max(), v.max())) + 1
-    return lookup(np.sort(u * n + v), v * n + u)[1]
+    return lookup(sorted_keys(u * n + v), v * n + u)[1]
 
 
 def boundary_loops(faces: Sequence[Sequence[int]]) -> list[list[int]]:

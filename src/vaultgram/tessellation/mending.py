@@ -43,7 +43,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-from vaultgram.geometry.arrays import distinct, run_starts
+from vaultgram.geometry.arrays import distinct, run_starts, sorted_keys
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.tessellation.sizes import UPPER
 from vaultgram.tessellation.voussoirs import (
@@ -141,7 +141,7 @@ def _state(me: MeshEdges, removed: np.ndarray, n: int) -> _State:
     order = np.argsort(group, kind="stable")
     n_groups = int(group.max()) + 1 if len(group) else 0
     start = np.searchsorted(group[order], np.arange(n_groups + 1))
-    keys = np.sort(me.corner_vertex * n_groups + group[me.corner_face])
+    keys = sorted_keys(me.corner_vertex * n_groups + group[me.corner_face])
     count = np.bincount(keys[run_starts(keys)] // max(n_groups, 1), minlength=n)  # the voussoirs at each vertex
     return _State(group, order, start, count, keys)
 
