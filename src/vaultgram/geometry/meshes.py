@@ -16,8 +16,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from vaultgram.errors import MeshError, NonManifoldVertexError
-from vaultgram.geometry.arrays import lookup, plan_rows, row_dot, sorted_keys
-from vaultgram.geometry.polygons import cross_z
+from vaultgram.geometry.arrays import lookup, plan_rows, sorted_keys
 
 __all__ = [
     "MeshError",
@@ -28,7 +27,6 @@ __all__ = [
     "boundary_loops",
     "loops_of",
     "corner_arrays",
-    "corner_angles",
     "corners_of_flat",
     "Faces",
     "corner_vectors",
@@ -223,16 +221,6 @@ def corner_vectors(x: np.ndarray, u: np.ndarray, v: np.ndarray, p: np.ndarray) -
     """
     at = plan_rows(x, u)
     return plan_rows(x, v) - at, plan_rows(x, p) - at
-
-
-def corner_angles(e1: np.ndarray, e2: np.ndarray) -> np.ndarray:
-    """The signed angle (radians, in [-pi, pi]) from side ``e1`` to side ``e2`` of each corner
-    (:func:`corner_vectors`): positive at a counter-clockwise corner, its interior angle there.
-
-    >>> corner_angles(np.array([[1.0, 0.0], [1.0, 0.0]]), np.array([[0.0, 1.0], [-1.0, -1.0]])).round(4).tolist()
-    [1.5708, -2.3562]
-    """
-    return np.arctan2(cross_z(e1, e2), row_dot(e1, e2))
 
 
 def has_twin(u: np.ndarray, v: np.ndarray, n: int | None = None) -> np.ndarray:

@@ -10,7 +10,8 @@ import math
 
 import numpy as np
 
-__all__ = ["signed_area", "bbox_diagonal", "interior_angle", "regular_valence", "cross_z", "triangle_areas"]
+__all__ = ["signed_area", "bbox_diagonal", "interior_angle", "regular_valence", "cross_z", "signed_angles",
+           "triangle_areas"]
 
 
 def signed_area(poly: np.ndarray) -> float:
@@ -69,6 +70,17 @@ def cross_z(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     [1.0, -2.0]
     """
     return a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+
+
+def signed_angles(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Row-wise signed angle (radians, in [-pi, pi]) from the 2D vectors ``a`` to ``b``: a polygon's
+    turning angle from one side to the next, a face corner's angle between its two sides (positive
+    counter-clockwise). The dot product by columns: the same bits as ``(a * b).sum(axis=1)``.
+
+    >>> signed_angles(np.array([[1.0, 0.0], [1.0, 0.0]]), np.array([[0.0, 1.0], [-1.0, -1.0]])).round(4).tolist()
+    [1.5708, -2.3562]
+    """
+    return np.arctan2(cross_z(a, b), a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1])
 
 
 def triangle_areas(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from vaultgram.geometry.polygons import cross_z
+from vaultgram.geometry.polygons import signed_angles
 
 __all__ = [
     "segment_lengths",
@@ -106,7 +106,7 @@ def turning_angles(poly: np.ndarray, closed: bool = True) -> np.ndarray:
         d_out = np.zeros_like(poly)
         d_in[1:-1] = poly[1:-1] - poly[:-2]
         d_out[1:-1] = poly[2:] - poly[1:-1]
-    ang = np.degrees(np.arctan2(cross_z(d_in, d_out), (d_in * d_out).sum(axis=1)))
+    ang = np.degrees(signed_angles(d_in, d_out))
     if not closed and len(poly):
         ang[[0, -1]] = 0.0
     return ang

@@ -17,7 +17,8 @@ import math
 
 import numpy as np
 
-from vaultgram.geometry.meshes import corner_angles, corner_arrays, corner_vectors
+from vaultgram.geometry.meshes import corner_arrays, corner_vectors
+from vaultgram.geometry.polygons import signed_angles
 
 __all__ = ["fan_bounds"]
 
@@ -43,7 +44,7 @@ def fan_bounds(vertices: np.ndarray, faces) -> np.ndarray:
     face_of, u, v, p = corner_arrays(faces)
     n = len(x)
     e1, e2 = corner_vectors(x, u, v, p)
-    angle = corner_angles(e1, e2)
+    angle = signed_angles(e1, e2)
     theta = np.bincount(u, weights=np.where(angle < 0, angle + 2 * math.pi, angle), minlength=n)
     tri = (np.bincount(face_of, minlength=len(faces)) == 3)[face_of]
     n_tri = np.bincount(u, weights=tri, minlength=n)

@@ -22,12 +22,11 @@ from vaultgram.errors import MeshFoldError, VaultgramError
 from vaultgram.geometry.meshes import (
     NonManifoldVertexError,
     boundary_loops,
-    corner_angles,
     corner_arrays,
     corner_vectors,
     has_twin,
 )
-from vaultgram.geometry.polygons import bbox_diagonal, cross_z, interior_angle, regular_valence
+from vaultgram.geometry.polygons import bbox_diagonal, cross_z, interior_angle, regular_valence, signed_angles
 from vaultgram.geometry.polylines import polyline_hausdorff, turning_angles
 from vaultgram.geometry.text import fmt_point
 from vaultgram.meshing.quadmesh import QuadMesh
@@ -274,7 +273,7 @@ def _corner_angles(x: np.ndarray, topo: _Topology) -> np.ndarray:
     """The angle of every face corner (degrees, in [0, 360)); summed round a boundary vertex, its
     interior angle in the mesh."""
     e1, e2 = corner_vectors(x, topo.u, topo.v, topo.w)
-    angle = np.degrees(corner_angles(e1, e2))
+    angle = np.degrees(signed_angles(e1, e2))
     return np.where(angle < 0, 360.0 + angle, angle)
 
 

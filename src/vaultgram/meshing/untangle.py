@@ -13,8 +13,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from vaultgram.geometry.meshes import corner_angles, corner_arrays, corner_vectors
-from vaultgram.geometry.polygons import cross_z
+from vaultgram.geometry.meshes import corner_arrays, corner_vectors
+from vaultgram.geometry.polygons import cross_z, signed_angles
 from vaultgram.meshing.quadmesh import slide
 
 __all__ = ["untangle", "improve_shapes", "UNTANGLE_TARGET", "SHAPE_TARGET"]
@@ -140,7 +140,7 @@ def _corner_targets(x, u, v, p, n, target: float) -> np.ndarray:
     angle at its vertex where that is smaller (the corners of a pole's fan of many triangles, or at
     a sharp domain corner, cannot all be wide)."""
     e1, e2 = corner_vectors(x, u, v, p)
-    angle = np.abs(corner_angles(e1, e2))
+    angle = np.abs(signed_angles(e1, e2))
     total = np.bincount(u, weights=angle, minlength=n)
     mean = total[u] / np.bincount(u, minlength=n)[u]
     return np.minimum(target, 0.5 * np.sin(np.minimum(mean, np.pi / 2)))

@@ -22,7 +22,7 @@ import weakref
 
 import numpy as np
 
-from vaultgram.geometry.polygons import cross_z, regular_valence
+from vaultgram.geometry.polygons import cross_z, regular_valence, signed_angles
 from vaultgram.topology.statecache import per_state
 from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE_POINT, FEATURE_POINT
 
@@ -37,7 +37,7 @@ def _ring_angles(ring: np.ndarray) -> np.ndarray:
     """Interior angle (degrees, in [0, 360)) at every vertex of a ring that keeps the domain on its left."""
     to_prev = np.roll(ring, 1, axis=0) - ring
     to_next = np.roll(ring, -1, axis=0) - ring
-    a = np.arctan2(cross_z(to_next, to_prev), np.einsum("ij,ij->i", to_next, to_prev))
+    a = signed_angles(to_next, to_prev)
     return np.degrees(a) % 360.0
 
 
