@@ -113,8 +113,8 @@ def quad_directions(x: np.ndarray, me: MeshEdges, pref: np.ndarray, is_quad: np.
     quad_corner = is_quad[me.corner_face]
     c = np.flatnonzero(quad_corner)
     f, side = me.corner_face[c], me.corner_side[c]
-    score = np.zeros((len(is_quad), 2))
-    np.add.at(score, (f, side % 2), align[me.corner_edge[c]])
+    n = len(is_quad)
+    score = np.bincount(2 * f + side % 2, align[me.corner_edge[c]], 2 * n).reshape(n, 2)
     choice = np.where(is_quad, np.argmax(steady(score), axis=1), -1)
     ambiguous = is_quad & (np.abs(score[:, 0] - score[:, 1]) < 2 * AMBIGUITY)
     twin = me.corner_twin[c]
@@ -124,8 +124,7 @@ def quad_directions(x: np.ndarray, me: MeshEdges, pref: np.ndarray, is_quad: np.
     for _ in range(SMOOTHING):
         # the neighbour's course, seen from this quad: the same strip if it runs through the shared side
         seen = np.where(choice[g] == other_side % 2, side % 2, 1 - side % 2)
-        votes = np.zeros((len(is_quad), 2))
-        np.add.at(votes, (f, seen), 1.0)
+        votes = np.bincount(2 * f + seen, minlength=2 * n).reshape(n, 2)
         flip = ambiguous & (votes.max(axis=1) > votes.min(axis=1))
         choice = np.where(flip, np.argmax(votes, axis=1), choice)
     return choice
