@@ -7,8 +7,8 @@ forked child has it already); each later stage (the mesh, its supports, the thru
 tessellation) reaches the process pickled through a pipe (pickle's protocol 5, which takes numpy
 arrays whole: a 10^6-face thrust network in a third of the time of the pipe's default protocol 4),
 and the process draws every figure whose stages have all arrived
-(:attr:`vaultgram.io.figures.FigureSpec.final`), in the catalogue's order within each step. :meth:`FigureWorker.finish` waits for the last figure: the wait is all the figures
-cost the run. The process writes into the run's staging folder (:func:`vaultgram.io.files.output_folder`),
+(:attr:`vaultgram.io.figures.FigureSpec.final`), in the catalogue's order within each step.
+:meth:`FigureWorker.finish` waits for the last figure: the wait is all the figures cost the run. The process writes into the run's staging folder (:func:`vaultgram.io.files.output_folder`),
 so the output folder stays complete or untouched; on a failure or interrupt :meth:`FigureWorker.close`
 ends the process before the staging folder is removed. The figures are the same bytes as
 :func:`vaultgram.io.figures.write_figures` writes in one process.
