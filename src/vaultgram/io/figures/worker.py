@@ -8,9 +8,10 @@ tessellation) reaches the process pickled through a pipe (pickle's protocol 5, w
 arrays whole: a 10^6-face thrust network in a third of the time of the pipe's default protocol 4),
 and the process draws every figure whose stages have all arrived
 (:attr:`vaultgram.io.figures.FigureSpec.final`), in the catalogue's order within each step.
-:meth:`FigureWorker.finish` waits for the last figure: the wait is all the figures cost the run. The process writes into the run's staging folder (:func:`vaultgram.io.files.output_folder`),
-so the output folder stays complete or untouched; on a failure or interrupt :meth:`FigureWorker.close`
-ends the process before the staging folder is removed. The figures are the same bytes as
+:meth:`FigureWorker.finish` waits for the last figure: the wait is all the figures cost the run.
+The process writes into the run's staging folder (:func:`vaultgram.io.files.output_folder`), so the
+output folder stays complete or untouched; on a failure or interrupt :meth:`FigureWorker.close` ends
+the process before the staging folder is removed. The figures are the same bytes as
 :func:`vaultgram.io.figures.write_figures` writes in one process.
 
 Given the run's data ``formats``, the process also writes the mesh's files (and works out its quality
