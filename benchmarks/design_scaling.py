@@ -3,7 +3,8 @@
 Run: ``python benchmarks/design_scaling.py [--target-lengths 0.1,0.0316,0.01] [--plan PLAN]``. Each size
 runs the command line (``vaultgram design PLAN --out DIR --target-length L``, every default else) in
 a child process, smallest first, and reads the seconds of each stage from ``DIR/timings.json``. A row
-gives the faces, the wall seconds of the command, its peak resident memory, and the stages summed by
+gives the faces, the wall seconds of the command, its CPU seconds (less swayed than the wall by the
+machine's other work, though not free of it), its peak resident memory, and the stages summed by
 part of the paper: meshing (§3: discretise to untangle), form finding (§5: form to vertical),
 tessellation (§5: refine to solids) and the outputs (write, and the wait for the figures). The load
 average is printed first: the machine's other work slows everything. Floor (issue 18): 10^6 faces on
@@ -37,8 +38,10 @@ PARTS = {
 
 
 def run_design(plan: Path, target_length: float) -> dict:
-    """One ``vaultgram design`` in a child process: faces, wall seconds, peak MB, stage seconds."""
+    """One ``vaultgram design`` in a child process: faces, wall seconds, CPU seconds (the child's and
+    its figure process's, user and system), peak MB, stage seconds."""
     out = Path(tempfile.mkdtemp()) / "out"
+    used = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     done = subprocess.run([sys.executable, "-m", "vaultgram", "design", str(plan), "--out", str(out),
                            "--target-length", str(target_length)], capture_output=True, text=True)
@@ -47,8 +50,9 @@ def run_design(plan: Path, target_length: float) -> dict:
         raise SystemExit(f"design at --target-length {target_length} failed: {done.stderr.strip()[-300:]}")
     stages = json.loads((out / "timings.json").read_text())
     faces = len(json.loads((out / "mesh.json").read_text())["faces"])
-    peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
-    return {"faces": faces, "wall": wall, "peak_mb": peak, "stages": stages}
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = after.ru_utime + after.ru_stime - used.ru_utime - used.ru_stime
+    return {"faces": faces, "wall": wall, "cpu": cpu, "peak_mb": after.ru_maxrss / 1024, "stages": stages}
 
 
 def parts(stages: dict) -> dict:
@@ -68,11 +72,11 @@ def main() -> None:
     parser.add_argument("--stages", action="store_true", help="also print every stage's seconds")
     args = parser.parse_args()
     print(f"load average {os.getloadavg()[0]:.2f}  plan {args.plan.name}")
-    print(f"{'faces':>9} {'wall s':>8} {'peak MB':>8} " + " ".join(f"{p:>10}" for p in PARTS))
+    print(f"{'faces':>9} {'wall s':>8} {'cpu s':>8} {'peak MB':>8} " + " ".join(f"{p:>10}" for p in PARTS))
     for length in (float(v) for v in args.target_lengths.split(",")):
         row = run_design(args.plan, length)
         cells = " ".join(f"{v:10.2f}" for v in parts(row["stages"]).values())
-        print(f"{row['faces']:9d} {row['wall']:8.1f} {row['peak_mb']:8.0f} {cells}", flush=True)
+        print(f"{row['faces']:9d} {row['wall']:8.1f} {row['cpu']:8.1f} {row['peak_mb']:8.0f} {cells}", flush=True)
         if args.stages:
             print("  " + ", ".join(f"{k} {v:.2f}" for k, v in sorted(row["stages"].items(), key=lambda kv: -kv[1])))
 

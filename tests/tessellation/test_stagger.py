@@ -16,10 +16,12 @@ from vaultgram.tessellation.stagger import (
     ALIGNED_COST,
     SINGLE_COST,
     SKEW_COST,
+    cheapest_cut,
     course_joints,
     course_runs,
     preferential_directions,
     quad_directions,
+    size_costs,
     staggered_bond,
 )
 from vaultgram.tessellation.strips import quad_strips
@@ -127,6 +129,46 @@ def test_the_cut_of_a_course_is_the_cheapest(course, target_longest):
         if candidate[forced].all() and np.diff(np.flatnonzero(candidate)).max() <= longest:
             best = min(best, _cost(areas, forced, aligned, target, candidate, skew))
     assert _cost(areas, forced, aligned, target, keep, skew) == pytest.approx(best, abs=1e-9)
+
+
+def _cut_by_slices(sizes, forced, penalty, longest):
+    """The programme as the bond first ran it (each rung's choices as a reversed slice of the best
+    costs joined to the single quad's): the reference of the windowed :func:`cheapest_cut`."""
+    k = len(forced) - 1
+    forced = forced.tolist()
+    best, back, last = [0.0] * (k + 1), [0] * (k + 1), 0
+    for b in range(1, k + 1):
+        if forced[b - 1]:
+            last = b - 1
+        d, row = min(longest, b - last), sizes[b]
+        single = row[1] if forced[b - 1] and forced[b] else row[1] + SINGLE_COST
+        cost = [best[b - 1] + single] + [x + y for x, y in zip(best[b - d:b - 1][::-1], row[2:d + 1])]
+        here = min(cost)
+        back[b] = b - 1 - cost.index(here)
+        best[b] = here + penalty[b] if b < k else here
+    keep, b = np.zeros(k + 1, dtype=bool), k
+    while b > 0:
+        keep[b], b = True, back[b]
+    keep[0] = True
+    return keep
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_the_windowed_programme_keeps_the_rungs_the_sliced_one_kept(seed):
+    """On 300 random courses of up to 400 quads (equal areas with their ties, forced rungs from none
+    to half, penalties in line and skewed), exactly the rungs of the reference programme."""
+    rng = np.random.default_rng(seed)
+    for _ in range(300):
+        k = int(rng.integers(1, 400))
+        areas = rng.uniform(0.5, 1.5, k) if rng.random() < 0.7 else np.ones(k)
+        forced = rng.random(k + 1) < rng.choice([0.0, 0.01, 0.1, 0.5])
+        forced[[0, -1]] = True
+        penalty = (ALIGNED_COST * (rng.random(k + 1) < 0.2) + rng.normal(0, 0.1, k + 1) * (rng.random() < 0.5))
+        longest = int(rng.choice([4, 8]))
+        sizes = size_costs(areas, longest / 2.0, longest)
+        keep = cheapest_cut(sizes, forced, penalty.tolist(), longest)
+        assert np.array_equal(keep, _cut_by_slices(sizes, forced, penalty.tolist(), longest))
+        assert keep[forced].all() and np.diff(np.flatnonzero(keep)).max() <= longest
 
 
 def test_a_rung_along_the_force_flow_is_not_kept_when_another_cut_costs_little_more():

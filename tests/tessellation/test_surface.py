@@ -2,12 +2,14 @@
 
 import json
 
+import numpy as np
 import pytest
 from click.testing import CliRunner
 
 from vaultgram.cli import main
 from vaultgram.errors import TessellationError
-from vaultgram.tessellation.surface import surface_from_json
+from vaultgram.geometry.meshes import Faces, corner_arrays
+from vaultgram.tessellation.surface import _checked_faces, surface_from_json
 
 SQUARE = {"vertices": [[0, 0, 0], [1, 0, 0], [1, 1, 1], [0, 1, 0], [2, 0, 0], [2, 1, 0]],
           "faces": [[0, 1, 2, 3], [1, 4, 5, 2]], "anchors": [0, 3, 4, 5]}
@@ -57,3 +59,33 @@ def test_the_command_refuses_bad_input_in_one_line_and_writes_nothing(tmp_path, 
     assert not out.exists()
     if not args:
         assert len(result.output.strip().splitlines()) == 1 and "Traceback" not in result.output
+
+
+def _faces_one_by_one(faces, n):
+    """What ``_checked_faces`` gives for plain lists (its face-by-face check), or the error's text."""
+    try:
+        return _checked_faces([list(f) for f in faces], n, "net")
+    except TessellationError as exc:
+        return str(exc)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_faces_checked_at_once_are_the_faces_checked_one_by_one(seed):
+    """A thrust network's :class:`Faces` are checked as arrays: on random faces, some with a repeated,
+    a missing or an out-of-range vertex, the same tuples of Python ints (or the same error) as the
+    check face by face."""
+    rng = np.random.default_rng(seed)
+    n = 12
+    faces = [tuple(int(v) for v in rng.choice(n, size=int(rng.integers(3, 6)), replace=False)) for _ in range(40)]
+    bad = [faces, faces[:5] + [(1, 2, 1)] + faces[5:], faces + [(0, 1)], faces[:7] + [(3, 4, n)], [(0, -1, 2)]]
+    for case in bad[seed % len(bad):] + bad[:seed % len(bad)]:
+        expected = _faces_one_by_one(case, n)
+        try:
+            got = _checked_faces(Faces(case), n, "net")
+        except TessellationError as exc:
+            got = str(exc)
+        assert got == expected
+        if not isinstance(got, str):
+            assert isinstance(got, Faces) and all(type(v) is int for f in got for v in f)
+            assert np.array_equal(corner_arrays(got)[1], corner_arrays(list(case))[1])
+    assert not isinstance(_faces_one_by_one(faces, n), str)  # the valid case was one of them

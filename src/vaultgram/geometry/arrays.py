@@ -17,8 +17,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
-__all__ = ["TIE", "TIED", "distinct", "lookup", "nearest", "plan_rows", "row_dot", "run_starts", "sorted_keys",
-           "steady", "unit_rows"]
+__all__ = ["TIE", "TIED", "cross_rows", "distinct", "lookup", "nearest", "plan_rows", "row_dot", "run_starts",
+           "sorted_keys", "steady", "unit_rows"]
 
 #: Relative difference under which two computed values are a tie (round-off differs between
 #: machines by some 1e-15 relative; the stages' real differences are far above 1e-9).
@@ -94,6 +94,19 @@ def row_dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     [6.0, 5.0]
     """
     return np.einsum("ij,ij->i", a, b)
+
+
+def cross_rows(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The cross product of each row of ``a`` with the same row of ``b`` (rows of three), by columns:
+    the same products and differences as ``np.cross`` (the same bits), which converts and copies its
+    inputs on the way and takes some three times as long on the 10^6 corners of a mesh.
+
+    >>> cross_rows(np.array([[1.0, 0, 0], [0, 2, 0]]), np.array([[0.0, 1, 0], [0, 0, 3]])).tolist()
+    [[0.0, 0.0, 1.0], [6.0, 0.0, 0.0]]
+    """
+    a0, a1, a2 = a[:, 0], a[:, 1], a[:, 2]
+    b0, b1, b2 = b[:, 0], b[:, 1], b[:, 2]
+    return np.column_stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
 
 
 def unit_rows(v: np.ndarray) -> np.ndarray:

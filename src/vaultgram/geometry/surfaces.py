@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
-from vaultgram.geometry.arrays import row_dot, unit_rows
+from vaultgram.geometry.arrays import cross_rows, row_dot, unit_rows
 from vaultgram.geometry.meshes import corner_arrays
 
 __all__ = [
@@ -35,7 +35,7 @@ def area_vectors(vertices: np.ndarray, faces) -> np.ndarray:
     """
     face, u, v, _ = corner_arrays(faces)
     x = np.asarray(vertices, dtype=float)
-    cross = np.cross(x[u], x[v])
+    cross = cross_rows(x.take(u, axis=0), x.take(v, axis=0))
     out = np.zeros((len(faces), 3))
     for k in range(3):
         out[:, k] = 0.5 * np.bincount(face, weights=cross[:, k], minlength=len(faces))
@@ -107,7 +107,7 @@ def loop_corner_angles(vertices: np.ndarray, loops, normals: np.ndarray) -> np.n
     a, b = x[v] - x[u], x[w] - x[u]  # towards the next and the previous corner
     a -= row_dot(a, n)[:, None] * n
     b -= row_dot(b, n)[:, None] * n
-    turn = np.degrees(np.arctan2(row_dot(np.cross(a, b), n), row_dot(a, b)))
+    turn = np.degrees(np.arctan2(row_dot(cross_rows(a, b), n), row_dot(a, b)))
     return np.where(turn <= 0, turn + 360.0, turn)
 
 

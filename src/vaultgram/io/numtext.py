@@ -36,7 +36,9 @@ def int_lines(prefix: bytes, values: np.ndarray) -> bytes:
     """One line per row of the integer matrix ``values``: ``prefix``, the row's numbers (``%d``)
     separated by spaces, a newline. Indices (no negative number, none above eight times their count)
     are looked up in a table of their digits (:func:`_digit_table`), 1.7 times faster than orjson on
-    the 4 million of voussoirs.obj at 10^5 faces; other numbers go through orjson.
+    the 4 million of voussoirs.obj at 10^5 faces; other numbers go through orjson. The table's rows
+    are gathered as whole items into the lines (not byte by byte, then joined to the prefix): on the
+    10^7 rows of voussoirs.obj at 10^6 faces 1.5 s instead of 6.0.
 
     >>> int_lines(b"l ", np.array([[7, -1]]))
     b'l 7 -1\\n'
@@ -46,11 +48,16 @@ def int_lines(prefix: bytes, values: np.ndarray) -> bytes:
     v = np.ascontiguousarray(values, dtype=np.int64)
     if not v.size or v.min() < 0 or v.max() > 8 * v.size + 1000:
         return _lines(prefix, v)
-    cells = _digit_table(int(v.max()) + 1)[v]  # (rows, columns, digits and a space)
-    cells[:, -1, -1] = ord("\n")
-    lines = np.concatenate([np.broadcast_to(np.frombuffer(prefix, dtype=np.uint8), (len(v), len(prefix))),
-                            cells.reshape(len(v), -1)], axis=1).ravel()
-    return lines[lines != PAD].tobytes()
+    table = _digit_table(int(v.max()) + 1)
+    rows, cols, width, p = v.shape[0], v.shape[1], table.shape[1], len(prefix)
+    lines = np.empty((rows, p + cols * width), dtype=np.uint8)
+    lines[:, :p] = np.frombuffer(prefix, dtype=np.uint8)
+    # each table row one opaque item (a row of bytes taken whole), gathered straight into the lines
+    cells = [("p", f"V{p}")] if p else []
+    lines.view(np.dtype([*cells, ("c", f"V{width}", (cols,))]))[:, 0]["c"] = table.view(f"V{width}")[:, 0][v]
+    lines[:, -1] = ord("\n")  # the last number's space
+    flat = lines.ravel()
+    return flat[flat != PAD].tobytes()
 
 
 def _digit_table(n: int) -> np.ndarray:

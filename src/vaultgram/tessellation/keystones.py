@@ -24,7 +24,7 @@ from vaultgram.engine.graph import HostGraph
 from vaultgram.engine.rulebook import Rulebook, load_rulebook
 from vaultgram.engine.strategy import Runner
 from vaultgram.errors import RuleError
-from vaultgram.geometry.arrays import distinct, plan_rows
+from vaultgram.geometry.arrays import plan_rows
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.geometry.meshes import Faces, corner_arrays
 from vaultgram.tessellation.functions import tessellation_functions
@@ -121,7 +121,8 @@ def _walked_faces(graph: HostGraph, touched: list[int], outside: set) -> list[li
 
 def _renumbered(faces, kept: np.ndarray, walked: list, ids: np.ndarray) -> Faces:
     """The faces ``kept`` (indices into ``faces``), then the ``walked`` node loops, with node ids
-    replaced by their positions in the sorted ``ids`` (vectorised by face size: most have four)."""
+    replaced by their positions in the sorted ``ids``: made from the flat array at once
+    (:meth:`~vaultgram.geometry.meshes.Faces.from_flat`, which also keeps its corner arrays)."""
     position = np.full(int(ids.max()) + 1 if len(ids) else 0, -1, dtype=np.int64)
     position[ids] = np.arange(len(ids))
     face, vertex, _, _ = corner_arrays(faces)
@@ -130,15 +131,7 @@ def _renumbered(faces, kept: np.ndarray, walked: list, ids: np.ndarray) -> Faces
     lens = np.concatenate([np.bincount(face, minlength=len(faces))[kept],
                            np.fromiter(map(len, walked), dtype=np.int64, count=len(walked))])
     new = np.fromiter(itertools.chain.from_iterable(walked), dtype=np.int64, count=int(lens[len(kept):].sum()))
-    flat = position[np.concatenate([vertex[old[face]], new])]
-    start = np.concatenate([[0], np.cumsum(lens)[:-1]]).astype(np.int64)
-    out: list = [None] * len(lens)
-    for size in distinct(lens).tolist():
-        which = np.flatnonzero(lens == size)
-        rows = flat[start[which][:, None] + np.arange(size)]
-        for k, row in zip(which.tolist(), map(tuple, rows.tolist())):
-            out[k] = row
-    return Faces(out)
+    return Faces.from_flat(position[np.concatenate([vertex[old[face]], new])], lens)
 
 
 def _outside_half_edges(faces, me: MeshEdges) -> set:

@@ -164,6 +164,9 @@ def _candidates(me: MeshEdges, removed: np.ndarray, interior: np.ndarray, area: 
     at_crowded = np.repeat(crowded[me.edges[e, 0]] | crowded[me.edges[e, 1]], 2)
     e, face, other = np.repeat(e, 2), me.faces_of[e].ravel(), me.faces_of[e, ::-1].ravel()  # both ways
     source, into = group[face], group[other]
+    # only moves at a crowded vertex or beside a small voussoir can fit (below): the others go first
+    near = np.flatnonzero(at_crowded | tiny[source] | tiny[into])
+    e, face, source, into, at_crowded = e[near], face[near], source[near], into[near], at_crowded[near]
     left = size[source] - area[face]
     evens = tiny[into] & (area[face] < size[source] - size[into]) & ((faces_in[source] > 2) | (left <= UPPER * target))
     even_out = (tiny[source] & (faces_in[source] == 1)) | evens  # moves worth making that mend nothing

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from vaultgram.geometry.arrays import distinct, row_dot, unit_rows
+from vaultgram.geometry.arrays import cross_rows, distinct, row_dot, unit_rows
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.geometry.surfaces import area_vectors
@@ -57,7 +57,7 @@ def force_angles(x: np.ndarray, me: MeshEdges, face_normals: np.ndarray, edges: 
     a, b = me.edges[edges, 0], me.edges[edges, 1]
     d = unit_rows(x[b] - x[a])
     normal = unit_rows(face_normals[me.faces_of[edges]].sum(axis=1))
-    across = unit_rows(np.cross(normal, d))
+    across = unit_rows(cross_rows(normal, d))
     flow = np.zeros_like(across)
     for side in (0, 1):
         c = me.corners_of[edges, side]
@@ -94,7 +94,7 @@ def joint_tilts(x: np.ndarray, normals: np.ndarray, layout: VoussoirLayout, face
     (``normals`` at the vertices, ``face_normals`` of the layout's faces, computed if not given)."""
     me, j = layout.edges, layout.joints
     a, b = me.edges[j, 0], me.edges[j, 1]
-    plane = unit_rows(np.cross(x[b] - x[a], normals[a] + normals[b]))
+    plane = unit_rows(cross_rows(x[b] - x[a], normals[a] + normals[b]))
     faces = _face_normals(x, layout) if face_normals is None else face_normals
     normal = unit_rows(faces[me.faces_of[j]].sum(axis=1))
     return np.degrees(np.arcsin(np.clip(np.abs(row_dot(plane, normal)), 0.0, 1.0)))

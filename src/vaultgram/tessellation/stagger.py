@@ -113,8 +113,8 @@ def quad_directions(x: np.ndarray, me: MeshEdges, pref: np.ndarray, is_quad: np.
     quad_corner = is_quad[me.corner_face]
     c = np.flatnonzero(quad_corner)
     f, side = me.corner_face[c], me.corner_side[c]
-    score = np.zeros((len(is_quad), 2))
-    np.add.at(score, (f, side % 2), align[me.corner_edge[c]])
+    n = len(is_quad)
+    score = np.bincount(2 * f + side % 2, align[me.corner_edge[c]], 2 * n).reshape(n, 2)
     choice = np.where(is_quad, np.argmax(steady(score), axis=1), -1)
     ambiguous = is_quad & (np.abs(score[:, 0] - score[:, 1]) < 2 * AMBIGUITY)
     twin = me.corner_twin[c]
@@ -124,8 +124,7 @@ def quad_directions(x: np.ndarray, me: MeshEdges, pref: np.ndarray, is_quad: np.
     for _ in range(SMOOTHING):
         # the neighbour's course, seen from this quad: the same strip if it runs through the shared side
         seen = np.where(choice[g] == other_side % 2, side % 2, 1 - side % 2)
-        votes = np.zeros((len(is_quad), 2))
-        np.add.at(votes, (f, seen), 1.0)
+        votes = np.bincount(2 * f + seen, minlength=2 * n).reshape(n, 2)
         flip = ambiguous & (votes.max(axis=1) > votes.min(axis=1))
         choice = np.where(flip, np.argmax(votes, axis=1), choice)
     return choice
@@ -183,18 +182,24 @@ def course_joints(areas: np.ndarray, forced: np.ndarray, aligned: np.ndarray, ta
 def cheapest_cut(sizes: list, forced: np.ndarray, penalty: list, longest: int) -> np.ndarray:
     """The dynamic programme of :func:`course_joints`: ``sizes[b][d]`` the size cost of the ``d``
     quads before rung ``b`` (:func:`size_costs`), ``penalty[b]`` the cost of keeping inner rung ``b``;
-    a single quad costs :data:`SINGLE_COST` more unless forced rungs hold it on both sides."""
+    a single quad costs :data:`SINGLE_COST` more unless forced rungs hold it on both sides.
+
+    The best costs of the rungs a run may start from (back to the last forced rung, at most
+    ``longest``) are kept nearest first in a window, so each rung's choices are one ``map`` over it
+    (no slices reversed and joined per rung: a third less time, the same sums in the same order)."""
     k = len(forced) - 1
     forced = forced.tolist()
     best = [0.0] * (k + 1)
     back = [0] * (k + 1)
-    last = 0  # the last forced rung before rung b: a run cannot pass it (rung 0 ends every run)
+    window = deque(maxlen=longest)  # best[b - 1], best[b - 2], ...: a run cannot pass a forced rung
     for b in range(1, k + 1):
         if forced[b - 1]:
-            last = b - 1
-        d, row = min(longest, b - last), sizes[b]
-        single = row[1] if forced[b - 1] and forced[b] else row[1] + SINGLE_COST
-        cost = [best[b - 1] + single] + list(map(operator.add, best[b - d:b - 1][::-1], row[2:d + 1]))
+            window.clear()
+        window.appendleft(best[b - 1])
+        row = sizes[b]
+        cost = list(map(operator.add, window, row[1:]))
+        if not (forced[b - 1] and forced[b]):
+            cost[0] = window[0] + (row[1] + SINGLE_COST)
         here = min(cost)
         back[b] = b - 1 - cost.index(here)  # the shortest of the cheapest runs
         best[b] = here + penalty[b] if b < k else here
