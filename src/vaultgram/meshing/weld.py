@@ -213,8 +213,7 @@ def _patch_faces(layout: Layout, sides: list[_SideSamples], table: _VertexTable,
     # the faces keep their corner arrays (made from these arrays): smoothing, untangling, the quality
     # checks and form finding flatten the welded mesh again and again
     lens = np.repeat([4, 3], [len(q), len(t)])
-    faces = Faces.from_flat(np.concatenate([q.ravel(), t.ravel()]), lens,
-                            [tuple(f) for f in q.tolist()] + [tuple(f) for f in t.tolist()])
+    faces = Faces.from_flat(np.concatenate([q.ravel(), t.ravel()]), lens)
     return faces, np.concatenate(quad_patch + tri_patch).astype(np.int64), np.array(centres, dtype=np.int64)
 
 
