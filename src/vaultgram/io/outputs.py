@@ -169,6 +169,8 @@ def write_design(result, out: Path, formats=DEFAULT_FORMATS, trace: bool = False
             write_tessellation(result.tessellation, out, plot=False, formats=formats)
         write_drawings(out, formats, result.domain.units, decomposition=result.decomposition, mesh=result.mesh,
                        network=result.network, tessellation=result.tessellation)
+    if figures is not None and figures.handover:  # the stages pickled to the figure process, during the design
+        timings["figures"] = figures.handover
     if plots and "json" in formats:
         with progress.timed(timings, "figures"), collector_paused():
             write_design_figures(result, out, figures)
