@@ -219,11 +219,12 @@ def run_plans(plans, face_counts) -> None:
     from scipy.interpolate import LinearNDInterpolator
 
     from vaultgram.domain import load_domain
+    from vaultgram.geometry.text import fmt_point
     from vaultgram.pipeline import mesh_domain, thrust_of_mesh
 
     folder = ARCHITECTURE
     print("\nshared plans, defaults of vaultgram design; times in seconds, dz = max height difference to the "
-          "previous resolution / zmax")
+          "previous resolution / zmax, at the previous one's vertices")
     head = (f"{'plan':>16} {'faces':>8} {'mesh':>7} {'form find':>9} {'relax':>6} {'h_it':>5} {'angle':>9} "
             f"{'q>0':>4} {'dz':>7} {'peak MB':>8}")
     print(head)
@@ -241,17 +242,19 @@ def run_plans(plans, face_counts) -> None:
                 continue
             t2 = time.perf_counter()
             s, xyz = tn.summary, tn.vertices
-            dz = ""
+            dz = where = ""
             if previous is not None:
                 z = LinearNDInterpolator(xyz[:, :2], xyz[:, 2])(previous[:, :2])
-                ok = np.isfinite(z)
-                dz = f"{np.max(np.abs(z[ok] - previous[ok, 2])) / s['zmax']:.2%}"
+                ok = np.flatnonzero(np.isfinite(z))
+                d = np.abs(z[ok] - previous[ok, 2]) / s["zmax"]
+                dz, p99 = f"{d.max():.2%}", f"{np.percentile(d, 99):.2%}"
+                where = f"  (99th percentile {p99}; largest at {fmt_point(previous[ok[np.argmax(d)], :2])})"
             previous = xyz
             peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
             compression = str(bool(np.all(tn.q[tn.form.active] > 0)))
             print(f"{plan:>16} {len(mesh.faces):>8} {t1 - t0:>7.2f} {t2 - t1:>9.2f} {s['relax_mode']:>6} "
                   f"{s['horizontal_iterations']:>5} {s['max_angle_deg']:>9.2e} {compression:>4} "
-                  f"{dz:>7} {peak:>8.0f}", flush=True)
+                  f"{dz:>7} {peak:>8.0f}{where}", flush=True)
 
 
 def parse_args(argv):

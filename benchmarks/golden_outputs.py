@@ -60,7 +60,7 @@ def record(options: list[str]) -> dict:
 
 
 def normalised(stdout: str) -> str:
-    """The printed summary without what varies from run to run: timings and the output folder."""
+    """The printed summary or error without what varies from run to run: timings and the output folder."""
     lines = [line for line in stdout.splitlines() if not line.startswith(("time:", "timings:"))]
     return "\n".join(re.sub(r"/\S*/out\b", "OUT", line) for line in lines)
 
@@ -73,8 +73,8 @@ def differences(before: dict, after: dict) -> list[str]:
         if a is None or b is None:
             lines.append(f"{name}: only {'after' if a is None else 'before'}")
             continue
-        changed = [key for key in ("options", "code", "stderr") if a[key] != b[key]]
-        changed += ["stdout"] if normalised(a["stdout"]) != normalised(b["stdout"]) else []
+        changed = [key for key in ("options", "code") if a[key] != b[key]]
+        changed += [key for key in ("stdout", "stderr") if normalised(a[key]) != normalised(b[key])]
         changed += [f"file {f}" for f in sorted(set(a["files"]) | set(b["files"]))
                     if a["files"].get(f) != b["files"].get(f)]
         if changed:

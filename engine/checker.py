@@ -337,10 +337,15 @@ class RuleChecker:
 
     def _condition(self, expr, scope, text: str | None = None) -> Condition:
         compiled = self.compiler.compile(expr, scope)
-        operands = tuple({describe(sub): self.compiler.compile(sub, scope).fn for sub in walk(expr)
-                          if isinstance(sub, (ast.Attr, ast.Call)) and not _quantified(sub, expr)}.items())
+        operands: dict = {}  # the attributes and calls outside quantifiers, once per text (shown when it fails)
+        bound = _quantified(expr)
+        for sub in walk(expr):
+            if isinstance(sub, (ast.Attr, ast.Call)) and id(sub) not in bound:
+                key = describe(sub)
+                if key not in operands:
+                    operands[key] = self.compiler.compile(sub, scope).fn
         return Condition(compiled.fn, compiled.reads, text or describe(expr), expr.pos, self._column_test(expr, scope),
-                         operands)
+                         tuple(operands.items()))
 
     def _column_test(self, expr, scope) -> ColumnTest | None:
         """The vectorised form of ``degree(var, Types) op rhs`` or ``var.attr op rhs``, if ``expr`` is
@@ -699,10 +704,10 @@ _DESCRIBE = {
 }
 
 
-def _quantified(sub, expr) -> bool:
-    """Whether ``sub`` lies inside a quantifier of ``expr`` (its variable is not bound outside)."""
-    return any(isinstance(q, ast.Quantifier) and sub is not q and any(s is sub for s in walk(q.body))
-               for q in walk(expr))
+def _quantified(expr) -> set[int]:
+    """The ``id`` of every sub-expression of ``expr`` inside a quantifier (its variable is not bound
+    outside), by one walk of each quantifier's body."""
+    return {id(s) for q in walk(expr) if isinstance(q, ast.Quantifier) for s in walk(q.body)}
 
 
 def conjuncts(expr) -> list:

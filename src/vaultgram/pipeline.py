@@ -440,9 +440,11 @@ def tessellate(surface: ThrustSurface, rhythm: int = 2, thickness: float = 1.0,
         with _timed(timings, "solids"):
             normals = vertex_normals(x, cut.faces)
             solids = voussoir_solids(x, normals, layout.loops, thickness, flat_extrados)
-        courses, zones = _courses(layout, supported, me)
-        summary = summarise(x, normals, layout, max_concavity, {**kept, "refined_strips": refined}, surface.holes,
-                            solid_volumes(solids, layout.n_voussoirs))
+        with _timed(timings, "courses"):
+            courses, zones = _courses(layout, supported, me)
+        with _timed(timings, "metrics"):
+            summary = summarise(x, normals, layout, max_concavity, {**kept, "refined_strips": refined},
+                                surface.holes, solid_volumes(solids, layout.n_voussoirs))
     return Tessellation(layout, x, normals, solids, courses, zones, tuple(voussoir_names(courses, zones)),
                         {**summary, "rhythm": rhythm, "thickness": thickness}, surface.origin)
 
@@ -585,7 +587,8 @@ def design(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None =
     done("mesh", mesh)
     spec = domain.supports if supports is None else supports
     spec = {"vertices": spec} if isinstance(spec, list) else spec
-    anchors = support_vertices(mesh.vertices, mesh.faces, spec, domain, mesh.origin)
+    with _timed(timings, "supports"):
+        anchors = support_vertices(mesh.vertices, mesh.faces, spec, domain, mesh.origin)
     done("supports", anchors)
     # the specification itself, not its vertices: a failure's hint names the holes it leaves open
     network = thrust_of_mesh(mesh, spec, domain, point_load, timings, zmax=zmax, thickness=thickness, **options)
@@ -593,7 +596,9 @@ def design(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None =
     voussoirs = None
     if tessellation is not None:
         t = tessellation
-        voussoirs = tessellate(surface_from_network(network), t.rhythm, thickness, t.max_concavity,
-                               t.flat_extrados, t.surface_smooth, rules_dir, timings)
+        with _timed(timings, "surface"):
+            surface = surface_from_network(network)
+        voussoirs = tessellate(surface, t.rhythm, thickness, t.max_concavity, t.flat_extrados, t.surface_smooth,
+                               rules_dir, timings)
         done("tessellation", voussoirs)
     return Design(domain, dec, mesh, anchors, network, voussoirs, timings)

@@ -130,6 +130,30 @@ def test_unfolding_gradient_is_the_penalty_derivative():
         assert (p[0] - p[1]) / 2e-6 == pytest.approx(grad[e], rel=1e-4)
 
 
+def test_the_penalty_of_short_edges_and_its_gradient():
+    """Short edges weigh in the unfolding's penalty (they collapsed at 10^6 faces of the multiple-lobes
+    plan): nothing below ``_SHORT`` of the meshed length adds nothing, a shrunk edge adds to the
+    penalty and keeps the descent from stopping, and the gradient in the plan positions is the
+    penalty's derivative (central differences), faces and edges together."""
+    from vaultgram.formfinding import relaxation
+    from vaultgram.geometry.meshes import grid_mesh
+
+    form = form_diagram(*grid_mesh(4))
+    folds = relaxation._Folds(form)
+    assert folds.penalty(form.xy)[0] == 0.0 and folds.settled(form.xy)
+    xy = form.xy.copy()
+    xy[6] = xy[7] + [0.002, 0.001]          # edge 6-7 keeps 0.2% of its length, under _SHORT
+    xy[12] += [0.3, -0.2]
+    p, g = folds.penalty(xy)
+    assert p > 0 and not folds.settled(xy)
+    for i in (6, 7, 11, 12):
+        for c in range(2):
+            a, b = xy.copy(), xy.copy()
+            a[i, c] += 1e-7
+            b[i, c] -= 1e-7
+            assert (folds.penalty(a)[0] - folds.penalty(b)[0]) / 2e-7 == pytest.approx(g[i, c], rel=1e-5, abs=1e-9)
+
+
 def test_form_finding_over_a_notch_is_reciprocal_at_once():
     from formfinding.cases import assert_network_ok
 

@@ -14,7 +14,7 @@ from click.testing import CliRunner
 
 from vaultgram.cli import main
 from vaultgram.io.figures import BESIDE, CATALOGUE
-from vaultgram.io.report import SECTIONS
+from vaultgram.io.report import SECTIONS, STAGES
 
 from paths import EXAMPLES
 
@@ -51,6 +51,7 @@ def test_the_report_has_every_section_and_figure(folder):
     assert f"<th>patches</th><td class='n'>{summary['decomposition']['patches']}</td>" in page
     timings = json.loads((folder / "timings.json").read_text())
     assert {"rules", "smooth", "horizontal", "stagger", "write", "figures"} <= set(timings)
+    assert set(timings) <= {s for steps in STAGES.values() for s in steps}  # every timed stage in a part
     for name, figure in BESIDE.items():  # the single figures beside the files are those of figures/
         assert (folder / name).read_bytes() == (folder / "figures" / f"{figure}.png").read_bytes()
 

@@ -16,6 +16,21 @@ def test_welding_is_exact(meshed):
     assert d.min() > 1e-3 * mesh.info["diagonal"]  # no two vertices at one place
 
 
+def test_the_welded_faces_keep_their_corner_arrays(meshed):
+    """The welded mesh's faces are a Faces whose kept corner arrays are those of its tuples (every stage
+    after welding reads them instead of flattening the faces again), read-only, and survive a pickle."""
+    import pickle
+
+    from vaultgram.geometry.meshes import Faces, corner_arrays
+
+    _, _, _, mesh, _ = meshed("two_holes_five_points")   # quads and the triangles of poles
+    assert isinstance(mesh.faces, Faces) and {len(f) for f in mesh.faces} == {3, 4}
+    kept, again = corner_arrays(mesh.faces), corner_arrays(list(mesh.faces))
+    assert all(np.array_equal(a, b) and not a.flags.writeable for a, b in zip(kept, again))
+    back = pickle.loads(pickle.dumps(mesh.faces))
+    assert back == mesh.faces and all(np.array_equal(a, b) for a, b in zip(corner_arrays(back), kept))
+
+
 def test_labels(meshed):
     domain, _, _, mesh, _ = meshed("two_holes_five_points")
     assert mesh.boundary[mesh.fixed & ~mesh.feature].all()

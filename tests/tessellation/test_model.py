@@ -33,6 +33,21 @@ def tessellation(arch_grid):
     return tessellate(arch_grid, thickness=0.3)
 
 
+def test_the_json_of_arrays_is_the_json_of_lists(tessellation):
+    """``to_json(arrays=True)`` keeps numpy arrays for orjson, which writes them as the same bytes as
+    the lists of ``to_json()``: the tessellation, the thrust network and its form and force diagrams."""
+    import orjson
+
+    from vaultgram.pipeline import form_find
+
+    network = form_find(*grid_mesh(6), zmax=1.5)
+    option = orjson.OPT_SORT_KEYS | orjson.OPT_NON_STR_KEYS | orjson.OPT_SERIALIZE_NUMPY
+    for item in (tessellation, network, network.form, network.force):
+        arrays = item.to_json(arrays=True)
+        assert any(isinstance(v, np.ndarray) for v in arrays.values())
+        assert orjson.dumps(arrays, option=option) == orjson.dumps(item.to_json(), option=option)
+
+
 def test_tessellation_json_is_plain_json_that_describes_the_layout(tessellation):
     data = json.loads(json.dumps(tessellation.to_json()))
     lay = tessellation.layout

@@ -29,7 +29,7 @@ from scipy.sparse.csgraph import breadth_first_order
 from vaultgram.formfinding.cholesky import Cholesky, ForceDensityMatrix
 from vaultgram.formfinding.diagrams import Diagram, connectivity_matrix
 from vaultgram.formfinding.formdiagram import FormDiagram
-from vaultgram.geometry.arrays import lookup
+from vaultgram.geometry.arrays import json_array, lookup
 
 __all__ = ["ForceDiagram", "force_diagram", "PinnedLaplacian", "WeightedFit"]
 
@@ -145,12 +145,13 @@ class ForceDiagram(Diagram):
         np.minimum.at(first, labels, np.arange(len(labels)))  # each component's first vertex, no sort
         return np.sort(first)
 
-    def to_json(self) -> dict:
-        """JSON-serialisable description (for ``force.json``)."""
+    def to_json(self, arrays: bool = False) -> dict:
+        """JSON-serialisable description (for ``force.json``); ``arrays``: numpy arrays kept as they are,
+        for :func:`vaultgram.io.files.write_json` (:func:`~vaultgram.geometry.arrays.json_array`)."""
         return {
-            "vertices": self.xy.tolist(),
-            "edges": self.edges.tolist(),
-            "form_edge": self.form_edge.tolist(),
+            "vertices": json_array(self.xy, arrays),
+            "edges": json_array(self.edges, arrays),
+            "form_edge": json_array(self.form_edge, arrays),
             "orientation": "parallel (turned -90 degrees from the classical perpendicular reciprocal)",
         }
 

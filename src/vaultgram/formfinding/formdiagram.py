@@ -35,7 +35,7 @@ import scipy.sparse as sp
 from vaultgram.errors import FormFindingError
 from vaultgram.formfinding.diagrams import Diagram, connectivity_matrix
 from vaultgram.formfinding.supports import largest_loop, manifold_loops
-from vaultgram.geometry.arrays import lookup
+from vaultgram.geometry.arrays import json_array, lookup
 from vaultgram.geometry.halfedges import MeshEdges, edges_of_sides, repeated_sides, sorted_sides
 from vaultgram.geometry.meshes import Faces, corner_arrays, corners_of_flat, loops_of, shoelace_areas
 
@@ -118,15 +118,16 @@ class FormDiagram(Diagram):
         u, v = self.edges[e]
         return f"edge {e} (mesh vertices {self.vertex_ids[u]}-{self.vertex_ids[v]})"
 
-    def to_json(self) -> dict:
-        """JSON-serialisable description (for ``form.json``)."""
+    def to_json(self, arrays: bool = False) -> dict:
+        """JSON-serialisable description (for ``form.json``); ``arrays``: numpy arrays and tuples kept as
+        they are, for :func:`vaultgram.io.files.write_json` (:func:`~vaultgram.geometry.arrays.json_array`)."""
         return {
-            "vertices": self.xy.tolist(),
-            "vertex_ids": self.vertex_ids.tolist(),
-            "anchors": self.fixed.tolist(),
-            "edges": self.edges.tolist(),
-            "faces": [list(f) for f in self.faces],
-            "loaded": self.loaded.tolist(),
+            "vertices": json_array(self.xy, arrays),
+            "vertex_ids": json_array(self.vertex_ids, arrays),
+            "anchors": json_array(self.fixed, arrays),
+            "edges": json_array(self.edges, arrays),
+            "faces": list(self.faces) if arrays else [list(f) for f in self.faces],
+            "loaded": json_array(self.loaded, arrays),
         }
 
 

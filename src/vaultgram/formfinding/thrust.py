@@ -29,6 +29,7 @@ from vaultgram.formfinding.forcediagram import ForceDiagram
 from vaultgram.formfinding.formdiagram import FormDiagram
 from vaultgram.formfinding.horizontal import HorizontalResult
 from vaultgram.formfinding.vertical import VerticalResult
+from vaultgram.geometry.arrays import json_array
 from vaultgram.geometry.frames import NO_ORIGIN, between, to_plan
 
 __all__ = ["ThrustNetwork", "thrust_network", "format_summary"]
@@ -95,21 +96,13 @@ class ThrustNetwork:
         return replace(self, vertices=to_plan(self.vertices, o), origin=origin,
                        form=self.form.with_xy(to_plan(self.form.xy, o)))
 
-    def to_json(self) -> dict:
-        """JSON-serialisable description (for ``thrust.json``)."""
-        return {
-            "vertices": self.vertices.tolist(),
-            "vertex_ids": self.vertex_ids.tolist(),
-            "faces": [list(f) for f in self.faces],
-            "edges": self.edges.tolist(),
-            "q": self.q.tolist(),
-            "forces": self.forces.tolist(),
-            "horizontal_forces": self.horizontal_forces.tolist(),
-            "anchors": np.flatnonzero(self.anchors).tolist(),
-            "loads": self.loads.tolist(),
-            "reactions": self.reactions.tolist(),
-            "summary": self.summary,
-        }
+    def to_json(self, arrays: bool = False) -> dict:
+        """JSON-serialisable description (for ``thrust.json``); ``arrays``: numpy arrays and tuples kept
+        as they are, for :func:`vaultgram.io.files.write_json` (:func:`~vaultgram.geometry.arrays.json_array`)."""
+        names = ("vertices", "vertex_ids", "edges", "q", "forces", "horizontal_forces", "loads", "reactions")
+        out = {name: json_array(getattr(self, name), arrays) for name in names}
+        return {**out, "faces": list(self.faces) if arrays else [list(f) for f in self.faces],
+                "anchors": json_array(np.flatnonzero(self.anchors), arrays), "summary": self.summary}
 
     def summary_text(self) -> str:
         return format_summary(self.summary)

@@ -17,8 +17,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
-__all__ = ["TIE", "TIED", "cross_rows", "distinct", "lookup", "nearest", "plan_rows", "row_dot", "run_starts",
-           "sorted_keys", "steady", "unit_rows"]
+__all__ = ["TIE", "TIED", "cross_rows", "distinct", "json_array", "lookup", "nearest", "plan_rows", "row_dot",
+           "run_starts", "sorted_keys", "steady", "unit_rows"]
 
 #: Relative difference under which two computed values are a tie (round-off differs between
 #: machines by some 1e-15 relative; the stages' real differences are far above 1e-9).
@@ -36,6 +36,17 @@ def distinct(values) -> np.ndarray:
     """
     s = sorted_keys(np.asarray(values).ravel())
     return s[run_starts(s)]
+
+
+def json_array(values, arrays: bool = False):
+    """``values`` for a JSON file: a list, or with ``arrays`` the C-contiguous array itself, which
+    :func:`vaultgram.io.files.write_json` (orjson) writes as the same bytes as the list, 4-5 times
+    faster and without making 10^6 Python numbers first (the ``to_json`` of the stage values).
+
+    >>> json_array(np.array([[1.5, 2.0]])), json_array(np.array([[1.5, 2.0]]).T, arrays=True).flags.c_contiguous
+    ([[1.5, 2.0]], True)
+    """
+    return np.ascontiguousarray(values) if arrays else np.asarray(values).tolist()
 
 
 def sorted_keys(values: np.ndarray) -> np.ndarray:

@@ -205,8 +205,16 @@ def write_json(path: str | Path, data) -> None:
     """
     import orjson
 
-    write_bytes(path, orjson.dumps(data, option=orjson.OPT_SORT_KEYS | orjson.OPT_NON_STR_KEYS
+    write_bytes(path, orjson.dumps(data, default=_listed, option=orjson.OPT_SORT_KEYS | orjson.OPT_NON_STR_KEYS
                                    | orjson.OPT_SERIALIZE_NUMPY))
+
+
+def _listed(value):
+    """What orjson does not write itself: a numpy array it cannot take whole (not C-contiguous, or of
+    another type) as its list; anything else is not JSON."""
+    if hasattr(value, "tolist"):
+        return value.tolist()
+    raise TypeError(f"{type(value).__name__} is not JSON serialisable")
 
 
 def _obj_vertices(vertices: np.ndarray) -> bytes:

@@ -15,6 +15,7 @@ import numpy as np
 from vaultgram.errors import VaultgramError
 from vaultgram.geometry.frames import local_origin, to_local
 from vaultgram.geometry.meshcheck import check_plan_mesh
+from vaultgram.geometry.meshes import Faces
 from vaultgram.io import strict
 from vaultgram.io.files import read_json, write_json, write_obj
 from vaultgram.meshing.quadmesh import QuadMesh
@@ -109,7 +110,7 @@ def _mesh_from_json(data, polygons: bool) -> QuadMesh:
         curve[chain] = c
     if "supports" in data:
         strict.indices(data["supports"], n, "supports")
-    return QuadMesh(x[:, :2].copy(), faces, fp, mask("boundary"), ring, corner, turning, mask("fixed"),
+    return QuadMesh(x[:, :2].copy(), Faces(faces), fp, mask("boundary"), ring, corner, turning, mask("fixed"),
                     mask("pole"), mask("feature"), node, mask("singular_node"),
                     tuple(strict.json_list(data.get("edge_groups", []), "edge_groups")), (),
                     dict(strict.json_object(data.get("info", {}), "info")), curve, mask("curve_extremity"),

@@ -104,9 +104,9 @@ def write_thrust(network: ThrustNetwork, out: Path, plot: bool = False, formats=
     coordinates."""
     network = network.in_frame()
     if "json" in formats:
-        write_json(out / "form.json", network.form.to_json())
-        write_json(out / "force.json", network.force.to_json())
-        write_json(out / "thrust.json", network.to_json())
+        write_json(out / "form.json", network.form.to_json(arrays=True))
+        write_json(out / "force.json", network.force.to_json(arrays=True))
+        write_json(out / "thrust.json", network.to_json(arrays=True))
     if "obj" in formats:
         write_obj(out / "thrust.obj", network.vertices, network.faces)
     if "json" in formats:
@@ -127,7 +127,7 @@ def write_tessellation(tessellation: Tessellation, out: Path, summary: bool = Fa
     ``summary``, also ``summary.json`` (the tessellation's alone); as ``formats`` ask; in the plan's
     coordinates."""
     if "json" in formats:
-        write_json(out / "tessellation.json", tessellation.to_json())
+        write_json(out / "tessellation.json", tessellation.to_json(arrays=True))
     tessellation = tessellation.in_frame()  # after the JSON: its areas are measured in the local frame
     if "obj" in formats:
         solids = tessellation.solids
@@ -169,6 +169,8 @@ def write_design(result, out: Path, formats=DEFAULT_FORMATS, trace: bool = False
             write_tessellation(result.tessellation, out, plot=False, formats=formats)
         write_drawings(out, formats, result.domain.units, decomposition=result.decomposition, mesh=result.mesh,
                        network=result.network, tessellation=result.tessellation)
+    if figures is not None and figures.handover:  # the stages pickled to the figure process, during the design
+        timings["figures"] = figures.handover
     if plots and "json" in formats:
         with progress.timed(timings, "figures"), collector_paused():
             write_design_figures(result, out, figures)

@@ -26,8 +26,9 @@ SECTIONS = ("parameters", "stages", "topology", "mesh", "thrust", "tessellation"
 STAGES = {
     "topology": ("discretise", "triangulate", "skeleton", "rules"),
     "mesh": ("groups", "weld", "smooth", "untangle"),
-    "form finding": ("form", "relax", "force", "horizontal", "vertical"),
-    "tessellation": ("refine", "keystones", "stagger", "sizes", "surface_smooth", "solids"),
+    "form finding": ("supports", "form", "relax", "force", "horizontal", "vertical"),
+    "tessellation": ("surface", "refine", "keystones", "stagger", "sizes", "surface_smooth", "solids", "courses",
+                     "metrics"),
     "outputs": ("write", "figures", "report"),
 }
 

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from vaultgram.geometry.frames import NO_ORIGIN, between, to_plan
+from vaultgram.geometry.meshes import Faces
 from vaultgram.geometry.polylines import project_to_polyline
 
 __all__ = ["QuadMesh", "SlideConstraint", "slide"]
@@ -34,8 +35,9 @@ class QuadMesh:
     Attributes
     ----------
     vertices : ndarray (n, 2)
-    faces : list of tuple
-        Quads ``(i, j, k, l)`` and, at poles, triangles ``(pole, j, k)``, counter-clockwise.
+    faces : Faces (a tuple of tuples)
+        Quads ``(i, j, k, l)`` and, at poles, triangles ``(pole, j, k)``, counter-clockwise; they keep
+        their corner arrays (:class:`vaultgram.geometry.meshes.Faces`), flattened once for every stage.
     face_patch : ndarray (f,) int
         Patch id of each face.
     boundary : ndarray (n,) bool
@@ -77,7 +79,7 @@ class QuadMesh:
     """
 
     vertices: np.ndarray
-    faces: list
+    faces: Faces
     face_patch: np.ndarray
     boundary: np.ndarray
     ring: np.ndarray

@@ -9,7 +9,6 @@ that says where and why.
 
 from __future__ import annotations
 
-import itertools
 import math
 from typing import NamedTuple
 
@@ -68,16 +67,14 @@ def regular_boundary_faces(turning: np.ndarray) -> tuple[np.ndarray, np.ndarray]
 
 
 def _face_array(faces) -> np.ndarray:
-    """Faces as an (f, 4) array, triangles padded with -1."""
-    out = np.full((len(faces), 4), -1, dtype=np.int64)
-    lens = np.fromiter((len(f) for f in faces), dtype=np.int64, count=len(faces))
+    """Faces as an (f, 4) array, triangles padded with -1 (from the corner arrays, which a welded
+    mesh's faces keep)."""
+    face, vert, _, _ = corner_arrays(faces)
+    lens = np.bincount(face, minlength=len(faces))
     if len(faces) and (lens.max() > 4 or lens.min() < 3):
         raise VaultgramError("faces must be triangles or quads")
-    flat = np.fromiter(itertools.chain.from_iterable(faces), dtype=np.int64, count=int(lens.sum()))
-    starts = np.cumsum(lens) - lens  # the corners placed in one go, not face by face
-    k = np.arange(4)
-    take = k[None, :] < lens[:, None]
-    out[take] = flat[(starts[:, None] + k[None, :])[take]]
+    out = np.full((len(faces), 4), -1, dtype=np.int64)
+    out[face, np.arange(len(face)) - (np.cumsum(lens) - lens)[face]] = vert  # corner k of face f at [f, k]
     return out
 
 

@@ -27,6 +27,7 @@ from typing import NamedTuple
 import numpy as np
 
 from vaultgram.errors import VaultgramError
+from vaultgram.geometry.meshes import Faces
 from vaultgram.geometry.polylines import resample_polyline
 from vaultgram.meshing.coons import coons_grid, grid_faces
 from vaultgram.meshing.layout import Layout, PatchPattern, is_feature_node, kept_points, side_anchors
@@ -192,7 +193,7 @@ def _side_samples(layout: Layout, side_count: np.ndarray, table: _VertexTable,
 
 
 def _patch_faces(layout: Layout, sides: list[_SideSamples], table: _VertexTable,
-                 split: frozenset = frozenset()) -> tuple[list, np.ndarray, np.ndarray]:
+                 split: frozenset = frozenset()) -> tuple[Faces, np.ndarray, np.ndarray]:
     """Mesh every patch with its Coons grid (adding the interior grid points as vertices), the
     patterns in ``split`` as three quads (:mod:`vaultgram.meshing.splits`): the faces, quads first then
     triangles, the patch of each face, and the inner points of the split patches."""
@@ -209,7 +210,10 @@ def _patch_faces(layout: Layout, sides: list[_SideSamples], table: _VertexTable,
         tri_patch.append(np.full(len(t), pat.patch))
     q = np.vstack(quads) if quads else np.zeros((0, 4), dtype=np.int64)
     t = np.vstack(tris) if tris else np.zeros((0, 3), dtype=np.int64)
-    faces = [tuple(f) for f in q.tolist()] + [tuple(f) for f in t.tolist()]
+    # the faces keep their corner arrays (made from these arrays): smoothing, untangling, the quality
+    # checks and form finding flatten the welded mesh again and again
+    lens = np.repeat([4, 3], [len(q), len(t)])
+    faces = Faces.from_flat(np.concatenate([q.ravel(), t.ravel()]), lens)
     return faces, np.concatenate(quad_patch + tri_patch).astype(np.int64), np.array(centres, dtype=np.int64)
 
 

@@ -12,7 +12,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from vaultgram.geometry.arrays import distinct
+from vaultgram.geometry.arrays import distinct, json_array
 from vaultgram.geometry.frames import NO_ORIGIN, between, to_plan
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.geometry.meshes import Faces
@@ -115,21 +115,22 @@ class Tessellation:
         layout = replace(lay, mesh=replace(lay.mesh, vertices=to_plan(lay.mesh.vertices, o)))
         return replace(self, vertices=to_plan(self.vertices, o), solids=solids, layout=layout, origin=origin)
 
-    def to_json(self) -> dict:
+    def to_json(self, arrays: bool = False) -> dict:
         """``tessellation.json``: vertices (in the plan's coordinates), voussoir loops, keystones,
-        neighbours, joints, courses..."""
+        neighbours, joints, courses...; ``arrays``: numpy arrays kept as they are, for
+        :func:`vaultgram.io.files.write_json` (:func:`~vaultgram.geometry.arrays.json_array`)."""
         lay = self.layout
         pairs = lay.joint_voussoirs()
         return {
-            "vertices": to_plan(self.vertices, self.origin).tolist(),
+            "vertices": json_array(to_plan(self.vertices, self.origin), arrays),
             "voussoirs": _lists(lay.loops),
-            "keystones": lay.keystones.tolist(),
+            "keystones": json_array(lay.keystones, arrays),
             "names": list(self.names),
-            "courses": self.courses.tolist(),
-            "zones": self.zones.tolist(),
-            "areas": lay.areas(self.vertices).tolist(),
+            "courses": json_array(self.courses, arrays),
+            "zones": json_array(self.zones, arrays),
+            "areas": json_array(lay.areas(self.vertices), arrays),
             "faces": [lay.mesh.faces[f] for f in range(len(lay.mesh.faces))],
-            "face_voussoir": lay.group.tolist(),
+            "face_voussoir": json_array(lay.group, arrays),
             "joints": [{"vertices": v, "voussoirs": p}  # the arrays converted whole: 10^5 joints
                        for v, p in zip(lay.edges.edges[lay.joints].tolist(), np.sort(pairs, axis=1).tolist())],
             "neighbours": _neighbours(pairs, lay.n_voussoirs),

@@ -70,6 +70,7 @@ class FigureWorker:
         self.process = None
         self.conn = None
         self.seconds = 0.0  # the figures' own time, in the background process
+        self.handover = 0.0  # the run's time handing the stages to the process (pickled through the pipe)
         self.domain = None
         self.files: tuple = ()  # the stages whose data files the process writes (BACKGROUND or none)
         self.mesh_quality = None  # the mesh's quality (vaultgram.io.outputs.mesh_quality), if it wrote them
@@ -89,7 +90,9 @@ class FigureWorker:
         elif stage in LATER and self.conn is not None:
             if stage == "mesh":
                 self.files = BACKGROUND if writes_files(self.formats, value, self.from_faces) else ()
+            start = time.perf_counter()
             self.conn.send_bytes(pickle.dumps((stage, value), protocol=pickle.HIGHEST_PROTOCOL))
+            self.handover += time.perf_counter() - start
 
     def _start(self, decomposition) -> None:
         """Fork the figure process with the domain and the decomposition it inherits."""
