@@ -10,21 +10,21 @@ sides; any other face is an error naming where it is.
 from __future__ import annotations
 
 import functools
-import weakref
+import itertools
 from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
 import shapely
 
-from vaultgram.engine.embedding import face_walk, faces
+from vaultgram.engine.embedding import face_index, faces
 from vaultgram.engine.graph import HostGraph
 from vaultgram.errors import DomainError, RewriteError
 from vaultgram.geometry.frames import NO_ORIGIN, to_plan
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.text import fmt_point
 from vaultgram.topology.discretise import Discretisation
-from vaultgram.topology.statecache import by_content, per_state
+from vaultgram.topology.statecache import by_content
 from vaultgram.topology.types import BOUNDARY, BOUNDARY_VERTEX, CURVE_EXTREMITY, FEATURE_POINT, SKELETON_VERTEX
 
 
@@ -111,32 +111,19 @@ def plan_faces(graph: HostGraph, edge_types) -> list[tuple[list, list, np.ndarra
     polylines and its outline (counter-clockwise, not closed)."""
     out = []
     for face in faces(graph, edge_types, walk=face_from):
-        found = face_outline(graph, face)
+        found = face_outline(graph, edge_types, face)
         if found.area > 0 and not _is_hole(graph, face):  # not the unbounded face, nor a hole
             out.append((face, list(found.polylines), found.outline))
     return out
 
 
-_FACES_AT: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> {state: {types: {half-edge: ...}}}
-
-
 def face_from(graph: HostGraph, edge_types, half_edge: tuple) -> list:
     """The face to the left of ``half_edge`` from it on, as :func:`~vaultgram.engine.embedding.face_walk`
-    walks it (a new list), each face walked once per state of the graph
-    (:func:`~vaultgram.topology.statecache.per_state`): the rules' helpers look for the face of each
-    Patch node from its first corner, trying the faces there one after another, and neighbouring
-    patches share corners, so the same faces (the unbounded one among them) were walked again and
-    again in each state the search makes (issue 13)."""
-    memo = per_state(_FACES_AT, graph, lambda g: {})
-    types = frozenset(edge_types)
-    at = memo.get(types)
-    if at is None:
-        at = memo[types] = {}
-    if half_edge not in at:
-        face = tuple(face_walk(graph, types, half_edge))
-        at.update({h: (face, i) for i, h in enumerate(face)})
-    face, i = at[half_edge]
-    return list(face[i:] + face[:i])
+    walks it (a new list), from the graph's face index (:func:`~vaultgram.engine.embedding.face_index`):
+    each face is walked once and kept until a change touches it. The rules' helpers look for the
+    face of each Patch node from its first corner, trying the faces there one after another, in
+    every state the search makes, and a state differs from the one before in a few faces (issue 13)."""
+    return face_index(graph, edge_types).face(half_edge)
 
 
 @dataclass(frozen=True)
@@ -152,6 +139,11 @@ class FaceOutline:
     closed_area: float
 
     @functools.cached_property
+    def starts(self) -> tuple:
+        """Where each half-edge's polyline starts along the outline (the index of its first point)."""
+        return tuple(itertools.accumulate((len(p) - 1 for p in self.polylines[:-1]), initial=0))
+
+    @functools.cached_property
     def polygon(self) -> shapely.Polygon:
         """The outline as a prepared shapely polygon (the strip helpers' containment tests), made
         once for every state of the graph with this face."""
@@ -165,14 +157,20 @@ OUTLINES = 4096
 _OUTLINES: OrderedDict = OrderedDict()
 
 
-def face_outline(graph: HostGraph, face) -> FaceOutline:
-    """The outline of a face of the plan (its half-edges), kept by what it is made of: each half-edge's
-    polyline attribute and direction, or its ends' positions (:func:`half_edge_key`). Exploration
-    (issue 13) asks for the same faces in state after state, each rewrite changing only a few; a
-    key by content is right in every state (ids are reused across the branches of a search, the
-    geometry they carry is not)."""
-    key = tuple(half_edge_key(graph, e, u) for e, u in face)
-    return by_content(_OUTLINES, key, lambda: _outline_of(key), OUTLINES)
+def face_outline(graph: HostGraph, edge_types, face) -> FaceOutline:
+    """The outline of a face of the map of ``edge_types`` (its half-edges, from :func:`face_from` or
+    :func:`~vaultgram.engine.embedding.faces`), kept with the face in the graph's face index while
+    the face is unchanged, and by what it is made of: each half-edge's polyline attribute and
+    direction, or its ends' positions (:func:`half_edge_key`). Exploration (issue 13) asks for the
+    same faces in state after state, each rewrite changing only a few; a key by content is right in
+    every state (ids are reused across the branches of a search, the geometry they carry is not), so
+    a face walked again finds its outline (the same object) there."""
+    data = face_index(graph, edge_types).data(face[0])
+    found = data.get(("outline", face[0]))
+    if found is None:
+        key = tuple(half_edge_key(graph, e, u) for e, u in face)
+        found = data[("outline", face[0])] = by_content(_OUTLINES, key, lambda: _outline_of(key), OUTLINES)
+    return found
 
 
 def _outline_of(key: tuple) -> FaceOutline:
@@ -262,8 +260,9 @@ _SIDES: OrderedDict = OrderedDict()
 def _sides(graph: HostGraph, face: list, polys: list, outline: np.ndarray, types,
            known: dict) -> tuple[tuple, tuple, tuple]:
     """A face of the plan cut at its corners: the corners, the side polylines between them and the
-    half-edges along each side, starting at the first corner of the face's walk. Kept by the face's
-    half-edges, which of their nodes are corners and its outline (one of :func:`face_outline`'s, kept
+    half-edges along each side, starting at the first corner of the face's walk. Kept with the face
+    in the graph's face index while it is unchanged, and by the face's half-edges, which of their
+    nodes are corners and its outline (one of :func:`face_outline`'s, kept
     alive with the entry, so that its ``id`` names it): the same face in another state of the graph
     is cut the same way (issue 13). ``known``: node -> whether it is a corner, filled as the faces
     are cut (a node is on the faces of each of its edges)."""
@@ -271,8 +270,13 @@ def _sides(graph: HostGraph, face: list, polys: list, outline: np.ndarray, types
         if u not in known:
             known[u] = _is_corner(graph, u, types)
     corner = tuple(known[u] for _, u in face)
-    return by_content(_SIDES, (tuple(face), corner, id(outline)),
-                      lambda: (outline, _cut_at_corners(face, polys, corner, outline)), SIDES)[1]
+    data = face_index(graph, types).data(face[0])
+    found = data.get(("sides", face[0], corner))
+    if found is None:
+        found = data[("sides", face[0], corner)] = by_content(
+            _SIDES, (tuple(face), corner, id(outline)),
+            lambda: (outline, _cut_at_corners(face, polys, corner, outline)), SIDES)[1]
+    return found
 
 
 def _cut_at_corners(face: list, polys: list, corner: tuple, outline: np.ndarray) -> tuple[tuple, tuple, tuple]:

@@ -101,7 +101,7 @@ def _walk_sides(graph, patch: int) -> PatchSides | None:
         nodes = [u for _, u in face]
         if not set(corners) <= set(nodes):
             continue
-        found = face_outline(graph, face)
+        found = face_outline(graph, PLAN_EDGES, face)
         if found.closed_area <= 0:
             continue
         starts = [nodes.index(c) for c in corners] + [len(face)]
