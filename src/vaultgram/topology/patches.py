@@ -218,7 +218,11 @@ def enclosed_holes(outlines, holes) -> list[tuple[int, int]]:
     outlines at once, as one array of polygons)."""
     if not holes:
         return []
-    inside = np.array([_point_inside(ring) for ring in holes])
+    return _holes_inside(outlines, np.array([_point_inside(ring) for ring in holes]))
+
+
+def _holes_inside(outlines, inside: np.ndarray) -> list[tuple[int, int]]:
+    """:func:`enclosed_holes` with each hole's point inside it given (``inside``, (h, 2))."""
     if not len(outlines):
         return []
     sizes = [len(outline) for outline in outlines]
@@ -231,12 +235,22 @@ def check_no_enclosed_holes(graph: HostGraph, patches) -> None:
     """The stage check of the topology: no patch may enclose a hole (a wrong rulebook can leave a hole's
     ring unconnected to the layout, and the ring of patches around it comes out as one patch).
 
+    Each patch's answer is kept by its sides (shared by every state of the graph with that face,
+    :func:`_sides`; kept alive with the entry, so that their ``id`` names them) and the holes'
+    inner points: exploration (issue 13) checks the same patches in state after state.
+
     Raises
     ------
     RewriteError
         Naming the patch and the hole: a fault of the rules, whatever they did.
     """
-    found = enclosed_holes([p.polygon() for p in patches], hole_rings(graph))
+    holes = hole_rings(graph)
+    if not holes:
+        return
+    inside = np.array([by_content(_INSIDE, ring.tobytes(), lambda: _point_inside(ring), INSIDE) for ring in holes])
+    key = inside.tobytes()
+    found = [(k, h) for k, p in enumerate(patches) for h in
+             by_content(_ENCLOSED, (id(p.sides), key), lambda: (p.sides, _enclosed_by(p, inside)), ENCLOSED)[1]]
     if found:
         k, h = found[0]
         where = _where(patches[k].polygon())
@@ -244,6 +258,18 @@ def check_no_enclosed_holes(graph: HostGraph, patches) -> None:
             f"patch {patches[k].id} around {where} ({patches[k].n_sides} sides) encloses hole {h + 1}: it is no "
             "disk; no rule connected the hole's ring to the patch layout: check the rules (rebranching)"
         )
+
+
+#: The patches' answers (the holes inside them) and the holes' inner points kept (the most recently
+#: asked) by :func:`check_no_enclosed_holes`.
+ENCLOSED, INSIDE = 4096, 64
+_ENCLOSED: OrderedDict = OrderedDict()
+_INSIDE: OrderedDict = OrderedDict()
+
+
+def _enclosed_by(patch: Patch, inside: np.ndarray) -> tuple[int, ...]:
+    """The holes (by number, from 0) whose inner point ``inside[h]`` is inside the patch."""
+    return tuple(h for _, h in _holes_inside([patch.polygon()], inside))
 
 
 def _point_inside(ring: np.ndarray) -> np.ndarray:
