@@ -80,7 +80,8 @@ class FaceIndex:
 
     :meth:`data` keeps what a caller works out from a face and the attributes and types of its nodes
     and edges (an outline, say): it is emptied when one of those attributes or types changes, and
-    dropped with the face.
+    dropped with the face. :meth:`node_data` keeps what a caller works out from a node and the
+    map's edges at it (whether it is a corner, say), until one of those changes.
 
     A walk per face and per change instead of per state of the graph: exploration (issue 13) steps
     back and forth between states that differ in a few faces.
@@ -93,6 +94,7 @@ class FaceIndex:
         self._through: dict[int, set[_Face]] = {}  # node -> the faces kept through it
         self._synced = graph.mark()  # the journal records before this one are accounted for
         self._check: set[int] = set()  # nodes whose faces are to be checked (rotations changed)
+        self._nodes: dict[int, dict] = {}  # node -> the caller's data about it (node_data)
         self.walks = 0  # faces walked (for tests and benchmarks)
         graph.watch(self)
 
@@ -104,6 +106,15 @@ class FaceIndex:
     def data(self, half_edge: HalfEdge) -> dict:
         """The caller's dictionary kept with the face of ``half_edge`` (see the class docstring)."""
         return self._entry(half_edge)[0].data
+
+    def node_data(self, n: int) -> dict:
+        """The caller's dictionary kept for node ``n`` while it, its attributes and type and the
+        map's edges at it are unchanged (see the class docstring)."""
+        self._sync(self._graph())
+        found = self._nodes.get(n)
+        if found is None:
+            found = self._nodes[n] = {}
+        return found
 
     def undoing(self, graph: HostGraph, record) -> None:
         """Account for a record about to be undone (:meth:`HostGraph.watch`)."""
@@ -152,6 +163,8 @@ class FaceIndex:
         for n in attributed:
             for face in self._through.get(n, ()):
                 face.data.clear()
+        for n in attributed | rotated:
+            self._nodes.pop(n, None)
 
     def _holds_at(self, graph: HostGraph, face: _Face, n: int) -> bool:
         """Whether the walk of ``face`` still turns at ``n`` as it did: wherever it arrives at ``n``

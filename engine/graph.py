@@ -111,8 +111,9 @@ def _touch_edge(g: "HostGraph", e: int, nodes: set, types: set) -> None:
 def face_changes(g: "HostGraph", record, edge_types: AbstractSet[str]) -> tuple[set, set, set]:
     """What a journal record changed of the planar map of ``edge_types`` (for
     :class:`~.embedding.FaceIndex`): the half-edges (edge, end) of the edges of those types added or
-    removed, the nodes where the rotation of those edges may have changed, and the nodes whose
-    attributes or type changed or that end an edge of those types whose attributes changed. Ends
+    removed, the nodes where the rotation of those edges may have changed, and the nodes added,
+    removed, whose attributes or type changed or that end an edge of those types whose attributes
+    changed. Ends
     are read from the graph (or from the record of a removal): an edge the journal removes later is
     counted by that removal."""
     half_edges: set = set()
@@ -131,8 +132,12 @@ def face_changes(g: "HostGraph", record, edge_types: AbstractSet[str]) -> tuple[
     elif isinstance(record, _SetAttr) and record.kind == "edge":
         if g._edge_type.get(record.i) in edge_types:
             attributed.update(g._ends[record.i])
-    elif isinstance(record, (_SetAttr, _Retype)):
-        attributed.add(record.i if isinstance(record, _SetAttr) else record.n)
+    elif isinstance(record, _SetAttr):
+        attributed.add(record.i)
+    elif isinstance(record, (_Retype, _AddNode, _RemoveNode)):
+        attributed.add(record.n)
+    elif isinstance(record, _AddMany):
+        attributed.update(record.ids)
     return half_edges, rotated, attributed
 
 

@@ -146,3 +146,27 @@ def test_random_changes_and_rollbacks_keep_every_face_equal_to_its_walk(schema):
             asked += len(_half_edges(g))
     assert _all_equal_to_walks(g, index)
     assert index.walks < asked / 10  # kept, not walked anew for every question
+
+
+def test_node_data_is_kept_until_the_node_or_the_map_edges_at_it_change(schema):
+    g, at = _grid(schema)
+    index = face_index(g, MAP)
+    centre, corner, far = at[(2, 2)], at[(0, 0)], at[(4, 4)]
+    for n in (centre, corner, far):
+        index.node_data(n)["degree"] = g.degree(n, MAP)
+    mark = g.mark()
+    g.add_edge("Dual", centre, at[(0, 4)])  # not of the map
+    g.add_edge("Branch", corner, at[(1, 1)])  # a map edge at the corner
+    assert index.node_data(centre) == {"degree": 4} and index.node_data(far) == {"degree": 2}
+    assert index.node_data(corner) == {}  # its map degree changed: worked out again
+    index.node_data(corner)["degree"] = g.degree(corner, MAP)
+    assert index.node_data(corner)["degree"] == 3
+    g.set_node_attr(far, "pos", (4.0, 4.1))
+    assert index.node_data(far) == {} and index.node_data(centre) == {"degree": 4}
+    g.rollback(mark)
+    assert index.node_data(corner) == {} and index.node_data(centre) == {"degree": 4}  # undone: again
+    late = g.add_node("P", {"pos": (9.0, 9.0)})
+    index.node_data(late)["degree"] = 0
+    g.rollback(mark)
+    again = g.add_node("P", {"pos": (-9.0, -9.0)})  # the same id for another node
+    assert again == late and index.node_data(again) == {}

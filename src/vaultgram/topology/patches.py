@@ -291,12 +291,17 @@ def _sides(graph: HostGraph, face: list, polys: list, outline: np.ndarray, types
     nodes are corners and its outline (one of :func:`face_outline`'s, kept
     alive with the entry, so that its ``id`` names it): the same face in another state of the graph
     is cut the same way (issue 13). ``known``: node -> whether it is a corner, filled as the faces
-    are cut (a node is on the faces of each of its edges)."""
+    are cut (a node is on the faces of each of its edges), from the face index's node data (kept
+    while the node and the plan edges at it are unchanged)."""
+    index = face_index(graph, types)
     for _, u in face:
         if u not in known:
-            known[u] = _is_corner(graph, u, types)
+            kept = index.node_data(u)
+            if "corner" not in kept:
+                kept["corner"] = _is_corner(graph, u, types)
+            known[u] = kept["corner"]
     corner = tuple(known[u] for _, u in face)
-    data = face_index(graph, types).data(face[0])
+    data = index.data(face[0])
     found = data.get(("sides", face[0], corner))
     if found is None:
         found = data[("sides", face[0], corner)] = by_content(
