@@ -79,9 +79,10 @@ class FaceIndex:
     rollback left alone is not walked again.
 
     :meth:`data` keeps what a caller works out from a face and the attributes and types of its nodes
-    and edges (an outline, say): it is emptied when one of those attributes or types changes, and
-    dropped with the face. :meth:`node_data` keeps what a caller works out from a node and the
-    map's edges at it (whether it is a corner, say), until one of those changes.
+    and edges (an outline, say): a new, empty one replaces it when one of those attributes or types
+    changes, and it is dropped with the face (so the same dictionary means the same face,
+    unchanged). :meth:`node_data` keeps what a caller works out from a node and the map's edges at
+    it (whether it is a corner, say), until one of those changes.
 
     A walk per face and per change instead of per state of the graph: exploration (issue 13) steps
     back and forth between states that differ in a few faces.
@@ -162,7 +163,7 @@ class FaceIndex:
         self._check |= rotated
         for n in attributed:
             for face in self._through.get(n, ()):
-                face.data.clear()
+                face.data = {}  # a new one: a caller that kept the old one knows it is out of date
         for n in attributed | rotated:
             self._nodes.pop(n, None)
 

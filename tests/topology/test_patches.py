@@ -10,7 +10,7 @@ from vaultgram.domain import load_domain
 from vaultgram.engine.embedding import face_index, face_walk, faces
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.pipeline import decompose
-from vaultgram.topology.patches import face_from, face_outline, find_patches, half_edge_polyline
+from vaultgram.topology.patches import face_from, face_outline, find_patches, half_edge_polyline, kept_at_node
 from vaultgram.topology.types import DIAGONAL, PLAN_EDGES
 
 from paths import EXAMPLES
@@ -108,3 +108,43 @@ def test_face_from_is_the_face_walk_kept_by_the_face_index():
     assert face_from(g, PLAN_EDGES, (d, patch.corners[0])) == face_walk(g, PLAN_EDGES, (d, patch.corners[0]))
     g.rollback(mark)
     assert _distinct_faces(g, lambda h: face_from(g, PLAN_EDGES, h)) == before and index.walks == walks + 3
+
+
+def test_kept_at_node_searches_again_only_when_a_face_it_read_or_the_node_changes():
+    # kept_at_node (issue 13) gives its search's result while the faces it read are the same and
+    # unchanged: not after a node of one of them moves or a plan edge is drawn at the node, again
+    # equal to the search after a rollback
+    dec = decompose(load_domain(EXAMPLES / "quad_with_hole.json"), 0.05)
+    g = dec.graph
+    patch = dec.patches[0]
+    x = patch.corners[0]
+    near = {u for e in g.rotation(x) if g.edge_type(e) in PLAN_EDGES for _, u in face_walk(g, PLAN_EDGES, (e, x))}
+    far = next(p for p in dec.patches if not {u for side in p.side_edges for _, u in side} & near)
+    searches = []
+
+    def find(look):  # the outline areas of the faces at x, in rotation order
+        searches.append(1)
+        out = []
+        for e in g.rotation(x):
+            if g.edge_type(e) in PLAN_EDGES:
+                look((e, x))
+                out.append(round(face_outline(g, PLAN_EDGES, face_from(g, PLAN_EDGES, (e, x))).area, 9))
+        return tuple(out)
+
+    def kept():
+        return kept_at_node(g, PLAN_EDGES, x, "areas", find)
+
+    first = kept()
+    mark = g.mark()
+    assert kept() == first and len(searches) == 1
+    g.add_edge(DIAGONAL, far.corners[0], far.corners[2])  # a patch away from x split
+    assert kept() == first and len(searches) == 1
+    u = next(u for u in sorted(near) if u != x and g.degree(u, PLAN_EDGES) == 2)
+    (px, py) = g.get(u, "pos")
+    g.set_node_attr(u, "pos", (px + 0.01, py))  # a node of a face at x moved
+    moved = kept()
+    assert len(searches) == 2 and moved == find(lambda h: None)  # searched again: what a search gives
+    g.add_edge(DIAGONAL, patch.corners[0], patch.corners[2])  # a plan edge at x: one face more there
+    assert len(kept()) == len(first) + 1 and len(searches) == 4
+    g.rollback(mark)
+    assert kept() == first and len(searches) == 5

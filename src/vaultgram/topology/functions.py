@@ -28,6 +28,7 @@ from vaultgram.topology.patches import (
     half_edge_key,
     half_edge_polyline,
     hole_rings,
+    kept_at_node,
     key_polyline,
     plan_faces,
 )
@@ -183,10 +184,18 @@ def _patch_outline(graph, patch: int, x: int) -> tuple[list, np.ndarray, tuple] 
 
 
 def _walk_patch_outline(graph, patch: int, x: int) -> tuple[list, np.ndarray, tuple] | None:
-    corners = {graph.ends(e)[1] for e in graph.incident(patch, [PATCH_CORNER])}
+    """:func:`_patch_outline`, kept across the states with the same faces at ``x``
+    (:func:`~vaultgram.topology.patches.kept_at_node`)."""
+    corners = frozenset(graph.ends(e)[1] for e in graph.incident(patch, [PATCH_CORNER]))
+    return kept_at_node(graph, PLAN_EDGES, x, ("outline", corners),
+                        lambda look: _find_outline(graph, corners, x, look))
+
+
+def _find_outline(graph, corners: frozenset, x: int, look) -> tuple[list, np.ndarray, tuple] | None:
     for first in graph.rotation(x):
         if graph.edge_type(first) not in PLAN_EDGES:
             continue
+        look((first, x))
         face = face_from(graph, PLAN_EDGES, (first, x))
         if not corners <= {u for _, u in face}:
             continue

@@ -126,6 +126,29 @@ def face_from(graph: HostGraph, edge_types, half_edge: tuple) -> list:
     return face_index(graph, edge_types).face(half_edge)
 
 
+def kept_at_node(graph: HostGraph, edge_types, x: int, key, find):
+    """``find(look)``: a search among the faces of the map of ``edge_types`` at node ``x`` (in the
+    rotation there) that reads each face it looks at through ``look(half_edge)``, which gives the
+    face's data dictionary (:meth:`~vaultgram.engine.embedding.FaceIndex.data`). The result is
+    kept in the node data of ``x`` under ``key`` (what else it depends on: the Patch node's
+    corners) with the dictionaries it read, and found again while the map's edges at ``x`` are
+    unchanged and each face it read is the same, unchanged (its dictionary is the same one): the
+    rule helpers look for the face of each Patch node in every state of the search (issue 13)."""
+    index = face_index(graph, edge_types)
+    kept = index.node_data(x).get(key)
+    if kept is not None and all(index.data(h) is data for h, data in kept[0]):
+        return kept[1]
+    read = []
+
+    def look(half_edge):
+        read.append((half_edge, index.data(half_edge)))
+        return read[-1][1]
+
+    result = find(look)
+    index.node_data(x)[key] = (tuple(read), result)
+    return result
+
+
 @dataclass(frozen=True)
 class FaceOutline:
     """A face's half-edge polylines, its outline (not closed), the outline closed (its first point

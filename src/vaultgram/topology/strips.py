@@ -31,6 +31,7 @@ from vaultgram.topology.patches import (
     face_outline,
     half_edge_key,
     half_edge_polyline,
+    kept_at_node,
     key_polyline,
 )
 from vaultgram.topology.statecache import by_content, per_state
@@ -90,13 +91,21 @@ def patch_sides(graph, patch: int) -> PatchSides | None:
 
 
 def _walk_sides(graph, patch: int) -> PatchSides | None:
+    """:func:`patch_sides`, kept across the states with the same faces at the first corner
+    (:func:`~vaultgram.topology.patches.kept_at_node`)."""
     by_index = sorted((graph.get_edge(e, "index"), graph.ends(e)[1]) for e in graph.incident(patch, [PATCH_CORNER]))
     corners = tuple(c for _, c in by_index)
     if not corners:
         return None
+    return kept_at_node(graph, PLAN_EDGES, corners[0], ("sides", corners),
+                        lambda look: _find_sides(graph, corners, look))
+
+
+def _find_sides(graph, corners: tuple, look) -> PatchSides | None:
     for first in graph.rotation(corners[0]):
         if graph.edge_type(first) not in PLAN_EDGES:
             continue
+        look((first, corners[0]))
         face = face_from(graph, PLAN_EDGES, (first, corners[0]))
         nodes = [u for _, u in face]
         if not set(corners) <= set(nodes):
