@@ -33,7 +33,7 @@ def faces(graph: HostGraph, edge_types: Iterable[str], walk=None) -> list[list[H
     walk = walk or face_walk
     seen: set[HalfEdge] = set()
     out: list[list[HalfEdge]] = []
-    for e in sorted(e for e in graph.edges() if graph.edge_type(e) in types):
+    for e in sorted(graph.of_types(t for t in types if t in graph.schema.edge_types)):
         for start in graph.ends(e):
             if (e, start) not in seen:
                 face = walk(graph, types, (e, start))

@@ -73,6 +73,16 @@ def test_find_patches_is_the_same_read_again():
     assert [p.side_edges for p in again] == [p.side_edges for p in dec.patches]
     for p, q in zip(again, dec.patches):
         assert all(np.array_equal(a, b) and not a.flags.writeable for a, b in zip(p.sides, q.sides))
+    # what is kept with the faces (issue 13) follows a change: a diagonal across a quad makes two
+    # triangles, one patch more, the rest as they were; after the rollback the patches are the first
+    g, quad = dec.graph, next(p for p in dec.patches if p.n_sides == 4)
+    mark = g.mark()
+    g.add_edge(DIAGONAL, quad.corners[0], quad.corners[2])
+    split = find_patches(g, dec.disc, PLAN_EDGES, strict=False)
+    assert len(split) == len(dec.patches) + 1 and sum(p.n_sides == 3 for p in split) == sum(
+        p.n_sides == 3 for p in dec.patches) + 2
+    g.rollback(mark)
+    assert [p.side_edges for p in find_patches(g, dec.disc, PLAN_EDGES)] == [p.side_edges for p in dec.patches]
 
 
 def _distinct_faces(g, walk) -> set:

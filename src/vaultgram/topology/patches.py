@@ -109,10 +109,13 @@ def find_patches(graph: HostGraph, disc: Discretisation, edge_types, strict: boo
 def plan_faces(graph: HostGraph, edge_types) -> list[tuple[list, list, np.ndarray]]:
     """The bounded faces of the plan that are not the inside of a hole, each as its half-edges, their
     polylines and its outline (counter-clockwise, not closed)."""
-    out = []
+    out, index = [], face_index(graph, edge_types)
     for face in faces(graph, edge_types, walk=face_from):
         found = face_outline(graph, edge_types, face)
-        if found.area > 0 and not _is_hole(graph, face):  # not the unbounded face, nor a hole
+        data = index.data(face[0])
+        if "patch" not in data:  # not the unbounded face, nor a hole (kept with the face)
+            data["patch"] = found.area > 0 and not _is_hole(graph, face)
+        if data["patch"]:
             out.append((face, list(found.polylines), found.outline))
     return out
 

@@ -223,8 +223,9 @@ def _inside(found: PatchSides, a, b) -> bool:
 def _across(graph, patch: int, edge: int) -> tuple[int, int] | None:
     """The Patch node on the other side of a plan edge that is a whole side of ``patch``, and the
     index of that side there; None where there is none (or more than one)."""
-    found = [(q, k) for q in _patches_at(graph, graph.ends(edge)[0]) if q != patch and patch_sides(graph, q)
-             for k, side in enumerate(patch_sides(graph, q).sides) if len(side) == 1 and side[0][0] == edge]
+    found = [(q, k) for q in _patches_at(graph, graph.ends(edge)[0]) if q != patch
+             for sides in (patch_sides(graph, q),) if sides
+             for k, side in enumerate(sides.sides) if len(side) == 1 and side[0][0] == edge]
     return found[0] if len(found) == 1 else None
 
 
