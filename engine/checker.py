@@ -11,6 +11,7 @@ reads, and how far from a change a match can be affected (its *radius*).
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 from typing import Callable, NamedTuple
 
@@ -194,11 +195,33 @@ class CompiledRule:
     deletes_nodes: bool
     source: ast.Rule
     key_vars: tuple[str, ...] = field(default=())
+    match_key: str = field(default="", compare=False)  # the first rule written alike (match_key)
 
 
 # ----------------------------------------------------------------------------------------------
 # Checking
 # ----------------------------------------------------------------------------------------------
+
+
+def match_key(rule: ast.Rule, deletes_nodes: bool) -> tuple:
+    """What a rule's matches depend on, as written: its parameters, its match block and its NACs
+    (and its statements when it deletes nodes, since a match that would leave an edge dangling is
+    dropped), without its name, priority or source positions. Rules of one rulebook with the same
+    key find the same matches in every graph, so a memo of match tables can share them (two rules
+    written alike, one taking the match the other leaves, as a choice point's options): a compiled
+    rule's ``match_key`` names the first rule of its rulebook with its key."""
+    return (written(rule.params), written(rule.match), written(rule.nacs),
+            written(rule.statements) if deletes_nodes else None)
+
+
+def written(node) -> object:
+    """An AST value as nested tuples of its node kinds and fields, its source positions left out."""
+    if isinstance(node, (tuple, list)):
+        return tuple(written(item) for item in node)
+    if not dataclasses.is_dataclass(node) or isinstance(node, type):
+        return node
+    return (type(node).__name__, *(written(getattr(node, f.name)) for f in dataclasses.fields(node)
+                                   if f.compare and f.name != "pos"))
 
 
 class RuleChecker:
@@ -210,6 +233,7 @@ class RuleChecker:
         self.type_symbols = {
             name: Symbol(TYPE, schema.subtypes(name)) for name in (*schema.node_types, *schema.edge_types)
         }
+        self._match_keys: dict[tuple, str] = {}  # match_key -> the first rule compiled with it
 
     def compile_rule(self, rule: ast.Rule) -> CompiledRule:
         self._created = set()
@@ -220,6 +244,7 @@ class RuleChecker:
         outer = frozenset({*pattern.variables, *params})
         nacs = [self._pattern(nac, dict(scope), outer, {}) for nac in rule.nacs]
         statements = self._statements(rule.statements, scope, None)
+        deletes_nodes = any(isinstance(s, CDelete) and s.node_vars and not s.detach for s in flatten(statements))
         compiled = CompiledRule(
             name=rule.name,
             params=params,
@@ -231,9 +256,10 @@ class RuleChecker:
             statements=statements,
             reads_types=frozenset(),
             radius=0,
-            deletes_nodes=any(isinstance(s, CDelete) and s.node_vars and not s.detach for s in flatten(statements)),
+            deletes_nodes=deletes_nodes,
             source=rule,
             key_vars=tuple(pattern.variables),
+            match_key=self._match_keys.setdefault(match_key(rule, deletes_nodes), rule.name),
         )
         compiled.reads_types = self._reads_types(rule, compiled)
         compiled.radius = self._radius(rule, compiled)

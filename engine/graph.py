@@ -108,6 +108,39 @@ def _touch_edge(g: "HostGraph", e: int, nodes: set, types: set) -> None:
         types.add(g._edge_type[e])
 
 
+def face_changes(g: "HostGraph", record, edge_types: AbstractSet[str]) -> tuple[set, set, set]:
+    """What a journal record changed of the planar map of ``edge_types`` (for
+    :class:`~.embedding.FaceIndex`): the half-edges (edge, end) of the edges of those types added or
+    removed, the nodes where the rotation of those edges may have changed, and the nodes added,
+    removed, whose attributes or type changed or that end an edge of those types whose attributes
+    changed. Ends
+    are read from the graph (or from the record of a removal): an edge the journal removes later is
+    counted by that removal."""
+    half_edges: set = set()
+    rotated: set = set()
+    attributed: set = set()
+    if isinstance(record, (_AddEdge, _RemoveEdge, _AddMany)) and getattr(record, "kind", "edge") == "edge":
+        ids = record.ids if isinstance(record, _AddMany) else (record.e,)
+        for e in ids:
+            ends = (record.u, record.v) if isinstance(record, _RemoveEdge) else g._ends.get(e)
+            kind = record.type_name if isinstance(record, _RemoveEdge) else g._edge_type.get(e)
+            if ends is not None and kind in edge_types:
+                half_edges.update((e, u) for u in ends)
+                rotated.update(ends)
+    elif isinstance(record, _Rotation):
+        rotated.add(record.n)
+    elif isinstance(record, _SetAttr) and record.kind == "edge":
+        if g._edge_type.get(record.i) in edge_types:
+            attributed.update(g._ends[record.i])
+    elif isinstance(record, _SetAttr):
+        attributed.add(record.i)
+    elif isinstance(record, (_Retype, _AddNode, _RemoveNode)):
+        attributed.add(record.n)
+    elif isinstance(record, _AddMany):
+        attributed.update(record.ids)
+    return half_edges, rotated, attributed
+
+
 class _AddNode(NamedTuple):
     n: int
     next_id: int  # the node counter before the addition
@@ -291,6 +324,7 @@ class HostGraph:
         self._edge_ends = np.full((64, 2), -1, dtype=np.int64)
         self.incidence = Incidence(self._node_type, self._edge_type, self._ends, self._inc)
         self._fitting: set[tuple[str, str, str]] = set()  # (edge type, end types) checked to fit the schema
+        self._watchers: list = []  # told of every record undone and of forget (watch)
 
     # ------------------------------------------------------------------------------------------
     # Queries
@@ -618,11 +652,26 @@ class HostGraph:
         return len(self._journal)
 
     def rollback(self, mark: int) -> None:
-        """Undo every change made since ``mark``, restoring the graph (ids, rotations, counters) exactly."""
+        """Undo every change made since ``mark``, restoring the graph (ids, rotations, counters) exactly.
+        Each watcher (:meth:`watch`) sees each record just before it is undone."""
         while len(self._journal) > mark:
-            self._journal.pop().undo(self)
+            record = self._journal.pop()
+            for watcher in self._watchers:
+                watcher.undoing(self, record)
+            record.undo(self)
             self._serials.pop()
             self.changes += 1
+
+    def watch(self, watcher) -> None:
+        """Keep ``watcher`` told of the changes that leave the journal, for an index of its own that it
+        brings up to date with :meth:`journal_since`: ``watcher.undoing(graph, record)`` just before each
+        record is undone (the graph is then as the record left it), ``watcher.forgetting(graph)`` just
+        before :meth:`forget` drops the journal."""
+        self._watchers.append(watcher)
+
+    def journal_since(self, mark: int) -> list:
+        """The journal records after ``mark``, oldest first (for :func:`face_changes`)."""
+        return self._journal[mark:]
 
     def state_id(self) -> int:
         """An id of the graph's current state that is the same again after a rollback to it: the
@@ -652,6 +701,8 @@ class HostGraph:
 
     def forget(self) -> None:
         """Drop the undo log (after a run whose changes will never be undone)."""
+        for watcher in self._watchers:
+            watcher.forgetting(self)
         self._base_serial = self.state_id()  # the same state: the same id
         self._journal.clear()
         self._serials.clear()

@@ -131,7 +131,8 @@ class Matcher:
                 raise RewriteError(f"rule {rule.name}: parameter {name} = {node} is not a node of the graph")
         self._plans: dict[frozenset[str], list[Step]] = {}
         self._nac_plans: list[list[Step]] = []
-        self.memo, self._memo_key = memo, _memo_key(rule.name, self.fixed, self.values) if memo is not None else None
+        self.memo = memo
+        self._memo_key = _memo_key(rule.match_key, self.fixed, self.values) if memo is not None else None
 
     # -- public ----------------------------------------------------------------------------------
 
@@ -280,8 +281,9 @@ class Matcher:
 
 
 def _memo_key(rule: str, fixed: dict, values: dict) -> tuple | None:
-    """What, beside the graph state, a rule's matches depend on: its name and parameter values
-    (None when a value cannot be hashed: such a matcher does not use the memo)."""
+    """What, beside the graph state, a rule's matches depend on: the rule as written (its
+    ``match_key``, shared by the rules written alike) and its parameter values (None when a value
+    cannot be hashed: such a matcher does not use the memo)."""
     key = (rule, tuple(sorted(fixed.items())), tuple(sorted(values.items())))
     try:
         hash(key)

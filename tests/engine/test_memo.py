@@ -60,3 +60,36 @@ def test_memo_gives_the_same_run_and_hits_after_rollback():
     Runner(rb, memoised, memo=memo).run("s")
     assert memo.hits == hits
     assert [memoised.get(n, "w") for n in memoised.nodes()] == [5, 2, 2, 2]
+
+
+ALIKE = """
+rule join priority 1 { match { a: A { w: 0 }  b: A } not { a -E- b } create a -E- b }
+rule leave_be priority -1 { match { a: A { w: 0 }  b: A } not { a -E- b } set a.w = 1 }
+rule join_two { match { a: A { w: 1 }  b: A } not { a -E- b } create a -E- b }
+rule drop { match { a: A { w: 0 }  b: A } not { a -E- b } delete a }
+rule drop_other { match { a: A { w: 0 }  b: A } not { a -E- b } delete b }
+"""
+
+
+def test_rules_written_alike_share_their_tables_and_no_others():
+    # a choice point's two options written with the same match, NACs and parameters (another name,
+    # priority and statements) find the same matches: the memo's second search is a look-up; a
+    # constraint of another value, or other deletions (a match may leave another edge dangling),
+    # is another search
+    rb = book(ALIKE)
+    keys = {name: rule.match_key for name, rule in rb.rules.items()}
+    assert keys["join"] == keys["leave_be"] == "join"
+    assert len({keys["join"], keys["join_two"], keys["drop"], keys["drop_other"]}) == 4
+    g = line(rb)
+    g.add_edge("E", *g.nodes()[:2])
+    memo = TableMemo()
+    runner = Runner(rb, g, memo=memo)
+    first = runner.matcher("join").table()
+    hits = memo.hits
+    shared = runner.matcher("leave_be").table()
+    assert memo.hits == hits + 1 and shared is first
+    fresh = runner.matcher("leave_be")._table()
+    assert fresh.rows == first.rows == 10 and all(
+        (fresh.column(v) == first.column(v)).all() for v in ("a", "b"))
+    runner.matcher("join_two").table()
+    assert memo.hits == hits + 1  # another constraint: searched

@@ -11,7 +11,7 @@ from vaultgram.engine.invariants import InvariantError
 from vaultgram.errors import RewriteError
 from vaultgram.pipeline import decompose
 from vaultgram.topology import functions as f
-from vaultgram.topology.patches import enclosed_holes
+from vaultgram.topology.patches import Patch, check_no_enclosed_holes, enclosed_holes, hole_rings
 from vaultgram.topology.rulebook import default_rules_dir, load_vault_rulebook
 from vaultgram.topology.types import PLAN_EDGES
 
@@ -58,6 +58,25 @@ def test_enclosed_holes_pairs_every_outline_with_its_holes_in_order():
              np.array([[2.5, 2.5], [2.5, 3], [3, 3], [3, 2.5]], float)]
     assert enclosed_holes([square, pentagon], holes) == [(0, 1), (0, 2), (1, 0)]
     assert enclosed_holes([], holes) == []
+
+
+def test_the_hole_check_kept_per_patch_is_enclosed_holes():
+    # the answers kept by each patch's sides (issue 13) are enclosed_holes' for every patch, again
+    # when asked again; a patch round the whole plan encloses the hole, also the second time
+    dec = decompose(load_domain(EXAMPLES / "quad_with_hole.json"), 0.05)
+    holes = hole_rings(dec.graph)
+    assert len(holes) == 1 and enclosed_holes([p.polygon() for p in dec.patches], holes) == []
+    for _ in range(2):
+        check_no_enclosed_holes(dec.graph, dec.patches)
+    plan = np.vstack([p.polygon() for p in dec.patches])
+    (x0, y0), (x1, y1) = plan.min(axis=0) - 1, plan.max(axis=0) + 1
+    corners = [(x0, y0), (x1, y0), (x1, y1), (x0, y1)]
+    around = Patch(len(dec.patches), (0, 1, 2, 3), tuple(np.array([corners[k], corners[(k + 1) % 4]])
+                                                          for k in range(4)), ((), (), (), ()))
+    assert enclosed_holes([around.polygon()], holes) == [(0, 0)]
+    for _ in range(2):
+        with pytest.raises(RewriteError, match=f"patch {around.id} .* encloses hole 1"):
+            check_no_enclosed_holes(dec.graph, [*dec.patches, around])
 
 
 def test_curve_crossings_counts_a_branch_across_a_curve():

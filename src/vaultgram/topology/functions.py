@@ -28,6 +28,7 @@ from vaultgram.topology.patches import (
     half_edge_key,
     half_edge_polyline,
     hole_rings,
+    kept_at_node,
     key_polyline,
     plan_faces,
 )
@@ -169,9 +170,10 @@ def patch_corner(graph, patch: int, index: int) -> int:
     raise RuleError(f"patch {patch} has no corner {index}")
 
 
-def _patch_outline(graph, patch: int, x: int) -> tuple[list, np.ndarray] | None:
-    """The face of the plan around a Patch node, walked from its corner ``x``: its half-edges and its
-    closed outline (first point = last point = ``x``, read-only); None if no face at ``x`` has all the
+def _patch_outline(graph, patch: int, x: int) -> tuple[list, np.ndarray, tuple] | None:
+    """The face of the plan around a Patch node, walked from its corner ``x``: its half-edges, its
+    closed outline (first point = last point = ``x``, read-only) and where each half-edge starts
+    along it (:attr:`~.patches.FaceOutline.starts`); None if no face at ``x`` has all the
     patch's corners (a Patch node out of step with the plan, which decompose reports at the end). Only
     the faces at ``x`` are walked, once per state of the graph (the rules ask for the same outlines
     in every match they try)."""
@@ -181,17 +183,25 @@ def _patch_outline(graph, patch: int, x: int) -> tuple[list, np.ndarray] | None:
     return outlines[(patch, x)]
 
 
-def _walk_patch_outline(graph, patch: int, x: int) -> tuple[list, np.ndarray] | None:
-    corners = {graph.ends(e)[1] for e in graph.incident(patch, [PATCH_CORNER])}
+def _walk_patch_outline(graph, patch: int, x: int) -> tuple[list, np.ndarray, tuple] | None:
+    """:func:`_patch_outline`, kept across the states with the same faces at ``x``
+    (:func:`~vaultgram.topology.patches.kept_at_node`)."""
+    corners = frozenset(graph.ends(e)[1] for e in graph.incident(patch, [PATCH_CORNER]))
+    return kept_at_node(graph, PLAN_EDGES, x, ("outline", corners),
+                        lambda look: _find_outline(graph, corners, x, look))
+
+
+def _find_outline(graph, corners: frozenset, x: int, look) -> tuple[list, np.ndarray, tuple] | None:
     for first in graph.rotation(x):
         if graph.edge_type(first) not in PLAN_EDGES:
             continue
+        look((first, x))
         face = face_from(graph, PLAN_EDGES, (first, x))
         if not corners <= {u for _, u in face}:
             continue
-        found = face_outline(graph, face)  # kept by content across states (issue 13)
+        found = face_outline(graph, PLAN_EDGES, face)  # kept with the face, and by content (issue 13)
         if found.closed_area > 0:
-            return face, found.closed
+            return face, found.closed, found.starts
     return None
 
 
@@ -209,15 +219,14 @@ def patch_chains(graph, patch: int, x: int, o: int) -> tuple[np.ndarray, np.ndar
     found = _patch_outline(graph, patch, x)
     if found is None:
         return None
-    face, outline = found
-    at = _point_of(graph, face, o)
+    outline, at = found[1], _point_of(found, o)
     return outline[: at + 1], outline[at:][::-1]
 
 
-def _point_of(graph, face: list, o: int) -> int:
-    """The index in a face's outline (from :func:`_patch_outline`) of its node ``o``'s point."""
-    nodes = [u for _, u in face]
-    return sum(len(half_edge_polyline(graph, e, u)) - 1 for e, u in face[: nodes.index(o)])
+def _point_of(found: tuple, o: int) -> int:
+    """The index in a face's outline (:func:`_patch_outline`'s) of its node ``o``'s point."""
+    face, _, starts = found
+    return starts[[u for _, u in face].index(o)]
 
 
 def patch_side_starts(graph, patch: int, x: int, y: int) -> bool:
@@ -258,7 +267,7 @@ def diagonal_path(graph, patch: int, x: int, o: int) -> tuple:
     found = _patch_outline(graph, patch, x)
     if found is None:
         return ()
-    outline, at, segments = found[1], _point_of(graph, found[0], o), _plan_segments(graph)
+    outline, at, segments = found[1], _point_of(found, o), _plan_segments(graph)
     p, q = graph.get(x, "pos"), graph.get(o, "pos")
     return by_content(_DIAGONALS, (id(outline), at, p, q, id(segments)),
                       lambda: (outline, segments, _diagonal(outline, at, p, q, segments)), DIAGONALS)[2]

@@ -10,21 +10,21 @@ sides; any other face is an error naming where it is.
 from __future__ import annotations
 
 import functools
-import weakref
+import itertools
 from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
 import shapely
 
-from vaultgram.engine.embedding import face_walk, faces
+from vaultgram.engine.embedding import face_index, faces
 from vaultgram.engine.graph import HostGraph
 from vaultgram.errors import DomainError, RewriteError
 from vaultgram.geometry.frames import NO_ORIGIN, to_plan
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.text import fmt_point
 from vaultgram.topology.discretise import Discretisation
-from vaultgram.topology.statecache import by_content, per_state
+from vaultgram.topology.statecache import by_content
 from vaultgram.topology.types import BOUNDARY, BOUNDARY_VERTEX, CURVE_EXTREMITY, FEATURE_POINT, SKELETON_VERTEX
 
 
@@ -109,34 +109,47 @@ def find_patches(graph: HostGraph, disc: Discretisation, edge_types, strict: boo
 def plan_faces(graph: HostGraph, edge_types) -> list[tuple[list, list, np.ndarray]]:
     """The bounded faces of the plan that are not the inside of a hole, each as its half-edges, their
     polylines and its outline (counter-clockwise, not closed)."""
-    out = []
+    out, index = [], face_index(graph, edge_types)
     for face in faces(graph, edge_types, walk=face_from):
-        found = face_outline(graph, face)
-        if found.area > 0 and not _is_hole(graph, face):  # not the unbounded face, nor a hole
+        found = face_outline(graph, edge_types, face)
+        data = index.data(face[0])
+        if "patch" not in data:  # not the unbounded face, nor a hole (kept with the face)
+            data["patch"] = found.area > 0 and not _is_hole(graph, face)
+        if data["patch"]:
             out.append((face, list(found.polylines), found.outline))
     return out
 
 
-_FACES_AT: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> {state: {types: {half-edge: ...}}}
-
-
 def face_from(graph: HostGraph, edge_types, half_edge: tuple) -> list:
     """The face to the left of ``half_edge`` from it on, as :func:`~vaultgram.engine.embedding.face_walk`
-    walks it (a new list), each face walked once per state of the graph
-    (:func:`~vaultgram.topology.statecache.per_state`): the rules' helpers look for the face of each
-    Patch node from its first corner, trying the faces there one after another, and neighbouring
-    patches share corners, so the same faces (the unbounded one among them) were walked again and
-    again in each state the search makes (issue 13)."""
-    memo = per_state(_FACES_AT, graph, lambda g: {})
-    types = frozenset(edge_types)
-    at = memo.get(types)
-    if at is None:
-        at = memo[types] = {}
-    if half_edge not in at:
-        face = tuple(face_walk(graph, types, half_edge))
-        at.update({h: (face, i) for i, h in enumerate(face)})
-    face, i = at[half_edge]
-    return list(face[i:] + face[:i])
+    walks it (a new list), from the graph's face index (:func:`~vaultgram.engine.embedding.face_index`):
+    each face is walked once and kept until a change touches it. The rules' helpers look for the
+    face of each Patch node from its first corner, trying the faces there one after another, in
+    every state the search makes, and a state differs from the one before in a few faces (issue 13)."""
+    return face_index(graph, edge_types).face(half_edge)
+
+
+def kept_at_node(graph: HostGraph, edge_types, x: int, key, find):
+    """``find(look)``: a search among the faces of the map of ``edge_types`` at node ``x`` (in the
+    rotation there) that reads each face it looks at through ``look(half_edge)``, which gives the
+    face's data dictionary (:meth:`~vaultgram.engine.embedding.FaceIndex.data`). The result is
+    kept in the node data of ``x`` under ``key`` (what else it depends on: the Patch node's
+    corners) with the dictionaries it read, and found again while the map's edges at ``x`` are
+    unchanged and each face it read is the same, unchanged (its dictionary is the same one): the
+    rule helpers look for the face of each Patch node in every state of the search (issue 13)."""
+    index = face_index(graph, edge_types)
+    kept = index.node_data(x).get(key)
+    if kept is not None and all(index.data(h) is data for h, data in kept[0]):
+        return kept[1]
+    read = []
+
+    def look(half_edge):
+        read.append((half_edge, index.data(half_edge)))
+        return read[-1][1]
+
+    result = find(look)
+    index.node_data(x)[key] = (tuple(read), result)
+    return result
 
 
 @dataclass(frozen=True)
@@ -152,6 +165,11 @@ class FaceOutline:
     closed_area: float
 
     @functools.cached_property
+    def starts(self) -> tuple:
+        """Where each half-edge's polyline starts along the outline (the index of its first point)."""
+        return tuple(itertools.accumulate((len(p) - 1 for p in self.polylines[:-1]), initial=0))
+
+    @functools.cached_property
     def polygon(self) -> shapely.Polygon:
         """The outline as a prepared shapely polygon (the strip helpers' containment tests), made
         once for every state of the graph with this face."""
@@ -165,14 +183,20 @@ OUTLINES = 4096
 _OUTLINES: OrderedDict = OrderedDict()
 
 
-def face_outline(graph: HostGraph, face) -> FaceOutline:
-    """The outline of a face of the plan (its half-edges), kept by what it is made of: each half-edge's
-    polyline attribute and direction, or its ends' positions (:func:`half_edge_key`). Exploration
-    (issue 13) asks for the same faces in state after state, each rewrite changing only a few; a
-    key by content is right in every state (ids are reused across the branches of a search, the
-    geometry they carry is not)."""
-    key = tuple(half_edge_key(graph, e, u) for e, u in face)
-    return by_content(_OUTLINES, key, lambda: _outline_of(key), OUTLINES)
+def face_outline(graph: HostGraph, edge_types, face) -> FaceOutline:
+    """The outline of a face of the map of ``edge_types`` (its half-edges, from :func:`face_from` or
+    :func:`~vaultgram.engine.embedding.faces`), kept with the face in the graph's face index while
+    the face is unchanged, and by what it is made of: each half-edge's polyline attribute and
+    direction, or its ends' positions (:func:`half_edge_key`). Exploration (issue 13) asks for the
+    same faces in state after state, each rewrite changing only a few; a key by content is right in
+    every state (ids are reused across the branches of a search, the geometry they carry is not), so
+    a face walked again finds its outline (the same object) there."""
+    data = face_index(graph, edge_types).data(face[0])
+    found = data.get(("outline", face[0]))
+    if found is None:
+        key = tuple(half_edge_key(graph, e, u) for e, u in face)
+        found = data[("outline", face[0])] = by_content(_OUTLINES, key, lambda: _outline_of(key), OUTLINES)
+    return found
 
 
 def _outline_of(key: tuple) -> FaceOutline:
@@ -220,7 +244,11 @@ def enclosed_holes(outlines, holes) -> list[tuple[int, int]]:
     outlines at once, as one array of polygons)."""
     if not holes:
         return []
-    inside = np.array([_point_inside(ring) for ring in holes])
+    return _holes_inside(outlines, np.array([_point_inside(ring) for ring in holes]))
+
+
+def _holes_inside(outlines, inside: np.ndarray) -> list[tuple[int, int]]:
+    """:func:`enclosed_holes` with each hole's point inside it given (``inside``, (h, 2))."""
     if not len(outlines):
         return []
     sizes = [len(outline) for outline in outlines]
@@ -233,12 +261,22 @@ def check_no_enclosed_holes(graph: HostGraph, patches) -> None:
     """The stage check of the topology: no patch may enclose a hole (a wrong rulebook can leave a hole's
     ring unconnected to the layout, and the ring of patches around it comes out as one patch).
 
+    Each patch's answer is kept by its sides (shared by every state of the graph with that face,
+    :func:`_sides`; kept alive with the entry, so that their ``id`` names them) and the holes'
+    inner points: exploration (issue 13) checks the same patches in state after state.
+
     Raises
     ------
     RewriteError
         Naming the patch and the hole: a fault of the rules, whatever they did.
     """
-    found = enclosed_holes([p.polygon() for p in patches], hole_rings(graph))
+    holes = hole_rings(graph)
+    if not holes:
+        return
+    inside = np.array([by_content(_INSIDE, ring.tobytes(), lambda: _point_inside(ring), INSIDE) for ring in holes])
+    key = inside.tobytes()
+    found = [(k, h) for k, p in enumerate(patches) for h in
+             by_content(_ENCLOSED, (id(p.sides), key), lambda: (p.sides, _enclosed_by(p, inside)), ENCLOSED)[1]]
     if found:
         k, h = found[0]
         where = _where(patches[k].polygon())
@@ -246,6 +284,18 @@ def check_no_enclosed_holes(graph: HostGraph, patches) -> None:
             f"patch {patches[k].id} around {where} ({patches[k].n_sides} sides) encloses hole {h + 1}: it is no "
             "disk; no rule connected the hole's ring to the patch layout: check the rules (rebranching)"
         )
+
+
+#: The patches' answers (the holes inside them) and the holes' inner points kept (the most recently
+#: asked) by :func:`check_no_enclosed_holes`.
+ENCLOSED, INSIDE = 4096, 64
+_ENCLOSED: OrderedDict = OrderedDict()
+_INSIDE: OrderedDict = OrderedDict()
+
+
+def _enclosed_by(patch: Patch, inside: np.ndarray) -> tuple[int, ...]:
+    """The holes (by number, from 0) whose inner point ``inside[h]`` is inside the patch."""
+    return tuple(h for _, h in _holes_inside([patch.polygon()], inside))
 
 
 def _point_inside(ring: np.ndarray) -> np.ndarray:
@@ -262,17 +312,28 @@ _SIDES: OrderedDict = OrderedDict()
 def _sides(graph: HostGraph, face: list, polys: list, outline: np.ndarray, types,
            known: dict) -> tuple[tuple, tuple, tuple]:
     """A face of the plan cut at its corners: the corners, the side polylines between them and the
-    half-edges along each side, starting at the first corner of the face's walk. Kept by the face's
-    half-edges, which of their nodes are corners and its outline (one of :func:`face_outline`'s, kept
+    half-edges along each side, starting at the first corner of the face's walk. Kept with the face
+    in the graph's face index while it is unchanged, and by the face's half-edges, which of their
+    nodes are corners and its outline (one of :func:`face_outline`'s, kept
     alive with the entry, so that its ``id`` names it): the same face in another state of the graph
     is cut the same way (issue 13). ``known``: node -> whether it is a corner, filled as the faces
-    are cut (a node is on the faces of each of its edges)."""
+    are cut (a node is on the faces of each of its edges), from the face index's node data (kept
+    while the node and the plan edges at it are unchanged)."""
+    index = face_index(graph, types)
     for _, u in face:
         if u not in known:
-            known[u] = _is_corner(graph, u, types)
+            kept = index.node_data(u)
+            if "corner" not in kept:
+                kept["corner"] = _is_corner(graph, u, types)
+            known[u] = kept["corner"]
     corner = tuple(known[u] for _, u in face)
-    return by_content(_SIDES, (tuple(face), corner, id(outline)),
-                      lambda: (outline, _cut_at_corners(face, polys, corner, outline)), SIDES)[1]
+    data = index.data(face[0])
+    found = data.get(("sides", face[0], corner))
+    if found is None:
+        found = data[("sides", face[0], corner)] = by_content(
+            _SIDES, (tuple(face), corner, id(outline)),
+            lambda: (outline, _cut_at_corners(face, polys, corner, outline)), SIDES)[1]
+    return found
 
 
 def _cut_at_corners(face: list, polys: list, corner: tuple, outline: np.ndarray) -> tuple[tuple, tuple, tuple]:

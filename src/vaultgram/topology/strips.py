@@ -31,6 +31,7 @@ from vaultgram.topology.patches import (
     face_outline,
     half_edge_key,
     half_edge_polyline,
+    kept_at_node,
     key_polyline,
 )
 from vaultgram.topology.statecache import by_content, per_state
@@ -90,18 +91,26 @@ def patch_sides(graph, patch: int) -> PatchSides | None:
 
 
 def _walk_sides(graph, patch: int) -> PatchSides | None:
+    """:func:`patch_sides`, kept across the states with the same faces at the first corner
+    (:func:`~vaultgram.topology.patches.kept_at_node`)."""
     by_index = sorted((graph.get_edge(e, "index"), graph.ends(e)[1]) for e in graph.incident(patch, [PATCH_CORNER]))
     corners = tuple(c for _, c in by_index)
     if not corners:
         return None
+    return kept_at_node(graph, PLAN_EDGES, corners[0], ("sides", corners),
+                        lambda look: _find_sides(graph, corners, look))
+
+
+def _find_sides(graph, corners: tuple, look) -> PatchSides | None:
     for first in graph.rotation(corners[0]):
         if graph.edge_type(first) not in PLAN_EDGES:
             continue
+        look((first, corners[0]))
         face = face_from(graph, PLAN_EDGES, (first, corners[0]))
         nodes = [u for _, u in face]
         if not set(corners) <= set(nodes):
             continue
-        found = face_outline(graph, face)
+        found = face_outline(graph, PLAN_EDGES, face)
         if found.closed_area <= 0:
             continue
         starts = [nodes.index(c) for c in corners] + [len(face)]
@@ -214,8 +223,9 @@ def _inside(found: PatchSides, a, b) -> bool:
 def _across(graph, patch: int, edge: int) -> tuple[int, int] | None:
     """The Patch node on the other side of a plan edge that is a whole side of ``patch``, and the
     index of that side there; None where there is none (or more than one)."""
-    found = [(q, k) for q in _patches_at(graph, graph.ends(edge)[0]) if q != patch and patch_sides(graph, q)
-             for k, side in enumerate(patch_sides(graph, q).sides) if len(side) == 1 and side[0][0] == edge]
+    found = [(q, k) for q in _patches_at(graph, graph.ends(edge)[0]) if q != patch
+             for sides in (patch_sides(graph, q),) if sides
+             for k, side in enumerate(sides.sides) if len(side) == 1 and side[0][0] == edge]
     return found[0] if len(found) == 1 else None
 
 
