@@ -445,13 +445,18 @@ def _check_not_collapsed(form: FormDiagram, out: FormDiagram) -> None:
 
 
 def _check_not_folded(out: FormDiagram) -> None:
-    """Every loaded face is still counter-clockwise: the relaxation did not fold the form diagram."""
-    loaded = [f for f, load in zip(out.faces, out.loaded) if load]
+    """Every loaded face is still counter-clockwise: the relaxation did not fold the form diagram (the
+    error's ``places``: the folded faces' sides, in plan)."""
+    loaded = out.loaded_faces
     area = face_areas(out.xy, loaded)
     folded = np.flatnonzero(area <= 0)
     if len(folded):
         face = [int(out.vertex_ids[v]) for v in loaded[int(folded[0])]]
+        of, u, v, _ = corner_arrays(loaded)
+        bad = np.zeros(len(loaded), dtype=bool)
+        bad[folded] = True
+        sides = bad[of]
         raise FormFindingError(
             f"relaxing the openings folded {len(folded)} face(s) of the form diagram, e.g. the face of mesh "
             f"vertices {face}: the supports cannot hold the open edges apart there; add supports (--supports) "
-            f"or relax less (a smaller --sag)")
+            f"or relax less (a smaller --sag)", places=np.stack([out.xy[u[sides]], out.xy[v[sides]]], axis=1))
