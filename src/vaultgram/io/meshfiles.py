@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from vaultgram.errors import VaultgramError
+from vaultgram.geometry.arrays import json_array
 from vaultgram.geometry.frames import local_origin, to_local
 from vaultgram.geometry.meshcheck import check_plan_mesh
 from vaultgram.geometry.meshes import Faces
@@ -36,16 +37,15 @@ def mesh_to_json(mesh: QuadMesh, supports=None, arrays: bool = False) -> dict:
     x = np.asarray(mesh.vertices, dtype=float)
     if x.shape[1] == 2:
         x = np.column_stack([x, np.zeros(len(x))])
-    listed = np.ascontiguousarray if arrays else np.ndarray.tolist
     tv = np.flatnonzero(mesh.turning != 0)
     return {
-        "vertices": listed(x),
+        "vertices": json_array(x, arrays),
         "faces": list(mesh.faces) if arrays else [list(f) for f in mesh.faces],
         "labels": mesh.labels_json(),
-        "ring": listed(mesh.ring),
+        "ring": json_array(mesh.ring, arrays),
         "turning": [[int(k), float(mesh.turning[k])] for k in tv],
-        "node": listed(mesh.node),
-        "face_patch": listed(mesh.face_patch),
+        "node": json_array(mesh.node, arrays),
+        "face_patch": json_array(mesh.face_patch, arrays),
         "curves": [{"vertices": np.asarray(c).tolist(), "polyline": np.asarray(p).tolist()}
                    for c, p in zip(mesh.curves, mesh.curve_lines)],
         "edge_groups": list(mesh.groups),
