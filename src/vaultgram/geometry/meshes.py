@@ -146,7 +146,7 @@ class Faces(tuple):
     def from_flat(cls, vert: np.ndarray, lens: np.ndarray, faces: Sequence[tuple[int, ...]] | None = None) -> "Faces":
         """Faces from their vertices end to end and their sizes, the corner arrays made from these
         arrays (not from the tuples): how a vectorised step hands on faces of 10^6-face meshes.
-        ``faces``: the same faces as tuples when the caller has them (not made again).
+        ``faces``: the same faces (tuples, or vertex arrays) when the caller has them (not made again).
 
         >>> f = Faces.from_flat(np.array([0, 1, 2, 2, 1, 3]), np.array([3, 3]))
         >>> f, corner_arrays(f)[2].tolist() == corner_arrays([(0, 1, 2), (2, 1, 3)])[2].tolist()
@@ -160,11 +160,8 @@ class Faces(tuple):
 
 def _unpickled(vert: np.ndarray, lens: np.ndarray, arrays: bool) -> Faces:
     """:class:`Faces` from their pickled corners and sizes: tuples, or vertex arrays if they were."""
-    if not arrays:
-        return Faces.from_flat(vert, lens)
-    out = Faces(np.split(vert.copy(), np.cumsum(lens)[:-1]))  # loops of their own, apart from the corners
-    out.__dict__["corners"] = _read_only(corners_of_flat(vert, lens))
-    return out
+    loops = np.split(vert.copy(), np.cumsum(lens)[:-1]) if arrays else None  # apart from the corners
+    return Faces.from_flat(vert, lens, loops)
 
 
 def _tuples(vert: np.ndarray, lens: np.ndarray) -> list[tuple[int, ...]]:
