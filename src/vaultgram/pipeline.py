@@ -55,7 +55,8 @@ from vaultgram.geometry.surfaces import area_vectors, vertex_normals
 from vaultgram.geometry.text import plan_frame
 from vaultgram.io.files import collector_paused
 from vaultgram.limits import MAX_FACES
-from vaultgram.meshing.densities import DensitySpec, group_counts
+from vaultgram.meshing.densities import CHORD_TOLERANCE, DensitySpec, group_counts
+from vaultgram.meshing.fidelity import hold_boundary
 from vaultgram.meshing.layout import Layout, edge_groups
 from vaultgram.meshing.optimise import maximise_min_quality
 from vaultgram.meshing.quadmesh import QuadMesh
@@ -171,7 +172,8 @@ def _meshed(dec: Decomposition, target_length, smooth: int, densities, allow_fol
 def _welded_and_smoothed(layout: Layout, counts, smooth: int, timings: dict | None,
                          split: bool = True) -> tuple[QuadMesh, np.ndarray]:
     """The welded mesh (with or without the three-quad splits of :mod:`vaultgram.meshing.splits`) and
-    its vertices after smoothing, untangling and the max-min optimisation (§3.2)."""
+    its vertices after smoothing, untangling, the max-min optimisation and the boundary's bends put
+    back (§3.2)."""
     with _timed(timings, "weld"):
         mesh = weld(layout, counts, split)
     with _timed(timings, "smooth"):
@@ -181,6 +183,8 @@ def _welded_and_smoothed(layout: Layout, counts, smooth: int, timings: dict | No
             x = untangle(x, mesh.faces, mesh.fixed, mesh.constraints)
             x = improve_shapes(x, mesh.faces, mesh.fixed, mesh.constraints)
             x = maximise_min_quality(x, mesh.faces, mesh.fixed, mesh.constraints, still=mesh.feature)
+            tol = CHORD_TOLERANCE * layout.decomposition.disc.domain.diagonal
+            x = hold_boundary(x, mesh.faces, mesh.constraints, tol)
     return mesh, x
 
 

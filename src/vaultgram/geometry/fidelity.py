@@ -2,8 +2,10 @@
 
 Two measures, both relative to the bounding-box diagonal of the domain's outer ring:
 
-* :func:`boundary_deviation`: the largest distance from the mesh boundary (its boundary vertices and
-  the midpoints of its boundary edges, where a chord strays farthest) to the domain's rings;
+* :func:`boundary_deviation`: the distance between the mesh boundary and the domain's rings, both
+  ways (:func:`boundary_distance`): from the mesh's boundary vertices and the midpoints of its
+  boundary edges (where a chord strays farthest) to the rings, and from the rings' vertices and the
+  midpoints of their edges (where a chord cuts a bend off) to the mesh boundary;
 * :func:`missed_vertices`: the ring vertices turning by more than an angle (15 degrees: those whose
   interior angle differs from 180 by more) that no mesh boundary vertex sits on.
 """
@@ -16,7 +18,7 @@ from vaultgram.geometry.meshes import boundary_halfedges
 from vaultgram.geometry.polygons import bbox_diagonal
 from vaultgram.geometry.polylines import turning_angles
 
-__all__ = ["boundary_deviation", "missed_vertices"]
+__all__ = ["boundary_distance", "boundary_deviation", "missed_vertices"]
 
 
 def _rings_lines(rings):
@@ -25,21 +27,39 @@ def _rings_lines(rings):
     return shapely.MultiLineString([np.vstack([r, r[:1]]) for r in (np.asarray(r, dtype=float)[:, :2] for r in rings)])
 
 
+def boundary_distance(vertices: np.ndarray, faces, rings) -> float:
+    """The larger of the two directed distances between the mesh boundary and the rings, each
+    measured at the vertices and edge midpoints of one to the lines of the other (``inf`` for a mesh
+    without boundary).
+
+    >>> square = [np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]])]
+    >>> x = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 1.0]])  # the corner (0, 2) cut off
+    >>> round(boundary_distance(x, [(0, 1, 2, 3)], square), 4)  # 2 / sqrt(5), from (0, 2) to the chord
+    0.8944
+    """
+    import shapely
+
+    xy = np.asarray(vertices, dtype=float)[:, :2]
+    u, v = boundary_halfedges(faces)
+    if not len(u):
+        return float("inf")
+    rings = [np.asarray(r, dtype=float)[:, :2] for r in rings]
+    mesh_lines = shapely.multilinestrings(shapely.linestrings(np.stack([xy[u], xy[v]], axis=1)))
+    probes = np.vstack([xy[u], 0.5 * (xy[u] + xy[v])])
+    ring_probes = np.vstack([*rings, *[0.5 * (r + np.roll(r, -1, axis=0)) for r in rings]])
+    out = shapely.distance(shapely.points(probes), _rings_lines(rings)).max()
+    return float(max(out, shapely.distance(shapely.points(ring_probes), mesh_lines).max()))
+
+
 def boundary_deviation(vertices: np.ndarray, faces, rings) -> float:
-    """Largest distance from the mesh boundary to the rings, over the outer ring's diagonal.
+    """:func:`boundary_distance` over the outer ring's bounding-box diagonal.
 
     >>> square = [np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]])]
     >>> x = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0], [1.0, 0.1]])
     >>> float(round(boundary_deviation(x, [(0, 4, 1, 2, 3)], square) * np.hypot(2, 2), 6))  # vertex 4: 0.1 in
     0.1
     """
-    import shapely
-
-    xy = np.asarray(vertices, dtype=float)[:, :2]
-    u, v = boundary_halfedges(faces)
-    probes = np.vstack([xy[u], 0.5 * (xy[u] + xy[v])])
-    far = shapely.distance(shapely.points(probes), _rings_lines(rings)).max() if len(u) else 0.0
-    return float(far) / bbox_diagonal(np.asarray(rings[0])[:, :2])
+    return boundary_distance(vertices, faces, rings) / bbox_diagonal(np.asarray(rings[0])[:, :2])
 
 
 def missed_vertices(vertices: np.ndarray, boundary: np.ndarray, rings, angle: float = 15.0,

@@ -24,6 +24,7 @@ __all__ = [
     "project_to_polyline",
     "resample_polyline",
     "chord_deviation",
+    "densified",
     "polyline_hausdorff",
     "subdivide_polyline",
     "thinned_dense_runs",
@@ -244,11 +245,19 @@ def resample_polyline(poly: np.ndarray, n: int, anchors=()) -> tuple[np.ndarray,
     return out, hit
 
 
-def _densified(poly: np.ndarray, samples: int) -> np.ndarray:
-    """The vertices of a polyline and ``samples - 1`` evenly spaced points inside each segment."""
+def densified(poly: np.ndarray, samples: int, closed: bool = False) -> np.ndarray:
+    """The vertices of a polyline and ``samples - 1`` evenly spaced points inside each segment (also
+    the closing one when ``closed``).
+
+    >>> densified(np.array([[0.0, 0.0], [2.0, 0.0]]), 2).tolist()
+    [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]]
+    """
     p = np.asarray(poly, dtype=float)[:, :2]
+    if closed and len(p):
+        p = np.vstack([p, p[:1]])
     t = np.linspace(0.0, 1.0, samples, endpoint=False)[None, :, None]
-    return np.vstack([(p[:-1, None, :] * (1 - t) + p[1:, None, :] * t).reshape(-1, 2), p[-1:]])
+    out = np.vstack([(p[:-1, None, :] * (1 - t) + p[1:, None, :] * t).reshape(-1, 2), p[-1:]])
+    return out[:-1] if closed and len(p) else out
 
 
 def polyline_hausdorff(a: np.ndarray, b: np.ndarray, samples: int = 8) -> float:
@@ -262,8 +271,8 @@ def polyline_hausdorff(a: np.ndarray, b: np.ndarray, samples: int = 8) -> float:
     import shapely
 
     la, lb = shapely.LineString(np.asarray(a)[:, :2]), shapely.LineString(np.asarray(b)[:, :2])
-    d1 = shapely.distance(shapely.points(_densified(a, samples)), lb).max()
-    d2 = shapely.distance(shapely.points(_densified(b, samples)), la).max()
+    d1 = shapely.distance(shapely.points(densified(a, samples)), lb).max()
+    d2 = shapely.distance(shapely.points(densified(b, samples)), la).max()
     return float(max(d1, d2))
 
 

@@ -13,11 +13,11 @@ import math
 from typing import NamedTuple
 
 import numpy as np
-import shapely
 from scipy.spatial import cKDTree
 
 from vaultgram.domain.model import Domain
 from vaultgram.errors import MeshFoldError, VaultgramError
+from vaultgram.geometry.fidelity import boundary_distance
 from vaultgram.geometry.meshes import (
     NonManifoldVertexError,
     boundary_loops,
@@ -76,18 +76,6 @@ def _face_array(faces) -> np.ndarray:
     out = np.full((len(faces), 4), -1, dtype=np.int64)
     out[face, np.arange(len(face)) - (np.cumsum(lens) - lens)[face]] = vert  # corner k of face f at [f, k]
     return out
-
-
-def _boundary_distance(x: np.ndarray, loops, domain: Domain) -> float:
-    """Symmetric distance between the mesh boundary loops and the domain's rings."""
-    rings = shapely.MultiLineString([np.vstack([r, r[:1]]) for r in domain.rings])
-    mesh_lines = shapely.MultiLineString([np.vstack([x[lp], x[lp[:1]]]) for lp in loops]) if loops else None
-    mids = np.vstack([0.5 * (x[lp] + x[np.roll(lp, -1)]) for lp in loops]) if loops else np.zeros((0, 2))
-    probe = np.vstack([x[np.concatenate(loops)], mids]) if loops else np.zeros((0, 2))
-    d1 = shapely.distance(shapely.points(probe), rings).max() if len(probe) else 0.0
-    dom_pts = np.vstack([*domain.rings, *[0.5 * (r + np.roll(r, -1, axis=0)) for r in domain.rings]])
-    d2 = shapely.distance(shapely.points(dom_pts), mesh_lines).max() if mesh_lines is not None else math.inf
-    return float(max(d1, d2))
 
 
 def face_scaled_jacobians(x: np.ndarray, faces) -> np.ndarray:
@@ -179,7 +167,7 @@ def mesh_stats(mesh: QuadMesh, domain: Domain | None = None) -> dict:
         "boundary_loops": len(topo.loops),
     }
     if domain is not None:
-        d = _boundary_distance(x, topo.loops, domain)
+        d = boundary_distance(x, mesh.faces, domain.rings)
         stats["boundary_distance"] = d
         stats["boundary_distance_relative"] = d / domain.diagonal
     stats.update(_feature_stats(mesh, x, topo, irregular, domain))

@@ -1,0 +1,85 @@
+"""Putting the boundary's bends back after smoothing (vaultgram.meshing.fidelity, issue 12 What 5):
+a sliding vertex moves onto a bend its chord cut off, never at the cost of the mesh's worst face."""
+
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from vaultgram.geometry.meshes import grid_mesh
+from vaultgram.geometry.polylines import chord_deviation, project_to_polyline
+from vaultgram.meshing.fidelity import hold_boundary
+from vaultgram.meshing.quadmesh import SlideConstraint
+from vaultgram.meshing.quality import face_scaled_jacobians
+
+N = 6  # a 6 x 6 grid of unit squares; its bottom row slides on a bent polyline
+
+
+def _bent_bottom(depth: float) -> np.ndarray:
+    """The bottom side, from (0, 0) to (6, 0), with a bend of ``depth`` down at every x + 0.5."""
+    xs = np.arange(0.0, N + 0.01, 0.5)
+    return np.column_stack([xs, np.where(np.arange(len(xs)) % 2 == 1, -depth, 0.0)])
+
+
+def _grid_on(poly: np.ndarray, shift: np.ndarray):
+    """The grid with its inner bottom vertices moved by ``shift`` along x and projected onto ``poly``."""
+    x, faces = grid_mesh(N)
+    x = x[:, :2].copy()
+    bottom = np.arange(1, N)
+    x[bottom, 0] += shift
+    x[bottom] = project_to_polyline(x[bottom], poly)
+    return x, faces, SlideConstraint(bottom, poly)
+
+
+def _chain(x, c):
+    return np.vstack([c.polyline[:1], x[c.vertices], c.polyline[-1:]])
+
+
+BEND = np.array([[0.0, 0.0], [3.0, -0.3], [6.0, 0.0]])
+SLID = np.r_[0.0, 0.0, 0.4, 0.0, 0.0]  # vertex 3, at x = 3 over the bend, slid to x = 3.4
+ABOVE = N + 1 + 3  # the vertex above it
+
+
+def test_a_vertex_that_slid_off_a_bend_goes_back_onto_it():
+    x, faces, c = _grid_on(BEND, SLID)
+    assert chord_deviation(BEND, _chain(x, c)) > 0.05
+    y = hold_boundary(x, faces, [c], tol=0.01)
+    assert chord_deviation(BEND, _chain(y, c)) == 0.0
+    assert y[3].tolist() == [3.0, -0.3]
+    assert np.array_equal(np.delete(y, 3, axis=0), np.delete(x, 3, axis=0))  # one vertex moved
+    assert face_scaled_jacobians(y, faces).min() > face_scaled_jacobians(x, faces).min()
+
+
+def test_within_the_tolerance_nothing_moves():
+    x, faces, c = _grid_on(BEND, SLID)
+    assert np.array_equal(hold_boundary(x, faces, [c], tol=0.1), x)
+
+
+def test_a_move_that_would_skew_a_face_below_the_worst_is_not_made():
+    """With the vertex above leaning right, vertex 3 back on the bend would skew its faces below the
+    mesh's worst; its left neighbour slides towards the bend instead, as far as the faces allow."""
+    x, faces, c = _grid_on(BEND, SLID)
+    x[ABOVE] = [3.5, 0.6]
+    before = face_scaled_jacobians(x, faces).min()
+    onto = x.copy()
+    onto[3] = BEND[1]
+    assert face_scaled_jacobians(onto, faces).min() < before
+    y = hold_boundary(x, faces, [c], tol=0.01)
+    assert y[3].tolist() == x[3].tolist()
+    assert face_scaled_jacobians(y, faces).min() >= before
+    assert chord_deviation(BEND, _chain(y, c)) < chord_deviation(BEND, _chain(x, c))
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.floats(-0.45, 0.45), min_size=N - 1, max_size=N - 1), st.floats(0.02, 0.3))
+def test_holding_never_lowers_the_worst_face_nor_lets_the_boundary_stray_farther(shift, depth):
+    poly = _bent_bottom(depth)
+    x, faces, c = _grid_on(poly, np.asarray(shift))
+    tol = 0.01
+    y = hold_boundary(x, faces, [c], tol)
+    assert face_scaled_jacobians(y, faces).min() >= face_scaled_jacobians(x, faces).min() - 1e-12
+    assert chord_deviation(poly, _chain(y, c)) <= max(tol, chord_deviation(poly, _chain(x, c))) + 1e-12
+    assert np.allclose(project_to_polyline(y[c.vertices], poly), y[c.vertices])  # still on the boundary
+    moved = np.flatnonzero(np.any(y != x, axis=1))
+    assert set(moved.tolist()) <= set(c.vertices.tolist())
