@@ -56,8 +56,8 @@ from vaultgram.geometry.text import plan_frame
 from vaultgram.io.files import collector_paused
 from vaultgram.limits import MAX_FACES
 from vaultgram.meshing.densities import CHORD_TOLERANCE, DensitySpec, group_counts
-from vaultgram.meshing.fidelity import hold_boundary
-from vaultgram.meshing.layout import Layout, edge_groups
+from vaultgram.meshing.fidelity import SAME_POINT, hold_boundary, place_on_points
+from vaultgram.meshing.layout import Layout, edge_groups, kept_points
 from vaultgram.meshing.optimise import maximise_min_quality
 from vaultgram.meshing.quadmesh import QuadMesh
 from vaultgram.meshing.quality import check_not_folded, face_scaled_jacobians
@@ -183,9 +183,22 @@ def _welded_and_smoothed(layout: Layout, counts, smooth: int, timings: dict | No
             x = untangle(x, mesh.faces, mesh.fixed, mesh.constraints)
             x = improve_shapes(x, mesh.faces, mesh.fixed, mesh.constraints)
             x = maximise_min_quality(x, mesh.faces, mesh.fixed, mesh.constraints, still=mesh.feature)
-            tol = CHORD_TOLERANCE * layout.decomposition.disc.domain.diagonal
-            x = hold_boundary(x, mesh.faces, mesh.constraints, tol)
+            x = _held_to_the_plan(x, mesh, layout.decomposition.disc)
     return mesh, x
+
+
+def _held_to_the_plan(x: np.ndarray, mesh: QuadMesh, disc) -> np.ndarray:
+    """The smoothed boundary put back on the plan (§3.2, issue 12 What 5; :mod:`vaultgram.meshing.fidelity`):
+    a vertex on each sharp ring vertex the sliding left bare, the faces optimised again with those
+    fixed (where one was placed), and the bends that chords cut off put back."""
+    tol, eps = CHORD_TOLERANCE * disc.domain.diagonal, SAME_POINT * disc.domain.diagonal
+    sharp = disc.points[kept_points(disc) & (disc.ring >= 0)]
+    placed, on_sharp = place_on_points(x, mesh.faces, mesh.constraints, sharp, eps)
+    if not np.array_equal(placed, x):
+        placed = hold_boundary(placed, mesh.faces, mesh.constraints, tol)
+        placed = maximise_min_quality(placed, mesh.faces, mesh.fixed | on_sharp, mesh.constraints,
+                                      still=mesh.feature, moved=np.flatnonzero(np.any(placed != x, axis=1)))
+    return hold_boundary(placed, mesh.faces, mesh.constraints, tol)
 
 
 def _mesh_info(dec: Decomposition, layout: Layout, smooth: int) -> dict:

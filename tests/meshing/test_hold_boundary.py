@@ -1,5 +1,6 @@
-"""Putting the boundary's bends back after smoothing (vaultgram.meshing.fidelity, issue 12 What 5):
-a sliding vertex moves onto a bend its chord cut off, never at the cost of the mesh's worst face."""
+"""Putting the boundary back on the plan after smoothing (vaultgram.meshing.fidelity, issue 12 What 5):
+a sliding vertex moves onto a bend its chord cut off, never at the cost of the mesh's worst face, and
+onto a ring vertex that must be a mesh vertex, the one of the nearest that fits it best."""
 
 from __future__ import annotations
 
@@ -9,7 +10,7 @@ from hypothesis import strategies as st
 
 from vaultgram.geometry.meshes import grid_mesh
 from vaultgram.geometry.polylines import chord_deviation, project_to_polyline
-from vaultgram.meshing.fidelity import hold_boundary
+from vaultgram.meshing.fidelity import hold_boundary, place_on_points
 from vaultgram.meshing.quadmesh import SlideConstraint
 from vaultgram.meshing.quality import face_scaled_jacobians
 
@@ -83,3 +84,39 @@ def test_holding_never_lowers_the_worst_face_nor_lets_the_boundary_stray_farther
     assert np.allclose(project_to_polyline(y[c.vertices], poly), y[c.vertices])  # still on the boundary
     moved = np.flatnonzero(np.any(y != x, axis=1))
     assert set(moved.tolist()) <= set(c.vertices.tolist())
+
+
+def test_a_ring_vertex_left_bare_gets_the_vertex_that_fits_it_best():
+    x, faces, c = _grid_on(BEND, SLID)  # vertex 3 slid off the bend (3, -0.3) to x = 3.4
+    y, on = place_on_points(x, faces, [c], BEND[1:2], 1e-9)
+    assert y[3].tolist() == [3.0, -0.3] and np.flatnonzero(on).tolist() == [3]
+    assert np.array_equal(np.delete(y, 3, axis=0), np.delete(x, 3, axis=0))
+
+
+def test_of_the_two_nearest_the_one_whose_faces_stay_better_goes():
+    """Vertex 3 slid to x = 3.4; vertex 2 is the nearer to the bend at x = 3 once it slides to 2.8,
+    but its faces would be squeezed against vertex 3's: vertex 3 goes back."""
+    x, faces, c = _grid_on(BEND, np.r_[0.0, 0.8, 0.4, 0.0, 0.0])
+    assert np.hypot(*(x[2] - BEND[1])) < np.hypot(*(x[3] - BEND[1]))
+    y, on = place_on_points(x, faces, [c], BEND[1:2], 1e-9)
+    assert y[3].tolist() == [3.0, -0.3] and y[2].tolist() == x[2].tolist()
+
+
+def test_a_point_a_vertex_sits_on_moves_nothing():
+    x, faces, c = _grid_on(BEND, np.zeros(N - 1))
+    x[3] = BEND[1]
+    y, on = place_on_points(x, faces, [c], BEND[1:2], 1e-9)
+    assert np.array_equal(y, x) and np.flatnonzero(on).tolist() == [3]
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.floats(-0.45, 0.45), min_size=N - 1, max_size=N - 1), st.floats(0.02, 0.3))
+def test_every_bend_left_bare_gets_a_vertex_without_folding_a_face(shift, depth):
+    poly = _bent_bottom(depth)
+    x, faces, c = _grid_on(poly, np.asarray(shift))
+    bends = poly[1:-1:2]  # the bends at x + 0.5, each between two vertices' starting places
+    y, on = place_on_points(x, faces, [c], bends, 1e-9)
+    assert face_scaled_jacobians(y, faces).min() > 0 or face_scaled_jacobians(x, faces).min() <= 0
+    assert np.allclose(project_to_polyline(y[c.vertices], poly), y[c.vertices])
+    hit = [np.any(np.all(y[c.vertices] == b, axis=1)) for b in bends]
+    assert on[c.vertices].sum() == sum(hit)

@@ -31,11 +31,6 @@ MIN_MISSES = {
     "square_point_loads": FAN + " (39 triangles round a point load: 0.185)",
     "features_combined": RINGS,
     "fig6_inner_points": RINGS,
-    "multiple_lobes": "a row of four skewed quads (0.23-0.28, two of them inside) beside a bay since every sharp "
-                      "ring vertex is a mesh vertex (boundary fidelity, tests/meshing/test_boundary_fidelity.py); "
-                      "the optimiser reached 0.407 on the mesh without it",
-    "rolex_learning_centre": "four skewed quads (0.22-0.23) beside the outline since every sharp ring vertex is a "
-                             "mesh vertex (boundary fidelity); the optimiser reached 0.499 on the mesh without it",
     "fig7_curves": "triangles at the pole near (1.2, 1.3) at 0.198, under their fan bound 0.518, and flat quads "
                    "where the end of the curve (5, 7.5) is 0.5 from the hole, less than two target lengths: the "
                    "passage needs local refinement",
@@ -46,7 +41,10 @@ MIN_MISSES = {
 # fig5_boundary_points was bound by its fans (0.151) until thin fans became three quads.
 MIN_PASS = ["armadillo_vault", "armadillo_vault_plan", "british_museum_map", "hiroshi_senju_museum",
             "mexico_airport", "rv_quad_pattern", "rv_ring_pattern",
-            "rv_star_pattern", "l_shape", "quad_with_hole", "fig5_boundary_points"]
+            "rv_star_pattern", "l_shape", "quad_with_hole", "fig5_boundary_points",
+            # since a patch corner on a bend of the outline slides (vaultgram.meshing.fidelity): a row
+            # of skewed quads beside a bay (0.233) and beside the outline (0.224) before
+            "multiple_lobes", "rolex_learning_centre"]
 LAYOUT = "skewed quads all over (median scaled Jacobian below 0.9): the patch layout, not smoothing"
 MEAN_MISSES = {
     "mexico_airport": LAYOUT, "multiple_lobes": LAYOUT, "rv_star_pattern": LAYOUT,
@@ -104,6 +102,20 @@ def test_the_worst_face_gets_better_on_a_jittered_grid():
     before = face_scaled_jacobians(v, f)
     after = face_scaled_jacobians(maximise_min_quality(v, f, ~inner), f)
     assert after.min() > before.min() and after.min() >= min(OPTIMISE_TARGET, before.min())
+
+
+def test_a_restart_from_moved_vertices_works_only_round_them():
+    """Two dents in a 12 x 12 grid; told only vertex 14's was just made, the sweeps mend that one and
+    leave the far one (vertex 128) for lack of a moved neighbour within MOVED_RINGS rings."""
+    v, f = grid_mesh(12)
+    inner = (v[:, 0] % 12 != 0) & (v[:, 1] % 12 != 0)
+    v[14, :2] += [0.9, 0.8]
+    v[128, :2] += [0.9, 0.8]
+    x = maximise_min_quality(v, f, ~inner, moved=[14])
+    far = np.hypot(*(v[:, :2] - v[128, :2]).T) < 2
+    assert np.array_equal(x[far], v[far]) and not np.array_equal(x[14], v[14])
+    assert face_scaled_jacobians(x, f)[[0, 12, 13]].min() > face_scaled_jacobians(v, f)[[0, 12, 13]].min()
+    assert not np.array_equal(maximise_min_quality(v, f, ~inner)[far], v[far])  # a full run mends both
 
 
 def test_a_good_mesh_is_left_alone():

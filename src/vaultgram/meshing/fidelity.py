@@ -1,28 +1,42 @@
-"""Boundary fidelity after smoothing (§3.2; issue 12, What 5: the mesh boundary within 0.1% of the
+"""Boundary fidelity after smoothing (§3.2; issue 12, What 5: every ring vertex whose angle differs
+from 180 degrees by more than 15 is a mesh vertex, and the mesh boundary lies within 0.1% of the
 bounding-box diagonal from the domain's).
 
 The densities (:func:`vaultgram.meshing.densities.group_counts`) subdivide every boundary side finely
 enough that its resampled polyline stays within the tolerance of the side's curve. Smoothing and the
-shape optimisation then let the boundary vertices slide along their polylines (§3.2), and a vertex
-that slides away from a bend of the curve leaves its chord cutting across the bend. :func:`hold_boundary`
-puts such bends back: for the ring point that lies farthest from the mesh boundary, beyond the
-tolerance, the nearer sliding vertex of its stretch moves onto it, if that does not lower the worst
-scaled Jacobian of the mesh. Bends are few (the sides were within the tolerance before smoothing), so
-the loop runs over bends, not vertices; its distances are vectorised per stretch.
+shape optimisation then let the boundary vertices slide along their polylines (§3.2):
+
+* a patch corner on a bend of the outline (a rebranch's foot at a ring vertex turning by 12 degrees
+  or more, not a corner of the domain) slides too, since pinned there it could leave its patches a
+  corner of nearly 180 degrees (on multiple_lobes a row of quads of scaled Jacobian 0.23, on the
+  Rolex plan 0.22). :func:`place_on_points` then puts the sliding vertex that fits best (of the two
+  nearest) on each such ring vertex left bare, and the pipeline optimises the faces again with it
+  fixed there;
+* a vertex that slides away from a gentler bend leaves its chord cutting across the bend.
+  :func:`hold_boundary` puts such bends back: for the ring point that lies farthest from the mesh
+  boundary, beyond the tolerance, the nearer sliding vertex of its stretch moves onto it (or as near
+  as its faces allow), if that does not lower the worst scaled Jacobian of the mesh.
+
+Both are few (the sides were within the tolerance before smoothing), so the loops run over those
+points, not over vertices; the distances are vectorised per stretch.
 """
 
 from __future__ import annotations
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.geometry.polylines import densified, project_to_polyline
 from vaultgram.meshing.quadmesh import SlideConstraint
 from vaultgram.meshing.quality import face_scaled_jacobians
 
-__all__ = ["hold_boundary"]
+__all__ = ["hold_boundary", "place_on_points", "SAME_POINT"]
 
-#: Of the sliding vertices of a stretch, the ones this near to a bend (nearest first) are tried on it.
+#: Two points closer than this fraction of the diagonal are the same point.
+SAME_POINT = 1e-9
+
+#: Of the sliding vertices of a stretch, the ones this near to a point (nearest first) are tried on it.
 _CANDIDATES = 2
 #: A vertex is tried at the points of its polyline and this many steps along each segment.
 _STEPS = 8
@@ -51,6 +65,54 @@ def hold_boundary(vertices: np.ndarray, faces, constraints, tol: float) -> np.nd
             if not _snap_worst_bend(x, faces, around, c, tol, floor):
                 break
     return x
+
+
+def place_on_points(vertices: np.ndarray, faces, constraints, points: np.ndarray, eps: float
+                    ) -> tuple[np.ndarray, np.ndarray]:
+    """The vertices with one sliding vertex moved onto each of ``points`` that lies on a stretch's
+    polyline with no vertex within ``eps`` of it (of the :data:`_CANDIDATES` nearest that reach it
+    without passing a neighbour, the one that leaves the best worst face round it, unless each folds
+    one), and per vertex whether it sits on one of ``points``.
+
+    Example
+    -------
+    The strip's bottom vertex 1 slid off the ring vertex (1, -0.3) it stood for:
+
+    >>> x = np.array([[0.0, 0.0], [1.4, -0.18], [3.0, 0.0], [3.0, 1.0], [1.0, 1.0], [0.0, 1.0]])
+    >>> bottom = SlideConstraint(np.array([1]), np.array([[0.0, 0.0], [1.0, -0.3], [3.0, 0.0]]))
+    >>> y, on = place_on_points(x, [(0, 1, 4, 5), (1, 2, 3, 4)], [bottom], np.array([[1.0, -0.3]]), 1e-9)
+    >>> y[1].tolist(), np.flatnonzero(on).tolist()
+    ([1.0, -0.3], [1])
+    """
+    x = np.array(vertices, dtype=float)
+    points = np.asarray(points, dtype=float).reshape(-1, 2)
+    if not len(faces) or not len(points):
+        return x, np.zeros(len(x), dtype=bool)
+    around, wanted = _faces_around(faces, len(x)), cKDTree(points)
+    for c in constraints:
+        poly = np.asarray(c.polyline, dtype=float)[:, :2]
+        on = np.flatnonzero(wanted.query(poly, distance_upper_bound=eps)[0] < np.inf)
+        for k in on[cKDTree(_chain(x, c)[0]).query(poly[on])[0] > eps] if len(on) else on:
+            _place_vertex_on(x, faces, around, c, int(k))
+    return x, wanted.query(x[:, :2], distance_upper_bound=eps)[0] < np.inf
+
+
+def _place_vertex_on(x: np.ndarray, faces, around, c: SlideConstraint, k: int) -> None:
+    """Move the sliding vertex of ``c`` that :func:`place_on_points` picks onto polyline point ``k``."""
+    poly = np.asarray(c.polyline, dtype=float)[:, :2]
+    verts = np.asarray(c.vertices, dtype=np.int64)
+    best, who = 0.0, -1
+    for v in verts[np.argsort(np.hypot(*(x[verts, :2] - poly[k]).T), kind="stable")[:_CANDIDATES]]:
+        if not np.any(np.all(_reach(x, c, v, poly) == poly[k], axis=1)):
+            continue
+        ring, old = [faces[f] for f in around(v)], x[v].copy()
+        x[v, :2] = poly[k]
+        worst = face_scaled_jacobians(x, ring).min()
+        x[v] = old
+        if worst > best:
+            best, who = worst, int(v)
+    if who >= 0:
+        x[who, :2] = poly[k]
 
 
 def _snap_worst_bend(x: np.ndarray, faces, around, c: SlideConstraint, tol: float, floor: float) -> bool:

@@ -31,6 +31,8 @@ __all__ = ["maximise_min_quality", "OPTIMISE_TARGET", "OPTIMISE_SWEEPS"]
 OPTIMISE_TARGET = 0.5
 #: At most this many sweeps (each moves an independent set of vertices).
 OPTIMISE_SWEEPS = 60
+#: A vertex moved after the optimisation restarts it this many rings of faces round it.
+MOVED_RINGS = 4
 #: Sliding (boundary and curve) vertices are optimised only below this.
 SLIDE_TARGET = 0.3
 #: A vertex next to a pole aims at this share of the pole's fan bound, and is left alone where that
@@ -104,7 +106,7 @@ def _scaled(pu: np.ndarray, pv: np.ndarray, pp: np.ndarray, factor: np.ndarray) 
 
 def maximise_min_quality(vertices: np.ndarray, faces, fixed: np.ndarray | None = None, constraints=(),
                          target: float = OPTIMISE_TARGET, sweeps: int = OPTIMISE_SWEEPS,
-                         still=None) -> np.ndarray:
+                         still=None, moved=None) -> np.ndarray:
     """Raise the smallest scaled Jacobian around every vertex whose worst corner is below its goal.
 
     A vertex's goal is ``target``, less for a sliding vertex or next to a pole's fan, none next to a
@@ -119,6 +121,8 @@ def maximise_min_quality(vertices: np.ndarray, faces, fixed: np.ndarray | None =
     it. The vertices sharing a face with one of ``still`` are not moved unless the mesh has an inverted
     face (a fold is worse): the pipeline passes the point features, whose rings carry the point loads'
     force flow into the tessellation (moving them changed its joint angles and voussoir sizes there).
+    Given ``moved`` (vertices just moved in an optimised mesh), the sweeps start from the vertices
+    within :data:`MOVED_RINGS` rings of faces of them, the others counted stuck until a neighbour moves.
 
     Example
     -------
@@ -141,6 +145,11 @@ def maximise_min_quality(vertices: np.ndarray, faces, fixed: np.ndarray | None =
     slide_of = _slide_index(len(x), constraints)
     goal = _goals(x, faces, table, target, slide_of >= 0)
     stuck = keep.copy()
+    if moved is not None:
+        near = np.asarray(moved, dtype=np.int64)
+        for _ in range(MOVED_RINGS):
+            near = _neighbours(table, near, len(x))
+        stuck[np.setdiff1d(np.arange(len(x)), near)] = True
     for _ in range(sweeps):
         worst = _vertex_minima(x, table)
         chosen = _independent(worst, table, ~stuck & (worst < goal))

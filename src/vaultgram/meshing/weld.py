@@ -372,7 +372,10 @@ def _fixed_vertices(layout: Layout, sides: list[_SideSamples], vid_of_node: dict
                     corner: np.ndarray, feature: np.ndarray, curve: np.ndarray) -> np.ndarray:
     """Vertices smoothing does not move (§3.2, §4): domain corners, features, the points the mesh
     must keep (:func:`vaultgram.meshing.layout.kept_points`) and the input vertices of curve features
-    (the curve's bends), as side samples or as patch corners."""
+    (the curve's bends), as side samples or as patch corners; except a patch corner on a ring vertex
+    that is kept only for its turning (a bend of the outline): pinned there it could leave its patches
+    a corner of nearly 180 degrees, so it slides, and the pipeline puts another vertex on the bend
+    (:func:`vaultgram.meshing.fidelity.place_on_points`)."""
     disc = layout.decomposition.disc
     on_disc = disc_point >= 0
     fixed = corner | feature
@@ -381,6 +384,8 @@ def _fixed_vertices(layout: Layout, sides: list[_SideSamples], vid_of_node: dict
         if side.curve >= 0:
             fixed[[sides[side.id].ids[h] for _, h in sides[side.id].anchors]] = True
     for n, v in vid_of_node.items():
+        if 0 <= n < disc.n_points and disc.ring[n] >= 0 and not (corner[v] or feature[v] or disc.is_corner[n]):
+            fixed[v] = False  # a patch corner on a bend slides (vaultgram.meshing.fidelity.place_on_points)
         if 0 <= n < disc.n_points and curve[v] >= 0 and disc.is_input_vertex[n]:
             fixed[v] = True
     return fixed
