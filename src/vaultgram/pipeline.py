@@ -56,7 +56,7 @@ from vaultgram.geometry.text import plan_frame
 from vaultgram.io.files import collector_paused
 from vaultgram.limits import MAX_FACES
 from vaultgram.meshing.densities import CHORD_TOLERANCE, DensitySpec, group_counts
-from vaultgram.meshing.fidelity import SAME_POINT, hold_boundary, place_on_points
+from vaultgram.meshing.fidelity import SAME_POINT, hold_boundary, on_points, place_on_points
 from vaultgram.meshing.layout import Layout, edge_groups, kept_points
 from vaultgram.meshing.optimise import maximise_min_quality
 from vaultgram.meshing.quadmesh import QuadMesh
@@ -183,14 +183,16 @@ def _welded_and_smoothed(layout: Layout, counts, smooth: int, timings: dict | No
             x = untangle(x, mesh.faces, mesh.fixed, mesh.constraints)
             x = improve_shapes(x, mesh.faces, mesh.fixed, mesh.constraints)
             x = maximise_min_quality(x, mesh.faces, mesh.fixed, mesh.constraints, still=mesh.feature)
-            x = _held_to_the_plan(x, mesh, layout.decomposition.disc)
+            x, mesh = _held_to_the_plan(x, mesh, layout.decomposition.disc)
     return mesh, x
 
 
-def _held_to_the_plan(x: np.ndarray, mesh: QuadMesh, disc) -> np.ndarray:
+def _held_to_the_plan(x: np.ndarray, mesh: QuadMesh, disc) -> tuple[np.ndarray, QuadMesh]:
     """The smoothed boundary put back on the plan (§3.2, issue 12 What 5; :mod:`vaultgram.meshing.fidelity`):
     a vertex on each sharp ring vertex the sliding left bare, the faces optimised again with those
-    fixed (where one was placed), and the bends that chords cut off put back."""
+    fixed (where one was placed), and the bends that chords cut off put back; the mesh with its labels
+    of the ring points following the vertices (``fixed`` the vertices on sharp ring vertices too,
+    ``turning`` the turning of the ring point a boundary vertex sits on)."""
     tol, eps = CHORD_TOLERANCE * disc.domain.diagonal, SAME_POINT * disc.domain.diagonal
     sharp = disc.points[kept_points(disc) & (disc.ring >= 0)]
     placed, on_sharp = place_on_points(x, mesh.faces, mesh.constraints, sharp, eps)
@@ -198,7 +200,11 @@ def _held_to_the_plan(x: np.ndarray, mesh: QuadMesh, disc) -> np.ndarray:
         placed = hold_boundary(placed, mesh.faces, mesh.constraints, tol)
         placed = maximise_min_quality(placed, mesh.faces, mesh.fixed | on_sharp, mesh.constraints,
                                       still=mesh.feature, moved=np.flatnonzero(np.any(placed != x, axis=1)))
-    return hold_boundary(placed, mesh.faces, mesh.constraints, tol)
+    placed = hold_boundary(placed, mesh.faces, mesh.constraints, tol)
+    on_ring = disc.ring >= 0
+    turning = mesh.turning.copy()
+    turning[mesh.boundary] = on_points(placed[mesh.boundary], disc.points[on_ring], disc.turning[on_ring], eps)
+    return placed, dataclasses.replace(mesh, fixed=mesh.fixed | on_sharp, turning=turning)
 
 
 def _mesh_info(dec: Decomposition, layout: Layout, smooth: int) -> dict:

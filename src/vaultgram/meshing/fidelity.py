@@ -31,7 +31,7 @@ from vaultgram.geometry.polylines import densified, project_to_polyline
 from vaultgram.meshing.quadmesh import SlideConstraint
 from vaultgram.meshing.quality import face_scaled_jacobians
 
-__all__ = ["hold_boundary", "place_on_points", "SAME_POINT"]
+__all__ = ["hold_boundary", "place_on_points", "on_points", "SAME_POINT"]
 
 #: Two points closer than this fraction of the diagonal are the same point.
 SAME_POINT = 1e-9
@@ -95,6 +95,19 @@ def place_on_points(vertices: np.ndarray, faces, constraints, points: np.ndarray
         for k in on[cKDTree(_chain(x, c)[0]).query(poly[on])[0] > eps] if len(on) else on:
             _place_vertex_on(x, faces, around, c, int(k))
     return x, wanted.query(x[:, :2], distance_upper_bound=eps)[0] < np.inf
+
+
+def on_points(vertices: np.ndarray, points: np.ndarray, values: np.ndarray, eps: float) -> np.ndarray:
+    """Per vertex, the value of the point of ``points`` within ``eps`` of it, else 0.
+
+    >>> on_points(np.array([[0.0, 0.0], [1.0, 0.5]]), np.array([[1.0, 0.5], [2.0, 0.0]]), np.array([30.0, 90.0]), 1e-9)
+    array([ 0., 30.])
+    """
+    if not len(points):
+        return np.zeros(len(vertices))
+    dist, at = cKDTree(np.asarray(points, dtype=float)[:, :2]).query(np.asarray(vertices, dtype=float)[:, :2],
+                                                                   distance_upper_bound=eps)
+    return np.where(dist < np.inf, np.asarray(values, dtype=float)[np.minimum(at, len(points) - 1)], 0.0)
 
 
 def _place_vertex_on(x: np.ndarray, faces, around, c: SlideConstraint, k: int) -> None:
