@@ -21,11 +21,11 @@ import numpy as np
 from vaultgram.errors import FormFindingError
 from vaultgram.formfinding.cholesky import Cholesky, ForceDensityMatrix
 from vaultgram.formfinding.formdiagram import FormDiagram
-from vaultgram.geometry.meshes import corner_arrays, face_areas
+from vaultgram.geometry.meshes import corner_arrays, corner_triangles, face_areas
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.polylines import polyline_length
 
-__all__ = ["relax_openings", "relax", "Relaxed", "opening_edges"]
+__all__ = ["relax_openings", "relax", "Relaxed", "opening_edges", "folded_faces"]
 
 RELAX_MODES = ("boundary", "all")
 
@@ -334,15 +334,31 @@ _UNFOLD_STEPS = 100
 _UNFOLD_ROUNDS = 3
 
 
+def folded_faces(xy: np.ndarray, faces) -> np.ndarray:
+    """Per face, whether it is folded: clockwise (a signed area of 0 or less), or a quad crossing
+    itself, whose area stays positive but two of whose corners turn the wrong way (a quad with one
+    reflex corner is not folded).
+
+    >>> folded_faces(np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]), [(0, 1, 3, 2), (0, 1, 2, 3)]).tolist()
+    [False, True]
+    """
+    face_of = corner_arrays(faces)[0]
+    wrong = np.bincount(face_of, weights=face_areas(xy, corner_triangles(faces)) <= 0, minlength=len(faces))
+    return (face_areas(xy, faces) <= 0) | (wrong >= 2)
+
+
 class _Folds:
-    """The loaded faces' signed areas relative to their meshed ones, ``r_f = a_f / a0_f`` (positive: the
-    form diagram checks that its faces are counter-clockwise), the edges' lengths relative to their
-    meshed ones, ``s_e = l_e / l0_e``, and the penalty
-    ``P = sum_f max(0, _THIN - r_f)^2 + sum_e (_THIN max(0, 1 - s_e / _SHORT))^2`` on the thin and folded
-    faces and the short edges."""
+    """The signed areas of the loaded faces' corner triangles (each corner with its two neighbours
+    along the face) relative to their meshed ones, ``r_f = a_f / a0_f`` (positive: the corner is
+    convex, as every corner of the mesh is; a quad crossing itself keeps a positive area but two
+    corners turn over), the edges' lengths relative to their meshed ones, ``s_e = l_e / l0_e``, and
+    the penalty ``P = sum_f max(0, _THIN - r_f)^2 + sum_e (_THIN max(0, 1 - s_e / _SHORT))^2`` on the
+    thin and turned corners and the short edges. The unfolding runs while a face is
+    :func:`folded <folded_faces>`."""
 
     def __init__(self, form: FormDiagram):
-        self.faces = form.loaded_faces
+        self.loaded = form.loaded_faces
+        self.faces = corner_triangles(self.loaded)
         self.face, self.u, self.v, _ = corner_arrays(self.faces)
         self.a0 = face_areas(form.xy, self.faces)
         self.edges, self.l0 = form.edges, form.edge_lengths()
@@ -350,6 +366,9 @@ class _Folds:
 
     def ratios(self, xy: np.ndarray) -> np.ndarray:
         return face_areas(xy, self.faces) / self.a0
+
+    def folded(self, xy: np.ndarray) -> bool:
+        return bool(folded_faces(xy, self.loaded).any())
 
     def edge_vectors(self, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Each edge's vector ``x_v - x_u`` and its length."""
@@ -393,7 +412,7 @@ def _unfolded(system: _ForceDensities, folds: _Folds, arches: list[_Arch], sag: 
     :data:`_UNFOLD_ROUNDS` rounds; unchanged if nothing is folded. Returns ``log q_b`` and the positions."""
     target = sag * np.array([a.span for a in arches])
     for _ in range(_UNFOLD_ROUNDS):
-        if folds.ratios(xy).min() > 0:
+        if not folds.folded(xy):
             break
         xy = _unfold(system, folds, system.solve(logq), logq)
         if arches:
@@ -445,11 +464,10 @@ def _check_not_collapsed(form: FormDiagram, out: FormDiagram) -> None:
 
 
 def _check_not_folded(out: FormDiagram) -> None:
-    """Every loaded face is still counter-clockwise: the relaxation did not fold the form diagram (the
-    error's ``places``: the folded faces' sides, in plan)."""
+    """No loaded face is :func:`folded <folded_faces>`: the relaxation did not fold the form diagram,
+    nor cross a quad over itself (the error's ``places``: the folded faces' sides, in plan)."""
     loaded = out.loaded_faces
-    area = face_areas(out.xy, loaded)
-    folded = np.flatnonzero(area <= 0)
+    folded = np.flatnonzero(folded_faces(out.xy, loaded))
     if len(folded):
         face = [int(out.vertex_ids[v]) for v in loaded[int(folded[0])]]
         of, u, v, _ = corner_arrays(loaded)
