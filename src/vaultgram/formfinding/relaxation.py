@@ -139,7 +139,7 @@ def relax(form: FormDiagram, sag: float = 0.1, *, mode: str = "boundary", q_inte
     system = _ForceDensities(form, moving, eo, fo, q_interior)
     logq, xy = _sag_search(system, arches, sag, iterations)
     if mode == "all":
-        logq, xy = _unfolded(system, _Folds(form), arches, sag, logq, xy)
+        logq, xy = _unfolded(system, form, arches, sag, logq, xy)
     out = form.with_xy(xy)
     _check_not_collapsed(form, out)
     _check_not_folded(out)
@@ -348,17 +348,18 @@ def folded_faces(xy: np.ndarray, faces) -> np.ndarray:
 
 
 class _Folds:
-    """The signed areas of the loaded faces' corner triangles (each corner with its two neighbours
-    along the face) relative to their meshed ones, ``r_f = a_f / a0_f`` (positive: the corner is
-    convex, as every corner of the mesh is; a quad crossing itself keeps a positive area but two
-    corners turn over), the edges' lengths relative to their meshed ones, ``s_e = l_e / l0_e``, and
-    the penalty ``P = sum_f max(0, _THIN - r_f)^2 + sum_e (_THIN max(0, 1 - s_e / _SHORT))^2`` on the
-    thin and turned corners and the short edges. The unfolding runs while a face is
-    :func:`folded <folded_faces>`."""
+    """The loaded faces' signed areas relative to their meshed ones, ``r_f = a_f / a0_f`` (positive: the
+    form diagram checks that its faces are counter-clockwise), with the corner triangles (each corner
+    with its two neighbours along the face) of the quads given as ``crossed`` among the faces (a quad
+    crossing itself keeps a positive area, but two of its corners turn over), the edges' lengths
+    relative to their meshed ones, ``s_e = l_e / l0_e``, and the penalty
+    ``P = sum_f max(0, _THIN - r_f)^2 + sum_e (_THIN max(0, 1 - s_e / _SHORT))^2`` on the thin and folded
+    faces and corners and the short edges."""
 
-    def __init__(self, form: FormDiagram):
+    def __init__(self, form: FormDiagram, crossed=()):
         self.loaded = form.loaded_faces
-        self.faces = corner_triangles(self.loaded)
+        corners = corner_triangles([self.loaded[int(k)] for k in crossed]) if len(crossed) else ()
+        self.faces = [*self.loaded, *map(tuple, corners)] if len(corners) else self.loaded
         self.face, self.u, self.v, _ = corner_arrays(self.faces)
         self.a0 = face_areas(form.xy, self.faces)
         self.edges, self.l0 = form.edges, form.edge_lengths()
@@ -366,9 +367,6 @@ class _Folds:
 
     def ratios(self, xy: np.ndarray) -> np.ndarray:
         return face_areas(xy, self.faces) / self.a0
-
-    def folded(self, xy: np.ndarray) -> bool:
-        return bool(folded_faces(xy, self.loaded).any())
 
     def edge_vectors(self, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Each edge's vector ``x_v - x_u`` and its length."""
@@ -402,7 +400,7 @@ class _Folds:
         return float(h @ h + k @ k), g
 
 
-def _unfolded(system: _ForceDensities, folds: _Folds, arches: list[_Arch], sag: float, logq: np.ndarray,
+def _unfolded(system: _ForceDensities, form: FormDiagram, arches: list[_Arch], sag: float, logq: np.ndarray,
               xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The relaxation of mode ``"all"`` without folded faces. Equal force densities place every free
     vertex at a convex combination of its neighbours, which folds the diagram where the supported
@@ -412,8 +410,10 @@ def _unfolded(system: _ForceDensities, folds: _Folds, arches: list[_Arch], sag: 
     :data:`_UNFOLD_ROUNDS` rounds; unchanged if nothing is folded. Returns ``log q_b`` and the positions."""
     target = sag * np.array([a.span for a in arches])
     for _ in range(_UNFOLD_ROUNDS):
-        if not folds.folded(xy):
+        folded = folded_faces(xy, form.loaded_faces)
+        if not folded.any():
             break
+        folds = _Folds(form, np.flatnonzero(folded & (face_areas(xy, form.loaded_faces) > 0)))
         xy = _unfold(system, folds, system.solve(logq), logq)
         if arches:
             logq, xy = _coupled_sag(system, arches, target, logq)
