@@ -113,9 +113,8 @@ def on_points(vertices: np.ndarray, points: np.ndarray, values: np.ndarray, eps:
 def _place_vertex_on(x: np.ndarray, faces, around, c: SlideConstraint, k: int) -> None:
     """Move the sliding vertex of ``c`` that :func:`place_on_points` picks onto polyline point ``k``."""
     poly = np.asarray(c.polyline, dtype=float)[:, :2]
-    verts = np.asarray(c.vertices, dtype=np.int64)
     best, who = 0.0, -1
-    for v in verts[np.argsort(np.hypot(*(x[verts, :2] - poly[k]).T), kind="stable")[:_CANDIDATES]]:
+    for v in _nearest(x, c, poly[k]):
         if not np.any(np.all(_reach(x, c, v, poly) == poly[k], axis=1)):
             continue
         ring, old = [faces[f] for f in around(v)], x[v].copy()
@@ -139,8 +138,7 @@ def _snap_worst_bend(x: np.ndarray, faces, around, c: SlideConstraint, tol: floa
     k = int(np.argmax(gaps))
     if gaps[k] <= tol:
         return False
-    verts = np.asarray(c.vertices, dtype=np.int64)
-    for v in verts[np.argsort(np.hypot(*(x[verts, :2] - poly[k]).T), kind="stable")[:_CANDIDATES]]:
+    for v in _nearest(x, c, poly[k]):
         ring = [faces[f] for f in around(v)]
         old, good = x[v].copy(), min(face_scaled_jacobians(x, ring).min(), floor)
         best, where = gaps[k], None
@@ -154,6 +152,12 @@ def _snap_worst_bend(x: np.ndarray, faces, around, c: SlideConstraint, tol: floa
             x[v, :2] = where
             return True
     return False
+
+
+def _nearest(x: np.ndarray, c: SlideConstraint, p: np.ndarray) -> np.ndarray:
+    """The :data:`_CANDIDATES` sliding vertices of ``c`` nearest to point ``p``, nearest first."""
+    verts = np.asarray(c.vertices, dtype=np.int64)
+    return verts[np.argsort(np.hypot(*(x[verts, :2] - p).T), kind="stable")[:_CANDIDATES]]
 
 
 def _reach(x: np.ndarray, c: SlideConstraint, v: int, poly: np.ndarray) -> np.ndarray:
