@@ -6,8 +6,8 @@ densities, every part supported) and the least-squares fits of the diagrams (eve
 A general sparse LU (SuperLU) factorises them at about twice the cost of a Cholesky factorisation
 and stores both triangles; CHOLMOD (Chen, Davis, Hager & Rajamanickam 2008) keeps its AMD
 fill-reducing ordering and supernodal structure in a *symbolic* factorisation that new values on the
-same pattern reuse (:meth:`Cholesky.refactor`): the bisection on an opening's sag factorises the same
-pattern twenty times.
+same pattern reuse (:meth:`Cholesky.refactor`): the search for the openings' sags factorises the same
+pattern several times.
 
 :class:`ForceDensityMatrix` assembles ``Cm^T diag(q) Cm`` for many ``q`` on one fixed pattern by a
 precomputed sparse map from edge densities to the matrix entries (one sparse product per ``q``,
