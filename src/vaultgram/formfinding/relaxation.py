@@ -22,7 +22,7 @@ import numpy as np
 from vaultgram.errors import FormFindingError
 from vaultgram.formfinding.cholesky import Cholesky, ForceDensityMatrix
 from vaultgram.formfinding.formdiagram import FormDiagram
-from vaultgram.geometry.meshes import corner_arrays, corner_triangles, corner_vectors, face_areas
+from vaultgram.geometry.meshes import corner_arrays, corner_triangles, corner_vectors, face_areas, shoelace_areas
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.polylines import polyline_length
 
@@ -387,16 +387,23 @@ class _Folds:
     faces and corners and the short edges."""
 
     def __init__(self, form: FormDiagram, crossed=()):
-        self.loaded = form.loaded_faces
-        corners = corner_triangles([self.loaded[int(k)] for k in crossed]) if len(crossed) else ()
-        self.faces = [*self.loaded, *map(tuple, corners)] if len(corners) else self.loaded
-        self.face, self.u, self.v, _ = corner_arrays(self.faces)
-        self.a0 = face_areas(form.xy, self.faces)
+        loaded = form.loaded_faces
+        face, u, v, _ = corner_arrays(loaded)
+        tri = corner_triangles([loaded[int(k)] for k in crossed]) if len(crossed) else np.zeros((0, 3), np.int64)
+        # the corner triangles' corners (p -> u -> v) after the faces', as corner arrays: never as tuples
+        self.face = np.concatenate([face, len(loaded) + np.repeat(np.arange(len(tri)), 3)])
+        self.u = np.concatenate([u, tri.ravel()])
+        self.v = np.concatenate([v, np.roll(tri, -1, axis=1).ravel()])
+        self.n_faces = len(loaded) + len(tri)
+        self.a0 = self.areas(form.xy)
         self.edges, self.l0 = form.edges, form.edge_lengths()
         self.n = form.n_vertices
 
+    def areas(self, xy: np.ndarray) -> np.ndarray:
+        return shoelace_areas(xy, self.face, self.u, self.v, self.n_faces)
+
     def ratios(self, xy: np.ndarray) -> np.ndarray:
-        return face_areas(xy, self.faces) / self.a0
+        return self.areas(xy) / self.a0
 
     def edge_vectors(self, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Each edge's vector ``x_v - x_u`` and its length."""
