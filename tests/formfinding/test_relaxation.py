@@ -216,6 +216,35 @@ def test_the_penalty_of_short_edges_and_its_gradient():
             assert (folds.penalty(a)[0] - folds.penalty(b)[0]) / 2e-7 == pytest.approx(g[i, c], rel=1e-5, abs=1e-9)
 
 
+def test_a_quad_about_to_cross_weighs_in_the_penalty_and_one_reflex_corner_does_not():
+    """The penalty's corner term is each quad's second thinnest corner triangle: a dart (one reflex
+    corner) keeps it at 0.3 of its meshed area and adds nothing; a quad crossing itself (two corners
+    turned over, its area still positive) has it negative. The gradient is the penalty's derivative."""
+    from vaultgram.formfinding import relaxation
+    from vaultgram.geometry.meshes import face_areas, grid_mesh
+
+    form = form_diagram(*grid_mesh(4))
+    folds = relaxation._Folds(form)
+    quad = next(q for q, face in enumerate(form.loaded_faces) if sorted(map(tuple, form.xy[list(face)])) == [
+        (1.0, 1.0), (1.0, 2.0), (2.0, 1.0), (2.0, 2.0)])                 # the quad [1, 2] x [1, 2]
+    k = sum(len(face) == 4 for face in form.loaded_faces[:quad])        # its place among the quads
+    centre = int(np.flatnonzero((form.xy == [2.0, 2.0]).all(axis=1))[0])
+    dart = form.xy.copy()
+    dart[centre] = [1.3, 1.3]
+    assert folds.second_corners(dart)[1][k] == pytest.approx(0.3) and folds.penalty(dart)[0] == 0.0
+    crossed = form.xy.copy()
+    crossed[centre] = [0.6, 1.5]
+    face = [form.loaded_faces[quad]]
+    assert face_areas(crossed, face)[0] > 0 and folds.second_corners(crossed)[1][k] < 0
+    assert relaxation.folded_faces(crossed, face).tolist() == [True]
+    p, g = folds.penalty(crossed)
+    for c in range(2):
+        a, b = crossed.copy(), crossed.copy()
+        a[centre, c] += 1e-7
+        b[centre, c] -= 1e-7
+        assert (folds.penalty(a)[0] - folds.penalty(b)[0]) / 2e-7 == pytest.approx(g[centre, c], rel=1e-5)
+
+
 def test_form_finding_over_a_notch_is_reciprocal_at_once():
     from formfinding.cases import assert_network_ok
 

@@ -22,7 +22,7 @@ import numpy as np
 from vaultgram.errors import FormFindingError
 from vaultgram.formfinding.cholesky import Cholesky, ForceDensityMatrix
 from vaultgram.formfinding.formdiagram import FormDiagram
-from vaultgram.geometry.meshes import corner_arrays, corner_triangles, corner_vectors, face_areas, shoelace_areas
+from vaultgram.geometry.meshes import corner_arrays, face_areas, shoelace_areas
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.polylines import polyline_length
 
@@ -349,15 +349,19 @@ def _sag_peaks(xy: np.ndarray, xy0: np.ndarray, arches: list[_Arch]) -> tuple[np
     return np.array([m[k] if len(m) else 0.0 for m, k in zip(moves, peak)]), peak
 
 
-#: Unfolding (:func:`_unfold`): the penalty acts on faces thinner than ``_THIN`` of their meshed area
-#: and on edges shorter than ``_SHORT`` of their meshed length, and the descent stops once every face
-#: and edge has half that; at most ``_UNFOLD_STEPS`` steps (on the multiple-lobes plan at 6,400 faces
+#: Unfolding (:func:`_unfold`): the penalty acts on faces thinner than ``_THIN`` of their meshed area,
+#: on quads whose second thinnest corner triangle is thinner than ``_CORNER`` of its meshed area (about
+#: to cross themselves: on the multiple-lobes plan, unfolding the faces alone crossed 30 quads at
+#: 10^5 faces and 93 at 10^6, and a second round had to unfold those, in more steps than the first)
+#: and on edges shorter than ``_SHORT`` of their meshed length, and the descent stops once every face,
+#: quad corner and edge has half that; at most ``_UNFOLD_STEPS`` steps (on the multiple-lobes plan at 6,400 faces
 #: 15), each changing a density by at most a factor ``e``, and ``_UNFOLD_ROUNDS`` rounds of unfolding
 #: and re-met sags. The edges' term: the large densities the descent gives the edges at a notch's
 #: corner shrink them, the more the finer the mesh (the shortest keeps 1.4% of its length at 6,400
 #: faces of the multiple-lobes plan, 0.6% at 65,000, 0.04% at 810,000, under :func:`_check_not_collapsed`'s
 #: 0.1%); below ``_SHORT`` they weigh as a face at the same share of ``_THIN``.
 _THIN = 0.1
+_CORNER = 0.05
 _SHORT = 0.005
 _UNFOLD_STEPS = 100
 _UNFOLD_ROUNDS = 3
@@ -372,30 +376,28 @@ def folded_faces(xy: np.ndarray, faces) -> np.ndarray:
     [False, True]
     """
     face_of, u, v, p = corner_arrays(faces)
-    e1, e2 = corner_vectors(xy, u, v, p)   # a corner turns over where its triangle (p, u, v) does
-    turned = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0] <= 0
+    turned = _corner_areas(xy, u, v, p) <= 0
     return (face_areas(xy, faces) <= 0) | (np.bincount(face_of, weights=turned, minlength=len(faces)) >= 2)
 
 
 class _Folds:
     """The loaded faces' signed areas relative to their meshed ones, ``r_f = a_f / a0_f`` (positive: the
-    form diagram checks that its faces are counter-clockwise), with the corner triangles (each corner
-    with its two neighbours along the face) of the quads given as ``crossed`` among the faces (a quad
-    crossing itself keeps a positive area, but two of its corners turn over), the edges' lengths
-    relative to their meshed ones, ``s_e = l_e / l0_e``, and the penalty
-    ``P = sum_f max(0, _THIN - r_f)^2 + sum_e (_THIN max(0, 1 - s_e / _SHORT))^2`` on the thin and folded
-    faces and corners and the short edges."""
+    form diagram checks that its faces are counter-clockwise); per quad, the second thinnest of its
+    corner triangles (a corner with its two neighbours along the face) relative to its meshed area,
+    ``t_f`` (a quad crossing itself keeps a positive area, but two of its corners turn over; one
+    reflex corner is no fold); the edges' lengths relative to their meshed ones, ``s_e = l_e / l0_e``;
+    and the penalty ``P = sum_f max(0, _THIN - r_f)^2 + sum_f max(0, _CORNER - t_f)^2
+    + sum_e (_THIN max(0, 1 - s_e / _SHORT))^2`` on the thin and folded faces, the quads about to
+    cross and the short edges."""
 
-    def __init__(self, form: FormDiagram, crossed=()):
+    def __init__(self, form: FormDiagram):
         loaded = form.loaded_faces
-        face, u, v, _ = corner_arrays(loaded)
-        tri = corner_triangles([loaded[int(k)] for k in crossed]) if len(crossed) else np.zeros((0, 3), np.int64)
-        # the corner triangles' corners (p -> u -> v) after the faces', as corner arrays: never as tuples
-        self.face = np.concatenate([face, len(loaded) + np.repeat(np.arange(len(tri)), 3)])
-        self.u = np.concatenate([u, tri.ravel()])
-        self.v = np.concatenate([v, np.roll(tri, -1, axis=1).ravel()])
-        self.n_faces = len(loaded) + len(tri)
+        self.face, self.u, self.v, p = corner_arrays(loaded)
+        self.n_faces = len(loaded)
         self.a0 = self.areas(form.xy)
+        quad = np.bincount(self.face, minlength=self.n_faces)[self.face] == 4   # a quad's corners are in a row
+        self.corners = (self.u[quad], self.v[quad], p[quad])                     # 4 per quad, in its order
+        self.c0 = np.maximum(np.abs(_corner_areas(form.xy, *self.corners)), 1e-3 * self.a0[self.face[quad]])
         self.edges, self.l0 = form.edges, form.edge_lengths()
         self.n = form.n_vertices
 
@@ -405,36 +407,70 @@ class _Folds:
     def ratios(self, xy: np.ndarray) -> np.ndarray:
         return self.areas(xy) / self.a0
 
+    def second_corners(self, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Per quad, which of its corners (0-3) has the second thinnest corner triangle, and ``t_f``."""
+        t = (_corner_areas(xy, *self.corners) / self.c0).reshape(-1, 4)
+        k = np.argpartition(t, 1, axis=1)[:, 1]
+        return k, t[np.arange(len(t)), k]
+
     def edge_vectors(self, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Each edge's vector ``x_v - x_u`` and its length."""
         d = xy[self.edges[:, 1]] - xy[self.edges[:, 0]]
         return d, np.hypot(d[:, 0], d[:, 1])
 
     def settled(self, xy: np.ndarray) -> bool:
-        """Every face keeps half of ``_THIN`` of its area and every edge half of ``_SHORT`` of its length."""
-        return bool(self.ratios(xy).min() >= 0.5 * _THIN and (self.edge_vectors(xy)[1] / self.l0).min() >= 0.5 * _SHORT)
+        """Every face keeps half of ``_THIN`` of its area, every quad's second corner half of ``_CORNER``
+        and every edge half of ``_SHORT`` of its length."""
+        return bool(self.ratios(xy).min() >= 0.5 * _THIN
+                    and self.second_corners(xy)[1].min(initial=1.0) >= 0.5 * _CORNER
+                    and (self.edge_vectors(xy)[1] / self.l0).min() >= 0.5 * _SHORT)
 
     def penalty(self, xy: np.ndarray) -> tuple[float, np.ndarray]:
         """``P`` and its gradient in the plan positions, ``(n, 2)``: a face's area (the shoelace) has
         ``dA/dx_u = y_v / 2`` and ``dA/dy_u = -x_v / 2`` over its halfedges ``u -> v``, the opposite at
-        ``v``; an edge's length ``l = |x_v - x_u|`` has ``dl/dx_v = (x_v - x_u) / l = -dl/dx_u``."""
+        ``v`` (a corner triangle's too, :func:`_corner_area_gradient`); an edge's length
+        ``l = |x_v - x_u|`` has ``dl/dx_v = (x_v - x_u) / l = -dl/dx_u``."""
         h = np.maximum(0.0, _THIN - self.ratios(xy))
         w = (-h / self.a0)[self.face]                     # half of dP/dA per corner
         u, v, n = self.u, self.v, self.n
         gx = np.bincount(u, w * xy[v, 1], n) - np.bincount(v, w * xy[u, 1], n)
         gy = np.bincount(v, w * xy[u, 0], n) - np.bincount(u, w * xy[v, 0], n)
         g = np.column_stack([gx, gy])
+        k, t = self.second_corners(xy)
+        thin = np.flatnonzero(t < _CORNER)
+        c = np.maximum(0.0, _CORNER - t[thin])
+        at = 4 * thin + k[thin]                           # the thin corners, in the quads' corner arrays
+        g += _corner_area_gradient(xy, *(a[at] for a in self.corners), -2.0 * c / self.c0[at], n)
         d, length = self.edge_vectors(xy)
         short = np.flatnonzero(length < _SHORT * self.l0)
         if len(short) == 0:
-            return float(h @ h), g
-        k = _THIN * (1.0 - length[short] / (_SHORT * self.l0[short]))
-        per = np.divide(k, self.l0[short] * length[short], out=np.zeros_like(k), where=length[short] > 0)
+            return float(h @ h + c @ c), g
+        e = _THIN * (1.0 - length[short] / (_SHORT * self.l0[short]))
+        per = np.divide(e, self.l0[short] * length[short], out=np.zeros_like(e), where=length[short] > 0)
         dv = (-2.0 * _THIN / _SHORT) * per[:, None] * d[short]   # dP/dx_v (none along an edge of no length)
         a, b = self.edges[short, 0], self.edges[short, 1]
-        for c in range(2):
-            g[:, c] += np.bincount(b, dv[:, c], n) - np.bincount(a, dv[:, c], n)
-        return float(h @ h + k @ k), g
+        for j in range(2):
+            g[:, j] += np.bincount(b, dv[:, j], n) - np.bincount(a, dv[:, j], n)
+        return float(h @ h + c @ c + e @ e), g
+
+
+def _corner_areas(xy: np.ndarray, u: np.ndarray, v: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """Signed areas of the corner triangles of vertices ``u`` with next ``v`` and previous ``p``:
+    ``(x_v - x_u) x (x_p - x_u) / 2``, positive where the corner turns counter-clockwise."""
+    x, y = np.ascontiguousarray(xy[:, 0]), np.ascontiguousarray(xy[:, 1])   # one gather per coordinate
+    xu, yu = x[u], y[u]
+    return 0.5 * ((x[v] - xu) * (y[p] - yu) - (y[v] - yu) * (x[p] - xu))
+
+
+def _corner_area_gradient(xy: np.ndarray, u: np.ndarray, v: np.ndarray, p: np.ndarray, weight: np.ndarray,
+                          n: int) -> np.ndarray:
+    """``sum_k weight_k d a_k / d x`` over the corner triangles of :func:`_corner_areas`, ``(n, 2)``:
+    ``da/dx_v = (e2_y, -e2_x) / 2``, ``da/dx_p = (-e1_y, e1_x) / 2``, ``da/dx_u`` minus their sum."""
+    e1, e2 = xy[v] - xy[u], xy[p] - xy[u]
+    dv = 0.5 * weight[:, None] * np.column_stack([e2[:, 1], -e2[:, 0]])
+    dp = 0.5 * weight[:, None] * np.column_stack([-e1[:, 1], e1[:, 0]])
+    return np.column_stack([np.bincount(v, dv[:, j], n) + np.bincount(p, dp[:, j], n)
+                            - np.bincount(u, dv[:, j] + dp[:, j], n) for j in range(2)])
 
 
 def _unfolded(system: _ForceDensities, form: FormDiagram, arches: list[_Arch], sag: float, logq: np.ndarray,
@@ -445,11 +481,10 @@ def _unfolded(system: _ForceDensities, form: FormDiagram, arches: list[_Arch], s
     boundary pull straight across a notch and drag the first rows of faces over its corner. There the
     interior densities are made unequal (:func:`_unfold`) and the openings' sags met again, for at most
     :data:`_UNFOLD_ROUNDS` rounds; unchanged if nothing is folded. Returns ``log q_b`` and the positions."""
+    folds = _Folds(form)
     for _ in range(_UNFOLD_ROUNDS):
-        folded = folded_faces(xy, form.loaded_faces)
-        if not folded.any():
+        if not folded_faces(xy, form.loaded_faces).any():
             break
-        folds = _Folds(form, np.flatnonzero(folded & (face_areas(xy, form.loaded_faces) > 0)))
         xy = _unfold(system, folds, system.solve(logq), logq)
         if arches:
             logq, xy = _sag_search(system, arches, sag, start=logq)
@@ -460,7 +495,7 @@ def _unfold(system: _ForceDensities, folds: _Folds, xy: np.ndarray, logq: np.nda
     """Descent on the log densities of the interior edges (so every ``q`` stays positive, and the
     positions stay in exact equilibrium with them) against :class:`_Folds`' penalty, gradient by the
     adjoint (:meth:`_ForceDensities.density_gradient`), steps of at most ``eta`` in any log density,
-    halved until the penalty drops; it stops when every face keeps half of :data:`_THIN` of its area.
+    halved until the penalty drops; it stops when :meth:`_Folds.settled`.
     On the multiple-lobes plan the densities grow on the edges holding the first rows to the notches'
     corners and drop on those along the boundary. ``xy``: the positions of the last solve; returns the
     final ones (``system.base`` holds the densities)."""

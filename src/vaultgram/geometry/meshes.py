@@ -25,7 +25,6 @@ __all__ = [
     "grid_index",
     "remove_faces",
     "boundary_loops",
-    "corner_triangles",
     "loops_of",
     "corner_arrays",
     "corners_of_flat",
@@ -233,17 +232,6 @@ def corners_of_flat(vert: np.ndarray, lens: np.ndarray) -> tuple[np.ndarray, np.
     nxt[end - 1] = vert[start]  # but a face's last corner is followed by its first
     prv[start] = vert[end - 1]
     return face, vert, nxt, prv
-
-
-def corner_triangles(faces: Sequence[Sequence[int]]) -> np.ndarray:
-    """``(previous, vertex, next)`` of every corner of the faces, in corner order, ``(c, 3)``: a
-    triangle counter-clockwise where a counter-clockwise face is convex at that corner.
-
-    >>> corner_triangles([(0, 1, 2, 3)]).tolist()
-    [[3, 0, 1], [0, 1, 2], [1, 2, 3], [2, 3, 0]]
-    """
-    _, u, v, p = corner_arrays(faces)
-    return np.column_stack([p, u, v])
 
 
 def corner_vectors(x: np.ndarray, u: np.ndarray, v: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
