@@ -206,7 +206,7 @@ def test_the_penalty_of_short_edges_and_its_gradient():
     xy = form.xy.copy()
     xy[6] = xy[7] + [0.002, 0.001]          # edge 6-7 keeps 0.2% of its length, under _SHORT
     xy[12] += [0.3, -0.2]
-    p, g = folds.penalty(xy)
+    p, g, _ = folds.penalty(xy)
     assert p > 0 and not folds.settled(xy)
     for i in (6, 7, 11, 12):
         for c in range(2):
@@ -237,7 +237,7 @@ def test_a_quad_about_to_cross_weighs_in_the_penalty_and_one_reflex_corner_does_
     face = [form.loaded_faces[quad]]
     assert face_areas(crossed, face)[0] > 0 and folds.second_corners(crossed)[1][k] < 0
     assert relaxation.folded_faces(crossed, face).tolist() == [True]
-    p, g = folds.penalty(crossed)
+    p, g, _ = folds.penalty(crossed)
     for c in range(2):
         a, b = crossed.copy(), crossed.copy()
         a[centre, c] += 1e-7

@@ -420,38 +420,48 @@ class _Folds:
 
     def settled(self, xy: np.ndarray) -> bool:
         """Every face keeps half of ``_THIN`` of its area, every quad's second corner half of ``_CORNER``
-        and every edge half of ``_SHORT`` of its length."""
-        return bool(self.ratios(xy).min() >= 0.5 * _THIN
-                    and self.second_corners(xy)[1].min(initial=1.0) >= 0.5 * _CORNER
-                    and (self.edge_vectors(xy)[1] / self.l0).min() >= 0.5 * _SHORT)
+        and every edge half of ``_SHORT`` of its length (:meth:`penalty`'s ``settled``)."""
+        return self.penalty(xy).settled
 
-    def penalty(self, xy: np.ndarray) -> tuple[float, np.ndarray]:
-        """``P`` and its gradient in the plan positions, ``(n, 2)``: a face's area (the shoelace) has
-        ``dA/dx_u = y_v / 2`` and ``dA/dy_u = -x_v / 2`` over its halfedges ``u -> v``, the opposite at
-        ``v`` (a corner triangle's too, :func:`_corner_area_gradient`); an edge's length
-        ``l = |x_v - x_u|`` has ``dl/dx_v = (x_v - x_u) / l = -dl/dx_u``."""
-        h = np.maximum(0.0, _THIN - self.ratios(xy))
-        w = (-h / self.a0)[self.face]                     # half of dP/dA per corner
-        u, v, n = self.u, self.v, self.n
-        gx = np.bincount(u, w * xy[v, 1], n) - np.bincount(v, w * xy[u, 1], n)
-        gy = np.bincount(v, w * xy[u, 0], n) - np.bincount(u, w * xy[v, 0], n)
-        g = np.column_stack([gx, gy])
+    def penalty(self, xy: np.ndarray) -> _Penalty:
+        """``P``, its gradient in the plan positions, ``(n, 2)``, and whether the positions are
+        :meth:`settled`: a face's area (the shoelace) has ``dA/dx_u = y_v / 2`` and
+        ``dA/dy_u = -x_v / 2`` over its halfedges ``u -> v``, the opposite at ``v`` (a corner
+        triangle's too, :func:`_corner_area_gradient`); an edge's length ``l = |x_v - x_u|`` has
+        ``dl/dx_v = (x_v - x_u) / l = -dl/dx_u``. Only the thin faces and corners and the short edges
+        have a gradient."""
+        r = self.ratios(xy)
         k, t = self.second_corners(xy)
+        d, length = self.edge_vectors(xy)
+        settled = bool(r.min() >= 0.5 * _THIN and t.min(initial=1.0) >= 0.5 * _CORNER
+                       and (length / self.l0).min() >= 0.5 * _SHORT)
+        h = np.maximum(0.0, _THIN - r)
+        mine = np.flatnonzero(h[self.face] > 0)            # the thin faces' corners
+        w = (-h / self.a0)[self.face[mine]]                # half of dP/dA per corner
+        u, v, n = self.u[mine], self.v[mine], self.n
+        g = np.zeros((n, 2))
+        g[:, 0] += np.bincount(u, w * xy[v, 1], n) - np.bincount(v, w * xy[u, 1], n)
+        g[:, 1] += np.bincount(v, w * xy[u, 0], n) - np.bincount(u, w * xy[v, 0], n)
         thin = np.flatnonzero(t < _CORNER)
-        c = np.maximum(0.0, _CORNER - t[thin])
+        c = _CORNER - t[thin]
         at = 4 * thin + k[thin]                           # the thin corners, in the quads' corner arrays
         g += _corner_area_gradient(xy, *(a[at] for a in self.corners), -2.0 * c / self.c0[at], n)
-        d, length = self.edge_vectors(xy)
         short = np.flatnonzero(length < _SHORT * self.l0)
-        if len(short) == 0:
-            return float(h @ h + c @ c), g
         e = _THIN * (1.0 - length[short] / (_SHORT * self.l0[short]))
         per = np.divide(e, self.l0[short] * length[short], out=np.zeros_like(e), where=length[short] > 0)
         dv = (-2.0 * _THIN / _SHORT) * per[:, None] * d[short]   # dP/dx_v (none along an edge of no length)
         a, b = self.edges[short, 0], self.edges[short, 1]
         for j in range(2):
             g[:, j] += np.bincount(b, dv[:, j], n) - np.bincount(a, dv[:, j], n)
-        return float(h @ h + c @ c + e @ e), g
+        return _Penalty(float(h @ h + c @ c + e @ e), g, settled)
+
+
+class _Penalty(NamedTuple):
+    """:meth:`_Folds.penalty`: its value, its gradient in the plan positions and whether they settled."""
+
+    value: float
+    gradient: np.ndarray
+    settled: bool
 
 
 def _corner_areas(xy: np.ndarray, u: np.ndarray, v: np.ndarray, p: np.ndarray) -> np.ndarray:
@@ -500,10 +510,10 @@ def _unfold(system: _ForceDensities, folds: _Folds, xy: np.ndarray, logq: np.nda
     corners and drop on those along the boundary. ``xy``: the positions of the last solve; returns the
     final ones (``system.base`` holds the densities)."""
     inner = system.interior
-    penalty, g = folds.penalty(xy)
+    penalty, g, settled = folds.penalty(xy)
     eta = 0.5
     for _ in range(_UNFOLD_STEPS):
-        if folds.settled(xy):
+        if settled:
             break
         grad = (system.base * system.density_gradient(xy, g))[inner]
         if not np.any(grad):
@@ -512,9 +522,9 @@ def _unfold(system: _ForceDensities, folds: _Folds, xy: np.ndarray, logq: np.nda
         while eta > 1e-6:
             system.base[inner] = np.exp(s - eta * grad / np.abs(grad).max())
             trial = system.solve(logq)
-            p_trial, g_trial = folds.penalty(trial)
+            p_trial, g_trial, settled_trial = folds.penalty(trial)
             if p_trial < penalty:
-                xy, penalty, g, eta = trial, p_trial, g_trial, min(1.5 * eta, 1.0)
+                xy, penalty, g, settled, eta = trial, p_trial, g_trial, settled_trial, min(1.5 * eta, 1.0)
                 break
             eta *= 0.5
         else:
