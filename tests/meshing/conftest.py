@@ -20,8 +20,8 @@ def qwh_layout():
 
 
 @pytest.fixture(scope="module")
-def pillow_layout():
-    path = ARCHITECTURE / "rv_pillow_pattern.json"
+def star_layout():
+    path = ARCHITECTURE / "rv_star_pattern.json"
     if not path.is_file():
         pytest.skip("shared architecture data not found")
     return edge_groups(decompose(load_domain(path)))

@@ -33,13 +33,14 @@ def test_shared_sides_are_stored_once(qwh_layout):
     assert (uses[boundary] == 1).all() and (uses[~boundary] == 2).all()
 
 
-def test_pillow_poles_are_the_centre_singularity(pillow_layout):
-    lay = pillow_layout
+def test_poles_at_a_singularity_share_their_sides_group(star_layout):
+    """rv_star_pattern's two three-sided patches have their pole at a singularity; the two sides at
+    the pole share an edge group (Figure 3: a quad with one side collapsed), the third is free."""
+    lay = star_layout
     graph = lay.decomposition.graph
-    assert [p.pole is not None for p in lay.patterns] == [True] * 3
-    poles = {p.corners[p.pole] for p in lay.patterns}
-    assert len(poles) == 1 and graph.node_type(poles.pop()) == "Singularity"
-    for pat in lay.patterns:  # the two sides at the pole share a group; the third side is free
+    fans = [p for p in lay.patterns if p.pole is not None]
+    assert len(fans) == 2 and {graph.node_type(p.corners[p.pole]) for p in fans} == {"Singularity"}
+    for pat in fans:
         k = pat.pole
         assert lay.group_of[pat.sides[k - 1][0]] == lay.group_of[pat.sides[k][0]]
 

@@ -24,8 +24,6 @@ RINGS = ("the rings round its point features are left as smoothing made them (mo
          "tessellation round the point loads: fig6's rhythm-4 voussoirs 1.26x the rhythm-2 ones, not 1.3x); the "
          "optimiser reached 0.379 there, under the fan bound 0.395")
 MIN_MISSES = {
-    "rv_pillow_pattern": FAN + " (44 triangles in the 180 degrees of the centre pole: 0.085; a pole that wide "
-                               "is not split into quads, vaultgram.meshing.splits.MAX_SPLIT_ANGLE)",
     "two_holes_five_points": FAN + " (an inner point feature's fan: 0.085)",
     "rv_lips_pattern": FAN + " (27 triangles round its inner point feature: 0.266)",
     "square_point_loads": FAN + " (39 triangles round a point load: 0.185)",
@@ -44,7 +42,10 @@ MIN_PASS = ["armadillo_vault", "armadillo_vault_plan", "british_museum_map", "hi
             "rv_star_pattern", "l_shape", "quad_with_hole", "fig5_boundary_points",
             # since a patch corner on a bend of the outline slides (vaultgram.meshing.fidelity): a row
             # of skewed quads beside a bay (0.233) and beside the outline (0.224) before
-            "multiple_lobes", "rolex_learning_centre"]
+            "multiple_lobes", "rolex_learning_centre",
+            # since a plan without corners whose skeleton is one singularity is an O-grid (rules/topology.vgr):
+            # 44 triangles in the 180 degrees of its centre pole before (0.085)
+            "rv_pillow_pattern"]
 LAYOUT = "skewed quads all over (median scaled Jacobian below 0.9): the patch layout, not smoothing"
 MEAN_MISSES = {
     "mexico_airport": LAYOUT, "multiple_lobes": LAYOUT, "rv_star_pattern": LAYOUT,

@@ -108,7 +108,8 @@ def split_patterns(layout: Layout, counts) -> frozenset:
 def _whole_poles(layout: Layout, side_count: np.ndarray, split: set) -> set:
     """``split`` without the splits at a pole that keeps another fan below the floor (too wide, too
     sharp or with counts that do not allow it): that fan bounds the pole's corners anyway, so the
-    quads would gain nothing there (rv_pillow: its 19 degree triangle beside a fan of 44 in 180)."""
+    quads would gain nothing there (an oval's centre before it became an O-grid, rules/topology.vgr: a 19 degree
+    triangle beside a fan of 44 in 180)."""
     def pole(k):
         return layout.patterns[k].corners[layout.patterns[k].pole]
 

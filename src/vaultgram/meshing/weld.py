@@ -33,6 +33,7 @@ from vaultgram.meshing.coons import coons_grid, grid_faces
 from vaultgram.meshing.layout import Layout, PatchPattern, is_feature_node, kept_points, side_anchors
 from vaultgram.meshing.quadmesh import QuadMesh, SlideConstraint
 from vaultgram.meshing.splits import split_patterns, split_points
+from vaultgram.topology.types import CURVE_POINT, SKELETON_NODES
 
 __all__ = ["weld"]
 
@@ -349,6 +350,18 @@ def _corner_labels(layout: Layout, vid_of_node: dict[int, int],
     return corner, turning
 
 
+def _singular_node(dec, n: int, kind: str) -> bool:
+    """Whether decomposition node ``n`` is singular: a skeleton vertex (§3.1: "mesh singularities
+    corresponding to the ones of the topological skeleton"), or a patch corner inside the domain
+    that a rule made (neither a feature nor on a curve) where other than four plan edges meet (the
+    central quad of an O-grid, rules/topology.vgr)."""
+    if kind in SKELETON_NODES:
+        return True
+    disc, schema = dec.disc, dec.graph.schema
+    on_ring = 0 <= n < disc.n_points and disc.ring[n] >= 0
+    return not (on_ring or is_feature_node(dec, n) or schema.is_subtype(kind, CURVE_POINT)) and dec.valence(n) != 4
+
+
 def _node_labels(layout: Layout, vid_of_node: dict[int, int], disc_point: np.ndarray) -> tuple:
     """``(feature, singular, extremity)``: point features (§4.1, at patch corners and at boundary
     samples), vertices at singular nodes of the decomposition, and curve extremities (§4.2)."""
@@ -359,7 +372,7 @@ def _node_labels(layout: Layout, vid_of_node: dict[int, int], disc_point: np.nda
     for n, v in vid_of_node.items():
         kind = graph.node_type(n)
         feature[v] = is_feature_node(dec, n) and kind != "CurveExtremity"
-        singular[v] = kind in ("Singularity", "LoopVertex")
+        singular[v] = _singular_node(dec, n, kind)
         extremity[v] = kind == "CurveExtremity"
     on_disc = disc_point >= 0
     is_fp = np.zeros(disc.n_points, dtype=bool)

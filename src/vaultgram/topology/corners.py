@@ -26,8 +26,8 @@ from vaultgram.geometry.polygons import cross_z, regular_valence, signed_angles
 from vaultgram.topology.statecache import per_state
 from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE_POINT, FEATURE_POINT
 
-__all__ = ["rectilinear_rings", "chord_feet", "ray_hit", "boundary_angle", "rectilinear_plan", "chord_end",
-           "segments_cross", "segment_crossing", "RIGHT_ANGLE_TOLERANCE"]
+__all__ = ["rectilinear_rings", "chord_feet", "ray_hit", "graph_rings", "boundary_angle", "rectilinear_plan",
+           "chord_end", "segments_cross", "segment_crossing", "RIGHT_ANGLE_TOLERANCE"]
 
 #: Degrees by which a corner of a rectilinear plan may differ from 90, 180 or 270.
 RIGHT_ANGLE_TOLERANCE = 1.0
@@ -122,7 +122,7 @@ def chord_feet(rings) -> list[np.ndarray]:
 _RINGS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> {state: (rings, nodes, memo)}
 
 
-def _graph_rings(graph) -> tuple[list, list]:
+def graph_rings(graph) -> tuple[list, list]:
     """The rings of the rule graph's boundary vertices, in ring order: their positions and node ids
     (computed once per state of the graph)."""
     rings, nodes, _ = per_state(_RINGS, graph, _rings_now)
@@ -130,7 +130,7 @@ def _graph_rings(graph) -> tuple[list, list]:
 
 
 def _rings_now(graph) -> tuple[list, list, dict]:
-    """The rings of :func:`_graph_rings` worked out, with each vertex's place and angle."""
+    """The rings of :func:`graph_rings` worked out, with each vertex's place and angle."""
     by_ring: dict[int, list] = {}
     for n in graph.of_types(graph.schema.subtypes(BOUNDARY_VERTEX)):
         by_ring.setdefault(graph.get(n, "ring"), []).append((graph.get(n, "index"), n))
@@ -159,7 +159,7 @@ def rectilinear_plan(graph) -> bool:
         featured = any(True for _ in graph.of_types(graph.schema.subtypes(FEATURE_POINT)))
         featured |= any(True for _ in graph.of_types(graph.schema.subtypes(CURVE_POINT)))
         featured |= any(graph.get(n, "feature") for n in graph.of_types(graph.schema.subtypes(BOUNDARY_VERTEX)))
-        memo["rectilinear"] = not featured and rectilinear_rings(_graph_rings(graph)[0])
+        memo["rectilinear"] = not featured and rectilinear_rings(graph_rings(graph)[0])
     return memo["rectilinear"]
 
 
@@ -176,7 +176,7 @@ def chord_end(graph, r: int, side: int) -> int:
 
 def _chord_end(graph, r: int, side: int) -> int:
     """:func:`chord_end`, computed."""
-    rings, nodes = _graph_rings(graph)
+    rings, nodes = graph_rings(graph)
     ring_of, k = _cache(graph)["where"][r]
     ring = rings[ring_of]
     p = ring[k]

@@ -1,0 +1,105 @@
+"""Smooth convex plans as O-grids: four quads round a quad at the centre (issue 12).
+
+A plan whose outline has no corner (a disc, an oval, a regular polygon of many sides) has a
+degenerate skeleton: every branch ends at a corner face and is pruned (Figure 2d), leaving one
+singularity with no branch at all. Its dual face is then any three boundary points (on a disc the
+Delaunay triangulation (§3.1) may take two close together), and rebranching (Figure 2e) cuts the
+plan into three-sided patches whose common pole at the centre is a fan of as many triangles as the
+boundary has edges: rv_pillow_pattern got rebranches 19, 161 and 180 degrees apart and a pole of
+89 triangles of 4 degrees (scaled Jacobian 0.07); ovals of every aspect 90-108 triangles. Two of the
+pillow's patches were too wide at the pole for the three-quad split of :mod:`vaultgram.meshing.splits`,
+and spreading the rebranches evenly does not help: a 120 degree sector's arc is longer than twice
+its radius, so its split puts the inner point one edge from the boundary.
+
+The structured mesh of such a plan is the O-grid: a quad at the centre and four quads between it
+and the boundary. Its corners lie on four rays from the singularity, a quarter turn apart and at 45
+degrees to the outline's principal axes (so that on an oval the central quad is a rectangle along
+them), :data:`INNER` of the way to the boundary points the rays meet. Every patch is four-sided, the
+central quad's four corners are the only singular vertices (valence 3) and none is on the boundary.
+``rules/topology.vgr`` draws it (rule ``o_grid``) with :func:`o_grid_plan`, which recognises such a
+plan, and :func:`o_grid_foot`, which picks the four boundary points.
+"""
+
+from __future__ import annotations
+
+import math
+import weakref
+
+import numpy as np
+
+from vaultgram.topology.corners import graph_rings, ray_hit
+from vaultgram.topology.statecache import per_state
+from vaultgram.topology.types import CORNER, CURVE_POINT, FEATURE_POINT
+
+__all__ = ["INNER", "o_grid_plan", "o_grid_foot", "principal_axes", "register_o_grid_helpers"]
+
+#: The rule helpers' answers, per state of the rule graph (the rule asks for the same feet at
+#: every boundary point it tries).
+_ANSWERS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+#: Where the central quad's corners lie along the rays from the centre to the boundary (rules/topology.vgr
+#: writes the same number): at 0.5 the quads at the centre are half as wide as those at the boundary
+#: on a disc; at 0.6 the pillow plan meshes with a worst scaled Jacobian of 0.81 (0.80 at 0.5).
+INNER = 0.6
+
+
+def principal_axes(ring: np.ndarray) -> np.ndarray:
+    """The principal axes of a ring's points, scaled by their spread: rows ``sigma_1 e_1`` and
+    ``sigma_2 e_2`` (``sigma`` the root mean square distance from the centroid along each axis), the
+    larger first. A ring without a preferred direction (the two second moments within 1e-9: a disc, a
+    regular polygon) takes the x and y axes.
+
+    >>> t = np.linspace(0, 2 * np.pi, 64, endpoint=False)
+    >>> (np.round(principal_axes(np.column_stack([2 * np.cos(t), np.sin(t)])), 6) + 0.0).tolist()
+    [[1.414214, 0.0], [0.0, 0.707107]]
+    >>> axes = principal_axes(np.column_stack([np.cos(t) - np.sin(t), np.cos(t) + 2 * np.sin(t)]))
+    >>> round(math.degrees(math.atan2(axes[0, 1], axes[0, 0])) % 180, 1)
+    106.8
+    """
+    d = ring - ring.mean(axis=0)
+    sxx, syy, sxy = (float(a @ b) / len(d) for a, b in ((d[:, 0], d[:, 0]), (d[:, 1], d[:, 1]), (d[:, 0], d[:, 1])))
+    gap = math.hypot(sxx - syy, 2 * sxy)
+    angle = 0.0 if gap <= 1e-9 * (sxx + syy) else 0.5 * math.atan2(2 * sxy, sxx - syy)
+    c, s = math.cos(angle), math.sin(angle)
+    major, minor = (sxx + syy + gap) / 2, max((sxx + syy - gap) / 2, 0.0)
+    return np.array([[c, s], [-s, c]]) * np.sqrt([[major], [minor]])
+
+
+def o_grid_plan(graph) -> bool:
+    """Whether the rule graph's plan is one ring without corners, with no point or curve feature
+    inside: the plans whose skeleton can shrink to one singularity without a branch."""
+    memo = per_state(_ANSWERS, graph, lambda g: {})
+    if "plan" not in memo:
+        rings, _ = graph_rings(graph)
+        kinds = frozenset().union(*(graph.schema.subtypes(t) for t in (FEATURE_POINT, CURVE_POINT, CORNER)))
+        memo["plan"] = len(rings) == 1 and next(iter(graph.of_types(kinds)), None) is None
+    return memo["plan"]
+
+
+def o_grid_foot(graph, s: int, k: int) -> int:
+    """The ring point nearest to where the ray from ``s`` meets the ring, the ray along
+    ``sigma_1 cos(t) e_1 + sigma_2 sin(t) e_2`` with ``t`` = 45 + 90 ``k`` degrees and the outline's
+    principal axes (:func:`principal_axes`): on an ellipse centred at ``s``, the points of parameter
+    45, 135, 225 and 315 degrees, so that the central quad is a rectangle of the ellipse's proportions.
+    ``s`` itself where the ray meets no ring (``s`` outside the plan)."""
+    memo = per_state(_ANSWERS, graph, lambda g: {})
+    if (s, k) not in memo:
+        memo[(s, k)] = _foot(graph, s, k)
+    return memo[(s, k)]
+
+
+def _foot(graph, s: int, k: int) -> int:
+    """:func:`o_grid_foot`, computed."""
+    rings, nodes = graph_rings(graph)
+    ring, centre = rings[0], np.asarray(graph.get(s, "pos"), dtype=float)
+    turn = math.pi / 4 + k * math.pi / 2
+    hit = ray_hit([ring], centre, np.array([math.cos(turn), math.sin(turn)]) @ principal_axes(ring))
+    if hit is None:
+        return s
+    return nodes[0][int(np.argmin(np.hypot(*(ring - hit).T)))]
+
+
+def register_o_grid_helpers(f) -> None:
+    """Register :func:`o_grid_plan` and :func:`o_grid_foot` for the rules (they read the whole ring)."""
+    f.register("o_grid_plan", o_grid_plan, (), "bool", uses_graph=True, local=False)
+    f.register("o_grid_foot", o_grid_foot, ("node", "int"), "node", uses_graph=True, local=False)
