@@ -15,7 +15,8 @@ The structured mesh of such a plan is the O-grid: a quad at the centre and four 
 and the boundary. Its corners lie on four rays from the singularity, a quarter turn apart and at 45
 degrees to the outline's principal axes (so that on an oval the central quad is a rectangle along
 them), :data:`INNER` of the way to the boundary points the rays meet. Every patch is four-sided, the
-central quad's four corners are the only singular vertices (valence 3) and none is on the boundary.
+central quad's four corners are the only singular vertices (valence 3) and none is on the boundary:
+the plan's corners lie on the patches' sides (rule ``soften_o_grid_corner``), with two faces each.
 ``rules/topology.vgr`` draws it (rule ``o_grid``) with :func:`o_grid_plan`, which recognises such a
 plan, and :func:`o_grid_foot`, which picks the four boundary points.
 """
@@ -27,7 +28,8 @@ import weakref
 
 import numpy as np
 
-from vaultgram.topology.corners import graph_rings, ray_hit
+from vaultgram.geometry.polygons import regular_valence
+from vaultgram.topology.corners import boundary_angle, graph_rings, ray_hit
 from vaultgram.topology.statecache import per_state
 from vaultgram.topology.types import CORNER, CURVE_POINT, FEATURE_POINT
 
@@ -66,13 +68,17 @@ def principal_axes(ring: np.ndarray) -> np.ndarray:
 
 
 def o_grid_plan(graph) -> bool:
-    """Whether the rule graph's plan is one ring without corners, with no point or curve feature
-    inside: the plans whose skeleton can shrink to one singularity without a branch."""
+    """Whether the rule graph's plan is one ring with no point or curve feature inside and no corner
+    sharper than 135 degrees: the plans whose skeleton can shrink to one singularity without a branch,
+    and whose corners are regular as the side points of an O-grid's patches (valence 3 from 135 to
+    225 degrees, :func:`~vaultgram.geometry.polygons.regular_valence`: a regular octagon's)."""
     memo = per_state(_ANSWERS, graph, lambda g: {})
     if "plan" not in memo:
         rings, _ = graph_rings(graph)
-        kinds = frozenset().union(*(graph.schema.subtypes(t) for t in (FEATURE_POINT, CURVE_POINT, CORNER)))
-        memo["plan"] = len(rings) == 1 and next(iter(graph.of_types(kinds)), None) is None
+        inside = frozenset().union(*(graph.schema.subtypes(t) for t in (FEATURE_POINT, CURVE_POINT)))
+        corners = [boundary_angle(graph, c) for c in graph.of_types(graph.schema.subtypes(CORNER))]
+        memo["plan"] = (len(rings) == 1 and next(iter(graph.of_types(inside)), None) is None
+                        and bool((regular_valence(np.array(corners, dtype=float)) == 3).all()))
     return memo["plan"]
 
 
