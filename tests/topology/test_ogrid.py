@@ -78,12 +78,13 @@ def test_the_central_quad_lies_three_fifths_of_the_way_to_the_boundary():
        x=st.floats(-100, 100), y=st.floats(-100, 100), squash=st.floats(0.4, 1.0), wobble=st.floats(0.0, 0.15))
 def test_smooth_plans_without_corners_are_o_grids(n, radius, turn, x, y, squash, wobble):
     """Regular polygons of 8 sides or more (corners of 135 degrees and wider), ellipses of aspect
-    0.4-1 and lobed ovals, anywhere and at any size, where no vertex turns by more than 44 degrees (a
-    corner sharper than 136: a plan with one keeps its layout)."""
+    0.4-1 and lobed ovals, anywhere and at any size. The ovals are drawn finely enough that no vertex
+    turns by 25 degrees (coarser, their sharper ends are corners that give the skeleton a branch
+    between two singularities, and the medial-axis layout stays)."""
     outer = np.array(oval(n, radius, (x, y), turn, squash, wobble))
     d_in, d_out = outer - np.roll(outer, 1, axis=0), np.roll(outer, -1, axis=0) - outer
     turning = np.degrees(np.abs(np.arctan2(cross_z(d_in, d_out), (d_in * d_out).sum(axis=1))))
-    assume(turning.max() < 44 or (squash == 1.0 and wobble == 0.0))
+    assume(turning.max() < 25 or (squash == 1.0 and wobble == 0.0))
     assert_o_grid(domain_from_dict({"name": "oval", "outer": outer.tolist()}), min_quality=0.3)  # issue 12
 
 
@@ -115,7 +116,8 @@ def test_plans_with_corners_holes_or_features_keep_their_layout(plan):
                          ids=lambda p: p.stem)
 def test_which_plans_are_o_grids(path):
     """Of the shared plans and examples only the pillow (a 24-gon) is an O-grid: before, a fan of 89
-    triangles of 4 degrees at its centre (scaled Jacobian 0.07)."""
+    triangles of 4 degrees at its centre (scaled Jacobian 0.07). None has a skeleton of one branch
+    (rules/topology.vgr, cut_lone_branch)."""
     if not path.exists():
         pytest.skip(f"plan not found: {path}")
     if path.stem.startswith("skeleton"):
@@ -124,4 +126,6 @@ def test_which_plans_are_o_grids(path):
     if path.stem == "rv_pillow_pattern":
         assert_o_grid(domain, min_quality=0.75)
     else:
-        assert not o_grid_corners(decompose(domain))
+        dec = decompose(domain)
+        assert not o_grid_corners(dec)
+        assert not [n for n in dec.graph.nodes() if dec.graph.node_type(n) == "BranchCut"]

@@ -21,6 +21,7 @@ from vaultgram.errors import RuleError
 from vaultgram.geometry.polygons import interior_angle, regular_valence, signed_area
 from vaultgram.geometry.polylines import arc_lengths, point_at_length
 from vaultgram.topology import corners
+from vaultgram.topology.lone_branch import register_lone_branch_helpers
 from vaultgram.topology.ogrid import register_o_grid_helpers
 from vaultgram.topology.patches import (
     enclosed_holes,
@@ -461,6 +462,7 @@ def vault_functions() -> Functions:
         f.register(name, fn, (), returns, uses_graph=True, local=False)
     _register_corner_helpers(f)
     register_o_grid_helpers(f)
+    register_lone_branch_helpers(f)
     register_strip_helpers(f)
     return f
 

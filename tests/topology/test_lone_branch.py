@@ -1,0 +1,102 @@
+"""A skeleton that is one branch between two corners (rule ``cut_lone_branch`` of rules/topology.vgr,
+vaultgram.topology.lone_branch): a half disc, a lens, a D-shaped apse. Before, the branch left two
+faces of two corners each and ``decompose`` refused the plan; now four quads, the two cut points of
+the branch their only singular vertices (valence 3), none on the boundary."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from vaultgram.domain import domain_from_dict
+from vaultgram.meshing.quality import mesh_stats
+from vaultgram.pipeline import decompose, mesh_decomposition
+from vaultgram.topology.lone_branch import branch_cut, branch_piece
+
+
+def apse(depth: float = 0.0, radius: float = 5.0, n: int = 24, turn: float = 0.0, centre=(0.0, 0.0)) -> list:
+    """A straight wall from (0, r) to (0, -r) closed by a half circle of radius r whose centre lies
+    ``depth`` in front of the wall (0: a half disc), turned by ``turn`` about the origin and moved to
+    ``centre``."""
+    t = np.linspace(-math.pi / 2, math.pi / 2, n)
+    pts = np.column_stack([depth + radius * np.cos(t), radius * np.sin(t)])
+    if depth > 0:
+        pts = np.vstack([pts, [[0.0, radius], [0.0, -radius]]])
+    c, s = math.cos(turn), math.sin(turn)
+    return (pts @ np.array([[c, s], [-s, c]]) + centre).tolist()
+
+
+def lens(bulge: float = 0.5, n: int = 24) -> list:
+    """Two parabolic arcs from (-5, 0) to (5, 0), ``5 * bulge`` high in the middle."""
+    x = np.linspace(-5, 5, n)
+    top = np.column_stack([x, bulge * (25 - x ** 2) / 5])
+    bottom = np.column_stack([x, -bulge * (25 - x ** 2) / 5])
+    return np.vstack([top[::-1], bottom[1:-1]]).tolist()
+
+
+def cuts(dec) -> list[int]:
+    return [n for n in dec.graph.nodes() if dec.graph.node_type(n) == "BranchCut"]
+
+
+def assert_cut_in_three(domain, min_quality: float = 0.3) -> None:
+    """Four four-sided patches, two BranchCut nodes of valence 3 (the middle third of the branch and
+    a rebranch to each side); the mesh has exactly those two interior singular vertices, no boundary
+    singularity, no triangle, a disc's Euler characteristic and no quad below ``min_quality``."""
+    dec = decompose(domain, 0.03)
+    assert sorted(p.n_sides for p in dec.patches) == [4] * 4
+    assert [dec.valence(n) for n in cuts(dec)] == [3, 3]
+    mesh = mesh_decomposition(dec)
+    stats = mesh_stats(mesh, domain)
+    assert stats["interior_singular_valences"] == [3, 3]
+    assert stats["boundary_singular"] == 0 and stats["triangles"] == 0 and stats["inverted_faces"] == 0
+    edges = {tuple(sorted((f[k], f[(k + 1) % len(f)]))) for f in mesh.faces for k in range(len(f))}
+    assert len(mesh.vertices) - len(edges) + len(mesh.faces) == 1
+    assert stats["min_scaled_jacobian"] > min_quality
+
+
+@pytest.mark.parametrize("outer", [apse(), apse(depth=3.0), lens(), lens(1.0)],
+                         ids=["half-disc", "apse", "lens", "fat-lens"])
+def test_plans_whose_skeleton_is_one_branch_are_four_quads(outer):
+    assert_cut_in_three(domain_from_dict({"name": "plan", "outer": outer}), min_quality=0.7)
+
+
+def test_the_cut_points_lie_on_the_branch_at_its_thirds_and_touch_both_sides():
+    """On the half disc of radius 5 the medial axis is the parabola x = (25 - y^2) / 10: the cut points
+    lie on it (within the discretisation), symmetric about the x axis, and each is linked to a point
+    of the wall (x = 0) and one of the arc, both about as far from it as its distance to the wall."""
+    dec = decompose(domain_from_dict({"name": "half-disc", "outer": apse()}), 0.03)
+    g = dec.graph
+    pos = np.array([g.get(n, "pos") for n in cuts(dec)])
+    assert np.allclose(pos[:, 0], (25 - pos[:, 1] ** 2) / 10, atol=0.1)
+    assert np.isclose(pos[0, 1], -pos[1, 1], atol=0.1) and np.isclose(pos[0, 0], pos[1, 0], atol=0.1)
+    for n, p in zip(cuts(dec), pos):
+        feet = np.array([g.get(g.other(e, n), "pos") for e in g.incident(n, ["Rebranch"])])
+        on_wall = np.isclose(feet[:, 0], 0)
+        assert on_wall.sum() == 1
+        assert np.allclose(np.hypot(*(feet - p).T), p[0], rtol=0.08)
+
+
+def test_branch_piece_is_the_part_between_two_fractions_of_the_length():
+    """The helper behind the kept third, on a branch of the half disc: the piece between a third and
+    two thirds of the length has a third of the length and starts and ends at the cut points."""
+    dec = decompose(domain_from_dict({"name": "half-disc", "outer": apse()}), 0.03)
+    g = dec.graph
+    b = next(e for e in g.incident(cuts(dec)[0], ["Branch"]))
+    whole = np.array(branch_piece(g, b, 0.0, 1.0))
+    third = np.array(branch_piece(g, b, 1 / 3, 2 / 3))
+    assert np.isclose(np.hypot(*np.diff(third, axis=0).T).sum(), np.hypot(*np.diff(whole, axis=0).T).sum() / 3)
+    assert np.allclose([third[0], third[-1]], [branch_cut(g, b, 1 / 3), branch_cut(g, b, 2 / 3)])
+    assert np.allclose([whole[0], whole[-1]], [g.get(n, "pos") for n in g.ends(b)])
+
+
+@settings(max_examples=12, deadline=None)
+@given(depth=st.one_of(st.just(0.0), st.floats(0.5, 8.0)), radius=st.floats(0.5, 40.0), turn=st.floats(0, 2 * math.pi),
+       x=st.floats(-100, 100), y=st.floats(-100, 100), n=st.integers(16, 64))
+def test_apses_of_any_depth_size_and_place_are_four_quads(depth, radius, turn, x, y, n):
+    """A half circle in front of a straight wall, from a half disc (depth 0) to a deep apse (depth
+    1.6 r: a long straight run on either side before the arc)."""
+    assert_cut_in_three(domain_from_dict({"name": "apse", "outer": apse(depth * radius / 5, radius, n, turn, (x, y))}))
