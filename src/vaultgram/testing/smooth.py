@@ -1,0 +1,74 @@
+"""Plans whose skeleton degenerates, for the tests of the O-grid and lone-branch rules
+(``rules/topology.vgr``) and the quality benchmarks.
+
+A plan without corners sharper than 135 degrees (a disc, an oval, a regular polygon of 8 sides or
+more) has a skeleton of one singularity without a branch; a plan with two sharp corners and a smooth
+outline between them (a half disc, a lens, a D-shaped apse) has a skeleton of one branch from corner
+to corner. :data:`SMOOTH_PLANS` names one of each kind; :func:`oval`, :func:`apse` and :func:`lens`
+draw them.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["oval", "apse", "lens", "SMOOTH_PLANS"]
+
+
+def oval(n: int, radius: float = 5.0, centre=(0.0, 0.0), turn: float = 0.0, squash: float = 1.0,
+         wobble: float = 0.0) -> list:
+    """``n`` points counter-clockwise round an ellipse of axes ``radius`` and ``squash * radius`` (a
+    regular ``n``-gon at 1), turned by ``turn`` radians about ``centre``; ``wobble`` adds a three-lobed
+    wave to the radius.
+
+    >>> np.round(oval(4), 9).tolist()
+    [[5.0, 0.0], [0.0, 5.0], [-5.0, 0.0], [-0.0, -5.0]]
+    """
+    t = 2 * math.pi * np.arange(n) / n
+    r = radius * (1 + wobble * np.cos(3 * t))
+    x, y = r * np.cos(t), squash * r * np.sin(t)
+    c, s = math.cos(turn), math.sin(turn)
+    return np.column_stack([centre[0] + c * x - s * y, centre[1] + s * x + c * y]).tolist()
+
+
+def apse(depth: float = 0.0, radius: float = 5.0, n: int = 24, turn: float = 0.0, centre=(0.0, 0.0)) -> list:
+    """A half circle of radius ``radius`` (``n`` points) in front of a straight wall from
+    ``(0, radius)`` to ``(0, -radius)``, its centre ``depth`` in front of the wall (0: a half disc),
+    turned by ``turn`` radians about the origin and moved by ``centre``.
+
+    >>> len(apse()), len(apse(depth=2.0))
+    (24, 26)
+    """
+    t = np.linspace(-math.pi / 2, math.pi / 2, n)
+    pts = np.column_stack([depth + radius * np.cos(t), radius * np.sin(t)])
+    if depth > 0:
+        pts = np.vstack([pts, [[0.0, radius], [0.0, -radius]]])
+    c, s = math.cos(turn), math.sin(turn)
+    return (pts @ np.array([[c, s], [-s, c]]) + centre).tolist()
+
+
+def lens(bulge: float = 0.5, n: int = 24) -> list:
+    """Two parabolic arcs of ``n`` points from (-5, 0) to (5, 0), ``5 * bulge`` high in the middle.
+
+    >>> len(lens()), max(y for _, y in lens(n=5)), min(y for _, y in lens(bulge=1.0, n=5))
+    (46, 2.5, -5.0)
+    """
+    x = np.linspace(-5, 5, n)
+    top = np.column_stack([x, bulge * (25 - x ** 2) / 5])
+    bottom = np.column_stack([x, -bulge * (25 - x ** 2) / 5])
+    return np.vstack([top[::-1], bottom[1:-1]]).tolist()
+
+
+#: Plans of a degenerate skeleton by name, as domain dicts: one singularity without a branch (an
+#: O-grid) or one branch between two corners (cut in three).
+SMOOTH_PLANS = {
+    "disc": {"outer": oval(48)},
+    "octagon": {"outer": oval(8)},
+    "ellipse": {"outer": oval(64, squash=0.5, turn=0.3)},
+    "egg": {"outer": oval(64, squash=0.7, wobble=0.1)},
+    "half_disc": {"outer": apse()},
+    "apse": {"outer": apse(depth=3.0)},
+    "lens": {"outer": lens()},
+}
