@@ -2,7 +2,7 @@
 (``rules/topology.vgr``) and the quality benchmarks.
 
 A plan without corners sharper than 135 degrees (a disc, an oval, a regular polygon of 8 sides or
-more) has a skeleton of one singularity without a branch; a plan with two sharp corners and a smooth
+more, a stadium) has a skeleton of one singularity without a branch; a plan with two sharp corners and a smooth
 outline between them (a half disc, a lens, a D-shaped apse) has a skeleton of one branch from corner
 to corner. :data:`SMOOTH_PLANS` names one of each kind; :func:`oval`, :func:`apse` and :func:`lens`
 draw them.
@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-__all__ = ["oval", "apse", "lens", "SMOOTH_PLANS"]
+__all__ = ["oval", "apse", "stadium", "lens", "SMOOTH_PLANS"]
 
 
 def oval(n: int, radius: float = 5.0, centre=(0.0, 0.0), turn: float = 0.0, squash: float = 1.0,
@@ -49,6 +49,17 @@ def apse(depth: float = 0.0, radius: float = 5.0, n: int = 24, turn: float = 0.0
     return (pts @ np.array([[c, s], [-s, c]]) + centre).tolist()
 
 
+def stadium(length: float = 20.0, radius: float = 2.0, n: int = 24) -> list:
+    """Two half circles of ``n`` points and radius ``radius`` joined by straight sides ``length`` long.
+
+    >>> pts = np.array(stadium()); np.round(pts.min(axis=0), 1).tolist(), np.round(pts.max(axis=0), 1).tolist()
+    ([-12.0, -2.0], [12.0, 2.0])
+    """
+    t = np.linspace(-math.pi / 2, math.pi / 2, n)
+    right = np.column_stack([length / 2 + radius * np.cos(t), radius * np.sin(t)])
+    return np.vstack([right, -right]).tolist()
+
+
 def lens(bulge: float = 0.5, n: int = 24) -> list:
     """Two parabolic arcs of ``n`` points from (-5, 0) to (5, 0), ``5 * bulge`` high in the middle.
 
@@ -68,6 +79,7 @@ SMOOTH_PLANS = {
     "octagon": {"outer": oval(8)},
     "ellipse": {"outer": oval(64, squash=0.5, turn=0.3)},
     "egg": {"outer": oval(64, squash=0.7, wobble=0.1)},
+    "stadium": {"outer": stadium()},
     "half_disc": {"outer": apse()},
     "apse": {"outer": apse(depth=3.0)},
     "lens": {"outer": lens()},

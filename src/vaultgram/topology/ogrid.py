@@ -1,24 +1,28 @@
-"""Smooth convex plans as O-grids: four quads round a quad at the centre (issue 12).
+"""Smooth plans as O-grids: four quads round a quad at the centre (issue 12).
 
-A plan whose outline has no corner (a disc, an oval, a regular polygon of many sides) has a
-degenerate skeleton: every branch ends at a corner face and is pruned (Figure 2d), leaving one
-singularity with no branch at all. Its dual face is then any three boundary points (on a disc the
-Delaunay triangulation (§3.1) may take two close together), and rebranching (Figure 2e) cuts the
-plan into three-sided patches whose common pole at the centre is a fan of as many triangles as the
-boundary has edges: rv_pillow_pattern got rebranches 19, 161 and 180 degrees apart and a pole of
-89 triangles of 4 degrees (scaled Jacobian 0.07); ovals of every aspect 90-108 triangles. Two of the
-pillow's patches were too wide at the pole for the three-quad split of :mod:`vaultgram.meshing.splits`,
-and spreading the rebranches evenly does not help: a 120 degree sector's arc is longer than twice
-its radius, so its split puts the inner point one edge from the boundary.
+A plan whose outline has no corner sharper than 135 degrees (a disc, an oval, a stadium, a regular
+polygon of 8 sides or more) has a degenerate skeleton: every branch ends at a corner face and is
+pruned (Figure 2d), leaving one singularity with no branch at all. Its dual face is then any three
+boundary points (on a disc the Delaunay triangulation (§3.1) may take two close together), and
+rebranching (Figure 2e) cuts the plan into three-sided patches whose common pole at the centre is a
+fan of as many triangles as the boundary has edges: rv_pillow_pattern got rebranches 19, 161 and
+180 degrees apart and a pole of 89 triangles of 4 degrees (scaled Jacobian 0.07); ovals of every
+aspect 90-108 triangles. Two of the pillow's patches were too wide at the pole for the three-quad
+split of :mod:`vaultgram.meshing.splits`, and spreading the rebranches evenly does not help: a 120
+degree sector's arc is longer than twice its radius, so its split puts the inner point one edge
+from the boundary. A regular octagon to 12-gon got one patch per corner round a pole of valence n,
+each corner (135-150 degrees, regular with two faces) with one face: n boundary singularities.
 
-The structured mesh of such a plan is the O-grid: a quad at the centre and four quads between it
-and the boundary. Its corners lie on four rays from the singularity, a quarter turn apart and at 45
-degrees to the outline's principal axes (so that on an oval the central quad is a rectangle along
-them), :data:`INNER` of the way to the boundary points the rays meet. Every patch is four-sided, the
-central quad's four corners are the only singular vertices (valence 3) and none is on the boundary:
-the plan's corners lie on the patches' sides (rule ``soften_o_grid_corner``), with two faces each.
-``rules/topology.vgr`` draws it (rule ``o_grid``) with :func:`o_grid_plan`, which recognises such a
-plan, and :func:`o_grid_foot`, which picks the four boundary points.
+The structured mesh of such a plan is the O-grid: a quad at the centre and four quads between it and
+the boundary. Its corners lie on four rays from the outline's centroid, a quarter turn apart and at
+45 degrees to the outline's principal axes (so that on an oval the central quad is a rectangle along
+them), three fifths of the way to the boundary points the rays meet (at 0.5 the quads at the centre
+are half as wide as those at the boundary on a disc; at 0.6 the pillow plan's worst scaled Jacobian
+is 0.81, 0.80 at 0.5). Every patch is four-sided, the central quad's four corners are the only
+singular vertices (valence 3) and none is on the boundary: the plan's corners lie on the patches'
+sides (rule ``soften_o_grid_corner``), with two faces each. ``rules/topology.vgr`` draws it (rule
+``o_grid``) with :func:`o_grid_plan`, which recognises such a plan, :func:`o_grid_centre`,
+:func:`o_grid_foot`, which picks the four boundary points, and :func:`o_grid_clear`.
 """
 
 from __future__ import annotations
@@ -27,22 +31,20 @@ import math
 import weakref
 
 import numpy as np
+import shapely
 
 from vaultgram.geometry.polygons import regular_valence
 from vaultgram.topology.corners import boundary_angle, graph_rings, ray_hit
 from vaultgram.topology.statecache import per_state
 from vaultgram.topology.types import CORNER, CURVE_POINT, FEATURE_POINT
 
-__all__ = ["INNER", "o_grid_plan", "o_grid_foot", "principal_axes", "register_o_grid_helpers"]
+__all__ = ["o_grid_plan", "o_grid_centre", "o_grid_foot", "o_grid_clear", "principal_axes",
+           "register_o_grid_helpers"]
 
 #: The rule helpers' answers, per state of the rule graph (the rule asks for the same feet at
 #: every boundary point it tries).
 _ANSWERS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
-#: Where the central quad's corners lie along the rays from the centre to the boundary (rules/topology.vgr
-#: writes the same number): at 0.5 the quads at the centre are half as wide as those at the boundary
-#: on a disc; at 0.6 the pillow plan meshes with a worst scaled Jacobian of 0.81 (0.80 at 0.5).
-INNER = 0.6
 
 
 def principal_axes(ring: np.ndarray) -> np.ndarray:
@@ -69,43 +71,65 @@ def principal_axes(ring: np.ndarray) -> np.ndarray:
 
 def o_grid_plan(graph) -> bool:
     """Whether the rule graph's plan is one ring with no point or curve feature inside and no corner
-    sharper than 135 degrees: the plans whose skeleton can shrink to one singularity without a branch,
-    and whose corners are regular as the side points of an O-grid's patches (valence 3 from 135 to
-    225 degrees, :func:`~vaultgram.geometry.polygons.regular_valence`: a regular octagon's)."""
+    sharper than 135 degrees, its centroid inside it: the plans whose skeleton can shrink to one
+    singularity without a branch, and whose corners are regular as the side points of an O-grid's
+    patches (valence 3 from 135 to 225 degrees, :func:`~vaultgram.geometry.polygons.regular_valence`:
+    a regular octagon's)."""
     memo = per_state(_ANSWERS, graph, lambda g: {})
     if "plan" not in memo:
         rings, _ = graph_rings(graph)
         inside = frozenset().union(*(graph.schema.subtypes(t) for t in (FEATURE_POINT, CURVE_POINT)))
         corners = [boundary_angle(graph, c) for c in graph.of_types(graph.schema.subtypes(CORNER))]
         memo["plan"] = (len(rings) == 1 and next(iter(graph.of_types(inside)), None) is None
-                        and bool((regular_valence(np.array(corners, dtype=float)) == 3).all()))
+                        and bool((regular_valence(np.array(corners, dtype=float)) == 3).all())
+                        and shapely.Polygon(rings[0]).contains(shapely.Point(o_grid_centre(graph))))
     return memo["plan"]
 
 
-def o_grid_foot(graph, s: int, k: int) -> int:
-    """The ring point nearest to where the ray from ``s`` meets the ring, the ray along
-    ``sigma_1 cos(t) e_1 + sigma_2 sin(t) e_2`` with ``t`` = 45 + 90 ``k`` degrees and the outline's
-    principal axes (:func:`principal_axes`): on an ellipse centred at ``s``, the points of parameter
-    45, 135, 225 and 315 degrees, so that the central quad is a rectangle of the ellipse's proportions.
-    ``s`` itself where the ray meets no ring (``s`` outside the plan)."""
+def o_grid_centre(graph) -> tuple[float, float]:
+    """The centre of the O-grid: the centroid of the area inside the (outer) ring. Not the
+    singularity: on a stadium every point of the segment between its two half circles' centres has a
+    maximal circle of the same radius, and the discrete skeleton's one singularity may lie anywhere
+    on it."""
     memo = per_state(_ANSWERS, graph, lambda g: {})
-    if (s, k) not in memo:
-        memo[(s, k)] = _foot(graph, s, k)
-    return memo[(s, k)]
+    if "centre" not in memo:
+        c = shapely.Polygon(graph_rings(graph)[0][0]).centroid
+        memo["centre"] = (float(c.x), float(c.y))
+    return memo["centre"]
 
 
-def _foot(graph, s: int, k: int) -> int:
-    """:func:`o_grid_foot`, computed."""
+def o_grid_foot(graph, k: int) -> int:
+    """The ring point nearest to where the ray from :func:`o_grid_centre` meets the ring, the ray
+    along ``sigma_1 cos(t) e_1 + sigma_2 sin(t) e_2`` with ``t`` = 45 + 90 ``k`` degrees and the
+    outline's principal axes (:func:`principal_axes`): on an ellipse, the points of parameter 45, 135,
+    225 and 315 degrees, so that the central quad is a rectangle of the ellipse's proportions."""
+    memo = per_state(_ANSWERS, graph, lambda g: {})
+    if ("foot", k) not in memo:
+        rings, nodes = graph_rings(graph)
+        turn = math.pi / 4 + k * math.pi / 2
+        direction = np.array([math.cos(turn), math.sin(turn)]) @ principal_axes(rings[0])
+        hit = ray_hit(rings[:1], np.asarray(o_grid_centre(graph)), direction)  # inside: it meets the ring
+        memo[("foot", k)] = nodes[0][int(np.argmin(np.hypot(*(rings[0] - hit).T)))]
+    return memo[("foot", k)]
+
+
+def o_grid_clear(graph, inner: float) -> bool:
+    """Whether the O-grid's eight links lie inside the plan: the central quad's four sides and the
+    links from its corners (the fraction ``inner`` of the way from :func:`o_grid_centre` to the
+    feet) to the feet (:func:`o_grid_foot`). A plan that bends round its centroid (a bean) fails it."""
     rings, nodes = graph_rings(graph)
-    ring, centre = rings[0], np.asarray(graph.get(s, "pos"), dtype=float)
-    turn = math.pi / 4 + k * math.pi / 2
-    hit = ray_hit([ring], centre, np.array([math.cos(turn), math.sin(turn)]) @ principal_axes(ring))
-    if hit is None:
-        return s
-    return nodes[0][int(np.argmin(np.hypot(*(ring - hit).T)))]
+    ring, centre = rings[0], np.asarray(o_grid_centre(graph))
+    feet = ring[[nodes[0].index(o_grid_foot(graph, k)) for k in range(4)]]
+    quad = centre + inner * (feet - centre)
+    links = [[quad[k], quad[(k + 1) % 4]] for k in range(4)] + [[quad[k], feet[k]] for k in range(4)]
+    plan = shapely.Polygon(ring).buffer(1e-9 * np.ptp(ring, axis=0).max())  # the feet lie on its outline
+    return bool(plan.contains(shapely.MultiLineString(links)))
 
 
 def register_o_grid_helpers(f) -> None:
-    """Register :func:`o_grid_plan` and :func:`o_grid_foot` for the rules (they read the whole ring)."""
+    """Register :func:`o_grid_plan`, :func:`o_grid_centre`, :func:`o_grid_foot` and
+    :func:`o_grid_clear` for the rules (they read the whole ring)."""
     f.register("o_grid_plan", o_grid_plan, (), "bool", uses_graph=True, local=False)
-    f.register("o_grid_foot", o_grid_foot, ("node", "int"), "node", uses_graph=True, local=False)
+    f.register("o_grid_centre", o_grid_centre, (), "vec2", uses_graph=True, local=False)
+    f.register("o_grid_foot", o_grid_foot, ("int",), "node", uses_graph=True, local=False)
+    f.register("o_grid_clear", o_grid_clear, ("number",), "bool", uses_graph=True, local=False)
