@@ -1,6 +1,6 @@
 """vaultgram's quad meshes beside gmsh's on the same plans, at the same target edge length.
 
-Run: ``python benchmarks/quality_vs_gmsh.py [--plans shared,examples,rectilinear,jagged] [--json FILE]``
+Run: ``python benchmarks/quality_vs_gmsh.py [--plans shared,examples,rectilinear,jagged,smooth] [--json FILE]``
 (needs ``pip install 'vaultgram[gmsh]'``).
 
 For each plan vaultgram meshes with its defaults (:func:`vaultgram.pipeline.mesh_domain`); gmsh then
@@ -39,6 +39,7 @@ from vaultgram.io.meshfiles import mesh_from_json
 from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import mesh_domain
 from vaultgram.testing.orthogonal import RECTILINEAR_PLANS
+from vaultgram.testing.smooth import SMOOTH_PLANS
 
 MESHERS = {"frontal": {"Mesh.Algorithm": 8, "Mesh.RecombinationAlgorithm": 1},
            "quadqs": {"Mesh.Algorithm": 11, "Mesh.RecombinationAlgorithm": 1}}
@@ -64,15 +65,15 @@ def jagged_plans(count: int = 4, seed: int = 7) -> dict:
 
 def plans(kinds: list[str]) -> dict:
     """The plans by name: ``shared`` (every file of the shared architecture data), ``examples``,
-    ``rectilinear`` (:data:`vaultgram.testing.orthogonal.RECTILINEAR_PLANS`) and ``jagged``
-    (generated)."""
+    ``rectilinear`` (:data:`vaultgram.testing.orthogonal.RECTILINEAR_PLANS`), ``jagged`` (generated)
+    and ``smooth`` (:data:`vaultgram.testing.smooth.SMOOTH_PLANS`: discs, ovals, an apse, a lens)."""
     out = {}
     if "shared" in kinds and ARCHITECTURE.is_dir():
         out.update({p.stem: load_domain(p) for p in sorted(ARCHITECTURE.glob("*.json"))})
     if "examples" in kinds:
         out.update({p.stem: load_domain(p) for p in sorted(EXAMPLES.glob("*.json"))
                     if not p.stem.startswith("skeleton_")})
-    for kind, made in (("rectilinear", RECTILINEAR_PLANS), ("jagged", jagged_plans())):
+    for kind, made in (("rectilinear", RECTILINEAR_PLANS), ("jagged", jagged_plans()), ("smooth", SMOOTH_PLANS)):
         if kind in kinds:
             out.update({name: domain_from_dict(data, name) for name, data in made.items()})
     return out
