@@ -79,7 +79,9 @@ def test_rules_run_writes_graph_and_trace(tmp_path):
     graph = json.loads((tmp_path / "graph.json").read_text())
     types = [e["type"] for e in graph["edges"]]
     assert types.count("Rebranch") == 12 and types.count("Branch") == 4
-    assert len(json.loads((tmp_path / "trace.json").read_text())) == 16
+    trace = json.loads((tmp_path / "trace.json").read_text())
+    # 4 prunings, 12 rebranchings and the `leave` of the O-grid's choice point (no disc here)
+    assert len(trace) == 17 and [a["rule"] for a in trace].count("leave") == 1
 
 
 def test_rules_run_unknown_strategy_is_a_clear_error(tmp_path):
