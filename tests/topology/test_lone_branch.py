@@ -81,3 +81,12 @@ def test_apses_of_any_depth_size_and_place_are_four_quads(depth, radius, turn, x
     """A half circle in front of a straight wall, from a half disc (depth 0) to a deep apse (depth
     1.6 r: a long straight run on either side before the arc)."""
     assert_cut_in_three(domain_from_dict({"name": "apse", "outer": apse(depth * radius / 5, radius, n, turn, (x, y))}))
+
+
+@pytest.mark.parametrize("extra", [{"points": [[2.0, 0.5]]}, {"curves": [[[1.0, -1.0], [2.0, 1.0]]]}],
+                         ids=["point-feature", "curve"])
+def test_a_plan_with_features_inside_is_not_cut_this_way(extra):
+    """A feature inside changes the skeleton (a curve cuts it in pieces whose sides are not the ring
+    alone): the rule asks featureless_plan() and leaves such a plan to the other rules."""
+    dec = decompose(domain_from_dict({"name": "half-disc", "outer": apse(), **extra}), 0.03)
+    assert not cuts(dec)

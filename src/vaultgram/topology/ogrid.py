@@ -38,7 +38,7 @@ from vaultgram.topology.corners import boundary_angle, graph_rings, ray_hit
 from vaultgram.topology.statecache import per_state
 from vaultgram.topology.types import CORNER, CURVE_POINT, FEATURE_POINT
 
-__all__ = ["o_grid_plan", "o_grid_centre", "o_grid_foot", "o_grid_clear", "principal_axes",
+__all__ = ["featureless_plan", "o_grid_plan", "o_grid_centre", "o_grid_foot", "o_grid_clear", "principal_axes",
            "register_o_grid_helpers"]
 
 #: The rule helpers' answers, per state of the rule graph (the rule asks for the same feet at
@@ -77,13 +77,20 @@ def o_grid_plan(graph) -> bool:
     a regular octagon's)."""
     memo = per_state(_ANSWERS, graph, lambda g: {})
     if "plan" not in memo:
-        rings, _ = graph_rings(graph)
-        inside = frozenset().union(*(graph.schema.subtypes(t) for t in (FEATURE_POINT, CURVE_POINT)))
         corners = [boundary_angle(graph, c) for c in graph.of_types(graph.schema.subtypes(CORNER))]
-        memo["plan"] = (len(rings) == 1 and next(iter(graph.of_types(inside)), None) is None
-                        and bool((regular_valence(np.array(corners, dtype=float)) == 3).all())
-                        and shapely.Polygon(rings[0]).contains(shapely.Point(o_grid_centre(graph))))
+        memo["plan"] = (featureless_plan(graph) and bool((regular_valence(np.array(corners, dtype=float)) == 3).all())
+                        and shapely.Polygon(graph_rings(graph)[0][0]).contains(shapely.Point(o_grid_centre(graph))))
     return memo["plan"]
+
+
+def featureless_plan(graph) -> bool:
+    """Whether the rule graph's plan is one ring (no hole) with no point or curve feature inside: its
+    skeleton is one connected piece drawn by the outline alone."""
+    memo = per_state(_ANSWERS, graph, lambda g: {})
+    if "featureless" not in memo:
+        inside = frozenset().union(*(graph.schema.subtypes(t) for t in (FEATURE_POINT, CURVE_POINT)))
+        memo["featureless"] = len(graph_rings(graph)[0]) == 1 and next(iter(graph.of_types(inside)), None) is None
+    return memo["featureless"]
 
 
 def o_grid_centre(graph) -> tuple[float, float]:
@@ -127,8 +134,9 @@ def o_grid_clear(graph, inner: float) -> bool:
 
 
 def register_o_grid_helpers(f) -> None:
-    """Register :func:`o_grid_plan`, :func:`o_grid_centre`, :func:`o_grid_foot` and
-    :func:`o_grid_clear` for the rules (they read the whole ring)."""
+    """Register :func:`featureless_plan`, :func:`o_grid_plan`, :func:`o_grid_centre`,
+    :func:`o_grid_foot` and :func:`o_grid_clear` for the rules (they read the whole ring)."""
+    f.register("featureless_plan", featureless_plan, (), "bool", uses_graph=True, local=False)
     f.register("o_grid_plan", o_grid_plan, (), "bool", uses_graph=True, local=False)
     f.register("o_grid_centre", o_grid_centre, (), "vec2", uses_graph=True, local=False)
     f.register("o_grid_foot", o_grid_foot, ("int",), "node", uses_graph=True, local=False)
