@@ -127,3 +127,20 @@ def test_which_plans_are_o_grids(path):
         dec = decompose(domain)
         assert not o_grid_corners(dec)
         assert not [n for n in dec.graph.nodes() if dec.graph.node_type(n) == "BranchCut"]
+
+
+@pytest.mark.parametrize("points", [[[5.0, 0.0]], [[5 / math.sqrt(2), 5 / math.sqrt(2)]], [[5.0, 0.0], [-5.0, 0.0]]],
+                         ids=["on-a-corner", "on-a-foot", "two"])
+def test_boundary_point_features_of_an_o_grid_are_patch_corners(points):
+    """A boundary point feature of an octagon (at its corners: retyped as plain boundary points by
+    retype_o_grid_corner, the feature splits its patch as on a smooth side) is a patch corner, a pole
+    on purpose (§4.1); no other boundary vertex is singular and the mesh is valid."""
+    domain = domain_from_dict({"name": "octagon", "outer": oval(8), "points": points})
+    dec = decompose(domain, 0.03)
+    assert len(o_grid_corners(dec)) == 4 and {p.n_sides for p in dec.patches} <= {3, 4}
+    features = [n for n in dec.graph.nodes() if dec.graph.node_type(n) in ("BoundaryVertex", "Corner")
+                and dec.graph.get(n, "feature")]
+    assert len(features) == len(points) and all(any(n in p.corners for p in dec.patches) for n in features)
+    stats = mesh_stats(mesh_decomposition(dec), domain)
+    assert stats["boundary_singular"] == 0 and stats["boundary_feature_singular"] == len(points)
+    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] > 0.3
