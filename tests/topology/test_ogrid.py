@@ -9,6 +9,7 @@ import math
 
 import numpy as np
 import pytest
+import shapely
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
@@ -43,16 +44,18 @@ def assert_o_grid(domain, spacing: float = 0.03, min_quality: float = 0.3) -> No
     assert stats["min_scaled_jacobian"] > min_quality
 
 
-@pytest.mark.parametrize("name", ["disc", "octagon", "ellipse", "egg", "stadium"])
+@pytest.mark.parametrize("name", ["disc", "octagon", "ellipse", "egg", "stadium", "cut_disc"])
 def test_smooth_plans_are_o_grids(name):
     """At least 0.5, the ellipse (0.55); the stadium reaches 0.36, its O-grid's corners about its
     centroid (the discrete skeleton's singularity was at x = 8.5: a lopsided O-grid gave 0.27, the
-    pole of main 0.02)."""
+    pole of main 0.02). The cut disc's skeleton is one branch between its two 150 degree corners (the
+    plan was refused on main: "patch ... has 2 sides"), which the O-grid replaces too."""
     domain = domain_from_dict({"name": name, **SMOOTH_PLANS[name]})
     assert_o_grid(domain, min_quality=0.35 if name == "stadium" else 0.5)
     dec = decompose(domain, 0.03)
     corners = np.array([dec.graph.get(n, "pos") for n in o_grid_corners(dec)])
-    assert np.allclose(corners.mean(axis=0), np.asarray(domain.rings[0]).mean(axis=0), atol=0.05 * domain.diagonal)
+    centroid = shapely.Polygon(domain.rings[0]).centroid
+    assert np.allclose(corners.mean(axis=0), [centroid.x, centroid.y], atol=0.05 * domain.diagonal)
 
 
 def test_the_central_quad_lies_three_fifths_of_the_way_to_the_boundary():

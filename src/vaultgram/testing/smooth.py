@@ -2,7 +2,8 @@
 (``rules/topology.vgr``) and the quality benchmarks.
 
 A plan without corners sharper than 135 degrees (a disc, an oval, a regular polygon of 8 sides or
-more, a stadium) has a skeleton of one singularity without a branch; a plan with two sharp corners and a smooth
+more, a stadium, a disc cut by a wall at such corners) has a skeleton of one singularity without a
+branch (or of one branch between its two corners), made an O-grid; a plan with two sharp corners and a smooth
 outline between them (a half disc, a lens, a D-shaped apse) has a skeleton of one branch from corner
 to corner. :data:`SMOOTH_PLANS` names one of each kind; :func:`oval`, :func:`apse` and :func:`lens`
 draw them.
@@ -14,7 +15,7 @@ import math
 
 import numpy as np
 
-__all__ = ["oval", "apse", "stadium", "lens", "SMOOTH_PLANS"]
+__all__ = ["oval", "apse", "cut_disc", "stadium", "lens", "SMOOTH_PLANS"]
 
 
 def oval(n: int, radius: float = 5.0, centre=(0.0, 0.0), turn: float = 0.0, squash: float = 1.0,
@@ -49,6 +50,17 @@ def apse(depth: float = 0.0, radius: float = 5.0, n: int = 24, turn: float = 0.0
     return (pts @ np.array([[c, s], [-s, c]]) + centre).tolist()
 
 
+def cut_disc(start: float = -60.0, stop: float = 240.0, radius: float = 5.0, n: int = 48) -> list:
+    """A disc cut by a wall: ``n`` points of the circle from ``start`` to ``stop`` degrees, closed by
+    the straight chord between them (its corners 90 + (360 - stop + start) / 4 degrees: 150 here).
+
+    >>> len(cut_disc())
+    48
+    """
+    t = np.radians(np.linspace(start, stop, n))
+    return np.column_stack([radius * np.cos(t), radius * np.sin(t)]).tolist()
+
+
 def stadium(length: float = 20.0, radius: float = 2.0, n: int = 24) -> list:
     """Two half circles of ``n`` points and radius ``radius`` joined by straight sides ``length`` long.
 
@@ -80,6 +92,7 @@ SMOOTH_PLANS = {
     "ellipse": {"outer": oval(64, squash=0.5, turn=0.3)},
     "egg": {"outer": oval(64, squash=0.7, wobble=0.1)},
     "stadium": {"outer": stadium()},
+    "cut_disc": {"outer": cut_disc()},
     "half_disc": {"outer": apse()},
     "apse": {"outer": apse(depth=3.0)},
     "lens": {"outer": lens()},

@@ -36,10 +36,10 @@ import shapely
 from vaultgram.geometry.polygons import regular_valence
 from vaultgram.topology.corners import boundary_angle, graph_rings, ray_hit
 from vaultgram.topology.statecache import per_state
-from vaultgram.topology.types import CORNER, CURVE_POINT, FEATURE_POINT
+from vaultgram.topology.types import BRANCH, CORNER, CURVE_POINT, FEATURE_POINT, SKELETON_VERTEX
 
-__all__ = ["featureless_plan", "o_grid_plan", "o_grid_centre", "o_grid_foot", "o_grid_clear", "principal_axes",
-           "register_o_grid_helpers"]
+__all__ = ["featureless_plan", "lone_skeleton", "o_grid_plan", "o_grid_centre", "o_grid_foot", "o_grid_clear",
+           "principal_axes", "register_o_grid_helpers"]
 
 #: The rule helpers' answers, per state of the rule graph (the rule asks for the same feet at
 #: every boundary point it tries).
@@ -93,6 +93,16 @@ def featureless_plan(graph) -> bool:
     return memo["featureless"]
 
 
+def lone_skeleton(graph) -> bool:
+    """Whether the rule graph's skeleton is one singularity without a branch, or one branch and no
+    singularity (between two corners: a lens, a disc cut by a wall)."""
+    memo = per_state(_ANSWERS, graph, lambda g: {})
+    if "lone" not in memo:
+        skeleton = sum(1 for _ in graph.of_types(graph.schema.subtypes(SKELETON_VERTEX)))
+        memo["lone"] = (skeleton, sum(1 for _ in graph.of_types([BRANCH]))) in ((1, 0), (0, 1))
+    return memo["lone"]
+
+
 def o_grid_centre(graph) -> tuple[float, float]:
     """The centre of the O-grid: the centroid of the area inside the (outer) ring. Not the
     singularity: on a stadium every point of the segment between its two half circles' centres has a
@@ -134,9 +144,10 @@ def o_grid_clear(graph, inner: float) -> bool:
 
 
 def register_o_grid_helpers(f) -> None:
-    """Register :func:`featureless_plan`, :func:`o_grid_plan`, :func:`o_grid_centre`,
+    """Register :func:`featureless_plan`, :func:`lone_skeleton`, :func:`o_grid_plan`, :func:`o_grid_centre`,
     :func:`o_grid_foot` and :func:`o_grid_clear` for the rules (they read the whole ring)."""
     f.register("featureless_plan", featureless_plan, (), "bool", uses_graph=True, local=False)
+    f.register("lone_skeleton", lone_skeleton, (), "bool", uses_graph=True, local=False)
     f.register("o_grid_plan", o_grid_plan, (), "bool", uses_graph=True, local=False)
     f.register("o_grid_centre", o_grid_centre, (), "vec2", uses_graph=True, local=False)
     f.register("o_grid_foot", o_grid_foot, ("int",), "node", uses_graph=True, local=False)
