@@ -147,3 +147,20 @@ def test_boundary_point_features_of_an_o_grid_are_patch_corners(points):
     stats = mesh_stats(mesh_decomposition(dec), domain)
     assert stats["boundary_singular"] == 0 and stats["boundary_feature_singular"] == len(points)
     assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] > 0.3
+
+
+def test_explore_offers_the_pole_beside_the_o_grid():
+    """The O-grid is a choice point (choose { o_grid, leave }): the first variant, what decompose
+    does, is the O-grid (five quads, no pole); the variant that takes its second option keeps the
+    singularity's three-sided patches round one pole (a dome's crown)."""
+    from vaultgram.exploration.explore import ExploreOptions, explore
+
+    found = explore(domain_from_dict({"name": "disc", **SMOOTH_PLANS["disc"]}),
+                    ExploreOptions(spacing=0.05, limit=6, smooth=5))
+    rows = found.rows()
+    assert "choose { o_grid, leave } once" in found.choice_steps
+    assert rows[0]["answers"] == [] and rows[0]["metrics"]["patches_by_sides"] == {"3": 0, "4": 5}
+    assert rows[0]["metrics"]["poles"] == 0
+    # the disc's first choice point with two options is the O-grid's: its second option, then firsts
+    poles = [r for r in rows if r["answers"][:1] == [1] and not any(r["answers"][1:])]
+    assert [(r["metrics"]["patches_by_sides"], r["metrics"]["poles"]) for r in poles] == [({"3": 3, "4": 0}, 1)]
