@@ -164,3 +164,21 @@ def test_explore_offers_the_pole_beside_the_o_grid():
     # the disc's first choice point with two options is the O-grid's: its second option, then firsts
     poles = [r for r in rows if r["answers"][:1] == [1] and not any(r["answers"][1:])]
     assert [(r["metrics"]["patches_by_sides"], r["metrics"]["poles"]) for r in poles] == [({"3": 3, "4": 0}, 1)]
+
+
+def test_a_teardrop_is_an_o_grid_with_its_tip_as_a_foot():
+    """A smooth outline with one sharp corner (a teardrop's tip, 47 degrees) whose skeleton is one
+    singularity: main gave three triangles round a pole (min scaled Jacobian 0.025, mean 0.08). The
+    O-grid's first ray goes through the tip: the tip is the corner of two quads (its one boundary
+    singularity, as before), every other vertex of the boundary regular, no triangle."""
+    domain = domain_from_dict({"name": "teardrop", **SMOOTH_PLANS["teardrop"]})
+    dec = decompose(domain, 0.03)
+    assert sorted(p.n_sides for p in dec.patches) == [4] * 5 and len(o_grid_corners(dec)) == 4
+    g = dec.graph
+    (tip,) = [n for n in g.nodes() if g.node_type(n) == "Corner" and np.allclose(g.get(n, "pos"), (-9, 0))]
+    assert g.degree(tip, ["Diagonal"]) == 1  # a foot, and still a Corner (sharp: not softened)
+    mesh = mesh_decomposition(dec)
+    stats = mesh_stats(mesh, domain)
+    assert stats["triangles"] == 0 and stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] > 0.35
+    (v,) = stats["boundary_singular_vertices"]
+    assert np.allclose(mesh.vertices[v, :2], (-9, 0)) and stats["boundary_singular_valences"] == [3]

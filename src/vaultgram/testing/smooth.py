@@ -3,7 +3,8 @@
 
 A plan without corners sharper than 135 degrees (a disc, an oval, a regular polygon of 8 sides or
 more, a stadium, a disc cut by a wall at such corners) has a skeleton of one singularity without a
-branch (or of one branch between its two corners), made an O-grid; a plan with two sharp corners and a smooth
+branch (or of one branch between its two corners), made an O-grid, as is a teardrop (one sharp
+corner, a foot of the O-grid); a plan with two sharp corners and a smooth
 outline between them (a half disc, a lens, a D-shaped apse) has a skeleton of one branch from corner
 to corner. :data:`SMOOTH_PLANS` names one of each kind; :func:`oval`, :func:`apse` and :func:`lens`
 draw them.
@@ -15,7 +16,7 @@ import math
 
 import numpy as np
 
-__all__ = ["oval", "apse", "cut_disc", "stadium", "lens", "SMOOTH_PLANS"]
+__all__ = ["oval", "apse", "cut_disc", "teardrop", "stadium", "lens", "SMOOTH_PLANS"]
 
 
 def oval(n: int, radius: float = 5.0, centre=(0.0, 0.0), turn: float = 0.0, squash: float = 1.0,
@@ -61,6 +62,17 @@ def cut_disc(start: float = -60.0, stop: float = 240.0, radius: float = 5.0, n: 
     return np.column_stack([radius * np.cos(t), radius * np.sin(t)]).tolist()
 
 
+def teardrop(radius: float = 4.0, tip: float = 9.0, n: int = 40) -> list:
+    """A circle of radius ``radius`` from -140 to 140 degrees (``n`` points) closed at a tip ``tip``
+    from its centre on the negative x axis: one sharp corner (about 47 degrees), smooth elsewhere.
+
+    >>> len(teardrop()), teardrop()[-1]
+    (41, [-9.0, 0.0])
+    """
+    t = np.radians(np.linspace(-140.0, 140.0, n))
+    return np.vstack([np.column_stack([radius * np.cos(t), radius * np.sin(t)]), [[-tip, 0.0]]]).tolist()
+
+
 def stadium(length: float = 20.0, radius: float = 2.0, n: int = 24) -> list:
     """Two half circles of ``n`` points and radius ``radius`` joined by straight sides ``length`` long.
 
@@ -93,6 +105,7 @@ SMOOTH_PLANS = {
     "egg": {"outer": oval(64, squash=0.7, wobble=0.1)},
     "stadium": {"outer": stadium()},
     "cut_disc": {"outer": cut_disc()},
+    "teardrop": {"outer": teardrop()},
     "half_disc": {"outer": apse()},
     "apse": {"outer": apse(depth=3.0)},
     "lens": {"outer": lens()},

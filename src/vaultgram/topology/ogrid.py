@@ -71,25 +71,39 @@ def principal_axes(ring: np.ndarray) -> np.ndarray:
 
 def o_grid_plan(graph) -> bool:
     """Whether the rule graph's plan is one ring with no point or curve feature inside and no corner
-    sharper than 135 degrees, its centroid inside it: the plans whose skeleton can shrink to one
-    singularity without a branch, and whose corners are regular as the side points of an O-grid's
-    patches (valence 3 from 135 to 225 degrees, :func:`~vaultgram.geometry.polygons.regular_valence`:
-    a regular octagon's)."""
+    sharper than 135 degrees (at most one where the skeleton has no branch), its centroid inside it:
+    the plans whose skeleton can shrink to one singularity without a branch or to one branch. Their
+    corners of 135 degrees or more are regular as the side points of an O-grid's patches (valence 3
+    from 135 to 225 degrees, :func:`~vaultgram.geometry.polygons.regular_valence`: a regular
+    octagon's); a sharp one (the tip of a teardrop) is one of its feet (:func:`sharp_corner`). A
+    branch with a sharp corner at an end is cut in three instead (``cut_lone_branch``)."""
     memo = per_state(_ANSWERS, graph, lambda g: {})
     if "plan" not in memo:
-        corners = [boundary_angle(graph, c) for c in graph.of_types(graph.schema.subtypes(CORNER))]
-        memo["plan"] = (featureless_plan(graph) and bool((regular_valence(np.array(corners, dtype=float)) == 3).all())
+        corners = [c for c in graph.of_types(graph.schema.subtypes(CORNER))]
+        sharp = regular_valence(np.array([boundary_angle(graph, c) for c in corners], dtype=float)) != 3
+        memo["sharp"] = [c for c, s in zip(corners, sharp) if s]
+        sharp_allowed = 1 if next(iter(graph.of_types([BRANCH])), None) is None else 0  # else cut in three
+        memo["plan"] = (featureless_plan(graph) and len(memo["sharp"]) <= sharp_allowed
                         and shapely.Polygon(graph_rings(graph)[0][0]).contains(shapely.Point(o_grid_centre(graph))))
     return memo["plan"]
 
 
+def sharp_corner(graph) -> int | None:
+    """The one corner of an O-grid plan (:func:`o_grid_plan`) sharper than 135 degrees, or None."""
+    o_grid_plan(graph)
+    sharp = per_state(_ANSWERS, graph, lambda g: {})["sharp"]
+    return sharp[0] if sharp else None
+
+
 def featureless_plan(graph) -> bool:
-    """Whether the rule graph's plan is one ring (no hole) with no point or curve feature inside: its
-    skeleton is one connected piece drawn by the outline alone."""
+    """Whether the rule graph's plan is one ring (no hole) of three points or more with no point or
+    curve feature inside: its skeleton is one connected piece drawn by the outline alone."""
     memo = per_state(_ANSWERS, graph, lambda g: {})
     if "featureless" not in memo:
+        rings = graph_rings(graph)[0]
         inside = frozenset().union(*(graph.schema.subtypes(t) for t in (FEATURE_POINT, CURVE_POINT)))
-        memo["featureless"] = len(graph_rings(graph)[0]) == 1 and next(iter(graph.of_types(inside)), None) is None
+        memo["featureless"] = (len(rings) == 1 and len(rings[0]) >= 3
+                               and next(iter(graph.of_types(inside)), None) is None)
     return memo["featureless"]
 
 
@@ -119,13 +133,20 @@ def o_grid_foot(graph, k: int) -> int:
     """The ring point nearest to where the ray from :func:`o_grid_centre` meets the ring, the ray
     along ``sigma_1 cos(t) e_1 + sigma_2 sin(t) e_2`` with ``t`` = 45 + 90 ``k`` degrees and the
     outline's principal axes (:func:`principal_axes`): on an ellipse, the points of parameter 45, 135,
-    225 and 315 degrees, so that the central quad is a rectangle of the ellipse's proportions."""
+    225 and 315 degrees, so that the central quad is a rectangle of the ellipse's proportions. With a
+    sharp corner (:func:`sharp_corner`) the rays turn so that the first goes through it: the corner
+    is a foot, the corner of two patches (a boundary singularity, but no fan of thin triangles)."""
     memo = per_state(_ANSWERS, graph, lambda g: {})
     if ("foot", k) not in memo:
         rings, nodes = graph_rings(graph)
-        turn = math.pi / 4 + k * math.pi / 2
-        direction = np.array([math.cos(turn), math.sin(turn)]) @ principal_axes(rings[0])
-        hit = ray_hit(rings[:1], np.asarray(o_grid_centre(graph)), direction)  # inside: it meets the ring
+        axes, centre, tip = principal_axes(rings[0]), np.asarray(o_grid_centre(graph)), sharp_corner(graph)
+        if tip is None:
+            turn = math.pi / 4 + k * math.pi / 2
+        else:  # the first ray through the sharp corner, in the same scaled frame
+            u = np.linalg.solve(axes.T, np.asarray(graph.get(tip, "pos"), dtype=float) - centre)
+            turn = math.atan2(u[1], u[0]) + k * math.pi / 2
+        direction = np.array([math.cos(turn), math.sin(turn)]) @ axes
+        hit = ray_hit(rings[:1], centre, direction)  # inside: it meets the ring
         memo[("foot", k)] = nodes[0][int(np.argmin(np.hypot(*(rings[0] - hit).T)))]
     return memo[("foot", k)]
 
