@@ -46,7 +46,6 @@ __all__ = ["featureless_plan", "lone_skeleton", "o_grid_plan", "o_grid_centre", 
 _ANSWERS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
-
 def principal_axes(ring: np.ndarray) -> np.ndarray:
     """The principal axes of a ring's points, scaled by their spread: rows ``sigma_1 e_1`` and
     ``sigma_2 e_2`` (``sigma`` the root mean square distance from the centroid along each axis), the
@@ -79,7 +78,7 @@ def o_grid_plan(graph) -> bool:
     branch with a sharp corner at an end is cut in three instead (``cut_lone_branch``)."""
     memo = per_state(_ANSWERS, graph, lambda g: {})
     if "plan" not in memo:
-        corners = [c for c in graph.of_types(graph.schema.subtypes(CORNER))]
+        corners = list(graph.of_types(graph.schema.subtypes(CORNER)))
         sharp = regular_valence(np.array([boundary_angle(graph, c) for c in corners], dtype=float)) != 3
         memo["sharp"] = [c for c, s in zip(corners, sharp) if s]
         sharp_allowed = 1 if next(iter(graph.of_types([BRANCH])), None) is None else 0  # else cut in three
@@ -155,13 +154,16 @@ def o_grid_clear(graph, inner: float) -> bool:
     """Whether the O-grid's eight links lie inside the plan: the central quad's four sides and the
     links from its corners (the fraction ``inner`` of the way from :func:`o_grid_centre` to the
     feet) to the feet (:func:`o_grid_foot`). A plan that bends round its centroid (a bean) fails it."""
-    rings, nodes = graph_rings(graph)
-    ring, centre = rings[0], np.asarray(o_grid_centre(graph))
-    feet = ring[[nodes[0].index(o_grid_foot(graph, k)) for k in range(4)]]
-    quad = centre + inner * (feet - centre)
-    links = [[quad[k], quad[(k + 1) % 4]] for k in range(4)] + [[quad[k], feet[k]] for k in range(4)]
-    plan = shapely.Polygon(ring).buffer(1e-9 * np.ptp(ring, axis=0).max())  # the feet lie on its outline
-    return bool(plan.contains(shapely.MultiLineString(links)))
+    memo = per_state(_ANSWERS, graph, lambda g: {})
+    if ("clear", inner) not in memo:
+        rings, nodes = graph_rings(graph)
+        ring, centre = rings[0], np.asarray(o_grid_centre(graph))
+        feet = ring[[nodes[0].index(o_grid_foot(graph, k)) for k in range(4)]]
+        quad = centre + inner * (feet - centre)
+        links = [[quad[k], quad[(k + 1) % 4]] for k in range(4)] + [[quad[k], feet[k]] for k in range(4)]
+        plan = shapely.Polygon(ring).buffer(1e-9 * np.ptp(ring, axis=0).max())  # the feet lie on its outline
+        memo[("clear", inner)] = bool(plan.contains(shapely.MultiLineString(links)))
+    return memo[("clear", inner)]
 
 
 def register_o_grid_helpers(f) -> None:
