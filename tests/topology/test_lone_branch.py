@@ -9,34 +9,24 @@ import math
 
 import numpy as np
 import pytest
+from degenerate import assert_quads_round, nodes_of
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from vaultgram.domain import domain_from_dict
-from vaultgram.meshing.quality import mesh_stats
-from vaultgram.pipeline import decompose, mesh_decomposition
+from vaultgram.pipeline import decompose
 from vaultgram.testing.smooth import SMOOTH_PLANS, apse, lens
 from vaultgram.topology.lone_branch import branch_cut, branch_piece
 
 
 def cuts(dec) -> list[int]:
-    return [n for n in dec.graph.nodes() if dec.graph.node_type(n) == "BranchCut"]
+    return nodes_of(dec, "BranchCut")
 
 
 def assert_cut_in_three(domain, min_quality: float = 0.3) -> None:
-    """Four four-sided patches, two BranchCut nodes of valence 3 (the middle third of the branch and
-    a rebranch to each side); the mesh has exactly those two interior singular vertices, no boundary
-    singularity, no triangle, a disc's Euler characteristic and no quad below ``min_quality``."""
-    dec = decompose(domain, 0.03)
-    assert sorted(p.n_sides for p in dec.patches) == [4] * 4
-    assert [dec.valence(n) for n in cuts(dec)] == [3, 3]
-    mesh = mesh_decomposition(dec)
-    stats = mesh_stats(mesh, domain)
-    assert stats["interior_singular_valences"] == [3, 3]
-    assert stats["boundary_singular"] == 0 and stats["triangles"] == 0 and stats["inverted_faces"] == 0
-    edges = {tuple(sorted((f[k], f[(k + 1) % len(f)]))) for f in mesh.faces for k in range(len(f))}
-    assert len(mesh.vertices) - len(edges) + len(mesh.faces) == 1
-    assert stats["min_scaled_jacobian"] > min_quality
+    """Four four-sided patches round two BranchCut nodes (the middle third of the branch and a
+    rebranch to each side; :func:`assert_quads_round`)."""
+    assert len(cuts(assert_quads_round(domain, "BranchCut", 4, min_quality=min_quality))) == 2
 
 
 @pytest.mark.parametrize("plan", [SMOOTH_PLANS["half_disc"], SMOOTH_PLANS["apse"], SMOOTH_PLANS["lens"],

@@ -10,6 +10,7 @@ import math
 import numpy as np
 import pytest
 import shapely
+from degenerate import assert_quads_round, nodes_of
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
@@ -23,25 +24,12 @@ from paths import ARCHITECTURE, EXAMPLES
 
 
 def o_grid_corners(dec) -> list[int]:
-    g = dec.graph
-    return [n for n in g.nodes() if g.node_type(n) == "OGridCorner"]
+    return nodes_of(dec, "OGridCorner")
 
 
 def assert_o_grid(domain, spacing: float = 0.03, min_quality: float = 0.3) -> None:
-    """Five four-sided patches round a quad of OGridCorner nodes, each of valence 3; the mesh has
-    exactly those four interior singular vertices (valence 3), none on the boundary, no triangle, a
-    disc's Euler characteristic and no quad worse than ``min_quality`` (scaled Jacobian)."""
-    dec = decompose(domain, spacing)
-    assert sorted(p.n_sides for p in dec.patches) == [4] * 5
-    corners = o_grid_corners(dec)
-    assert len(corners) == 4 and [dec.valence(n) for n in corners] == [3] * 4
-    mesh = mesh_decomposition(dec)
-    stats = mesh_stats(mesh, domain)
-    assert stats["interior_singular_valences"] == [3, 3, 3, 3]
-    assert stats["boundary_singular"] == 0 and stats["triangles"] == 0 and stats["inverted_faces"] == 0
-    edges = {tuple(sorted((f[k], f[(k + 1) % len(f)]))) for f in mesh.faces for k in range(len(f))}
-    assert len(mesh.vertices) - len(edges) + len(mesh.faces) == 1
-    assert stats["min_scaled_jacobian"] > min_quality
+    """Five four-sided patches round a quad of four OGridCorner nodes (:func:`assert_quads_round`)."""
+    assert len(o_grid_corners(assert_quads_round(domain, "OGridCorner", 5, spacing, min_quality))) == 4
 
 
 @pytest.mark.parametrize("name", ["disc", "octagon", "ellipse", "egg", "stadium", "cut_disc"])
