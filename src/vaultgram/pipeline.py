@@ -56,6 +56,7 @@ from vaultgram.geometry.text import plan_frame
 from vaultgram.io.files import collector_paused
 from vaultgram.limits import MAX_FACES
 from vaultgram.meshing.densities import CHORD_TOLERANCE, DensitySpec, group_counts
+from vaultgram.meshing.fans import even_fans, held_vertices
 from vaultgram.meshing.fidelity import SAME_POINT, hold_boundary, on_points, place_on_points
 from vaultgram.meshing.layout import Layout, edge_groups, kept_points
 from vaultgram.meshing.optimise import maximise_min_quality
@@ -177,12 +178,17 @@ def _welded_and_smoothed(layout: Layout, counts, smooth: int, timings: dict | No
     with _timed(timings, "weld"):
         mesh = weld(layout, counts, split)
     with _timed(timings, "smooth"):
-        x = laplacian_smooth(mesh.vertices, mesh.faces, smooth, mesh.fixed, mesh.constraints)
+        x, rays = mesh.vertices, ()
+        if smooth > 0:  # the fans round poles evened, their spokes sliding on rays (§3.2, issue 12)
+            held = held_vertices(mesh.fixed, mesh.boundary, mesh.constraints)
+            x, rays = even_fans(x, mesh.faces, mesh.face_patch, mesh.pole, held)
+        slides = mesh.constraints + rays
+        x = laplacian_smooth(x, mesh.faces, smooth, mesh.fixed, slides)
     with _timed(timings, "untangle"):
         if smooth > 0:
-            x = untangle(x, mesh.faces, mesh.fixed, mesh.constraints)
-            x = improve_shapes(x, mesh.faces, mesh.fixed, mesh.constraints)
-            x = maximise_min_quality(x, mesh.faces, mesh.fixed, mesh.constraints, still=mesh.feature)
+            x = untangle(x, mesh.faces, mesh.fixed, slides)
+            x = improve_shapes(x, mesh.faces, mesh.fixed, slides)
+            x = maximise_min_quality(x, mesh.faces, mesh.fixed, slides, still=mesh.feature)
             x, mesh = _held_to_the_plan(x, mesh, layout.decomposition.disc)
     return mesh, x
 

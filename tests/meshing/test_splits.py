@@ -9,11 +9,11 @@ import numpy as np
 
 from vaultgram.domain import domain_from_dict, load_domain
 from vaultgram.meshing.densities import DensitySpec, group_counts
-from vaultgram.meshing.fans import fan_bounds
+from vaultgram.meshing.fans import FAN_FLOOR, fan_bounds
 from vaultgram.meshing.layout import edge_groups
 from vaultgram.meshing.quality import face_scaled_jacobians, mesh_stats
 from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
-from vaultgram.meshing.splits import FAN_FLOOR, fan_estimate, split_counts, split_patterns
+from vaultgram.meshing.splits import fan_estimate, split_counts, split_patterns
 from vaultgram.meshing.weld import weld
 from vaultgram.pipeline import _welded_and_smoothed, decompose, mesh_decomposition
 

@@ -35,7 +35,7 @@ from strategies.domains import convex_domains
 MEASURED = {
     "features_combined": {"of_3": (0.967, 0.970), "cv": (0.386, 0.415), "force": (5.77, 5.80)},
     "fig5_boundary_points": {"of_3": (0.979, 1.000), "cv": (0.382, 0.340), "force": (4.32, 4.22)},
-    "fig6_inner_points": {"of_3": (0.959, 0.956), "cv": (0.448, 0.463), "force": (2.96, 2.92)},
+    "fig6_inner_points": {"of_3": (0.959, 0.956), "cv": (0.448, 0.463), "force": (2.73, 2.72)},
     "fig7_curves": {"of_3": (0.975, 0.974), "cv": (0.435, 0.437), "force": (5.35, 5.27)},
     "l_shape": {"of_3": (0.990, 0.996), "cv": (0.307, 0.282), "force": (6.80, 6.42)},
     "quad_with_hole": {"of_3": (1.000, 1.000), "cv": (0.308, 0.278), "force": (1.43, 1.37)},
@@ -51,12 +51,15 @@ OF_3_MARGIN, CV_MARGIN, FORCE_MARGIN = 0.02, 0.03, 0.75
 # assert the measured levels, so that a regression shows.
 #: rhythm 4 against rhythm 2, mean voussoir area; the issue says "about twice". Where courses are
 #: long, it is: 1.98 on a regular 64 x 64 grid (:func:`test_rhythm_four_doubles_the_voussoirs_on_long_courses`),
-#: 1.79 on quad_with_hole at 10^4 faces. On the examples' coarse meshes it is 1.37 (fig6) to 1.54
+#: 1.79 on quad_with_hole at 10^4 faces. On the examples' coarse meshes it is 1.26 (fig6) to 1.54
 #: (quad_with_hole): a course of k quads holds about k / 4 rhythm-4 voussoirs but k / 2 rhythm-2
 #: ones only when k is even and the neighbours' joints allow it; a short or odd course takes a
 #: voussoir of three quads at rhythm 2 (a single quad would leave its neighbours no staggered
-#: choice), and a course of three to five quads is one voussoir at either rhythm.
-RHYTHM_4_RATIO = 1.3
+#: choice), and a course of three to five quads is one voussoir at either rhythm. fig6 was at 1.37
+#: until the fans round its point features were evened (vaultgram.meshing.fans.even_fans: its worst
+#: scaled Jacobian 0.242 -> 0.395, its joints 2.96 -> 2.73 degrees from the force flow; 394 and 313
+#: voussoirs at rhythms 2 and 4, 386 and 281 before).
+RHYTHM_4_RATIO = 1.25
 
 EXAMPLE_NAMES = sorted(p.stem for p in EXAMPLES.glob("*.json") if not p.stem.startswith("skeleton_"))
 NAMES = EXAMPLE_NAMES + ["armadillo_vault"]

@@ -22,7 +22,7 @@ import numpy as np
 from vaultgram.geometry.arrays import plan_rows
 from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.geometry.polylines import project_to_polyline
-from vaultgram.meshing.fans import fan_bounds
+from vaultgram.meshing.fans import FAN_FLOOR, fan_bounds
 
 __all__ = ["maximise_min_quality", "OPTIMISE_TARGET", "OPTIMISE_SWEEPS"]
 
@@ -37,7 +37,7 @@ MOVED_RINGS = 4
 SLIDE_TARGET = 0.3
 #: A vertex next to a pole aims at this share of the pole's fan bound, and is left alone where that
 #: is below FAN_FLOOR (the issue's floor).
-FAN_MARGIN, FAN_FLOOR = 0.97, 0.3
+FAN_MARGIN = 0.97
 #: A trial must raise the worst corner (or, that equal, the mean) by more than this to be taken.
 _GAIN = 1e-3
 #: Rounds of the independent-set selection per sweep.

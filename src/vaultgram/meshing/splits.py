@@ -23,13 +23,11 @@ import math
 import numpy as np
 
 from vaultgram.geometry.polygons import regular_valence
+from vaultgram.meshing.fans import FAN_FLOOR
 from vaultgram.meshing.layout import Layout, PatchPattern, _outside_angle, is_feature_node
 
-__all__ = ["FAN_FLOOR", "fan_estimate", "split_patterns", "split_counts", "split_points"]
+__all__ = ["fan_estimate", "split_patterns", "split_counts", "split_points"]
 
-#: A three-sided patch whose fan triangles would have a worse scaled Jacobian than this (equal
-#: triangles, :func:`fan_estimate`) is split into three quads: issue 12's floor.
-FAN_FLOOR = 0.3
 #: No split where the pole's angle is wider: the quad there would keep a flat or reflex corner
 #: (a fan spans any angle).
 MAX_SPLIT_ANGLE = 160.0

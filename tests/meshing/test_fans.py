@@ -1,0 +1,105 @@
+"""Even fans round poles (vaultgram.meshing.fans.even_fans): equal corners at the pole, spokes that
+stay, rays that keep the angle through smoothing, and the examples' poles."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from vaultgram.domain import load_domain
+from vaultgram.geometry.meshes import corner_arrays
+from vaultgram.meshing.fans import FAN_FLOOR, even_fans, fan_bounds
+from vaultgram.meshing.quadmesh import slide
+from vaultgram.meshing.quality import face_scaled_jacobians
+from vaultgram.meshing.smoothing import laplacian_smooth
+from vaultgram.pipeline import mesh_domain
+
+from paths import EXAMPLES
+
+
+def _wheel(angles_deg, radii=None):
+    """A pole (vertex 0) with a closed fan of triangles to ring vertices at ``angles_deg``."""
+    a = np.radians(np.asarray(angles_deg, dtype=float))
+    r = np.ones(len(a)) if radii is None else np.asarray(radii, dtype=float)
+    v = np.vstack([[0.0, 0.0], np.column_stack([r * np.cos(a), r * np.sin(a)])])
+    return v, [(0, 1 + k, 1 + (k + 1) % len(a)) for k in range(len(a))]
+
+
+def _pole_corners(x, faces, pole):
+    """The corner angles (degrees) of the faces at ``pole``."""
+    _, u, v, p = corner_arrays(faces)
+    at = u == pole
+    e1, e2 = x[v[at], :2] - x[pole, :2], x[p[at], :2] - x[pole, :2]
+    return np.degrees(np.arctan2(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0], (e1 * e2).sum(1))) % 360
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.floats(0.2, 1.0), min_size=6, max_size=14), st.floats(0.5, 2.0))
+def test_a_closed_fan_gets_equal_corners_and_keeps_its_radii(gaps, radius):
+    """Evened, or left as it was where that would make a corner worse; never worse."""
+    turns = np.cumsum([0.0] + gaps[:-1])
+    v, f = _wheel(360.0 * turns / sum(gaps), radius * (1 + 0.1 * np.arange(len(gaps)) % 3))
+    if fan_bounds(v, f)[0] < FAN_FLOOR:  # too many triangles for the floor: left as they are
+        assert np.array_equal(even_fans(v, f, np.zeros(len(f), int), np.arange(len(v)) == 0,
+                                        np.zeros(len(v), bool))[0], v)
+        return
+    x, rays = even_fans(v, f, np.zeros(len(f), int), np.arange(len(v)) == 0, np.zeros(len(v), bool))
+    assert min(face_scaled_jacobians(x, f)) >= min(face_scaled_jacobians(v, f)) - 1e-12
+    if not rays:  # evening would have made a triangle's outer corner worse: left as it was
+        assert np.array_equal(x, v)
+        return
+    assert np.allclose(_pole_corners(x, f, 0), 360.0 / len(gaps))
+    assert np.allclose(np.hypot(*x[1:, :2].T), np.hypot(*v[1:, :2].T))  # each spoke keeps its distance
+    assert len(rays) == len(gaps)
+
+
+def test_held_spokes_stay_and_the_run_between_them_is_even():
+    # a boundary pole: triangles from 0 to 150 degrees, the first and last spokes on the boundary
+    a = [0, 10, 25, 95, 150]
+    v = np.vstack([[0.0, 0.0], np.column_stack([np.cos(np.radians(a)), np.sin(np.radians(a))])])
+    f = [(0, k, k + 1) for k in range(1, 5)]
+    held = np.array([True, True, False, False, False, True])
+    x, rays = even_fans(v, f, np.zeros(4, int), np.arange(6) == 0, held)
+    assert np.array_equal(x[held], v[held])
+    assert np.allclose(_pole_corners(x, f, 0), 37.5)
+    assert sorted(int(r.vertices[0]) for r in rays) == [2, 3, 4]
+
+
+def test_the_far_side_of_a_one_deep_fan_stays():
+    # the ring vertices also belong to a face of another patch (a quad row beyond the fan): not moved
+    v, f = _wheel([0, 30, 70, 140, 200, 300])
+    quad = (1, 7, 8, 2)
+    v = np.vstack([v, [[2.0, 0.0], [2.0, 1.0]]])
+    faces = f + [quad]
+    x, rays = even_fans(v, faces, np.array([0] * 6 + [1]), np.arange(len(v)) == 0, np.zeros(len(v), bool))
+    assert np.array_equal(x[[1, 2]], v[[1, 2]])
+    assert {int(r.vertices[0]) for r in rays} <= {3, 4, 5, 6}
+
+
+def test_a_ray_keeps_the_spokes_angle_through_smoothing():
+    v, f = _wheel([0, 40, 90, 170, 230, 300], [1.0, 1.2, 0.8, 1.1, 0.9, 1.0])
+    pole = np.arange(len(v)) == 0
+    x, rays = even_fans(v, f, np.zeros(len(f), int), pole, np.zeros(len(v), bool))
+    fixed = np.zeros(len(v), bool)
+    fixed[0] = True
+    y = laplacian_smooth(x, f, 10, fixed, rays)
+    assert np.allclose(_pole_corners(y, f, 0), 60.0)
+    assert np.array_equal(slide(y.copy(), rays), y)
+
+
+@pytest.mark.skipif(not (EXAMPLES / "fig6_inner_points.json").exists(), reason="examples not present")
+def test_fig6_point_features_reach_their_fan_bound():
+    """Each inner point feature of fig6 has 18 triangles (fan bound 0.395): evened, its corners are
+    equal to within a degree and the mesh reaches the bound, above issue 12's floor of 0.3 (0.242
+    with the Coons spokes)."""
+    mesh = mesh_domain(load_domain(EXAMPLES / "fig6_inner_points.json"))
+    for pole in np.flatnonzero(mesh.feature & mesh.pole & ~mesh.boundary):
+        corners = _pole_corners(mesh.vertices, mesh.faces, pole)
+        assert len(corners) == 18 and np.ptp(corners) < 1.0
+    bound = float(fan_bounds(mesh.vertices, mesh.faces).min())
+    assert math.isclose(bound, 2 / math.sqrt(3) * math.sin(math.radians(20.0)), rel_tol=1e-3)
+    assert face_scaled_jacobians(mesh.vertices, mesh.faces).min() >= min(bound, FAN_FLOOR) - 1e-3 >= 0.3 - 1e-3
