@@ -166,24 +166,21 @@ def _even_spokes(x: np.ndarray, c: int, nxt: np.ndarray, prev: np.ndarray, tri: 
     if len(sector) != len(nxt):
         return [], []
     ends = set(sector) - {b for b, _ in sector.values()}
-    start = min(ends) if ends else min(sector)
+    after = {b: t for b, t in sector.values()}
+    stay = [a for a, (_, t) in sector.items() if held[a] or not t or not after.get(a, True)]
+    start = min(ends) if ends else min(stay) if stay else min(sector)  # a closed fan's run from a spoke that stays
     chain, kinds = [start], []
     while chain[-1] in sector and (len(chain) == 1 or chain[-1] != start):
         b, t = sector[chain[-1]]
         chain.append(b)
         kinds.append(t)
-    turn = np.cumsum([0.0] + [_sector_angle(x, c, a, b) for a, b in zip(chain[:-1], chain[1:])])
+    sides = x[chain] - x[c]
+    angle = signed_angles(sides[:-1], sides[1:])
+    turn = np.concatenate([[0.0], np.cumsum(np.where(angle <= 0, angle + 2 * math.pi, angle))])
     free = [0 < i < len(chain) - 1 and kinds[i - 1] and kinds[i] and not held[chain[i]] for i in range(len(chain))]
     if not ends and all(kinds) and not any(held[chain[:-1]]):
         return _closed_fan(x, c, chain[:-1], turn)
     return _runs(x, c, chain, turn, free)
-
-
-def _sector_angle(x: np.ndarray, c: int, a: int, b: int) -> float:
-    """The angle (radians, in (0, 2 pi)) turned counter-clockwise from spoke ``c-a`` to spoke ``c-b``."""
-    e1, e2 = x[a] - x[c], x[b] - x[c]
-    angle = math.atan2(e1[0] * e2[1] - e1[1] * e2[0], e1[0] * e2[0] + e1[1] * e2[1])
-    return angle + 2 * math.pi if angle <= 0 else angle
 
 
 def _closed_fan(x: np.ndarray, c: int, spokes: list, turn: np.ndarray) -> tuple[list, list]:
