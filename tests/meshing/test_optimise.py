@@ -23,7 +23,6 @@ FAN = "a pole's fan of triangles: its fan bound (the best any placement can do) 
 CURVE_END = ("the fan at the curve's end (5, 7.5), 0.1 above a row of quads: evened before smoothing it gets "
              "worse (vaultgram.meshing.fans.even_fans), 0.250 under its fan bound 0.395")
 MIN_MISSES = {
-    "two_holes_five_points": FAN + " (an inner point feature's fan: 0.085)",
     "rv_lips_pattern": FAN + " (27 triangles round its inner point feature: 0.266)",
     "square_point_loads": FAN + " (39 triangles round a point load: 0.185)",
     "features_combined": CURVE_END,
@@ -46,7 +45,11 @@ MIN_PASS = ["armadillo_vault", "armadillo_vault_plan", "british_museum_map", "hi
             "rv_pillow_pattern",
             # since the fans round a pole are evened (vaultgram.meshing.fans.even_fans): 10 to 32 degree
             # corners round its point features before (0.242)
-            "fig6_inner_points"]
+            "fig6_inner_points",
+            # since a point feature in a cusp keeps one quad (rules/patching.vgr: 7 triangles in 30 degrees
+            # before, 0.047) and a pole of triangles only is evened when its own triangles get better
+            # (vaultgram.meshing.fans.even_fans: the feature (7.09, 5.56), 0.251 before)
+            "two_holes_five_points"]
 LAYOUT = "skewed quads all over (median scaled Jacobian below 0.9): the patch layout, not smoothing"
 MEAN_MISSES = {
     "mexico_airport": LAYOUT, "multiple_lobes": LAYOUT, "rv_star_pattern": LAYOUT,

@@ -97,7 +97,11 @@ def even_fans(vertices: np.ndarray, faces, face_patch: np.ndarray, pole: np.ndar
     does not make the worst corner of the spokes' faces worse before smoothing (a fan pressed
     against its far side, as at the curve's end (5, 7.5) of ``features_combined``: evened regardless,
     its worst scaled Jacobian was 0.225 instead of 0.250, and ``rv_star_pattern``'s 0.501 instead of
-    0.538). Below the floor evening gains little and turns the patches round a point load away from
+    0.538). Round a pole of triangles only, whose whole turn may move a spoke by tens of degrees,
+    only the fan's own corners count: the quads behind the spokes may fold before smoothing, which
+    turns them with the spokes (the inner point feature (7.09, 5.56) of ``two_holes_five_points``,
+    20 triangles whose patches share 62 to 112 degrees: 0.302 after smoothing, 0.251 left as it was).
+    Below the floor evening gains little and turns the patches round a point load away from
     its radial force flow: ``square_point_loads`` (39 triangles round each load, bound 0.185) went
     from 0.093 to 0.185, but its voussoir joints from 8.2 to 11.0 degrees off the force flow
     (median; the tessellation's floor is 10).
@@ -131,7 +135,8 @@ def even_fans(vertices: np.ndarray, faces, face_patch: np.ndarray, pole: np.ndar
 def _even_pole(x: np.ndarray, faces, c: int, corners: tuple, size: np.ndarray, mine: np.ndarray,
                face_patch: np.ndarray, held: np.ndarray) -> list:
     """Pole ``c``'s fans evened in place (its corners ``mine``; see :func:`even_fans`) unless that makes
-    the worst corner of its spokes' faces worse; the rays of the spokes that turned."""
+    the worst corner of its spokes' faces worse (of its own triangles, round a pole of triangles
+    only); the rays of the spokes that turned."""
     face_of, u, v, p = corners
     tri = size[face_of[mine]] == 3
     region = np.isin(face_patch, face_patch[face_of[mine[tri]]])  # the patches of its fans
@@ -143,7 +148,8 @@ def _even_pole(x: np.ndarray, faces, c: int, corners: tuple, size: np.ndarray, m
     spokes = np.asarray(spokes)
     d = x[spokes, :2] - x[c, :2]
     turn = (np.asarray(angles) - np.arctan2(d[:, 1], d[:, 0]) + math.pi) % (2 * math.pi) - math.pi
-    near, before = np.isin(u, spokes), x[spokes].copy()
+    closed = len(spokes) == len(mine)  # every spoke turns: a pole of triangles only
+    near, before = (u == c) if closed else np.isin(u, spokes), x[spokes].copy()
     worst = _worst_corner(x, faces, face_of, near)
     _turn_about(x, c, spokes, turn)
     if _worst_corner(x, faces, face_of, near) < worst:
