@@ -26,7 +26,8 @@ def test_rules_check_prints_summary():
     assert result.exit_code == 0, result.output
     assert "prune_corner_branch all; rebranch all" in result.output
     assert (
-        "patching: split_at_boundary_feature(onto_boundary = false) fixpoint; split_at_boundary_feature fixpoint; "
+        "patching: cut_neck fixpoint; split_at_boundary_feature(onto_boundary = false) fixpoint; "
+        "split_at_boundary_feature fixpoint; "
         "choose { split_quad_at_feature_beside_boundary, split_quad_at_feature, keep_quad_at_feature } fixpoint"
     ) in result.output
 

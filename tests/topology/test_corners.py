@@ -13,7 +13,7 @@ from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import decompose, mesh_decomposition
 from vaultgram.topology.corners import chord_feet, ray_hit, rectilinear_rings
 
-from paths import EXAMPLES
+from paths import ARCHITECTURE, EXAMPLES
 from strategies.domains import RECTILINEAR_PLANS, orthogonal_domains
 
 PLANS = RECTILINEAR_PLANS
@@ -81,3 +81,40 @@ def test_plans_with_other_angles_or_features_keep_the_medial_axis():
 def test_random_orthogonal_plans_mesh_without_singular_vertices(data):
     """Random polyomino outlines of 8-40 corners with 0-2 rectangular or L-shaped holes."""
     no_singular_vertex(domain_from_dict(data))
+
+
+def neck_plan(width: float, length: float) -> dict:
+    """A rectangular room, a passage ``width`` wide and ``length`` long, and a trapezoidal hall: not
+    rectilinear, so the medial axis stays, and its branch through the passage meets four reflex corners."""
+    x0, x1, y0, y1 = 3.0, 3.0 + length, 2 - width / 2, 2 + width / 2
+    return {"outer": [[0, 0], [x0, 0], [x0, y0], [x1, y0], [x1, -1], [9, -2], [9, 6], [x1, 5], [x1, y1], [x0, y1],
+                      [x0, 4], [0, 4]]}
+
+
+@pytest.mark.parametrize("width, length", [(0.4, 0.3), (0.5, 1.0), (0.3, 2.0)])
+def test_a_neck_is_one_quad_between_its_four_reflex_corners(width, length):
+    """rules/patching.vgr, cut_neck: the branch through the passage goes, two chords across its ends
+    make it one quad whose corners are the four reflex corners, each then the corner of three patches
+    (valence 4, regular at 270 degrees; 4 boundary singularities and a worst scaled Jacobian of 0.16
+    to 0.19 before)."""
+    domain = domain_from_dict(neck_plan(width, length))
+    dec = decompose(domain)
+    x0, x1, y0, y1 = 3.0, 3.0 + length, 2 - width / 2, 2 + width / 2
+    reflex = sorted([(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
+    patches = [sorted(tuple(np.round(dec.graph.get(c, "pos"), 9)) for c in p.corners) for p in dec.patches]
+    assert reflex in patches
+    assert [sum(r in p for p in patches) for r in reflex] == [3, 3, 3, 3]
+    stats = mesh_stats(mesh_decomposition(dec), domain)
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_vertices"]
+    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.3
+
+
+def test_the_hiroshi_senju_museum_doorway_has_no_boundary_singularity():
+    """The plan's doorway (4.3-4.6, 10.4-10.8) between a room and the hall: its four reflex corners
+    had valence 3."""
+    path = ARCHITECTURE / "hiroshi_senju_museum.json"
+    if not path.exists():
+        pytest.skip("shared plans absent")
+    domain = load_domain(path)
+    stats = mesh_stats(mesh_decomposition(decompose(domain)), domain)
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_vertices"]

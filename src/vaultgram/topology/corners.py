@@ -22,12 +22,12 @@ import weakref
 
 import numpy as np
 
-from vaultgram.geometry.polygons import cross_z, regular_valence, signed_angles
+from vaultgram.geometry.polygons import cross_z, interior_angle, regular_valence, signed_angles
 from vaultgram.topology.statecache import per_state
 from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE_POINT, FEATURE_POINT
 
 __all__ = ["rectilinear_rings", "chord_feet", "ray_hit", "graph_rings", "boundary_angle", "rectilinear_plan",
-           "chord_end", "segments_cross", "segment_crossing", "RIGHT_ANGLE_TOLERANCE"]
+           "chord_end", "segments_cross", "segment_crossing", "neck_corner", "RIGHT_ANGLE_TOLERANCE"]
 
 #: Degrees by which a corner of a rectilinear plan may differ from 90, 180 or 270.
 RIGHT_ANGLE_TOLERANCE = 1.0
@@ -149,6 +149,16 @@ def _cache(graph) -> dict:
 def boundary_angle(graph, v: int) -> float:
     """The domain's interior angle (degrees) at boundary vertex ``v``, between its ring neighbours."""
     return _cache(graph)["angle"][v]
+
+
+def neck_corner(graph, r: int, before, after) -> bool:
+    """Whether the corner at reflex corner ``r`` of a counter-clockwise quad across a passage (``before``
+    and ``after`` its neighbouring corners, one along the wall, one at a chord's other end) is a
+    quad's corner, 45 to 135 degrees, leaving ``r`` a straight angle outside the quad (regular
+    valence 3, 135 to 225 degrees): ``r`` is then regular as the corner of three patches
+    (``rules/patching.vgr``, cut_neck)."""
+    inside = interior_angle(before, graph.get(r, "pos"), after)
+    return 45.0 <= inside < 135.0 and int(regular_valence(boundary_angle(graph, r) - inside)) == 3
 
 
 def rectilinear_plan(graph) -> bool:

@@ -316,6 +316,14 @@ def path_clear(graph, path) -> bool:
     return _clear(np.asarray(path, dtype=float), *_plan_segments(graph))
 
 
+def path_crosses_only(graph, path, edge: int) -> bool:
+    """Whether a polyline crosses the plan once, and there the plan edge ``edge`` (a branch that the
+    rule drawing the path deletes): the path then stays in the two patches on either side of it."""
+    path = np.asarray(path, dtype=float)
+    pts = half_edge_polyline(graph, edge, graph.ends(edge)[0])
+    return _crossings(path, pts[:-1], pts[1:]) == 1 == _crossings(path, *_plan_segments(graph))
+
+
 def _plan_segments(graph) -> tuple[np.ndarray, np.ndarray]:
     """Start and end points of every straight piece of every plan edge (once per state: every
     diagonal a rule tries in one state is checked against the same plan)."""
@@ -342,7 +350,13 @@ def _segments_of(key: tuple) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _clear(path: np.ndarray, start: np.ndarray, end: np.ndarray) -> bool:
-    """No piece of ``path`` properly crosses a segment ``start[i]``-``end[i]`` (vectorised)."""
+    """No piece of ``path`` properly crosses a segment ``start[i]``-``end[i]``."""
+    return _crossings(path, start, end) == 0
+
+
+def _crossings(path: np.ndarray, start: np.ndarray, end: np.ndarray) -> int:
+    """How many times the pieces of ``path`` properly cross the segments ``start[i]``-``end[i]``
+    (vectorised)."""
     p, q = path[:-1, None, :], path[1:, None, :]
     s, e = start[None, :, :], end[None, :, :]
     size = float(np.ptp(path, axis=0).max())
@@ -353,7 +367,7 @@ def _clear(path: np.ndarray, start: np.ndarray, end: np.ndarray) -> bool:
 
     straddles = side(p, q, s) * side(p, q, e) < -eps
     crosses = side(s, e, p) * side(s, e, q) < -eps
-    return not bool(np.any(straddles & crosses))
+    return int(np.count_nonzero(straddles & crosses))
 
 
 def _points(path) -> tuple:
@@ -450,6 +464,7 @@ def vault_functions() -> Functions:
     f.register("curve_neighbours", curve_neighbours, ("node", "node"), "bool", uses_graph=True, local=False)
     f.register("diagonal_path", diagonal_path, ("node", "node", "node"), "list", uses_graph=True, local=False)
     f.register("path_clear", path_clear, ("list",), "bool", uses_graph=True, local=False)
+    f.register("path_crosses_only", path_crosses_only, ("list", "edge"), "bool", uses_graph=True, local=False)
     f.register("patch_angle", patch_angle, ("node", "node"), "float", uses_graph=True, local=False)
     f.register("patch_side_starts", patch_side_starts, ("node", "node", "node"), "bool", uses_graph=True,
                local=False)
@@ -477,3 +492,4 @@ def _register_corner_helpers(f: Functions) -> None:
     f.register("chord_end", corners.chord_end, ("node", "int"), "node", uses_graph=True, local=False)
     f.register("segments_cross", corners.segments_cross, ("vec2", "vec2", "vec2", "vec2"), "bool")
     f.register("segment_crossing", corners.segment_crossing, ("vec2", "vec2", "vec2", "vec2"), "vec2")
+    f.register("neck_corner", corners.neck_corner, ("node", "vec2", "vec2"), "bool", uses_graph=True, local=False)
