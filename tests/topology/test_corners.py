@@ -131,3 +131,13 @@ def test_a_neck_between_two_rooms_whose_skeleton_ends_in_them_stays():
     plan = shapely.set_precision(shapely.union_all([*rooms, shapely.box(0, -0.5, 8, 0.5)]), 1e-6)
     dec = decompose(domain_from_dict({"outer": np.asarray(plan.exterior.coords)[:-1].tolist()}))
     assert not [e for e in dec.graph.edges() if dec.graph.edge_type(e) == "Diagonal"]
+
+
+@pytest.mark.parametrize("width, length", [(1.0, 0.2), (1.5, 0.5)])
+def test_a_wide_doorway_whose_corners_are_regular_stays(width, length):
+    """A doorway as wide as it is deep or wider: the medial axis already gives two of its reflex
+    corners three patches, and cut_neck, which would give them four, leaves it (2 boundary
+    singularities where there were none)."""
+    domain = domain_from_dict(neck_plan(width, length))
+    stats = mesh_stats(mesh_decomposition(decompose(domain)), domain)
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_vertices"]
