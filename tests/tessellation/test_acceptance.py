@@ -33,15 +33,18 @@ from strategies.domains import convex_domains
 #: voussoirs, the coefficient of variation of the voussoir areas, and the median angle (degrees)
 #: between the joints in regular areas and the force flow across them.
 MEASURED = {
-    "features_combined": {"of_3": (0.967, 0.970), "cv": (0.386, 0.415), "force": (5.77, 5.80)},
+    "features_combined": {"of_3": (0.967, 0.970), "cv": (0.393, 0.427), "force": (5.77, 5.80)},
     "fig5_boundary_points": {"of_3": (0.979, 1.000), "cv": (0.382, 0.340), "force": (4.32, 4.22)},
     "fig6_inner_points": {"of_3": (0.959, 0.956), "cv": (0.448, 0.463), "force": (2.73, 2.72)},
-    "fig7_curves": {"of_3": (0.975, 0.974), "cv": (0.435, 0.437), "force": (5.35, 5.27)},
+    "fig7_curves": {"of_3": (0.975, 0.974), "cv": (0.462, 0.474), "force": (5.35, 5.27)},
     "l_shape": {"of_3": (0.990, 0.996), "cv": (0.307, 0.282), "force": (6.80, 6.42)},
     "quad_with_hole": {"of_3": (1.000, 1.000), "cv": (0.308, 0.278), "force": (1.43, 1.37)},
     "square_point_loads": {"of_3": (0.984, 0.992), "cv": (0.352, 0.298), "force": (8.30, 8.41)},
     "armadillo_vault": {"of_3": (0.969, 0.988), "cv": (0.391, 0.378), "force": (9.99, 9.61)},
 }
+# The area CVs of fig7_curves and features_combined were 0.435/0.437 and 0.386/0.415 before the
+# strips under their curve ends (rules/curves.vgr, split_triangle_under_curve_tip): a column of
+# quads more from each end to the boundary.
 #: Margins on the measurements: share of points of three, area CV, force angle (degrees).
 OF_3_MARGIN, CV_MARGIN, FORCE_MARGIN = 0.02, 0.03, 0.75
 # The targets, at least 95% of meeting points of three voussoirs, an area CV of at most 0.5

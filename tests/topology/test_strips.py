@@ -208,11 +208,18 @@ def test_figure_8_to_the_side_makes_the_curve_end_a_triangle_pole_and_carries_th
         assert any(g.other(e, x) in cut for x in ends for e in g.incident(x, ["Diagonal"]))
 
 
-def test_the_default_decomposition_has_no_strip():
+def test_the_default_decomposition_has_strips_only_beyond_curve_tips():
+    """No choice point starts a strip by default; the only strips are those the patches wrapped under
+    a curve's free end start (rules/curves.vgr, split_triangle_under_curve_tip): fig7's curve x = 5
+    from y = 7.5 to 9 has one straight beyond each end, joined to it by a diagonal."""
     for name in ("fig7_curves", "quad_with_hole"):
         dec = decompose(_domain(name), SPACING)
-        assert not any(dec.graph.node_type(n) == "StripPoint" for n in dec.graph.nodes())
+        g = dec.graph
+        cut = [n for n in g.nodes() if g.node_type(n) == "StripPoint"]
         assert all(r.applications == 0 for r in dec.reports if r.step.startswith("{ absorb_strip_point"))
+        assert all(g.get(n, "pos")[0] == pytest.approx(5.0) for n in cut)
+        tips = {g.other(e, n) for n in cut for e in g.incident(n, ["Diagonal"])} & set(g.of_types(["CurveExtremity"]))
+        assert len(cut) == len(tips) == (2 if name == "fig7_curves" else 0)
 
 
 def test_explore_offers_the_strips_of_a_plan_without_other_choices_and_replays_them(tmp_path):
