@@ -4,9 +4,17 @@ import numpy as np
 import pytest
 
 from vaultgram.geometry.halfedges import mesh_edges
-from vaultgram.geometry.meshes import boundary_loops
-from vaultgram.geometry.surfaces import area_vectors
-from vaultgram.tessellation.refine import LARGE, refine_large_faces
+from vaultgram.geometry.meshes import Faces, boundary_loops
+from vaultgram.geometry.surfaces import area_vectors, surface_areas
+from vaultgram.tessellation.refine import (
+    LARGE,
+    _areas_after,
+    _cut_directions,
+    _refined,
+    _strips_to_refine,
+    refine_large_faces,
+)
+from vaultgram.tessellation.strips import quad_strips
 
 
 def rect_mesh(xs, ys):
@@ -108,3 +116,21 @@ def test_refined_points_of_a_curved_surface_are_means_of_network_vertices():
     for k, p in enumerate(parents):
         assert len(p) in (2, 4) and np.allclose(x[len(v) + k], v[list(p)].mean(axis=0))
     _conforming(x, faces)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_areas_kept_through_a_pass_equal_every_face_measured_again(seed):
+    """The areas a pass keeps for its unchanged faces and measures for the others are bit for bit the
+    areas of the whole refined mesh (random widths and heights, a random curved surface)."""
+    rng = np.random.default_rng(seed)
+    v, f = rect_mesh(np.cumsum(rng.uniform(0.2, 3.0, 12)), np.cumsum(rng.uniform(0.2, 3.0, 9)))
+    v[:, 2] = rng.normal(size=len(v)) * 0.3
+    faces = Faces(f)
+    area = surface_areas(v, faces)
+    me = mesh_edges(faces, len(v))
+    strips = quad_strips(me, faces)
+    chosen = _strips_to_refine(v, me, strips, np.flatnonzero(area > LARGE * np.median(area)))
+    x, new_faces, _, origin, changed = _refined(v, faces, _cut_directions(faces, me, strips, chosen))
+    new_faces = Faces(new_faces)
+    assert chosen and changed.any() and not changed.all()
+    assert np.array_equal(_areas_after(x, new_faces, area[origin], changed), surface_areas(x, new_faces))

@@ -83,7 +83,7 @@ def joint_force_angles(x: np.ndarray, layout: VoussoirLayout, face_normals: np.n
     angles = force_angles(x, me, _face_normals(x, layout) if face_normals is None else face_normals, j)
     valence = np.bincount(me.edges.ravel(), minlength=len(x))
     inner = inner_vertices(layout, len(x))
-    quads = np.array([len(f) == 4 for f in layout.mesh.faces])
+    quads = np.diff(me.face_start) == 4
     regular = (valence[a] == 4) & (valence[b] == 4) & inner[a] & inner[b] & quads[me.faces_of[j]].all(axis=1)
     return angles, regular
 
