@@ -197,7 +197,7 @@ def freed_memory_kept() -> Iterator[None]:
     if libc is None:
         yield
         return
-    libc.mallopt(M_TRIM_THRESHOLD, 2**31 - 1)
+    libc.mallopt(M_TRIM_THRESHOLD, -1)  # read as the largest size_t: never
     libc.mallopt(M_MMAP_MAX, 0)
     try:
         yield
