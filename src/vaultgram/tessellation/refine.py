@@ -14,8 +14,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from vaultgram.geometry.arrays import lookup, sorted_keys
 from vaultgram.geometry.halfedges import MeshEdges, mesh_edges
-from vaultgram.geometry.meshes import Faces, corner_arrays, has_side_in, with_midpoints
+from vaultgram.geometry.meshes import Faces, corner_arrays, has_side_in
 from vaultgram.geometry.surfaces import surface_areas
 from vaultgram.tessellation.strips import Strip, node_strips, quad_strips, strip_directions
 
@@ -90,8 +91,32 @@ def _refined(x: np.ndarray, faces, cuts: dict[int, set[int]]) -> tuple[np.ndarra
     out.extend(faces[done:])
     origin = np.repeat(np.arange(len(faces)), counts)
     touched = has_side_in(faces, index, len(x))[origin]
-    out = [with_midpoints(f, index) if t else tuple(f) for f, t in zip(out, touched.tolist())]
+    out = [tuple(f) for f in out]
+    redo = np.flatnonzero(touched).tolist()
+    for k, face in zip(redo, _midpoints_inserted([out[k] for k in redo], index, len(x) + len(points))):
+        out[k] = face
     return np.vstack([x, *points]) if points else x, out, parents, origin, touched | (counts > 1)[origin]
+
+
+def _midpoints_inserted(faces: list, midpoint: dict, n: int) -> Faces:
+    """:func:`~vaultgram.geometry.meshes.with_midpoints` of every face at once (vertex ids below
+    ``n``): each corner's vertex, then the midpoint of the side it starts if that side was cut and
+    the midpoint is not in the face already. One sorted search over the corners instead of a walk
+    per face in Python (0.8 s for the 177,000 faces beside the cuts at 10^6 faces)."""
+    face, u, v, _ = corner_arrays(faces)
+    sides = np.array(list(midpoint), dtype=np.int64).reshape(-1, 2)
+    keys = sides[:, 0] * n + sides[:, 1]
+    order = np.argsort(keys)
+    keys, mids = keys[order], np.fromiter(midpoint.values(), dtype=np.int64, count=len(midpoint))[order]
+    at, cut = lookup(keys, np.minimum(u, v) * n + np.maximum(u, v))
+    m = mids[at] if len(mids) else at
+    cut &= ~lookup(sorted_keys(face * n + u), face * n + m)[1]  # the midpoint is a corner already
+    size = 1 + cut
+    start = np.cumsum(size) - size
+    flat = np.empty(int(size.sum()), dtype=np.int64)
+    flat[start] = u
+    flat[start[cut] + 1] = m[cut]
+    return Faces.from_flat(flat, np.bincount(face, weights=size, minlength=len(faces)).astype(np.int64))
 
 
 def refine_large_faces(x: np.ndarray, faces, large: float = LARGE, passes: int = PASSES
