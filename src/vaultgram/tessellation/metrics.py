@@ -53,10 +53,12 @@ def _face_normals(x: np.ndarray, layout: VoussoirLayout) -> np.ndarray:
 def force_angles(x: np.ndarray, me: MeshEdges, face_normals: np.ndarray, edges: np.ndarray) -> np.ndarray:
     """Per inner edge, the angle (degrees) between its normal in the surface and the local force flow
     across it: the mean direction of the network edges crossing it (the sides leaving the edge's
-    ends in the faces on both sides, turned to point the same way across)."""
+    ends in the faces on both sides, turned to point the same way across). Rows are gathered with
+    ``take`` (a third of the time of fancy indexing on 10^6 rows of three; the same values)."""
     a, b = me.edges[edges, 0], me.edges[edges, 1]
-    d = unit_rows(x[b] - x[a])
-    normal = unit_rows(face_normals[me.faces_of[edges]].sum(axis=1))
+    d = unit_rows(x.take(b, axis=0) - x.take(a, axis=0))
+    left, right = me.faces_of[edges, 0], me.faces_of[edges, 1]
+    normal = unit_rows(face_normals.take(left, axis=0) + face_normals.take(right, axis=0))
     across = unit_rows(cross_rows(normal, d))
     flow = np.zeros_like(across)
     for side in (0, 1):
@@ -65,7 +67,8 @@ def force_angles(x: np.ndarray, me: MeshEdges, face_normals: np.ndarray, edges: 
         start, size = me.face_start[f], me.face_start[f + 1] - me.face_start[f]
         prev_c = start + (me.corner_side[c] - 1) % size
         next_c = start + (me.corner_side[c] + 1) % size
-        sides = (x[me.corner_vertex[prev_c]] - x[me.corner_vertex[c]], x[me.corner_next[next_c]] - x[me.corner_next[c]])
+        sides = (x.take(me.corner_vertex[prev_c], axis=0) - x.take(me.corner_vertex[c], axis=0),
+                 x.take(me.corner_next[next_c], axis=0) - x.take(me.corner_next[c], axis=0))
         for t in sides:
             t = unit_rows(t)
             flow += t * np.sign(row_dot(t, across))[:, None]
