@@ -97,9 +97,10 @@ def joint_tilts(x: np.ndarray, normals: np.ndarray, layout: VoussoirLayout, face
     (``normals`` at the vertices, ``face_normals`` of the layout's faces, computed if not given)."""
     me, j = layout.edges, layout.joints
     a, b = me.edges[j, 0], me.edges[j, 1]
-    plane = unit_rows(cross_rows(x[b] - x[a], normals[a] + normals[b]))
+    xa, xb, na, nb = (np.take(v, e, axis=0) for v, e in ((x, a), (x, b), (normals, a), (normals, b)))
+    plane = unit_rows(cross_rows(xb - xa, na + nb))  # rows by take (as in force_angles): the same values
     faces = _face_normals(x, layout) if face_normals is None else face_normals
-    normal = unit_rows(faces[me.faces_of[j]].sum(axis=1))
+    normal = unit_rows(faces.take(me.faces_of[j, 0], axis=0) + faces.take(me.faces_of[j, 1], axis=0))
     return np.degrees(np.arcsin(np.clip(np.abs(row_dot(plane, normal)), 0.0, 1.0)))
 
 

@@ -80,8 +80,9 @@ def voussoir_solids(x: np.ndarray, normals: np.ndarray, loops, thickness: float,
     loop, u, v, _ = corner_arrays(loops)
     k = len(loops)
     count = np.bincount(loop, minlength=k)[:, None]
-    bottom_c = np.column_stack([np.bincount(loop, weights=points[0][u, j], minlength=k) for j in range(3)]) / count
-    top_c = np.column_stack([np.bincount(loop, weights=points[0][n + u, j], minlength=k) for j in range(3)]) / count
+    bottom, top = points[0].take(u, axis=0), points[0].take(n + u, axis=0)  # rows by take: the same values
+    bottom_c = np.column_stack([np.bincount(loop, weights=bottom[:, j], minlength=k) for j in range(3)]) / count
+    top_c = np.column_stack([np.bincount(loop, weights=top[:, j], minlength=k) for j in range(3)]) / count
     cb, ct = 2 * n + np.arange(k), 2 * n + k + np.arange(k)
     points += [bottom_c, top_c]
     top_u = n + u
