@@ -53,7 +53,7 @@ from vaultgram.geometry.halfedges import mesh_edges
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.surfaces import area_vectors, vertex_normals
 from vaultgram.geometry.text import plan_frame
-from vaultgram.io.files import collector_paused
+from vaultgram.io.files import collector_paused, freed_memory_kept
 from vaultgram.limits import MAX_FACES
 from vaultgram.meshing.densities import CHORD_TOLERANCE, DensitySpec, group_counts
 from vaultgram.meshing.fans import even_fans, held_vertices
@@ -448,7 +448,7 @@ def tessellate(surface: ThrustSurface, rhythm: int = 2, thickness: float = 1.0,
     """
     _check_tessellation_options(rhythm, thickness, max_concavity, surface_smooth)
     rulebook = load_tessellation_rulebook(rules_dir)
-    with collector_paused():
+    with collector_paused(), freed_memory_kept():
         with _timed(timings, "refine"):
             x, faces, supported, refined = _refine(surface)
         with _timed(timings, "keystones"):

@@ -10,13 +10,14 @@ import subprocess
 import sys
 import time
 
+import numpy as np
 import pytest
 from click.testing import CliRunner
 
 from vaultgram.cli import main
 from vaultgram.errors import VaultgramError
 from vaultgram.io import files
-from vaultgram.io.files import output_folder, write_text
+from vaultgram.io.files import freed_memory_kept, output_folder, write_text
 
 from paths import EXAMPLES
 
@@ -162,3 +163,18 @@ def test_an_interrupt_after_the_command_ended_exits_130_without_a_traceback(monk
     with pytest.raises(SystemExit) as exit_info:
         main(["--help"])
     assert exit_info.value.code == 130
+
+
+def test_freed_memory_kept_leaves_results_alone_and_gives_memory_back():
+    """Inside the block large arrays are made, freed and made again; the values are those made
+    outside it, also when the block raises (the allocator's settings are restored either way)."""
+    rng = np.random.default_rng(0)
+    x = rng.normal(size=(10**6, 3))
+    expected = np.cross(x, x[::-1]).sum(axis=0)
+    with freed_memory_kept():
+        for _ in range(3):
+            got = np.cross(x, x[::-1]).sum(axis=0)
+    assert np.array_equal(got, expected)
+    with pytest.raises(ValueError), freed_memory_kept():
+        raise ValueError("inside")
+    assert np.array_equal(np.cross(x, x[::-1]).sum(axis=0), expected)

@@ -4,9 +4,18 @@ import numpy as np
 import pytest
 
 from vaultgram.geometry.halfedges import mesh_edges
-from vaultgram.geometry.meshes import boundary_loops
-from vaultgram.geometry.surfaces import area_vectors
-from vaultgram.tessellation.refine import LARGE, refine_large_faces
+from vaultgram.geometry.meshes import Faces, boundary_loops, with_midpoints
+from vaultgram.geometry.surfaces import area_vectors, surface_areas
+from vaultgram.tessellation.refine import (
+    LARGE,
+    _areas_after,
+    _cut_directions,
+    _midpoints_inserted,
+    _refined,
+    _strips_to_refine,
+    refine_large_faces,
+)
+from vaultgram.tessellation.strips import quad_strips
 
 
 def rect_mesh(xs, ys):
@@ -108,3 +117,35 @@ def test_refined_points_of_a_curved_surface_are_means_of_network_vertices():
     for k, p in enumerate(parents):
         assert len(p) in (2, 4) and np.allclose(x[len(v) + k], v[list(p)].mean(axis=0))
     _conforming(x, faces)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_areas_kept_through_a_pass_equal_every_face_measured_again(seed):
+    """The areas a pass keeps for its unchanged faces and measures for the others are bit for bit the
+    areas of the whole refined mesh (random widths and heights, a random curved surface)."""
+    rng = np.random.default_rng(seed)
+    v, f = rect_mesh(np.cumsum(rng.uniform(0.2, 3.0, 12)), np.cumsum(rng.uniform(0.2, 3.0, 9)))
+    v[:, 2] = rng.normal(size=len(v)) * 0.3
+    faces = Faces(f)
+    area = surface_areas(v, faces)
+    me = mesh_edges(faces, len(v))
+    strips = quad_strips(me, faces)
+    chosen = _strips_to_refine(v, me, strips, np.flatnonzero(area > LARGE * np.median(area)))
+    x, new_faces, _, origin, changed = _refined(v, faces, _cut_directions(faces, me, strips, chosen))
+    new_faces = Faces(new_faces)
+    assert chosen and changed.any() and not changed.all()
+    assert np.array_equal(_areas_after(x, new_faces, area[origin], changed), surface_areas(x, new_faces))
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_midpoints_inserted_at_once_equal_face_by_face(seed):
+    """On random faces of 3-6 vertices and random cut sides (some midpoints already corners of a
+    face, as in the cut quads' pieces), the faces :func:`with_midpoints` gives one by one."""
+    rng = np.random.default_rng(seed)
+    n = 40
+    faces = [tuple(rng.choice(n, int(rng.integers(3, 7)), replace=False).tolist()) for _ in range(200)]
+    sides = {tuple(sorted(p)) for p in rng.integers(0, n, (150, 2)).tolist() if p[0] != p[1]}
+    index = {side: int(m) for side, m in zip(sorted(sides), rng.integers(0, n + 30, len(sides)))}
+    expected = [with_midpoints(f, index) for f in faces]
+    assert sum(len(e) for e in expected) > sum(len(f) for f in faces)
+    assert list(_midpoints_inserted(faces, index, n + 30)) == expected

@@ -36,6 +36,19 @@ def test_volumes_add_up_to_the_shell(tessellation):
     assert volumes.sum() == pytest.approx(0.3 * area, rel=0.05)
 
 
+@pytest.mark.parametrize("rows", [1, 7, 64])
+def test_volumes_by_blocks_are_the_volumes_at_once(tessellation, monkeypatch, rows):
+    """Triangles taken a few at a time give the volumes, bit for bit, that one block of all of them
+    gives (the products and the per-solid sums are the same, in the same order)."""
+    import vaultgram.tessellation.solids as module
+
+    n = tessellation.layout.n_voussoirs
+    monkeypatch.setattr(module, "VOLUME_ROWS", len(tessellation.solids.triangles))
+    at_once = solid_volumes(tessellation.solids, n)
+    monkeypatch.setattr(module, "VOLUME_ROWS", rows)
+    assert np.array_equal(solid_volumes(tessellation.solids, n), at_once)
+
+
 def test_neighbours_share_their_joint_faces_exactly(tessellation):
     solids = tessellation.solids
     owner_of = {}

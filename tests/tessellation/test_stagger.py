@@ -9,13 +9,18 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from vaultgram.geometry.arrays import row_dot, steady, unit_rows
+from vaultgram.geometry.halfedges import mesh_edges
+from vaultgram.geometry.meshes import grid_mesh
 from vaultgram.geometry.surfaces import area_vectors
 from vaultgram.pipeline import tessellate
 from vaultgram.tessellation.metrics import inner_vertices
 from vaultgram.tessellation.stagger import (
     ALIGNED_COST,
+    AMBIGUITY,
     SINGLE_COST,
     SKEW_COST,
+    SMOOTHING,
     cheapest_cut,
     course_joints,
     course_runs,
@@ -183,6 +188,45 @@ def test_a_rung_along_the_force_flow_is_not_kept_when_another_cut_costs_little_m
 # ---------------------------------------------------------------------------------------------
 # Directions and courses
 # ---------------------------------------------------------------------------------------------
+
+
+def _directions_by_all_corners(x, me, pref, is_quad):
+    """:func:`quad_directions` as it first ran: every quad corner votes in every round, the ambiguous
+    quads follow the majority (the reference of the version where only the ambiguous quads' corners
+    vote)."""
+    d = x[me.edges[:, 1], :2] - x[me.edges[:, 0], :2]
+    align = np.abs(row_dot(unit_rows(d), pref))
+    quad_corner = is_quad[me.corner_face]
+    c = np.flatnonzero(quad_corner)
+    f, side, n = me.corner_face[c], me.corner_side[c], len(is_quad)
+    score = np.bincount(2 * f + side % 2, align[me.corner_edge[c]], 2 * n).reshape(n, 2)
+    choice = np.where(is_quad, np.argmax(steady(score), axis=1), -1)
+    ambiguous = is_quad & (np.abs(score[:, 0] - score[:, 1]) < 2 * AMBIGUITY)
+    twin = me.corner_twin[c]
+    ok = (twin >= 0) & quad_corner[np.maximum(twin, 0)]
+    f, side, twin = f[ok], side[ok], twin[ok]
+    g, other_side = me.corner_face[twin], me.corner_side[twin]
+    for _ in range(SMOOTHING):
+        seen = np.where(choice[g] == other_side % 2, side % 2, 1 - side % 2)
+        votes = np.bincount(2 * f + seen, minlength=2 * n).reshape(n, 2)
+        flip = ambiguous & (votes.max(axis=1) > votes.min(axis=1))
+        choice = np.where(flip, np.argmax(votes, axis=1), choice)
+    return choice
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_quad_directions_equal_every_corner_voting(seed):
+    """On jittered grids with random preferential directions near the diagonal (many ambiguous quads)
+    and some faces not quads, the same course directions as the reference where every corner votes."""
+    rng = np.random.default_rng(seed)
+    v, f = grid_mesh(int(rng.integers(5, 30)), int(rng.integers(5, 30)))
+    v[:, :2] += rng.uniform(-0.3, 0.3, (len(v), 2))
+    me = mesh_edges(f, len(v))
+    angle = np.pi / 4 + rng.normal(0, 0.3, me.n_edges)
+    pref = np.column_stack([np.cos(angle), np.sin(angle)])
+    is_quad = rng.random(len(f)) < 0.9
+    expected = _directions_by_all_corners(v, me, pref, is_quad)
+    assert np.array_equal(quad_directions(v, me, pref, is_quad), expected)
 
 
 def test_the_preferential_direction_is_the_free_edge(arch_grid):

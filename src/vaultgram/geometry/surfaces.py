@@ -77,12 +77,12 @@ def loop_planes(vertices: np.ndarray, loops, up=None) -> tuple[np.ndarray, np.nd
     ([[1.0, 1.0, 1.0]], [[0.0, 0.0, 1.0]])
     """
     loop, u, _, _ = corner_arrays(loops)
-    x = np.asarray(vertices, dtype=float)
+    xu = np.asarray(vertices, dtype=float).take(u, axis=0)  # rows by take: a third of fancy indexing's time
     k = len(loops)
     count = np.bincount(loop, minlength=k).astype(float)
-    centroid = np.column_stack([np.bincount(loop, weights=x[u, j], minlength=k) for j in range(3)])
+    centroid = np.column_stack([np.bincount(loop, weights=xu[:, j], minlength=k) for j in range(3)])
     centroid /= np.maximum(count, 1.0)[:, None]
-    d = x[u] - centroid[loop]
+    d = xu - centroid.take(loop, axis=0)
     cov = np.zeros((k, 3, 3))
     for i in range(3):
         for j in range(i, 3):
@@ -103,8 +103,9 @@ def loop_corner_angles(vertices: np.ndarray, loops, normals: np.ndarray) -> np.n
     """
     loop, u, v, w = corner_arrays(loops)
     x = np.asarray(vertices, dtype=float)
-    n = np.asarray(normals, dtype=float)[loop]
-    a, b = x[v] - x[u], x[w] - x[u]  # towards the next and the previous corner
+    n = np.asarray(normals, dtype=float).take(loop, axis=0)  # rows by take: a third of fancy indexing's time
+    xu = x.take(u, axis=0)
+    a, b = x.take(v, axis=0) - xu, x.take(w, axis=0) - xu  # towards the next and the previous corner
     a -= row_dot(a, n)[:, None] * n
     b -= row_dot(b, n)[:, None] * n
     turn = np.degrees(np.arctan2(row_dot(cross_rows(a, b), n), row_dot(a, b)))

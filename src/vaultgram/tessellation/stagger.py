@@ -107,7 +107,8 @@ def quad_directions(x: np.ndarray, me: MeshEdges, pref: np.ndarray, is_quad: np.
     """Per face, the direction of its course (0: sides 0 and 2 are rungs, 1: sides 1 and 3; -1 for a
     face that is not a quad): the pair of opposite sides that runs closer to the preferential
     direction. Where both run about as close (within :data:`AMBIGUITY`), the quad follows the
-    majority of its neighbours, :data:`SMOOTHING` times, so courses do not fray along the diagonals."""
+    majority of its neighbours, :data:`SMOOTHING` times, so courses do not fray along the diagonals
+    (only the ambiguous quads' corners vote: the others never flip)."""
     d = plan_rows(x, me.edges[:, 1]) - plan_rows(x, me.edges[:, 0])
     align = np.abs(row_dot(unit_rows(d), pref))
     quad_corner = is_quad[me.corner_face]
@@ -118,15 +119,16 @@ def quad_directions(x: np.ndarray, me: MeshEdges, pref: np.ndarray, is_quad: np.
     choice = np.where(is_quad, np.argmax(steady(score), axis=1), -1)
     ambiguous = is_quad & (np.abs(score[:, 0] - score[:, 1]) < 2 * AMBIGUITY)
     twin = me.corner_twin[c]
-    ok = (twin >= 0) & quad_corner[np.maximum(twin, 0)]
-    c, f, side, twin = c[ok], f[ok], side[ok], twin[ok]
-    g, other_side = me.corner_face[twin], me.corner_side[twin]
+    ok = (twin >= 0) & quad_corner[np.maximum(twin, 0)] & ambiguous[f]
+    f, side, twin = f[ok], side[ok] % 2, twin[ok]
+    g, other_side = me.corner_face[twin], me.corner_side[twin] % 2
+    voters = np.flatnonzero(ambiguous)
     for _ in range(SMOOTHING):
         # the neighbour's course, seen from this quad: the same strip if it runs through the shared side
-        seen = np.where(choice[g] == other_side % 2, side % 2, 1 - side % 2)
-        votes = np.bincount(2 * f + seen, minlength=2 * n).reshape(n, 2)
-        flip = ambiguous & (votes.max(axis=1) > votes.min(axis=1))
-        choice = np.where(flip, np.argmax(votes, axis=1), choice)
+        seen = np.where(choice[g] == other_side, side, 1 - side)
+        votes = np.bincount(2 * f + seen, minlength=2 * n).reshape(n, 2)[voters]
+        flip = votes.max(axis=1) > votes.min(axis=1)
+        choice[voters[flip]] = np.argmax(votes[flip], axis=1)
     return choice
 
 
