@@ -192,7 +192,9 @@ def freed_memory_kept() -> Iterator[None]:
     kernel again: a step that makes and drops thousands of 10^6-row arrays (the tessellation at
     10^6 faces) spent a fifth of its time there. Inside, nothing is mapped (``M_MMAP_MAX`` 0) or
     trimmed; after, :data:`AFTER`, and ``malloc_trim`` gives the free pages back. Elsewhere than
-    glibc nothing changes. Results are the same bits: only where the arrays live changes."""
+    glibc nothing changes. Results are the same bits: only where the arrays live changes. Setting the
+    thresholds turns glibc's own adjustment of them off for the rest of the process; the values set
+    are those it settles at."""
     libc = _glibc()
     if libc is None:
         yield
