@@ -3,14 +3,17 @@
 import json
 
 import numpy as np
+import orjson
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from vaultgram.geometry.halfedges import mesh_edges
 from vaultgram.geometry.meshes import grid_mesh
 from vaultgram.geometry.surfaces import area_vectors
 from vaultgram.pipeline import tessellate
 from vaultgram.tessellation.keystones import CutMesh
-from vaultgram.tessellation.model import voussoir_layout
+from vaultgram.tessellation.model import _joint_records, voussoir_layout
 
 
 def test_joints_are_the_inner_edges_between_two_voussoirs():
@@ -68,3 +71,16 @@ def test_tessellation_json_is_plain_json_that_describes_the_layout(tessellation)
             sides = {frozenset(p) for p in zip(loop, loop[1:] + loop[:1])}
             assert frozenset(j["vertices"]) in sides
     assert data["summary"]["voussoirs"] == n
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(0, 40), st.integers(0, 10**7), st.integers(0, 2**31))
+def test_joint_records_as_one_fragment_are_the_bytes_of_the_dicts(n, top, seed):
+    """tessellation.json's joints written from the arrays (an orjson fragment) are byte for byte the
+    records' JSON, numbers of any width, and no joint at all."""
+    rng = np.random.default_rng(seed)
+    vertices, voussoirs = (rng.integers(0, top + 1, size=(n, 2)) for _ in range(2))
+    records = _joint_records(vertices, voussoirs)
+    assert orjson.dumps(_joint_records(vertices, voussoirs, arrays=True)) == orjson.dumps(records)
+    keyed = [{"joints": j, "a": 1} for j in (_joint_records(vertices, voussoirs, arrays=True), records)]
+    assert orjson.dumps(keyed[0], option=orjson.OPT_SORT_KEYS) == orjson.dumps(keyed[1], option=orjson.OPT_SORT_KEYS)

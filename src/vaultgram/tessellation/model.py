@@ -123,7 +123,7 @@ class Tessellation:
         pairs = lay.joint_voussoirs()
         return {
             "vertices": json_array(to_plan(self.vertices, self.origin), arrays),
-            "voussoirs": _lists(lay.loops),
+            "voussoirs": list(lay.loops) if arrays else _lists(lay.loops),  # orjson takes each loop's array
             "keystones": json_array(lay.keystones, arrays),
             "names": list(self.names),
             "courses": json_array(self.courses, arrays),
@@ -131,11 +131,35 @@ class Tessellation:
             "areas": json_array(lay.areas(self.vertices), arrays),
             "faces": [lay.mesh.faces[f] for f in range(len(lay.mesh.faces))],
             "face_voussoir": json_array(lay.group, arrays),
-            "joints": [{"vertices": v, "voussoirs": p}  # the arrays converted whole: 10^5 joints
-                       for v, p in zip(lay.edges.edges[lay.joints].tolist(), np.sort(pairs, axis=1).tolist())],
+            "joints": _joint_records(lay.edges.edges[lay.joints], np.sort(pairs, axis=1), arrays),
             "neighbours": _neighbours(pairs, lay.n_voussoirs),
             "summary": self.summary,
         }
+
+
+def _joint_records(vertices: np.ndarray, voussoirs: np.ndarray, arrays: bool = False):
+    """The joints as records ``{"vertices": [a, b], "voussoirs": [p, q]}``: a list of dicts, or with
+    ``arrays`` the same JSON as one fragment for :func:`vaultgram.io.files.write_json`, written by
+    orjson from the (j, 2, 2) array of both pairs, its brackets then turned into the records' (4 s
+    of dicts for the 1.5 million joints of a 10^6-face design, 0.9 s this way).
+
+    >>> v, p = np.array([[3, 4], [5, 6]]), np.array([[0, 1], [1, 2]])
+    >>> _joint_records(v, p)[1]
+    {'vertices': [5, 6], 'voussoirs': [1, 2]}
+    >>> import orjson
+    >>> orjson.dumps(_joint_records(v, p, arrays=True)) == orjson.dumps(_joint_records(v, p))
+    True
+    """
+    if not arrays:
+        return [{"vertices": a, "voussoirs": b} for a, b in zip(vertices.tolist(), voussoirs.tolist())]
+    import orjson
+
+    both = np.ascontiguousarray(np.stack([vertices, voussoirs], axis=1), dtype=np.int64)
+    if not len(both):
+        return orjson.Fragment(b"[]")
+    text = orjson.dumps(both, option=orjson.OPT_SERIALIZE_NUMPY)  # [[[a,b],[p,q]],[[c,d],[r,s]]]
+    text = text.replace(b"]],[[", b"\0").replace(b"],[", b'],"voussoirs":[').replace(b"\0", b']},{"vertices":[')
+    return orjson.Fragment(b'[{"vertices":[' + text[3:-3] + b"]}]")
 
 
 def _lists(arrays) -> list[list]:
