@@ -12,10 +12,11 @@ keeps it as the element's id.
 from __future__ import annotations
 
 import os
-from itertools import chain
 from pathlib import Path
 
 import numpy as np
+
+from vaultgram.geometry.meshes import corner_arrays
 
 #: Above this many elements a collection draws no edge lines (the shading carries the picture).
 DENSE = 20000
@@ -170,9 +171,11 @@ def face_means(values: np.ndarray, faces) -> np.ndarray:
 
 
 def _flat_faces(faces) -> tuple[np.ndarray, np.ndarray]:
-    """Each face's number of corners, and all the corners in one array."""
-    sizes = np.fromiter((len(f) for f in faces), dtype=np.int64, count=len(faces))
-    return sizes, np.fromiter(chain.from_iterable(faces), dtype=np.int64, count=int(sizes.sum()))
+    """Each face's number of corners, and all the corners in one array: the faces' corner arrays
+    (:func:`~vaultgram.geometry.meshes.corner_arrays`, kept by a ``Faces``; the 400,000 voussoir loops
+    of a 10^6-face design were read number by number, 1.2 s a figure)."""
+    face, vert, _, _ = corner_arrays(faces)
+    return np.bincount(face, minlength=len(faces)), vert
 
 
 def padded_faces(x: np.ndarray, faces) -> np.ndarray:
