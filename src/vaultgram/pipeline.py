@@ -56,7 +56,7 @@ from vaultgram.geometry.text import plan_frame
 from vaultgram.io.files import collector_paused, freed_memory_kept
 from vaultgram.limits import MAX_FACES
 from vaultgram.meshing.densities import CHORD_TOLERANCE, DensitySpec, group_counts
-from vaultgram.meshing.fans import even_fans, held_vertices
+from vaultgram.meshing.fans import even_fans, held_vertices, poles_to_retry
 from vaultgram.meshing.fidelity import SAME_POINT, hold_boundary, on_points, place_on_points
 from vaultgram.meshing.layout import Layout, edge_groups, kept_points
 from vaultgram.meshing.optimise import maximise_min_quality
@@ -176,12 +176,27 @@ def _welded_and_smoothed(layout: Layout, counts, smooth: int, timings: dict | No
     its vertices after smoothing, untangling, the max-min optimisation and the boundary's bends put
     back (§3.2)."""
     with _timed(timings, "weld"):
-        mesh = weld(layout, counts, split)
+        welded = weld(layout, counts, split)
+    mesh, x, refused = _smoothed(welded, layout, smooth, timings)
+    retry = poles_to_retry(x, mesh.faces, mesh.face_patch, refused) if smooth > 0 else ()
+    if retry:  # a pole whose evening was refused bounds the mesh: smoothed again with it evened
+        again, y, _ = _smoothed(welded, layout, smooth, timings, retry)
+        if face_scaled_jacobians(y, mesh.faces).min() > face_scaled_jacobians(x, mesh.faces).min():
+            mesh, x = again, y
+    return mesh, x
+
+
+def _smoothed(mesh: QuadMesh, layout: Layout, smooth: int, timings: dict | None, regardless=frozenset()
+              ) -> tuple[QuadMesh, np.ndarray, tuple]:
+    """The welded ``mesh`` smoothed (§3.2): its fans evened (those round the poles in ``regardless``
+    without the check, :func:`~vaultgram.meshing.fans.even_fans`), Laplacian smoothing, untangling, the
+    max-min optimisation and the boundary's bends put back; the mesh with its labels, its vertices and
+    the poles whose evening was refused."""
     with _timed(timings, "smooth"):
-        x, rays = mesh.vertices, ()
+        x, rays, refused = mesh.vertices, (), ()
         if smooth > 0:  # the fans round poles evened, their spokes sliding on rays (§3.2, issue 12)
             held = held_vertices(mesh.fixed, mesh.boundary, mesh.constraints)
-            x, rays = even_fans(x, mesh.faces, mesh.face_patch, mesh.pole, held)
+            x, rays, refused = even_fans(x, mesh.faces, mesh.face_patch, mesh.pole, held, regardless)
         slides = mesh.constraints + rays
         x = laplacian_smooth(x, mesh.faces, smooth, mesh.fixed, slides)
     with _timed(timings, "untangle"):
@@ -190,7 +205,7 @@ def _welded_and_smoothed(layout: Layout, counts, smooth: int, timings: dict | No
             x = improve_shapes(x, mesh.faces, mesh.fixed, slides)
             x = maximise_min_quality(x, mesh.faces, mesh.fixed, slides, still=mesh.feature)
             x, mesh = _held_to_the_plan(x, mesh, layout.decomposition.disc)
-    return mesh, x
+    return mesh, x, refused
 
 
 def _held_to_the_plan(x: np.ndarray, mesh: QuadMesh, disc) -> tuple[np.ndarray, QuadMesh]:

@@ -10,6 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from vaultgram import pipeline
 from vaultgram.domain import load_domain
 from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.meshing.fans import FAN_FLOOR, even_fans, fan_bounds
@@ -47,7 +48,7 @@ def test_a_closed_fan_gets_equal_corners_and_keeps_its_radii(gaps, radius):
         assert np.array_equal(even_fans(v, f, np.zeros(len(f), int), np.arange(len(v)) == 0,
                                         np.zeros(len(v), bool))[0], v)
         return
-    x, rays = even_fans(v, f, np.zeros(len(f), int), np.arange(len(v)) == 0, np.zeros(len(v), bool))
+    x, rays, _ = even_fans(v, f, np.zeros(len(f), int), np.arange(len(v)) == 0, np.zeros(len(v), bool))
     assert min(face_scaled_jacobians(x, f)) >= min(face_scaled_jacobians(v, f)) - 1e-12
     if not rays:  # evening would have made a triangle's outer corner worse: left as it was
         assert np.array_equal(x, v)
@@ -63,7 +64,7 @@ def test_held_spokes_stay_and_the_run_between_them_is_even():
     v = np.vstack([[0.0, 0.0], np.column_stack([np.cos(np.radians(a)), np.sin(np.radians(a))])])
     f = [(0, k, k + 1) for k in range(1, 5)]
     held = np.array([True, True, False, False, False, True])
-    x, rays = even_fans(v, f, np.zeros(4, int), np.arange(6) == 0, held)
+    x, rays, _ = even_fans(v, f, np.zeros(4, int), np.arange(6) == 0, held)
     assert np.array_equal(x[held], v[held])
     assert np.allclose(_pole_corners(x, f, 0), 37.5)
     assert sorted(int(r.vertices[0]) for r in rays) == [2, 3, 4]
@@ -75,7 +76,7 @@ def test_the_far_side_of_a_one_deep_fan_stays():
     quad = (1, 7, 8, 2)
     v = np.vstack([v, [[2.0, 0.0], [2.0, 1.0]]])
     faces = f + [quad]
-    x, rays = even_fans(v, faces, np.array([0] * 6 + [1]), np.arange(len(v)) == 0, np.zeros(len(v), bool))
+    x, rays, _ = even_fans(v, faces, np.array([0] * 6 + [1]), np.arange(len(v)) == 0, np.zeros(len(v), bool))
     assert np.array_equal(x[[1, 2]], v[[1, 2]])
     assert {int(r.vertices[0]) for r in rays} <= {3, 4, 5, 6}
 
@@ -83,7 +84,7 @@ def test_the_far_side_of_a_one_deep_fan_stays():
 def test_a_ray_keeps_the_spokes_angle_through_smoothing():
     v, f = _wheel([0, 40, 90, 170, 230, 300], [1.0, 1.2, 0.8, 1.1, 0.9, 1.0])
     pole = np.arange(len(v)) == 0
-    x, rays = even_fans(v, f, np.zeros(len(f), int), pole, np.zeros(len(v), bool))
+    x, rays, _ = even_fans(v, f, np.zeros(len(f), int), pole, np.zeros(len(v), bool))
     fixed = np.zeros(len(v), bool)
     fixed[0] = True
     y = laplacian_smooth(x, f, 10, fixed, rays)
@@ -103,3 +104,32 @@ def test_fig6_point_features_reach_their_fan_bound():
     bound = float(fan_bounds(mesh.vertices, mesh.faces).min())
     assert math.isclose(bound, 2 / math.sqrt(3) * math.sin(math.radians(20.0)), rel_tol=1e-3)
     assert face_scaled_jacobians(mesh.vertices, mesh.faces).min() >= min(bound, FAN_FLOOR) - 1e-3 >= 0.3 - 1e-3
+
+
+def test_a_refused_fan_is_evened_regardless_when_asked():
+    """Evening this wheel would make a triangle's outer corner worse before smoothing: the check
+    refuses it (and names the pole); asked to even it regardless, even_fans does."""
+    v, f = _wheel([0.0, 59.2, 117.3, 136.5, 195.3, 250.1, 301.7, 336.8],
+                  [1.7, 1.89, 0.9, 1.31, 1.16, 1.9, 0.56, 1.6])
+    args = (v, f, np.zeros(len(f), int), np.arange(len(v)) == 0, np.zeros(len(v), bool))
+    x, rays, refused = even_fans(*args)
+    assert refused == (0,) and not rays and np.array_equal(x, v)
+    x, rays, refused = even_fans(*args, regardless=frozenset({0}))
+    assert refused == () and len(rays) == 8 and np.allclose(_pole_corners(x, f, 0), 45.0)
+
+
+@pytest.mark.skipif(not (EXAMPLES / "fig7_curves.json").exists(), reason="examples not present")
+def test_a_refused_pole_that_bounds_the_mesh_is_smoothed_again_evened(monkeypatch):
+    """fig7's curve end (1, 1): the check refuses to even its fan (its spokes' quads get worse before
+    smoothing), and the mesh's worst face is then in its patches (0.196); smoothed again with the
+    fan evened regardless, the mesh's worst face is 0.293 and the end's narrowest corner is 14.7
+    degrees (a run of 8 equal ones) instead of 9.8."""
+    domain = load_domain(EXAMPLES / "fig7_curves.json")
+    retried = mesh_domain(domain)
+    monkeypatch.setattr(pipeline, "poles_to_retry", lambda *args: frozenset())
+    checked = mesh_domain(domain)
+    end = int(np.argmin(np.hypot(*(retried.vertices[:, :2] - [1.0, 1.0]).T)))
+    worst = [face_scaled_jacobians(m.vertices, m.faces).min() for m in (retried, checked)]
+    assert worst[0] >= 0.29 and worst[1] < 0.2
+    narrowest = [_pole_corners(m.vertices, m.faces, end).min() for m in (retried, checked)]
+    assert narrowest[0] > 14 and narrowest[1] < 10

@@ -26,7 +26,7 @@ from vaultgram.geometry.polygons import signed_angles
 from vaultgram.meshing.quadmesh import SlideConstraint
 from vaultgram.meshing.quality import face_scaled_jacobians
 
-__all__ = ["FAN_FLOOR", "fan_bounds", "even_fans", "held_vertices"]
+__all__ = ["FAN_FLOOR", "fan_bounds", "even_fans", "poles_to_retry", "held_vertices"]
 
 #: The worst scaled Jacobian a mesh should keep (issue 12's floor): a fan whose triangles would be
 #: thinner is split (:mod:`vaultgram.meshing.splits`), evened where that reaches it
@@ -73,10 +73,11 @@ def fan_bounds(vertices: np.ndarray, faces) -> np.ndarray:
 RAY_SPAN = (0.05, 4.0)
 
 
-def even_fans(vertices: np.ndarray, faces, face_patch: np.ndarray, pole: np.ndarray, held: np.ndarray
-              ) -> tuple[np.ndarray, tuple]:
+def even_fans(vertices: np.ndarray, faces, face_patch: np.ndarray, pole: np.ndarray, held: np.ndarray,
+              regardless: frozenset = frozenset()) -> tuple[np.ndarray, tuple, tuple]:
     """The poles' fans made even: the vertices round each pole between two of its triangles turned to
-    equal angles about it, and the rays from the pole along which smoothing then lets them slide.
+    equal angles about it, the rays from the pole along which smoothing then lets them slide, and the
+    poles whose evening the check below refused.
 
     Coons interpolation (§3.2) spaces a fan's spokes by the arc length of the side opposite the pole,
     and a patch's share of its pole's angle comes from the decomposition, so the triangles round a pole
@@ -104,7 +105,9 @@ def even_fans(vertices: np.ndarray, faces, face_patch: np.ndarray, pole: np.ndar
     Below the floor evening gains little and turns the patches round a point load away from
     its radial force flow: ``square_point_loads`` (39 triangles round each load, bound 0.185) went
     from 0.093 to 0.185, but its voussoir joints from 8.2 to 11.0 degrees off the force flow
-    (median; the tessellation's floor is 10).
+    (median; the tessellation's floor is 10). The check only foresees smoothing: the poles in
+    ``regardless`` are evened without it, for a caller that has smoothed the mesh and found a
+    refused pole's patches holding its worst face (:func:`poles_to_retry`).
 
     Example
     -------
@@ -114,29 +117,55 @@ def even_fans(vertices: np.ndarray, faces, face_patch: np.ndarray, pole: np.ndar
     >>> a = np.radians([0, 20, 100, 180, 200, 300])
     >>> v = np.vstack([[0.0, 0.0], np.column_stack([np.cos(a), np.sin(a)])])
     >>> f = [(0, 1 + k, 1 + (k + 1) % 6) for k in range(6)]
-    >>> x, rays = even_fans(v, f, np.zeros(6, int), np.arange(7) == 0, np.zeros(7, bool))
-    >>> np.round(np.degrees(np.arctan2(x[1:, 1], x[1:, 0])) % 360, 6).tolist(), len(rays)
-    ([343.333333, 43.333333, 103.333333, 163.333333, 223.333333, 283.333333], 6)
+    >>> x, rays, refused = even_fans(v, f, np.zeros(6, int), np.arange(7) == 0, np.zeros(7, bool))
+    >>> np.round(np.degrees(np.arctan2(x[1:, 1], x[1:, 0])) % 360, 6).tolist(), len(rays), refused
+    ([343.333333, 43.333333, 103.333333, 163.333333, 223.333333, 283.333333], 6, ())
     """
     x = np.array(vertices, dtype=float)
     corners = corner_arrays(faces)
     at = np.flatnonzero(np.asarray(pole, dtype=bool)[corners[1]])
     if not len(at):
-        return x, ()
+        return x, (), ()
     size = np.bincount(corners[0], minlength=len(faces))
     reach = fan_bounds(x, faces)
-    rays = []
+    rays, refused = [], []
     for c in np.unique(corners[1][at]):
-        if reach[c] >= FAN_FLOOR:  # below it, evened or not, the fan stays as the patches give it
-            rays += _even_pole(x, faces, int(c), corners, size, at[corners[1][at] == c], np.asarray(face_patch), held)
-    return x, tuple(rays)
+        if reach[c] < FAN_FLOOR:  # below it, evened or not, the fan stays as the patches give it
+            continue
+        turned = _even_pole(x, faces, int(c), corners, size, at[corners[1][at] == c], np.asarray(face_patch), held,
+                            check=int(c) not in regardless)
+        rays += turned or []
+        refused += [int(c)] if turned is None else []
+    return x, tuple(rays), tuple(refused)
+
+
+def poles_to_retry(x: np.ndarray, faces, face_patch: np.ndarray, refused) -> frozenset:
+    """The ``refused`` poles (see :func:`even_fans`) to even regardless once the mesh is smoothed
+    (``x``): those whose fans' patches hold its worst face, where that face is under the floor.
+
+    Example
+    -------
+    The worst face (0) lies in the patch of pole 0's fan, not in pole 5's:
+
+    >>> v = np.array([[0, 0], [1, 0], [0.5, 0.05], [2, 0], [2, 1], [3, 3.0]])
+    >>> f = [(0, 1, 2), (1, 3, 4), (4, 3, 5)]
+    >>> sorted(poles_to_retry(v, f, np.array([0, 1, 2]), (0, 5)))
+    [0]
+    """
+    sj = face_scaled_jacobians(x, faces)
+    if not refused or sj.min() >= FAN_FLOOR:
+        return frozenset()
+    face_of, u, _, _ = corner_arrays(faces)
+    patch = np.asarray(face_patch)
+    worst = patch[int(np.argmin(sj))]
+    return frozenset(c for c in refused if worst in patch[face_of[u == c]])
 
 
 def _even_pole(x: np.ndarray, faces, c: int, corners: tuple, size: np.ndarray, mine: np.ndarray,
-               face_patch: np.ndarray, held: np.ndarray) -> list:
-    """Pole ``c``'s fans evened in place (its corners ``mine``; see :func:`even_fans`) unless that makes
-    the worst corner of its spokes' faces worse (of its own triangles, round a pole of triangles
-    only); the rays of the spokes that turned."""
+               face_patch: np.ndarray, held: np.ndarray, check: bool = True) -> list | None:
+    """Pole ``c``'s fans evened in place (its corners ``mine``; see :func:`even_fans`) unless, where
+    ``check``, that makes the worst corner of its spokes' faces worse (of its own triangles, round a pole
+    of triangles only); the rays of the spokes that turned, or None where the check refused."""
     face_of, u, v, p = corners
     tri = size[face_of[mine]] == 3
     region = np.isin(face_patch, face_patch[face_of[mine[tri]]])  # the patches of its fans
@@ -152,9 +181,9 @@ def _even_pole(x: np.ndarray, faces, c: int, corners: tuple, size: np.ndarray, m
     near, before = (u == c) if closed else np.isin(u, spokes), x[spokes].copy()
     worst = _worst_corner(x, faces, face_of, near)
     _turn_about(x, c, spokes, turn)
-    if _worst_corner(x, faces, face_of, near) < worst:
+    if check and _worst_corner(x, faces, face_of, near) < worst:
         x[spokes] = before
-        return []
+        return None
     return [SlideConstraint(np.array([w]), x[c, :2] + np.outer(RAY_SPAN, x[w, :2] - x[c, :2])) for w in spokes]
 
 
