@@ -9,6 +9,7 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
+from matplotlib.path import Path as MPath
 
 from vaultgram.domain import load_domain
 from vaultgram.geometry.meshes import grid_mesh
@@ -148,7 +149,9 @@ def test_dense_meshes_are_shaded_not_lined_and_drawn_once(tmp_path):
     fig, ax = style.new_figure()
     draw_mesh(ax, mesh, "dense")
     faces = drawn(fig, "faces")
-    assert len(faces.get_paths()) == len(f)
+    assert len(faces.get_paths()) == 1  # one colour: one compound path, a closed polygon per face
+    codes = faces.get_paths()[0].codes
+    assert (codes == MPath.MOVETO).sum() == (codes == MPath.CLOSEPOLY).sum() == len(f)
     assert not np.asarray(faces.get_linewidths()).any()
     style.save_png_and_svg(fig, tmp_path / "a.png", tmp_path / "a.svg")
     svg = ET.parse(tmp_path / "a.svg").getroot()  # the PNG, wrapped
@@ -168,3 +171,44 @@ def test_written_figures_are_png_and_well_formed_svg_byte_identical(data, tmp_pa
         for suffix in ("png", "svg"):
             name = f"figures/{s.name}.{suffix}"
             assert (tmp_path / "a" / name).read_bytes() == (tmp_path / "b" / name).read_bytes(), name
+
+
+def test_dense_fills_by_colour_give_the_pixels_of_one_polygon_per_face():
+    """Above DENSE faces, the faces of each colour are one compound path: at every face's centre the
+    picture has the colour the colour map gives its value, as with one polygon per face."""
+    from matplotlib import colormaps
+
+    v, f = grid_mesh(150)
+    values = np.arange(len(f)) // 150 % 7  # rows of seven colours
+    centres = v[np.asarray(f)].mean(axis=1)[:, :2]
+    expected = colormaps["viridis"](values / 6, bytes=True)[:, :3]
+    for dense in (False, True):
+        fig, ax = style.new_figure()
+        if dense:
+            style.face_fills(ax, v, f, "faces", values=values, cmap="viridis")
+            assert len(drawn(fig, "faces").get_paths()) == 7
+        else:
+            style.polygons(ax, style.face_polygons(v, f), "faces", values=values, cmap="viridis", width=0)
+        style.plan(ax)
+        picture = style.pixels(fig)
+        px = np.rint(ax.transData.transform(centres)).astype(int)
+        seen = picture[picture.shape[0] - 1 - px[:, 1], px[:, 0], :3]
+        assert (np.abs(seen.astype(int) - expected).max(axis=1) <= 1).mean() > 0.99
+
+
+def test_dense_surfaces_leave_out_straight_corners():
+    """Faces in space whose loops run through a point on a straight side lose that point above DENSE
+    faces (STRAIGHT): the padded polygons are as wide as the faces' real corners, and as many."""
+    from matplotlib.figure import Figure
+
+    from vaultgram.io.figures.thrust import STRAIGHT, surface
+
+    v, f = grid_mesh(150)
+    v[:, 2] = np.hypot(v[:, 0] - 75, v[:, 1] - 75) / 10  # a cone: every face turns at its corners
+    corners, n = np.asarray(f), len(v)
+    v = np.vstack([v, (v[corners[:, 0]] + v[corners[:, 1]]) / 2])  # each face's first side halved
+    loops = [(a, m, b, c, d) for (a, b, c, d), m in zip(corners.tolist(), range(n, len(v)))]
+    assert style.padded_faces(v, loops).shape == (len(loops), 5, 3)
+    assert style.padded_faces(v, loops, STRAIGHT).shape == (len(loops), 4, 3)
+    ax = Figure().add_subplot(projection="3d")
+    assert len(surface(ax, v, loops, np.zeros(len(loops)), "viridis", "faces", True).get_facecolor()) == len(loops)

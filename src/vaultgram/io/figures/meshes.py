@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from vaultgram.geometry.halfedges import mesh_edges
-from vaultgram.io.figures.style import COLOURS, WIDTHS, face_polygons, lines, plan, points, polygons
+from vaultgram.io.figures.style import COLOURS, WIDTHS, face_fills, lines, plan, points
 
 #: Marker colours of irregular interior vertices by valence (other valences: black).
 VALENCE_COLOURS = {3: "tab:blue", 5: "tab:red", 6: "tab:purple"}
@@ -30,7 +30,7 @@ def singular_vertices(mesh) -> dict:
 
 def draw_mesh(ax, mesh, title: str) -> None:
     """The quad mesh in plan (edges, or shading at 10^5 faces), its poles marked."""
-    polygons(ax, face_polygons(mesh.vertices, mesh.faces), "faces", "#f4f4f4", edgecolor=COLOURS["mesh"],
+    face_fills(ax, mesh.vertices, mesh.faces, "faces", "#f4f4f4", edgecolor=COLOURS["mesh"],
              width=WIDTHS["mesh"])
     points(ax, mesh.vertices[mesh.pole, :2], "poles", COLOURS["pole"], marker="^", size=16)
     plan(ax, f"{title}: {len(mesh.faces)} faces, {int(mesh.pole.sum())} pole(s)")
@@ -38,7 +38,7 @@ def draw_mesh(ax, mesh, title: str) -> None:
 
 def draw_smoothed(ax, mesh) -> None:
     """Figure 2h: the smoothed mesh, each irregular interior vertex marked in its valence's colour."""
-    polygons(ax, face_polygons(mesh.vertices, mesh.faces), "faces", "#f4f4f4", edgecolor=COLOURS["mesh"],
+    face_fills(ax, mesh.vertices, mesh.faces, "faces", "#f4f4f4", edgecolor=COLOURS["mesh"],
              width=WIDTHS["mesh"])
     by_valence = singular_vertices(mesh)
     for valence, vertices in by_valence.items():
@@ -55,7 +55,7 @@ def draw_groups(ax, mesh, layout) -> None:
     group share one number of subdivisions), over the mesh in grey."""
     from matplotlib import colormaps
 
-    polygons(ax, face_polygons(mesh.vertices, mesh.faces), "faces", "white", edgecolor="0.8",
+    face_fills(ax, mesh.vertices, mesh.faces, "faces", "white", edgecolor="0.8",
              width=WIDTHS["mesh"])
     cmap = colormaps["tab20"]
     colours = [cmap(layout.group_of[s.id] % 20) for s in layout.sides]
