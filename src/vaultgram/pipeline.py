@@ -189,7 +189,8 @@ def _welded_and_smoothed(layout: Layout, counts, smooth: int, timings: dict | No
 def _smoothed(mesh: QuadMesh, layout: Layout, smooth: int, timings: dict | None, regardless=frozenset()
               ) -> tuple[QuadMesh, np.ndarray, tuple]:
     """The welded ``mesh`` smoothed (§3.2): its fans evened (those round the poles in ``regardless``
-    without the check, :func:`~vaultgram.meshing.fans.even_fans`), Laplacian smoothing, untangling, the
+    without the check, :func:`~vaultgram.meshing.fans.even_fans`, and again after smoothing,
+    :func:`_evened_again`), Laplacian smoothing, untangling, the
     max-min optimisation and the boundary's bends put back; the mesh with its labels, its vertices and
     the poles whose evening was refused."""
     with _timed(timings, "smooth"):
@@ -197,8 +198,10 @@ def _smoothed(mesh: QuadMesh, layout: Layout, smooth: int, timings: dict | None,
         if smooth > 0:  # the fans round poles evened, their spokes sliding on rays (§3.2, issue 12)
             held = held_vertices(mesh.fixed, mesh.boundary, mesh.constraints)
             x, rays, refused = even_fans(x, mesh.faces, mesh.face_patch, mesh.pole, held, regardless)
+        x = laplacian_smooth(x, mesh.faces, smooth, mesh.fixed, mesh.constraints + rays)
+        if smooth > 0 and regardless:
+            x, rays = _evened_again(x, mesh, held, rays, regardless)
         slides = mesh.constraints + rays
-        x = laplacian_smooth(x, mesh.faces, smooth, mesh.fixed, slides)
     with _timed(timings, "untangle"):
         if smooth > 0:
             x = untangle(x, mesh.faces, mesh.fixed, slides)
@@ -206,6 +209,19 @@ def _smoothed(mesh: QuadMesh, layout: Layout, smooth: int, timings: dict | None,
             x = maximise_min_quality(x, mesh.faces, mesh.fixed, slides, still=mesh.feature)
             x, mesh = _held_to_the_plan(x, mesh, layout.decomposition.disc)
     return mesh, x, refused
+
+
+def _evened_again(x: np.ndarray, mesh: QuadMesh, held: np.ndarray, rays: tuple, poles) -> tuple[np.ndarray, tuple]:
+    """The fans round ``poles`` evened once more after smoothing, and the rays with their spokes' new
+    ones: smoothing moves the spokes that stay (a quad's side, a patch's side sliding on the boundary),
+    so a run evened between them before smoothing is uneven after it (fig7's curve end (1, 1): 10
+    triangles in 165 degrees, the eight between two held spokes at 14.7 degrees, the two at the ends at
+    22 and 26; evened again 16.5 each, the mesh's worst face 0.293 -> 0.314, its mean unchanged)."""
+    only = np.zeros(len(x), dtype=bool)
+    only[list(poles)] = True
+    x, again, _ = even_fans(x, mesh.faces, mesh.face_patch, only, held, frozenset(poles))
+    turned = {int(r.vertices[0]) for r in again}
+    return x, tuple(r for r in rays if int(r.vertices[0]) not in turned) + again
 
 
 def _held_to_the_plan(x: np.ndarray, mesh: QuadMesh, disc) -> tuple[np.ndarray, QuadMesh]:

@@ -122,7 +122,8 @@ def test_a_refused_fan_is_evened_regardless_when_asked():
 def test_a_refused_pole_that_bounds_the_mesh_is_smoothed_again_evened(monkeypatch):
     """fig7's curve end (1, 1): the check refuses to even its fan (its spokes' quads get worse before
     smoothing), and the mesh's worst face is then in its patches (0.196); smoothed again with the
-    fan evened regardless, the mesh's worst face is 0.293 and the end's narrowest corner is 14.7
+    fan evened regardless (and evened once more after smoothing, round where its held spokes moved),
+    the mesh's worst face is 0.314, over issue 12's floor, and the end's narrowest corner is 15.8
     degrees (a run of 8 equal ones) instead of 9.8."""
     domain = load_domain(EXAMPLES / "fig7_curves.json")
     retried = mesh_domain(domain)
@@ -130,6 +131,6 @@ def test_a_refused_pole_that_bounds_the_mesh_is_smoothed_again_evened(monkeypatc
     checked = mesh_domain(domain)
     end = int(np.argmin(np.hypot(*(retried.vertices[:, :2] - [1.0, 1.0]).T)))
     worst = [face_scaled_jacobians(m.vertices, m.faces).min() for m in (retried, checked)]
-    assert worst[0] >= 0.29 and worst[1] < 0.2
+    assert worst[0] >= 0.3 and worst[1] < 0.2
     narrowest = [_pole_corners(m.vertices, m.faces, end).min() for m in (retried, checked)]
-    assert narrowest[0] > 14 and narrowest[1] < 10
+    assert narrowest[0] > 15 and narrowest[1] < 10
