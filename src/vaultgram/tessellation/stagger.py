@@ -201,13 +201,12 @@ def _programme_rows(sizes: np.ndarray) -> tuple[list, np.ndarray]:
 
 def _cut(rows: list, singles: np.ndarray, forced: np.ndarray, penalty: list, longest: int) -> np.ndarray:
     """The programme of :func:`cheapest_cut` on :func:`_programme_rows`, forced rung to forced rung:
-    a run cannot pass a forced rung, so each stretch starts with the best cost of its first rung
-    alone in the window, and inside a stretch of two quads or more every single quad costs
-    :data:`SINGLE_COST` more (its rows hold that already), as does a quad alone between an end and
-    a rung that are not both forced. The best costs a run may start from are
-    kept nearest first in the window, so each rung's choices are one ``map`` over it: per rung only
-    the window, the choice and the next best cost are made (the same sums in the same order as
-    rung by rung with per-rung checks, 2-3 times faster)."""
+    a run cannot pass a forced rung, so each stretch starts from the best cost of its first rung
+    alone in the window, and a single quad costs :data:`SINGLE_COST` more (its rows hold that
+    already) except alone between two forced rungs. The best costs a run may start from are kept
+    nearest first in the window, so each rung's choices are one ``map`` over it; no per-rung checks
+    of forced rungs or of the end are left in the loop, only the choice and the next best cost are
+    kept: the same sums in the same order as rung by rung, a third less time."""
     k = len(forced) - 1
     ends = [0, *(np.flatnonzero(forced[1:k]) + 1).tolist(), k]  # the stretches' ends
     steps = [0]  # per rung, the cheapest run's length less one (the shortest of the cheapest)
