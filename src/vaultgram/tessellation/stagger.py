@@ -266,7 +266,7 @@ def _course_order(strips: list[Strip], me: MeshEdges) -> list[int]:
     owner = np.full(len(me.face_start) - 1, -1, dtype=np.int64)
     for k, s in enumerate(strips):
         owner[s.quads] = k  # a quad on two courses: either will do for adjacency
-    a, b = owner[me.faces_of[(me.faces_of >= 0).all(axis=1)]].T
+    a, b = owner[me.faces_of[~me.boundary]].T
     ok = (a >= 0) & (b >= 0) & (a != b)
     rank = np.lexsort((np.arange(n), -np.array([len(s) for s in strips], dtype=np.int64)))  # longest first
     position = np.empty(n, dtype=np.int64)
