@@ -520,7 +520,7 @@ def _bond(cut: CutMesh, me, supported: np.ndarray, rhythm: int, max_concavity: f
     areas = steady(np.linalg.norm(area_vec, axis=1))  # equal for mirror faces, sums exact (geometry.arrays)
     rings = distinct(np.concatenate([me.face_edges(k) for k in cut.keystones])) if len(cut.keystones) else ()
     skew = np.zeros(me.n_edges)
-    inside = np.flatnonzero((me.faces_of >= 0).all(axis=1))
+    inside = np.flatnonzero(~me.boundary)
     skew[inside] = force_angles(x, me, area_vec / np.maximum(areas, 1e-300)[:, None], inside)
     bond = staggered_bond(x, me, quad_strips(me, faces), supported, areas, rhythm, pinwheel(cut, me), rings, skew)
     removed, restored = without_concavities(x, me, bond.removed, max_concavity)

@@ -158,7 +158,7 @@ def _candidates(me: MeshEdges, removed: np.ndarray, interior: np.ndarray, area: 
     largest = GROWTH * target
     tiny = size < SMALL * target
     crowded = interior & (state.count >= 4)
-    joint = ~removed & (me.faces_of >= 0).all(axis=1)
+    joint = ~removed & ~me.boundary
     faces_in = np.bincount(group, minlength=state.n_groups)
     e = np.flatnonzero(joint)
     at_crowded = np.repeat(crowded[me.edges[e, 0]] | crowded[me.edges[e, 1]], 2)
@@ -304,7 +304,7 @@ def _small_pairs(me: MeshEdges, removed: np.ndarray, area: np.ndarray, target: f
     size = np.bincount(group, weights=area, minlength=state.n_groups)
     frozen = np.zeros(state.n_groups, dtype=bool)
     frozen[group[frozen_faces]] = True
-    e = np.flatnonzero(~removed & (me.faces_of >= 0).all(axis=1))
+    e = np.flatnonzero(~removed & ~me.boundary)
     a, b = np.sort(group[me.faces_of[e]], axis=1).T
     ok = (size[a] < PAIRED * target) & (size[b] < PAIRED * target) & ~frozen[a] & ~frozen[b]
     ok &= (size[a] + size[b] <= UPPER * target) & (a != b)

@@ -67,7 +67,7 @@ class VoussoirLayout:
 def voussoir_layout(mesh: CutMesh, me: MeshEdges, group: np.ndarray) -> VoussoirLayout:
     """Voussoirs of the faces in each ``group``; joints are the inner edges between two groups."""
     loops = Faces(outlines(me, group))
-    inner = (me.faces_of >= 0).all(axis=1)
+    inner = ~me.boundary
     sides = group[np.maximum(me.faces_of, 0)]
     joints = np.flatnonzero(inner & (sides[:, 0] != sides[:, 1]))
     keystones = distinct(group[mesh.keystones]) if len(mesh.keystones) else np.zeros(0, dtype=np.int64)

@@ -64,7 +64,7 @@ def _halving_edges(me: MeshEdges, removed: np.ndarray, group: np.ndarray, area: 
     that splits it most evenly (the smallest edge among equals). The faces and removed edges of a
     voussoir mostly form a tree: one side of an edge is then the subtree below it, summed for all
     edges at once; a voussoir whose removed edges close a cycle is walked edge by edge."""
-    inside = removed & (me.faces_of >= 0).all(axis=1)
+    inside = removed & ~me.boundary
     links = np.flatnonzero(inside & large[group[np.maximum(me.faces_of[:, 0], 0)]])
     a, b = me.faces_of[links].T
     g = group[a]

@@ -30,7 +30,7 @@ MAX_CONCAVITY = 190.0
 def face_groups(me: MeshEdges, removed: np.ndarray) -> np.ndarray:
     """Voussoir of each face: faces joined by removed edges, numbered by their smallest face."""
     n = len(me.face_start) - 1
-    pairs = me.faces_of[removed & (me.faces_of >= 0).all(axis=1)]
+    pairs = me.faces_of[removed & ~me.boundary]
     graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
     _, label = connected_components(graph, directed=False)
     first = np.full(label.max() + 1 if n else 0, n, dtype=np.int64)
