@@ -152,8 +152,10 @@ def poles_to_retry(x: np.ndarray, faces, face_patch: np.ndarray, refused) -> fro
     >>> sorted(poles_to_retry(v, f, np.array([0, 1, 2]), (0, 5)))
     [0]
     """
+    if not refused:
+        return frozenset()
     sj = face_scaled_jacobians(x, faces)
-    if not refused or sj.min() >= FAN_FLOOR:
+    if sj.min() >= FAN_FLOOR:
         return frozenset()
     face_of, u, _, _ = corner_arrays(faces)
     patch = np.asarray(face_patch)
