@@ -15,7 +15,6 @@ import numpy as np
 from vaultgram.geometry.arrays import distinct, json_array
 from vaultgram.geometry.frames import NO_ORIGIN, between, to_plan
 from vaultgram.geometry.halfedges import MeshEdges
-from vaultgram.geometry.meshes import Faces
 from vaultgram.geometry.surfaces import surface_areas
 from vaultgram.tessellation.keystones import CutMesh
 from vaultgram.tessellation.solids import Solids
@@ -66,7 +65,7 @@ class VoussoirLayout:
 
 def voussoir_layout(mesh: CutMesh, me: MeshEdges, group: np.ndarray) -> VoussoirLayout:
     """Voussoirs of the faces in each ``group``; joints are the inner edges between two groups."""
-    loops = Faces(outlines(me, group))
+    loops = outlines(me, group)  # Faces, their corners made once
     inner = ~me.boundary
     sides = group[np.maximum(me.faces_of, 0)]
     joints = np.flatnonzero(inner & (sides[:, 0] != sides[:, 1]))

@@ -47,13 +47,20 @@ def unmerge_large(me: MeshEdges, removed: np.ndarray, inner: np.ndarray, area: n
     if not (size > UPPER * target).any():
         return removed, 0
     count = voussoirs_at_vertices(me, group, n_vertices)
-    restored = 0
-    for k, best in _halving_edges(me, removed, group, area, size, size > UPPER * target):
-        ends = me.edges[best]
-        if (inner[ends] & (count[ends] >= 3)).any() and size[k] <= OVERSIZED * target:
+    k, best = np.array(_halving_edges(me, removed, group, area, size, size > UPPER * target), dtype=np.int64
+                       ).reshape(-1, 2).T
+    ends = me.edges[best]
+    # an edge whose ends no other edge here has sees the counts as they were, whatever comes first
+    alone = (np.bincount(ends.ravel(), minlength=n_vertices)[ends] == 1).all(axis=1)
+    back = alone & ~((inner[ends] & (count[ends] >= 3)).any(axis=1) & (size[k] <= OVERSIZED * target))
+    removed[best[back]] = False
+    count[ends[back]] += 1
+    restored = int(back.sum())
+    for i in np.flatnonzero(~alone).tolist():  # the others in order, each seeing the counts the ones before left
+        if (inner[ends[i]] & (count[ends[i]] >= 3)).any() and size[k[i]] <= OVERSIZED * target:
             continue
-        removed[best] = False
-        count[ends] += 1
+        removed[best[i]] = False
+        count[ends[i]] += 1
         restored += 1
     return removed, restored
 
