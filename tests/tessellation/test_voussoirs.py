@@ -184,3 +184,16 @@ def test_voussoirs_at_vertices_counts_distinct_voussoirs():
     assert count.tolist() == [1, 2, 1, 2, 4, 2, 1, 2, 1]
     count = voussoirs_at_vertices(me, face_groups(me, _removed(me, [(1, 4)])), len(v))
     assert count.tolist() == [1, 1, 1, 2, 3, 2, 1, 2, 1]
+
+
+def test_an_element_that_no_other_follows_is_off_its_owners_loop():
+    """Where an outline touches itself two elements have one successor and one element none: it (and
+    the element it then precedes) never reach the start, the same on every call (its predecessor was
+    left uninitialised before)."""
+    from vaultgram.tessellation.voussoirs import _ranks_from_start
+
+    successor = np.array([1, 2, 0, 4, 3, 4])  # owner 0: 0 -> 1 -> 2 -> 0; owner 1: 3 -> 4 -> 3 and 5 -> 4
+    owner = np.array([0, 0, 0, 1, 1, 1])
+    for _ in range(3):
+        rank, on_loop = _ranks_from_start(successor, owner)
+        assert rank[:4].tolist() == [0, 1, 2, 0] and on_loop.tolist() == [True] * 4 + [False] * 2

@@ -107,10 +107,6 @@ class _State:
     def n_groups(self) -> int:
         return len(self.start) - 1
 
-    def members(self, k: int) -> list:
-        """The faces of voussoir ``k``."""
-        return self.order[self.start[k]:self.start[k + 1]].tolist()
-
 
 @dataclass(frozen=True)
 class _Crowding:

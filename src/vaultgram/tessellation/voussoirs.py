@@ -147,8 +147,8 @@ def _ranks_from_start(successor: np.ndarray, owner: np.ndarray) -> tuple[np.ndar
     start (the first element of each ``owner``), by pointer jumping; and whether it lies on that
     start's cycle (an owner with more cycles keeps only the first, as a disk has one outline)."""
     m = len(successor)
-    pred = np.empty(m, dtype=np.int64)
-    pred[successor] = np.arange(m)
+    pred = np.arange(m, dtype=np.int64)  # one that no element precedes (an outline touching itself) is its
+    pred[successor] = np.arange(m)  # own: it never reaches a start, so it is off the start's cycle
     start = np.full(int(owner.max()) + 1 if m else 0, m, dtype=np.int64)
     np.minimum.at(start, owner, np.arange(m))
     pred[start[owner] == np.arange(m)] = -1  # each owner's cycle starts at its first element
