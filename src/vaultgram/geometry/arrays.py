@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
-__all__ = ["TIE", "TIED", "cross_rows", "distinct", "json_array", "lookup", "nearest", "plan_rows", "row_dot",
+__all__ = ["TIE", "TIED", "cross_rows", "distinct", "json_array", "lookup", "nearest", "plan_rows", "ranges", "row_dot",
            "run_starts", "sorted_keys", "steady", "unit_rows"]
 
 #: Relative difference under which two computed values are a tie (round-off differs between
@@ -84,6 +84,18 @@ def run_starts(keys: np.ndarray) -> np.ndarray:
     [True, False, True, True, False]
     """
     return np.concatenate([[True], keys[1:] != keys[:-1]]) if len(keys) else np.zeros(0, dtype=bool)
+
+
+def ranges(start, length) -> tuple[np.ndarray, np.ndarray]:
+    """The ranges ``start[i] .. start[i] + length[i] - 1`` one after another: for every index, its
+    range ``i``, and the index (the faces of a set of voussoirs, the corners of a set of faces).
+
+    >>> [a.tolist() for a in ranges(np.array([5, 0]), np.array([2, 3]))]
+    [[0, 0, 1, 1, 1], [5, 6, 0, 1, 2]]
+    """
+    length = np.asarray(length)
+    row = np.repeat(np.arange(len(length)), length)
+    return row, np.repeat(np.asarray(start) - np.cumsum(length) + length, length) + np.arange(int(length.sum()))
 
 
 def plan_rows(x: np.ndarray, index) -> np.ndarray:

@@ -43,7 +43,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-from vaultgram.geometry.arrays import distinct, lookup, run_starts
+from vaultgram.geometry.arrays import distinct, lookup, ranges, run_starts
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.tessellation.sizes import UPPER
 from vaultgram.tessellation.voussoirs import (
@@ -120,9 +120,8 @@ class _Crowding:
 
     def corners(self, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The corners around the vertices ``v``: ``(i, corner)`` pairs, by ``i``."""
-        lens = self.at[v + 1] - self.at[v]
-        row = np.repeat(np.arange(len(v)), lens)
-        return row, self.around[np.repeat(self.at[v] - np.cumsum(lens) + lens, lens) + np.arange(int(lens.sum()))]
+        row, at = ranges(self.at[v], self.at[v + 1] - self.at[v])
+        return row, self.around[at]
 
     def faces_at(self, me: MeshEdges, group: np.ndarray, v: np.ndarray, ks: list) -> list:
         """How many faces of voussoir ``k[i]`` have a corner at vertex ``v[i]``, for each ``k`` of ``ks``."""
@@ -133,9 +132,7 @@ class _Crowding:
 
 def _corners_of(me: MeshEdges, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The corners of ``faces``: ``(i, corner)`` pairs, by ``i``, each face's in order."""
-    lens = me.face_start[faces + 1] - me.face_start[faces]
-    row = np.repeat(np.arange(len(faces)), lens)
-    return row, np.repeat(me.face_start[faces] - np.cumsum(lens) + lens, lens) + np.arange(int(lens.sum()))
+    return ranges(me.face_start[faces], me.face_start[faces + 1] - me.face_start[faces])
 
 
 def mend_meeting_points(x: np.ndarray, me: MeshEdges, removed: np.ndarray, interior: np.ndarray,
@@ -291,9 +288,7 @@ def _feasible(x: np.ndarray, me: MeshEdges, removed: np.ndarray, state: _State, 
 
 def _members(state: _State, groups: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The faces of voussoir ``groups[i]`` for every ``i``: ``(i, face)`` pairs, by ``i`` then by face."""
-    count = state.start[groups + 1] - state.start[groups]
-    owner = np.repeat(np.arange(len(groups)), count)
-    at = np.repeat(state.start[groups] - np.cumsum(count) + count, count) + np.arange(int(count.sum()))
+    owner, at = ranges(state.start[groups], state.start[groups + 1] - state.start[groups])
     return owner, state.order[at]
 
 

@@ -15,7 +15,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-from vaultgram.geometry.arrays import TIE, distinct, lookup
+from vaultgram.geometry.arrays import TIE, distinct, lookup, ranges
 from vaultgram.geometry.halfedges import MeshEdges
 from vaultgram.geometry.meshes import Faces, corner_arrays
 from vaultgram.geometry.surfaces import loop_corner_angles, loop_planes
@@ -107,9 +107,7 @@ def member_corners(me: MeshEdges, owner: np.ndarray, face: np.ndarray
     >>> [a.tolist() for a in member_corners(me, np.array([0, 0]), np.array([0, 1]))]
     [[0, 0, 0, 0, 1, 1, 1, 1], [0, 1, 2, 3, 4, 5, 6, 7], [-1, 1, -1, -1, -1, -1, -1, 0]]
     """
-    lens = me.face_start[face + 1] - me.face_start[face]
-    member = np.repeat(np.arange(len(face)), lens)
-    corner = np.repeat(me.face_start[face] - np.cumsum(lens) + lens, lens) + np.arange(int(lens.sum()))
+    member, corner = ranges(me.face_start[face], me.face_start[face + 1] - me.face_start[face])
     if not len(face):
         return member, corner, member.copy()
     twin = me.corner_twin[corner]
