@@ -44,3 +44,23 @@ def test_a_data_file_the_figure_process_cannot_write_is_an_os_error(tmp_path):
     (tmp_path / "a" / "thrust.obj").mkdir(parents=True)  # a folder where the file goes
     with pytest.raises(OSError):
         _design(tmp_path / "a", from_faces=0)
+
+
+def test_the_tessellation_figures_need_neither_its_solids_nor_its_cut_mesh(tmp_path):
+    """The tessellation reaches the figure process without its solids and its layout's cut mesh and
+    edge tables (worker._drawn): its figures are the bytes drawn in one process from all of it."""
+    from vaultgram.io.figures import Stages, write_figures
+    from vaultgram.io.figures.worker import _drawn
+
+    with FigureWorker(tmp_path / "a") as figures:
+        result = design(load_domain(EXAMPLES / "l_shape.json"), spacing=0.05, on_stage=figures)
+        figures.finish()
+    sent = _drawn("tessellation", result.tessellation)
+    assert sent.solids is None and sent.layout.mesh is None and sent.layout.edges is None
+    assert sent.layout.n_voussoirs == result.tessellation.layout.n_voussoirs > 0
+    names = [s.name for s in write_figures(Stages.of(result), tmp_path / "b")]
+    assert {"tessellation_plan", "tessellation_3d"} <= set(names)
+    for name in ("tessellation_plan", "tessellation_3d"):
+        for suffix in ("png", "svg"):
+            path = f"figures/{name}.{suffix}"
+            assert (tmp_path / "a" / path).read_bytes() == (tmp_path / "b" / path).read_bytes(), path

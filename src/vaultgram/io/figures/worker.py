@@ -93,7 +93,7 @@ class FigureWorker:
             if stage == "mesh":
                 self.files = BACKGROUND if writes_files(self.formats, value, self.from_faces) else ()
             start = time.perf_counter()
-            self.outbox.put(pickle.dumps((stage, value), protocol=pickle.HIGHEST_PROTOCOL))
+            self.outbox.put(pickle.dumps((stage, _drawn(stage, value)), protocol=pickle.HIGHEST_PROTOCOL))
             self.handover += time.perf_counter() - start
 
     def _start(self, decomposition) -> None:
@@ -178,6 +178,15 @@ def _serve(data, out: Path, conn, files=(None, BACKGROUND_FACES)) -> None:
     except OSError:  # the parent has gone (it failed or was interrupted)
         pass
     conn.close()
+
+
+def _drawn(stage: str, value):
+    """What the process reads of a stage: the tessellation without its solids and without the cut mesh
+    and edge tables of its layout, which neither its figures nor its files need (at 10^6 faces they
+    were 0.9 of its 1 GB pickle, 0.7 s of the run's time handing it over)."""
+    if stage != "tessellation" or value is None:
+        return value
+    return replace(value, solids=None, layout=replace(value.layout, mesh=None, edges=None))
 
 
 def _send_all(conn, outbox: queue.Queue) -> None:
