@@ -25,7 +25,7 @@ from typing import Iterator
 
 import numpy as np
 
-__all__ = ["float_lines", "int_lines", "headed_lines", "rounded_g12", "PAD", "ROWS"]
+__all__ = ["float_lines", "int_lines", "headed_lines", "int_records", "rounded_g12", "PAD", "ROWS"]
 
 PAD = 0  # the byte that pads the digits of a number in :func:`_digit_table`, dropped from the text
 #: Lines formatted at a time: a piece's arrays (1.7 MB of OBJ faces) are reused memory and stay in the caches.
@@ -55,76 +55,111 @@ def int_lines(prefix: bytes, values: np.ndarray) -> bytes:
 def headed_lines(prefix: bytes, values: np.ndarray, head: bytes = b"", starts=(), offset: int = 0) -> Iterator[bytes]:
     """The lines of :func:`int_lines` of ``values + offset`` (non-negative integers), with a line ``head``
     ``k`` before row ``starts[k]`` for each ``k`` (``starts`` sorted; at ``len(values)``: after the
-    last row), in pieces of about :data:`ROWS` lines: an OBJ file's named objects (``o name_k``) and
-    their faces, streamed to the file (:func:`vaultgram.io.files.write_pieces`).
+    last row), in pieces of :data:`ROWS` lines: an OBJ file's named objects (``o name_k``) and their
+    faces, streamed to the file (:func:`vaultgram.io.files.write_pieces`).
 
-    Each number is looked up in a table of the digits of ``0 .. max`` (:func:`_digit_table`, made
-    once), its row taken whole into a fixed-width record of each line; a piece's records are then
-    joined and their :data:`PAD` bytes dropped (:func:`_piece`). A piece at a time, every buffer is
-    reused memory of a few MB: on the 12 million faces of voussoirs.obj at 10^6 faces 0.4 s, where
-    making the whole text at once, then finding the objects' places in it by its newlines, took 2.5
-    s (most of it the kernel's, mapping the 300 MB arrays afresh).
+    Each line is a record of fixed width (:func:`_records`), the heads' inserted among the rows' and
+    the :data:`PAD` bytes dropped (:func:`_piece`). A piece at a time, every buffer is reused memory
+    of a few MB: the 12 million faces of voussoirs.obj at 10^6 faces take 0.5 s, where making the
+    whole text at once, then finding the objects' places in it by its newlines, took 2.5 s (much
+    of it the kernel's, mapping the 300 MB arrays afresh).
 
     >>> b"".join(headed_lines(b"f ", np.array([[0, 1, 2], [2, 1, 3]]), b"o part_", [0, 1, 1, 2], offset=1))
     b'o part_0\\nf 1 2 3\\no part_1\\no part_2\\nf 3 2 4\\no part_3\\n'
     """
     v = np.asarray(values, dtype=np.int64)
     starts = np.asarray(starts, dtype=np.int64)
-    if v.size and v.min() + offset < 0:
-        raise ValueError("headed_lines: a negative number")
-    table = _digit_table(max(int(v.max()) + offset if v.size else 0, len(starts) - 1) + 1)
+    table = _digit_table(max(_top(v + offset if v.size else v), len(starts) - 1) + 1)
+    parts, heads = [prefix, *[b" "] * (v.shape[1] - 1), b"\n"], [head, b"\n"]
     bounds = np.r_[np.arange(0, max(len(v), 1), ROWS), len(v)]  # [0, 0] for no rows: the heads alone
-    heads = np.searchsorted(starts, bounds)
-    heads[-1] = len(starts)
-    for a, b, ha, hb in zip(bounds[:-1], bounds[1:], heads[:-1], heads[1:]):
-        yield _piece(table, prefix, v[a:b] + offset, head, np.arange(ha, hb), starts[ha:hb] - a)
+    first = np.searchsorted(starts, bounds)
+    first[-1] = len(starts)
+    for a, b, ha, hb in zip(bounds[:-1], bounds[1:], first[:-1], first[1:]):
+        yield _piece(_records(table, parts, v[a:b] + offset), _records(table, heads, np.arange(ha, hb)[:, None]),
+                     starts[ha:hb] - a)
 
 
-def _piece(table: np.ndarray, prefix: bytes, rows: np.ndarray, head: bytes, numbers: np.ndarray,
-           at: np.ndarray) -> bytes:
-    """The lines of ``rows`` (``prefix`` and each row's numbers, looked up in ``table``) with the line
-    ``head`` ``numbers[i]`` inserted before row ``at[i]``: every line a record of one width
-    (:func:`_records`), the :data:`PAD` bytes dropped at the end.
+def int_records(parts: list[bytes], values: np.ndarray) -> Iterator[bytes]:
+    """Each row of the matrix ``values`` (non-negative integers) as ``parts[0]``, its first number
+    (``%d``), ``parts[1]``, ..., its last, ``parts[-1]``, in pieces of :data:`ROWS` rows: records of
+    JSON as :func:`_records` makes lines.
 
-    >>> _piece(_digit_table(12), b"f ", np.array([[1, 2, 3], [10, 11, 1]]), b"o ", np.array([5, 6]), np.array([1, 2]))
-    b'f 1 2 3\\no 5\\nf 10 11 1\\no 6\\n'
+    >>> b"".join(int_records([b'{"a":[', b",", b"]},"], np.array([[1, 20], [300, 0]])))
+    b'{"a":[1,20]},{"a":[300,0]},'
     """
-    size = max(len(prefix) + rows.shape[1] * table.shape[1], len(head) + table.shape[1])
-    lines = _records(table, prefix, rows, size).view(f"V{size}")[:, 0]
-    heads = _records(table, head, numbers[:, None], size).view(f"V{size}")[:, 0]
-    return np.insert(lines, at, heads).tobytes().translate(None, bytes([PAD]))
+    v = np.asarray(values, dtype=np.int64)
+    table = _digit_table(_top(v) + 1)
+    for a in range(0, len(v), ROWS):
+        yield _packed(_records(table, parts, v[a:a + ROWS]))
 
 
-def _records(table: np.ndarray, prefix: bytes, rows: np.ndarray, size: int) -> np.ndarray:
-    """Each row's line as ``size`` bytes: ``prefix``, the table's row of each number taken whole (one
-    item of its width: one gather, not one per byte), the last number's space a newline, :data:`PAD`
-    bytes to the end.
+def _top(values: np.ndarray) -> int:
+    """The largest of ``values`` (0 if none), which must not be negative: the numbers of a table."""
+    if values.size and values.min() < 0:
+        raise ValueError("a negative number where indices were expected")
+    return int(values.max()) if values.size else 0
 
-    >>> _records(_digit_table(12), b"f ", np.array([[1, 11]]), 9).tolist()
-    [[102, 32, 0, 49, 32, 49, 49, 10, 0]]
+
+def _piece(lines: np.ndarray, heads: np.ndarray, at: np.ndarray) -> bytes:
+    """The records ``lines`` with ``heads[i]`` inserted before line ``at[i]``, as text (:func:`_packed`);
+    the narrower records padded to the wider's width.
+
+    >>> table = _digit_table(12)
+    >>> lines = _records(table, [b"f ", b"\\n"], np.array([[1], [10]]))
+    >>> _piece(lines, _records(table, [b"o", b"\\n"], np.array([[5]])), np.array([1]))
+    b'f 1\\no5\\nf 10\\n'
     """
-    width, (n, cols), p = table.shape[1], rows.shape, len(prefix)
-    records = np.zeros((n, size), dtype=np.uint8)
-    records[:, :p] = np.frombuffer(prefix, dtype=np.uint8)
-    records[:, p:p + cols * width].view(f"V{width}")[...] = table.view(f"V{width}")[rows, 0]
-    records[:, p + cols * width - 1] = ord("\n")
+    size = max(lines.shape[1], heads.shape[1])
+    lines, heads = (np.pad(r, ((0, 0), (0, size - r.shape[1])), constant_values=PAD) if r.shape[1] < size else r
+                    for r in (lines, heads))
+    return _packed(np.insert(lines.view(f"V{size}")[:, 0], at, heads.view(f"V{size}")[:, 0]))
+
+
+def _packed(records: np.ndarray) -> bytes:
+    """The bytes of ``records`` without their :data:`PAD` bytes."""
+    return records.tobytes().translate(None, bytes([PAD]))
+
+
+def _records(table: np.ndarray, parts: list[bytes], rows: np.ndarray) -> np.ndarray:
+    """Each row as one record of fixed width: ``parts[0]``, a slot for its first number, ``parts[1]``,
+    ..., ``parts[-1]``. The parts' bytes are written a column at a time; each slot takes the number's
+    row of ``table`` (its digits) whole, one item of the table's width: a gather per column, not one
+    per byte.
+
+    >>> _records(_digit_table(12), [b"f ", b",", b"\\n"], np.array([[1, 11]])).tolist()
+    [[102, 32, 0, 49, 44, 49, 49, 10]]
+    """
+    width, template, slots = table.shape[1], bytearray(parts[0]), []
+    for part in parts[1:]:
+        slots.append(len(template))
+        template += bytes([PAD]) * width + part
+    records = np.zeros((len(rows), len(template)), dtype=np.uint8)
+    for i in np.flatnonzero(np.frombuffer(template, dtype=np.uint8) != PAD).tolist():
+        records[:, i] = template[i]
+    cells = table.view(f"V{width}")[:, 0]
+    for col, at in enumerate(slots):
+        records[:, at:at + width].view(f"V{width}")[:, 0] = cells[rows[:, col]]
     return records
 
 
 def _digit_table(n: int) -> np.ndarray:
-    """Row ``k`` (0 <= k < n): :data:`PAD` bytes, the digits of ``k`` (right-aligned to the widest's
-    width), a space; made a column at a time (``k`` below ``10^j`` has no digit for ``10^j``).
+    """Row ``k`` (0 <= k < n): :data:`PAD` bytes, then the digits of ``k``; as wide as a power of two
+    (numpy copies items of 1, 2, 4, 8 or 16 bytes four times as fast as of 7), made a column at a
+    time (``k`` below ``10^j`` has no digit for ``10^j``).
 
     >>> _digit_table(11)[[0, 10]].tolist()
-    [[0, 48, 32], [49, 48, 32]]
+    [[0, 48], [49, 48]]
+    >>> _digit_table(1000).shape
+    (1000, 4)
     """
-    width = len(str(max(n - 1, 0)))
+    digits = len(str(max(n - 1, 0)))
+    width = 1 << (digits - 1).bit_length()
     k = np.arange(n, dtype=np.int64)
-    table = np.full((n, width + 1), ord(" "), dtype=np.uint8)
-    for col in range(width):
+    table = np.full((n, width), PAD, dtype=np.uint8)
+    for col in range(width - digits, width):
         place = 10 ** (width - 1 - col)
-        table[:, col] = k // place % 10 + ord("0")
-        table[:place if place > 1 else 0, col] = PAD
+        first = place if place > 1 else 0  # the first number with a digit in this place
+        table[first:, col] = k[first:] // place % 10 + ord("0")
     return table
 
 
