@@ -140,3 +140,17 @@ def test_written_pieces_are_the_file_or_nothing(tmp_path):
     assert path.read_bytes() == b"old" and [p.name for p in tmp_path.iterdir()] == ["a.txt"]
     write_pieces(path, iter([b"new ", memoryview(b"text"), b""]))
     assert path.read_bytes() == b"new text"
+
+
+def test_obj_digits_from_each_columns_bounds():
+    """The site's extent and distance from the origin, taken a column at a time: as from the rows."""
+    from vaultgram.io.files import _obj_digits
+
+    rng = np.random.default_rng(6)
+    for centre in (0.0, 5.0, -3e4, 2e6, -7e8, 1e12):
+        for size in (1e-3, 1.0, 40.0):
+            v = np.column_stack([rng.uniform(-size, size, (50, 2)) + [centre, -centre / 3], np.zeros(50)])
+            extent, far = float(np.ptp(v[:, :2], axis=0).max()), float(np.abs(v[:, :2]).max())
+            expected = 12 if far <= 10 * extent else min(17, 12 + int(np.ceil(np.log10(far / extent))))
+            assert _obj_digits(v) == expected
+    assert _obj_digits(np.zeros((0, 3))) == _obj_digits(np.ones((3, 3))) == 12
