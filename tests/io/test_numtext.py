@@ -154,3 +154,22 @@ def test_obj_digits_from_each_columns_bounds():
             expected = 12 if far <= 10 * extent else min(17, 12 + int(np.ceil(np.log10(far / extent))))
             assert _obj_digits(v) == expected
     assert _obj_digits(np.zeros((0, 3))) == _obj_digits(np.ones((3, 3))) == 12
+
+
+def test_digit_tables_hold_each_numbers_digits():
+    """Tables 1, 2, 4 and 8 bytes wide, of integers of 8, 16 and 32 bits."""
+    for n in (1, 2, 10, 11, 256, 257, 1000, 10**4 + 1, 65537, 2 * 10**5):
+        table = numtext._digit_table(n)
+        digits = len(str(n - 1))
+        assert table.shape[1] in (1, 2, 4, 8) and digits <= table.shape[1] < 2 * digits
+        assert [row.tobytes().replace(b"\0", b"") for row in table] == [b"%d" % k for k in range(n)]
+
+
+def test_int_records_are_percent_d_in_their_parts(monkeypatch):
+    monkeypatch.setattr(numtext, "ROWS", 2)
+    a, b = np.array([[0, 12], [345, 6], [7, 8]]), np.array([9, 10**7, 11])
+    text = b"".join(numtext.int_records([b"(", b"-", b"|", b");"], a, b))
+    assert text == b"".join(b"(%d-%d|%d);" % (*r, s) for r, s in zip(a.tolist(), b.tolist()))
+    assert b"".join(numtext.int_records([b"<", b">"], np.zeros((0, 1), dtype=int))) == b""
+    with pytest.raises(ValueError):
+        next(numtext.int_records([b"", b""], np.array([[-1]])))

@@ -79,18 +79,19 @@ def headed_lines(prefix: bytes, values: np.ndarray, head: bytes = b"", starts=()
                      starts[ha:hb] - a)
 
 
-def int_records(parts: list[bytes], values: np.ndarray) -> Iterator[bytes]:
-    """Each row of the matrix ``values`` (non-negative integers) as ``parts[0]``, its first number
-    (``%d``), ``parts[1]``, ..., its last, ``parts[-1]``, in pieces of :data:`ROWS` rows: records of
-    JSON as :func:`_records` makes lines.
+def int_records(parts: list[bytes], *values: np.ndarray) -> Iterator[bytes]:
+    """Each row of the matrices (or columns) ``values`` (non-negative integers; as many rows each,
+    their numbers side by side) as ``parts[0]``, its first number (``%d``), ``parts[1]``, ..., its
+    last, ``parts[-1]``, in pieces of :data:`ROWS` rows: records of JSON as :func:`_records` makes
+    lines, the matrices put side by side a piece at a time (never a copy of them all).
 
-    >>> b"".join(int_records([b'{"a":[', b",", b"]},"], np.array([[1, 20], [300, 0]])))
-    b'{"a":[1,20]},{"a":[300,0]},'
+    >>> b"".join(int_records([b'{"a":[', b",", b'],"b":', b"},"], np.array([[1, 20], [300, 0]]), np.array([[7], [8]])))
+    b'{"a":[1,20],"b":7},{"a":[300,0],"b":8},'
     """
-    v = np.asarray(values, dtype=np.int64)
-    table = _digit_table(_top(v) + 1)
-    for a in range(0, len(v), ROWS):
-        yield _packed(_records(table, parts, v[a:a + ROWS]))
+    v = [np.asarray(m, dtype=np.int64) for m in values]
+    table = _digit_table(max(_top(m) for m in v) + 1)
+    for a in range(0, len(v[0]), ROWS):
+        yield _packed(_records(table, parts, np.column_stack([m[a:a + ROWS] for m in v])))
 
 
 def _top(values: np.ndarray, offset: int = 0) -> int:
@@ -155,7 +156,7 @@ def _digit_table(n: int) -> np.ndarray:
     """
     digits = len(str(max(n - 1, 0)))
     width = 1 << (digits - 1).bit_length()
-    k = np.arange(n, dtype=np.int64)
+    k = np.arange(n, dtype=np.min_scalar_type(max(n - 1, 0)))  # the narrowest integers divide fastest
     table = np.full((n, width), PAD, dtype=np.uint8)
     for col in range(width - digits, width):
         place = 10 ** (width - 1 - col)

@@ -128,7 +128,7 @@ class Tessellation:
             "courses": json_array(self.courses, arrays),
             "zones": json_array(self.zones, arrays),
             "areas": json_array(lay.areas(self.vertices), arrays),
-            "faces": [lay.mesh.faces[f] for f in range(len(lay.mesh.faces))],
+            "faces": list(lay.mesh.faces),  # a list of its tuples (orjson writes no tuple subclass)
             "face_voussoir": json_array(lay.group, arrays),
             "joints": _joint_records(lay.edges.edges[lay.joints], np.sort(pairs, axis=1), arrays),
             "neighbours": _neighbours(pairs, lay.n_voussoirs),
@@ -159,7 +159,7 @@ def _joint_records(vertices: np.ndarray, voussoirs: np.ndarray, arrays: bool = F
     from vaultgram.io.numtext import int_records
 
     parts = [b',{"vertices":[', b",", b'],"voussoirs":[', b",", b"]}"]  # each record after a comma
-    pieces = list(int_records(parts, np.column_stack([vertices, voussoirs])))
+    pieces = list(int_records(parts, vertices, voussoirs))
     if pieces:
         pieces[0] = pieces[0][1:]  # no comma before the first record
     return orjson.Fragment(b"".join([b"[", *pieces, b"]"]))
