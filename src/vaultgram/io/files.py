@@ -277,8 +277,8 @@ def _json_pieces(data) -> Iterator[bytes]:
     """The bytes of :func:`_dumps` of ``data`` in pieces: a dict with string keys a value at a time, in
     orjson's order of the keys (sorted by code point), and a list or array of more than
     :data:`JSON_ITEMS` items that many at a time: the text of a 10^6-face tessellation (244 MB) is
-    never made whole, its pieces are reused memory (the whole took 0.2-0.3 s of the kernel's
-    mapping it afresh, and as much again of the process's peak).
+    never made whole, its pieces are reused memory (made whole, it took the kernel 0.1-0.4 s to map
+    afresh, and added its size to the process's peak).
 
     >>> b"".join(_json_pieces({"b": [0.5, 2], "a": {"c": (1, 2)}, "": None}))
     b'{"":null,"a":{"c":[1,2]},"b":[0.5,2]}'
