@@ -35,8 +35,8 @@ def area_vectors(vertices: np.ndarray, faces) -> np.ndarray:
     """Vector area of each polygon (Newell's method): normal times area, for planar or not. Measured
     :data:`FACE_BLOCK` faces at a time, each face's corners summed in order as at once (the same bits):
     a block's temporaries are a few MB of reused memory, where the 4.4 million corners of a 10^6-face
-    tessellation at once made 0.5 GB of fresh pages for the kernel to fault in (0.3-1.1 s, most of it
-    the kernel's, against 0.25 s).
+    tessellation at once made 0.5 GB of fresh pages for the kernel to fault in (0.4-1.1 s, mostly
+    the kernel's, against 0.2-0.3 s).
 
     >>> area_vectors(np.array([[0.0, 0, 0], [2, 0, 0], [2, 1, 0], [0, 1, 0]]), [(0, 1, 2, 3)]).tolist()
     [[0.0, 0.0, 2.0]]
