@@ -13,6 +13,8 @@ import time
 import numpy as np
 import pytest
 from click.testing import CliRunner
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from vaultgram.cli import main
 from vaultgram.errors import VaultgramError
@@ -178,3 +180,34 @@ def test_freed_memory_kept_leaves_results_alone_and_gives_memory_back():
     with pytest.raises(ValueError), freed_memory_kept():
         raise ValueError("inside")
     assert np.array_equal(np.cross(x, x[::-1]).sum(axis=0), expected)
+
+
+JSON_VALUES = st.recursive(
+    st.none() | st.booleans() | st.integers(-2**63, 2**63 - 1) | st.floats() | st.text(max_size=4),
+    lambda inner: (st.lists(inner, max_size=7) | st.tuples(inner, inner)
+                   | st.dictionaries(st.text(max_size=3), inner, max_size=5)
+                   | st.dictionaries(st.integers(-5, 5), inner, max_size=3)),
+    max_leaves=40)
+
+
+@settings(max_examples=150, deadline=None)
+@given(JSON_VALUES, st.integers(1, 3))
+def test_json_written_in_pieces_is_orjsons_text(data, items):
+    """Keys of any characters (sorted by code point, as orjson sorts them), other keys than strings,
+    lists cut into pieces of ``items``: the bytes of orjson's text of the whole."""
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(files, "JSON_ITEMS", items)
+        assert b"".join(files._json_pieces(data)) == files._dumps(data)
+        assert b"".join(files._json_pieces({"k": data, "é": [data] * 4})) == files._dumps({"k": data, "é": [data] * 4})
+
+
+def test_json_of_arrays_written_in_pieces_is_orjsons_text(monkeypatch):
+    """Arrays orjson takes whole and those it takes as lists (not contiguous, of other types), a fragment."""
+    import orjson
+
+    monkeypatch.setattr(files, "JSON_ITEMS", 2)
+    x = np.arange(15.0).reshape(5, 3) / 7
+    data = {"x": x, "t": x.T, "i": np.arange(5), "b": np.array([True, False, True]), "e": np.zeros((0, 3)),
+            "f": orjson.Fragment(b'[{"a":1}]'), "nan": np.array([np.nan, 1.0, np.inf]), "o": [np.arange(3)] * 5,
+            "u": np.array([1, 2, 3], dtype=np.uint16), "s": np.float64(2.5)}
+    assert b"".join(files._json_pieces(data)) == files._dumps(data)

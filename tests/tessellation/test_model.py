@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 from vaultgram.geometry.halfedges import mesh_edges
 from vaultgram.geometry.meshes import grid_mesh
 from vaultgram.geometry.surfaces import area_vectors
+from vaultgram.io import numtext
 from vaultgram.pipeline import tessellate
 from vaultgram.tessellation.keystones import CutMesh
 from vaultgram.tessellation.model import _joint_records, voussoir_layout
@@ -84,3 +85,13 @@ def test_joint_records_as_one_fragment_are_the_bytes_of_the_dicts(n, top, seed):
     assert orjson.dumps(_joint_records(vertices, voussoirs, arrays=True)) == orjson.dumps(records)
     keyed = [{"joints": j, "a": 1} for j in (_joint_records(vertices, voussoirs, arrays=True), records)]
     assert orjson.dumps(keyed[0], option=orjson.OPT_SORT_KEYS) == orjson.dumps(keyed[1], option=orjson.OPT_SORT_KEYS)
+
+
+@pytest.mark.parametrize("n", [1, 3, 4, 10])
+def test_joint_records_over_several_pieces_are_the_bytes_of_the_dicts(monkeypatch, n):
+    """Records made three rows at a time (numtext.ROWS) join into the same JSON."""
+    monkeypatch.setattr(numtext, "ROWS", 3)
+    rng = np.random.default_rng(n)
+    vertices, voussoirs = rng.integers(0, 10**6, size=(n, 2)), rng.integers(0, 12, size=(n, 2))
+    records = _joint_records(vertices, voussoirs)
+    assert orjson.dumps(_joint_records(vertices, voussoirs, arrays=True)) == orjson.dumps(records)
