@@ -34,7 +34,7 @@ import itertools
 import weakref
 from contextlib import contextmanager
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, AbstractSet, Callable, Iterable, Iterator, Mapping, NamedTuple
+from typing import TYPE_CHECKING, AbstractSet, Callable, Iterable, Iterator, Mapping, NamedTuple, Sequence
 
 import numpy as np
 
@@ -233,7 +233,7 @@ class _AddMany(NamedTuple):
     """Nodes or edges added at once (:meth:`HostGraph.add_nodes`, :meth:`HostGraph.add_edges`)."""
 
     kind: str  # "node" or "edge"
-    ids: tuple[int, ...]
+    ids: Sequence[int]  # a tuple, or for edges (numbered in a row) a range
     next_id: int
 
     def undo(self, g: "HostGraph") -> None:
@@ -611,7 +611,10 @@ class HostGraph:
 
     def _new_node_ids(self, ids) -> np.ndarray:
         """``ids`` (any iterable of integers) as an array, checked to be new, distinct and non-negative."""
-        array = np.asarray(ids if isinstance(ids, np.ndarray) else list(ids)).astype(np.int64).reshape(-1)
+        if isinstance(ids, range):
+            array = np.arange(ids.start, ids.stop, ids.step)
+        else:
+            array = np.asarray(ids if isinstance(ids, np.ndarray) else list(ids)).astype(np.int64).reshape(-1)
         known = array[array < len(self._node_codes)]
         distinct = (np.diff(array) > 0).all() or len(np.unique(array)) == len(array)  # increasing: no sort
         if (array < 0).any() or (self._node_codes[known] >= 0).any() or not distinct:
@@ -630,13 +633,12 @@ class HostGraph:
         ends = np.asarray(ends, dtype=np.int64).reshape(-1, 2)
         self._check_new_ends(type_name, ends)
         columns = self.schema.filled_columns(type_name, attrs or {}, len(ends), f"{type_name} edges")
-        ids = list(range(self._next_edge, self._next_edge + len(ends)))
-        self._record(_AddMany("edge", tuple(ids), self._next_edge))
-        array = np.arange(self._next_edge, self._next_edge + len(ends))
+        ids = range(self._next_edge, self._next_edge + len(ends))  # kept as a range: no 10^6 ints to hold
+        self._record(_AddMany("edge", ids, self._next_edge))
         self._next_edge += len(ends)
-        self._edge_bulk.add(array, columns)
-        self._index_edges(type_name, ids, array, ends, angles)
-        return ids  # their attributes and ends are made on first use (_Lazy)
+        self._edge_bulk.add(np.arange(ids.start, ids.stop), columns)
+        self._index_edges(type_name, ids, ends, angles)
+        return list(ids)  # their attributes and ends are made on first use (_Lazy)
 
     def _check_new_ends(self, type_name: str, ends: np.ndarray) -> None:
         """Refuse (SchemaError) edges of ``type_name`` between the node pairs ``ends`` if a node does not
@@ -654,25 +656,23 @@ class HostGraph:
         for k in first[first < len(ends)].tolist():
             self._check_endpoints(type_name, int(ends[k, 0]), int(ends[k, 1]))
 
-    def _index_edges(self, type_name: str, ids: list[int], array: np.ndarray, ends: np.ndarray, angles) -> None:
-        """Type index, arrays, incidence and rotations of edges just added in bulk (``ids`` as a
-        list and as an array)."""
+    def _index_edges(self, type_name: str, ids: range, ends: np.ndarray, angles) -> None:
+        """Type index, arrays, incidence and rotations of edges just added in bulk."""
         self.version += 1
         self._index_bulk(type_name, ids)
-        last = int(array.max(initial=0))
-        self._edge_codes, self._edge_ends = _fit(self._edge_codes, last), _fit(self._edge_ends, last)
-        self._edge_codes[array] = self.type_code[type_name]
-        self._edge_ends[array] = ends
-        node = ends.ravel()
-        edge = np.repeat(array, 2)
+        new = slice(ids.start, ids.stop)
+        self._edge_codes, self._edge_ends = _fit(self._edge_codes, new.stop - 1), _fit(self._edge_ends, new.stop - 1)
+        self._edge_codes[new] = self.type_code[type_name]
+        self._edge_ends[new] = ends
+        node = ends.ravel()  # the half-edges: each edge's source, then its target
         if angles is not None:
             key = np.asarray(angles, dtype=float).ravel()
         elif self.angle is None:
             key = np.zeros(len(node))  # as _rotation_key gives it
         else:
-            key = np.array([self._rotation_key(e, n)[0] for e, n in zip(edge.tolist(), node.tolist())])
+            key = np.array([self._rotation_key(ids[k // 2], n)[0] for k, n in enumerate(node.tolist())])
         order = np.argsort(node, kind="stable")  # by node, then by edge id
-        block = _Block.of(type_name, node[order], edge[order], key[order])
+        block = _Block.of(type_name, node[order], ids.start + order // 2, key[order])
         # nodes whose tables exist already get the new edges now; the others when first used
         indexed = self._inc.keys() | self._rot_keys.keys()
         for n in (set(block.node.tolist()) & indexed) if indexed else ():
@@ -727,7 +727,7 @@ class HostGraph:
             raise KeyError(i)
         return self._type_names[codes[i]]
 
-    def _index_bulk(self, type_name: str, ids: list[int]) -> None:
+    def _index_bulk(self, type_name: str, ids: Sequence[int]) -> None:
         """Put ids added in bulk in the type index: they wait, with the type's set taken out of it,
         until the set is next used (:meth:`_type_members`; a rewrite of a large graph may not use it,
         and putting in 10^6 ids costs 0.05 s)."""

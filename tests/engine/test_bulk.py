@@ -78,18 +78,21 @@ def one_by_one() -> HostGraph:
     return g
 
 
-def in_bulk(angle=_angle) -> HostGraph:
+def in_bulk(angle=_angle, angles=True) -> HostGraph:
+    """The graph of :func:`one_by_one` built in bulk; ``angles``: the rotation keys given (else the
+    angle function is called for each half-edge)."""
     g = HostGraph(RICH, angle)
     g.add_nodes("P", np.arange(5), {"pos": np.array(POS[:5]), "label": [f"n{i}" for i in range(5)],
                                     "size": np.arange(5), "flag": np.arange(5) % 2 == 0})
     g.add_nodes("Q", [5], {"pos": [POS[5]]})
-    g.add_edges("L", LINKS, {"w": [u + v / 10 for u, v in LINKS]}, angles=_angles(LINKS))
-    g.add_edges("M", [(0, 5)], angles=_angles([(0, 5)]))
+    g.add_edges("L", LINKS, {"w": [u + v / 10 for u, v in LINKS]}, angles=_angles(LINKS) if angles else None)
+    g.add_edges("M", [(0, 5)], angles=_angles([(0, 5)]) if angles else None)
     return g
 
 
-def test_a_graph_built_in_bulk_is_the_graph_built_element_by_element():
-    one, bulk = one_by_one(), in_bulk()
+@pytest.mark.parametrize("angles", [True, False])
+def test_a_graph_built_in_bulk_is_the_graph_built_element_by_element(angles):
+    one, bulk = one_by_one(), in_bulk(angles=angles)
     assert bulk.node_attrs(3) == one.node_attrs(3) == {"pos": (-1.0, 0.5), "label": "n3", "size": 3.0,
                                                        "flag": False, "k": -1}
     assert type(bulk.get(2, "size")) is float and type(bulk.get(2, "k")) is int and type(bulk.get(2, "flag")) is bool
