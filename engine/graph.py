@@ -221,7 +221,7 @@ class _Retype(NamedTuple):
     old_attrs: dict
 
     def undo(self, g: "HostGraph") -> None:
-        g._set_node_type(self.n, self.old_type)
+        g._set_node_type(self.n, self.old_type, g._node_type[self.n])
         g._replace_attrs(self.n, self.old_attrs)
 
     def touched(self, g: "HostGraph", nodes: set, types: set) -> None:
@@ -715,7 +715,7 @@ class HostGraph:
 
     def _bulk_attrs(self, bulk: _Bulk, codes: np.ndarray, i: int) -> dict:
         """The attributes of a node or an edge added in bulk (``bulk`` and ``codes``: those of nodes or
-        of edges), from the columns held (KeyError for an id not in use)."""
+        of edges), from the columns held, or of one without attributes (KeyError for an id not in use)."""
         if not _in_use(codes, i):
             raise KeyError(i)
         return bulk.pop(i)
@@ -783,13 +783,13 @@ class HostGraph:
         old_attrs = dict(self._node_data[n])
         kept = {k: v for k, v in old_attrs.items() if k in info.attrs}
         values = self.schema.fill_attrs(type_name, kept, f"node {n}")
-        self._set_node_type(n, type_name)
+        self._set_node_type(n, type_name, old_type)
         for e in self._rot[n]:
             u, v = self._ends[e]
             try:
                 self._check_endpoints(self._edge_type[e], u, v)
             except SchemaError:
-                self._set_node_type(n, old_type)
+                self._set_node_type(n, old_type, type_name)
                 raise
         self._record(_Retype(n, old_type, old_attrs))
         self._replace_attrs(n, values)
@@ -940,7 +940,7 @@ class HostGraph:
             return self._next_node if kind == "node" else self._next_edge
         if not isinstance(requested, int) or isinstance(requested, bool) or requested < 0:
             raise SchemaError(f"{kind} id must be a non-negative integer, got {requested!r}")
-        if (self.has_node if kind == "node" else self.has_edge)(requested):
+        if _in_use(self._node_codes if kind == "node" else self._edge_codes, requested):
             raise SchemaError(f"{kind} id {requested} already exists")
         return requested
 
@@ -954,19 +954,21 @@ class HostGraph:
                 f"cannot join node {u} ({tu}) and node {v} ({tv})"
             )
 
-    def _set_node_type(self, n: int, type_name: str) -> None:
-        """Record a node's type in the type index and the type-code array (creation, retype, undo)."""
+    def _set_node_type(self, n: int, type_name: str, old: str | None) -> None:
+        """Record a node's type in the type index and the type-code array (creation, retype, undo);
+        ``old``: its type until now (None for a new node)."""
         self.version += 1
-        if self.has_node(n):
-            self._by_type[self._node_type[n]].discard(n)
+        if old is not None:
+            self._by_type[old].discard(n)
         self._node_type[n] = type_name
         self._by_type[type_name].add(n)
         self._node_codes = _fit(self._node_codes, n)
         self._node_codes[n] = self.type_code[type_name]
 
     def _insert_node(self, n: int, type_name: str, attrs: dict) -> None:
-        self._node_data[n] = dict(attrs)
-        self._set_node_type(n, type_name)
+        if attrs:  # no attributes: the empty dictionary is made when first read (_bulk_attrs)
+            self._node_data[n] = dict(attrs)
+        self._set_node_type(n, type_name, None)
         self._inc[n] = {}
         self._rot[n] = []
         self._rot_keys[n] = []
@@ -983,7 +985,8 @@ class HostGraph:
 
     def _insert_edge(self, e: int, type_name: str, u: int, v: int, attrs: dict, positions) -> None:
         self.version += 1
-        self._edge_data[e] = dict(attrs)
+        if attrs:  # no attributes: the empty dictionary is made when first read (_bulk_attrs)
+            self._edge_data[e] = dict(attrs)
         self._edge_type[e] = type_name
         self._ends[e] = (u, v)
         self._by_type[type_name].add(e)
@@ -1056,7 +1059,10 @@ class HostGraph:
 
 def _in_use(codes: np.ndarray, i: int) -> bool:
     """Whether ``i`` is an id with a type in the type-code array ``codes`` (of the nodes or of the edges)."""
-    return isinstance(i, (int, np.integer)) and 0 <= i < len(codes) and bool(codes[i] >= 0)
+    try:
+        return 0 <= i < len(codes) and codes.item(i) >= 0
+    except TypeError:  # not an integer
+        return False
 
 
 def _fit(array: np.ndarray, i: int) -> np.ndarray:
