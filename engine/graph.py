@@ -386,7 +386,7 @@ class HostGraph:
         self._edge_type: dict[int, str] = _Lazy(self, lambda g, e: g._bulk_type(g._edge_codes, e))
         self._by_type: dict[str, set[int]] = _Lazy(self, HostGraph._type_members)
         self._by_type.update((t, set()) for t in (*schema.node_types, *schema.edge_types))
-        self._pending: dict[str, tuple[set[int], list[list[int]]]] = {}  # type -> (its set, ids to put in)
+        self._pending: dict[str, tuple[set[int], list[Sequence[int]]]] = {}  # type -> (its set, ids to put in)
         self._blocks: list[_Block] = []  # edges added in bulk, indexed per node on first use
         self._inc: dict[int, dict[str, set[int]]] = _Lazy(self, HostGraph._bulk_incidence)
         # a node's rotation and its keys are made together, from the bulk blocks, on first use
