@@ -253,13 +253,27 @@ def _degrees(g: HostGraph, types: frozenset) -> np.ndarray:
 
 def _column_mask(g: HostGraph, test, ids: np.ndarray, rhs) -> np.ndarray:
     """Where a column test holds for the elements ``ids``: on their degrees (numpy), or on their
-    attribute (the values compared one by one, as plain Python values)."""
+    attribute: compared against a number as one numpy array per bulk column the values are still in
+    (:meth:`HostGraph.bulk_numbers`), the others read as plain values (:func:`_values_mask`)."""
     if test.types is not None:
         return np.asarray(test.op(_degrees(g, test.types)[ids], rhs), dtype=bool)
-    op, values = test.op, g.values(test.kind, ids.tolist(), test.attr)
-    if type(rhs) in _NUMBERS and set(map(type, values)) <= _NUMBERS:  # numbers compare as numpy does
-        return np.asarray(op(np.array(values), rhs), dtype=bool).reshape(len(ids))
-    return np.fromiter((bool(op(v, rhs)) for v in values), dtype=bool, count=len(ids))
+    mask = np.zeros(len(ids), dtype=bool)
+    rest = np.ones(len(ids), dtype=bool)
+    if type(rhs) in _NUMBERS:
+        for at, numbers in g.bulk_numbers(test.kind, ids, test.attr):
+            mask[at] = np.asarray(test.op(numbers, rhs), dtype=bool).reshape(len(at))
+            rest[at] = False
+    at = np.flatnonzero(rest)
+    mask[at] = _values_mask(test.op, g.values(test.kind, ids[at].tolist(), test.attr), rhs)
+    return mask
+
+
+def _values_mask(op, values: list, rhs) -> np.ndarray:
+    """Where ``op(value, rhs)`` holds: numbers compared as one numpy array (Python compares them the
+    same way), other values one by one."""
+    if type(rhs) in _NUMBERS and set(map(type, values)) <= _NUMBERS:
+        return np.asarray(op(np.array(values), rhs), dtype=bool).reshape(len(values))
+    return np.fromiter((bool(op(v, rhs)) for v in values), dtype=bool, count=len(values))
 
 
 def _check_columns(g: HostGraph, table: Table, conditions: tuple[Condition, ...], values: dict, rule: str) -> Table:

@@ -1,8 +1,10 @@
 """The typed host graph that rules rewrite.
 
 A :class:`HostGraph` stores its nodes and edges, with their attributes, in plain dictionaries by id
-(:meth:`HostGraph.to_networkx` gives a networkx ``MultiDiGraph`` copy for any networkx algorithm)
-and keeps, current on every change:
+(:meth:`HostGraph.to_networkx` gives a networkx ``MultiDiGraph`` copy for any networkx algorithm);
+for elements added in bulk (:meth:`HostGraph.add_nodes`, :meth:`HostGraph.add_edges`) their entries
+are made from the arrays they came in when first used, as a rewrite of a large graph touches few.
+It keeps, current on every change:
 
 * a **type index** (type name -> element ids) so that a search can start from the rarest type;
 * **typed adjacency** (node -> edge type -> incident edge ids) so that a search extends along
@@ -32,7 +34,7 @@ import itertools
 import weakref
 from contextlib import contextmanager
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, AbstractSet, Callable, Iterable, Iterator, Mapping, NamedTuple
+from typing import TYPE_CHECKING, AbstractSet, Callable, Iterable, Iterator, Mapping, NamedTuple, Sequence
 
 import numpy as np
 
@@ -46,10 +48,11 @@ AngleFunction = Callable[["HostGraph", int, int], float]
 
 
 def _collector_paused(method):
-    """``method`` with Python's cyclic garbage collector paused: a bulk addition makes millions of
+    """``method`` with Python's cyclic garbage collector paused: a bulk addition made millions of
     small objects (attribute dicts, end pairs), none of them in a cycle, and without the pause the
     collector re-scanned the whole graph over and over (two-thirds of building a 10^6-node graph,
-    issue 18). The collector is restored as it was, also on an error."""
+    issue 18; they are made on first use now, but edges added in bulk at nodes already in use
+    still make their tables at once). The collector is restored as it was, also on an error."""
     @functools.wraps(method)
     def paused(*args, **kwargs):
         enabled = gc.isenabled()
@@ -76,6 +79,8 @@ class Incidence(NamedTuple):
     They stay current as the graph changes; never change them (only :class:`HostGraph` methods do).
     ``node_type``: node id -> type name; ``edge_type``: edge id -> type name; ``ends``: edge id ->
     (source, target); ``typed``: node id -> edge type name -> ids of the node's edges of that type.
+    The entries for elements added in bulk are made when first looked up: look them up by id
+    (``ends[e]``), never iterate them or test ``in`` (ask :meth:`HostGraph.has_node` and the like).
     """
 
     node_type: Mapping[int, str]
@@ -99,11 +104,11 @@ class TypeArrays(NamedTuple):
 
 def _touch_node(g: "HostGraph", n: int, nodes: set, types: set) -> None:
     nodes.add(n)
-    types.add(g._node_type.get(n, ""))
+    types.add(g._node_type[n] if g.has_node(n) else "")
 
 
 def _touch_edge(g: "HostGraph", e: int, nodes: set, types: set) -> None:
-    if e in g._ends:
+    if e in g._edge_type or _in_use(g._edge_codes, e):  # has_edge, without a call: one per journal record
         nodes.update(g._ends[e])
         types.add(g._edge_type[e])
 
@@ -122,15 +127,17 @@ def face_changes(g: "HostGraph", record, edge_types: AbstractSet[str]) -> tuple[
     if isinstance(record, (_AddEdge, _RemoveEdge, _AddMany)) and getattr(record, "kind", "edge") == "edge":
         ids = record.ids if isinstance(record, _AddMany) else (record.e,)
         for e in ids:
-            ends = (record.u, record.v) if isinstance(record, _RemoveEdge) else g._ends.get(e)
-            kind = record.type_name if isinstance(record, _RemoveEdge) else g._edge_type.get(e)
+            if isinstance(record, _RemoveEdge):
+                kind, ends = record.type_name, (record.u, record.v)
+            else:
+                kind, ends = (g._edge_type[e], g._ends[e]) if g.has_edge(e) else (None, None)
             if ends is not None and kind in edge_types:
                 half_edges.update((e, u) for u in ends)
                 rotated.update(ends)
     elif isinstance(record, _Rotation):
         rotated.add(record.n)
     elif isinstance(record, _SetAttr) and record.kind == "edge":
-        if g._edge_type.get(record.i) in edge_types:
+        if g.has_edge(record.i) and g._edge_type[record.i] in edge_types:
             attributed.update(g._ends[record.i])
     elif isinstance(record, _SetAttr):
         attributed.add(record.i)
@@ -214,7 +221,7 @@ class _Retype(NamedTuple):
     old_attrs: dict
 
     def undo(self, g: "HostGraph") -> None:
-        g._set_node_type(self.n, self.old_type)
+        g._set_node_type(self.n, self.old_type, g._node_type[self.n])
         g._replace_attrs(self.n, self.old_attrs)
 
     def touched(self, g: "HostGraph", nodes: set, types: set) -> None:
@@ -226,7 +233,7 @@ class _AddMany(NamedTuple):
     """Nodes or edges added at once (:meth:`HostGraph.add_nodes`, :meth:`HostGraph.add_edges`)."""
 
     kind: str  # "node" or "edge"
-    ids: tuple[int, ...]
+    ids: Sequence[int]  # a tuple, or for edges (numbered in a row) a range
     next_id: int
 
     def undo(self, g: "HostGraph") -> None:
@@ -258,10 +265,78 @@ class _Lazy(dict):
         return value
 
 
+def _cell(column: np.ndarray | list, row: int) -> object:
+    """The plain value in ``row`` of a bulk column (as ``tolist`` makes it; a vector as a tuple)."""
+    if isinstance(column, list):
+        return column[row]
+    return tuple(column[row].tolist()) if column.ndim == 2 else column.item(row)
+
+
+def _cells(column: np.ndarray | list, rows: np.ndarray) -> list:
+    """The plain values in ``rows`` of a bulk column, as :func:`_cell` makes each."""
+    if isinstance(column, list):
+        return [column[r] for r in rows.tolist()]
+    return list(zip(*column[rows].T.tolist())) if column.ndim == 2 else column[rows].tolist()
+
+
+class _Bulk:
+    """The attributes of the nodes (or the edges) added in bulk that have not been used one at a time
+    yet, kept in the columns they were given in (numpy arrays of numbers, lists of other values):
+    element ``i`` is row ``row[i]`` of block ``block[i]`` (-1: not here: its attributes are in the
+    graph's dictionary, or it has none). Its dictionary is made when it is first used (:meth:`pop`):
+    the rewrites of a large graph touch few of its elements, and making a dictionary for each was a
+    third of building the tessellation's host graph at 10^6 vertices (issue 18)."""
+
+    def __init__(self):
+        self.blocks: list[dict[str, np.ndarray | list]] = []
+        self.block = np.full(64, -1, dtype=np.int64)
+        self.row = np.full(64, -1, dtype=np.int64)
+
+    def add(self, ids: np.ndarray, columns: dict[str, np.ndarray | list]) -> None:
+        """Hold the attribute ``columns`` of the new elements ``ids`` (row k for ``ids[k]``; nothing to
+        hold for elements of a type without attributes)."""
+        if not columns:
+            return
+        last = int(ids.max(initial=0))
+        self.block, self.row = _fit(self.block, last), _fit(self.row, last)
+        self.block[ids] = len(self.blocks)
+        self.row[ids] = np.arange(len(ids))
+        self.blocks.append(columns)
+
+    def pop(self, i: int) -> dict:
+        """The attributes of element ``i`` (in use, added in bulk, its dictionary not made yet) as a new
+        dictionary, no longer held here: empty if none are held (its type has no attributes)."""
+        b = int(self.block[i]) if i < len(self.block) else -1
+        if b < 0:
+            return {}
+        self.block[i] = -1
+        row = int(self.row[i])
+        return {name: _cell(column, row) for name, column in self.blocks[b].items()}
+
+    def drop(self, i: int) -> None:
+        """Forget element ``i`` (it was removed)."""
+        if i < len(self.block):
+            self.block[i] = -1
+
+    def parts(self, ids: np.ndarray, name: str) -> Iterator[tuple[np.ndarray, np.ndarray | list, np.ndarray]]:
+        """For each block holding some of ``ids`` with attribute ``name``: the positions in ``ids`` of
+        the elements it holds, and their rows of its column ``name``."""
+        inside = (ids >= 0) & (ids < len(self.block))
+        block = np.full(len(ids), -1, dtype=np.int64)
+        block[inside] = self.block[ids[inside]]
+        for b in np.flatnonzero(np.bincount(block[block >= 0], minlength=len(self.blocks))).tolist():
+            column = self.blocks[b].get(name)
+            if column is not None:
+                at = np.flatnonzero(block == b)
+                yield at, column, self.row[ids[at]]
+
+
 class _Block(NamedTuple):
-    """Edges added in bulk, as half-edges sorted by node (then rotation key): for a node ``n`` its
+    """Edges added in bulk, as half-edges sorted by node (then edge id): for a node ``n`` its
     half-edges are ``[ptr[n], ptr[n + 1])`` (a CSR pointer over node ids, so that indexing a node on
-    first use is two lookups, not two binary searches: issue 18's ``all``)."""
+    first use is two lookups, not two binary searches: issue 18's ``all``). Their rotation keys are
+    sorted when the node's rotation is first used (sorting every half-edge by node and key at once
+    was half of building the tessellation's host graph at 10^6 vertices)."""
 
     type_name: str
     node: np.ndarray
@@ -299,12 +374,19 @@ class HostGraph:
     def __init__(self, schema: TypeSchema, angle: AngleFunction | None = None):
         self.schema = schema
         self.angle = angle
-        self._node_data: dict[int, dict] = {}  # node id -> attributes
-        self._edge_data: dict[int, dict] = {}  # edge id -> attributes
-        self._node_type: dict[int, str] = {}
-        self._edge_type: dict[int, str] = {}
-        self._ends: dict[int, tuple[int, int]] = {}
-        self._by_type: dict[str, set[int]] = {t: set() for t in (*schema.node_types, *schema.edge_types)}
+        # attributes (id -> dict) and edge ends (id -> (source, target)); those of elements added in
+        # bulk are made on first use, from the columns the _Bulk keep and from _edge_ends
+        self._node_bulk, self._edge_bulk = _Bulk(), _Bulk()
+        self._node_data: dict[int, dict] = _Lazy(self, lambda g, n: g._bulk_attrs(g._node_bulk, g._node_codes, n))
+        self._edge_data: dict[int, dict] = _Lazy(self, lambda g, e: g._bulk_attrs(g._edge_bulk, g._edge_codes, e))
+        self._ends: dict[int, tuple[int, int]] = _Lazy(self, HostGraph._bulk_ends)
+        # types by id (made on first use from the type-code arrays for elements added in bulk), and
+        # the type index: ids by type, those added in bulk put in when the type's set is next used
+        self._node_type: dict[int, str] = _Lazy(self, lambda g, n: g._bulk_type(g._node_codes, n))
+        self._edge_type: dict[int, str] = _Lazy(self, lambda g, e: g._bulk_type(g._edge_codes, e))
+        self._by_type: dict[str, set[int]] = _Lazy(self, HostGraph._type_members)
+        self._by_type.update((t, set()) for t in (*schema.node_types, *schema.edge_types))
+        self._pending: dict[str, tuple[set[int], list[Sequence[int]]]] = {}  # type -> (its set, ids to put in)
         self._blocks: list[_Block] = []  # edges added in bulk, indexed per node on first use
         self._inc: dict[int, dict[str, set[int]]] = _Lazy(self, HostGraph._bulk_incidence)
         # a node's rotation and its keys are made together, from the bulk blocks, on first use
@@ -319,6 +401,7 @@ class HostGraph:
         self.version = 0  # bumped by every change of structure or types (caches key on it)
         # the same typed structure as flat arrays indexed by id (-1: unused id), for whole-graph search
         self.type_code = {t: i for i, t in enumerate((*schema.node_types, *schema.edge_types))}
+        self._type_names = list(self.type_code)  # type code -> type name
         self._node_codes = np.full(64, -1, dtype=np.int64)
         self._edge_codes = np.full(64, -1, dtype=np.int64)
         self._edge_ends = np.full((64, 2), -1, dtype=np.int64)
@@ -331,25 +414,25 @@ class HostGraph:
     # ------------------------------------------------------------------------------------------
 
     def __len__(self) -> int:
-        return len(self._node_type)
+        return self.count(self.schema.node_types)  # the node types are few
 
     @property
     def num_edges(self) -> int:
-        return len(self._edge_type)
+        return self.count(self.schema.edge_types)
 
     def nodes(self) -> list[int]:
-        """All node ids, sorted."""
-        return sorted(self._node_type)
+        """All node ids, sorted (every id in use is below the node counter)."""
+        return np.flatnonzero(self._node_codes[: self._next_node] >= 0).tolist()
 
     def edges(self) -> list[int]:
-        """All edge ids, sorted."""
-        return sorted(self._edge_type)
+        """All edge ids, sorted (every id in use is below the edge counter)."""
+        return np.flatnonzero(self._edge_codes[: self._next_edge] >= 0).tolist()
 
     def has_node(self, n: int) -> bool:
-        return n in self._node_type
+        return n in self._node_type or _in_use(self._node_codes, n)  # the type table first: it is quicker
 
     def has_edge(self, e: int) -> bool:
-        return e in self._edge_type
+        return e in self._edge_type or _in_use(self._edge_codes, e)
 
     def node_type(self, n: int) -> str:
         return self._node_type[n]
@@ -378,16 +461,38 @@ class HostGraph:
         return self._node_data[n][name]
 
     def values(self, kind: str, ids: Iterable[int], name: str) -> list:
-        """Attribute ``name`` of many nodes (``kind`` "node") or edges ("edge") at once."""
-        data = self._node_data if kind == "node" else self._edge_data
-        return [data[i][name] for i in ids]
+        """Attribute ``name`` of many nodes (``kind`` "node") or edges ("edge") at once (those still in
+        the columns they were added with in bulk are read there, their dictionaries not made)."""
+        data, bulk = (self._node_data, self._node_bulk) if kind == "node" else (self._edge_data, self._edge_bulk)
+        ids = list(ids)
+        if not bulk.blocks:
+            return [data[i][name] for i in ids]
+        out = np.empty(len(ids), dtype=object)
+        held = np.zeros(len(ids), dtype=bool)
+        for at, column, rows in bulk.parts(np.array(ids, dtype=np.int64), name):
+            out[at] = np.fromiter(_cells(column, rows), dtype=object, count=len(at))
+            held[at] = True
+        loose = np.flatnonzero(~held).tolist()
+        out[loose] = np.fromiter((data[ids[k]][name] for k in loose), dtype=object, count=len(loose))
+        return out.tolist()
+
+    def bulk_numbers(self, kind: str, ids: np.ndarray, name: str) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+        """For the whole-graph matcher: attribute ``name`` of those of the nodes (``kind`` "node") or
+        edges ("edge") ``ids`` that are still in a column of numbers they were added with in bulk,
+        as (their positions in ``ids``, their values) per column (one numpy array per column, read
+        without making their dictionaries). The others' values are read with :meth:`values`."""
+        bulk = self._node_bulk if kind == "node" else self._edge_bulk
+        for at, column, rows in bulk.parts(ids, name):
+            if isinstance(column, np.ndarray) and column.ndim == 1:
+                yield at, column[rows]
 
     def get_edge(self, e: int, name: str) -> object:
         return self._edge_data[e][name]
 
     def count(self, types: Iterable[str]) -> int:
         """Number of elements whose type is one of ``types`` (pass a type's subtypes)."""
-        return sum(len(self._by_type[t]) for t in types)
+        return sum(len(self._by_type[t]) if t not in self._pending else
+                   len(self._pending[t][0]) + sum(map(len, self._pending[t][1])) for t in types)
 
     def of_types(self, types: Iterable[str]) -> Iterator[int]:
         """Element ids of the given exact types (pass ``schema.subtypes(T)`` for T and its subtypes)."""
@@ -452,7 +557,7 @@ class HostGraph:
             raise SchemaError(f"unknown node type '{type_name}'")
         if info.abstract:
             raise SchemaError(f"node type '{type_name}' is abstract and cannot be instantiated")
-        n = self._allocate(id, self._node_type, "node")
+        n = self._allocate(id, "node")
         values = self.schema.fill_attrs(type_name, attrs or {}, f"node {n}")
         self._record(_AddNode(n, self._next_node))
         self._next_node = max(self._next_node, n + 1)
@@ -468,15 +573,16 @@ class HostGraph:
             raise SchemaError(f"unknown edge type '{type_name}'")
         if info.abstract:
             raise SchemaError(f"edge type '{type_name}' is abstract and cannot be instantiated")
-        for end in (u, v):
-            if end not in self._node_type:
-                raise SchemaError(f"edge {type_name}: node {end} does not exist")
+        try:
+            fitting = (type_name, self._node_type[u], self._node_type[v])
+        except KeyError:
+            raise SchemaError(f"edge {type_name}: node {v if self.has_node(u) else u} does not exist") from None
         if u == v:
             raise SchemaError(f"edge {type_name}: a self-loop at node {u} is not allowed")
-        if (type_name, self._node_type[u], self._node_type[v]) not in self._fitting:
+        if fitting not in self._fitting:
             self._check_endpoints(type_name, u, v)
-            self._fitting.add((type_name, self._node_type[u], self._node_type[v]))
-        e = self._allocate(id, self._edge_type, "edge")
+            self._fitting.add(fitting)
+        e = self._allocate(id, "edge")
         values = self.schema.fill_attrs(type_name, attrs or {}, f"edge {e}") if attrs or info.attrs else {}
         self._record(_AddEdge(e, self._next_edge))
         self._next_edge = max(self._next_edge, e + 1)
@@ -491,21 +597,29 @@ class HostGraph:
         info = self.schema.node_types.get(type_name)
         if info is None or info.abstract:
             raise SchemaError(f"node type '{type_name}' is unknown or abstract and cannot be instantiated")
-        ids = [int(i) for i in ids]
-        if len(set(ids)) != len(ids) or any(i < 0 or i in self._node_type for i in ids):
-            raise SchemaError("add_nodes: node ids must be new, distinct and non-negative")
-        columns = self.schema.filled_columns(type_name, attrs or {}, len(ids), f"{type_name} nodes")
-        names = list(columns)
-        rows = [dict(zip(names, values)) for values in zip(*columns.values())] if names else [{} for _ in ids]
+        array = self._new_node_ids(ids)
+        columns = self.schema.filled_columns(type_name, attrs or {}, len(array), f"{type_name} nodes")
+        ids = array.tolist()
         self._record(_AddMany("node", tuple(ids), self._next_node))
-        self._next_node = max([self._next_node, *(i + 1 for i in ids)])
-        self._node_data.update(zip(ids, rows))
+        self._next_node = max(self._next_node, int(array.max(initial=-1)) + 1)
+        self._node_bulk.add(array, columns)
         self.version += 1
-        self._node_type.update(dict.fromkeys(ids, type_name))
-        self._by_type[type_name].update(ids)
-        self._node_codes = _fit(self._node_codes, max(ids, default=0))
-        self._node_codes[ids] = self.type_code[type_name]
-        return ids  # their incidence and rotations are made on first use (_Lazy)
+        self._index_bulk(type_name, ids)
+        self._node_codes = _fit(self._node_codes, int(array.max(initial=0)))
+        self._node_codes[array] = self.type_code[type_name]
+        return ids  # their attributes, incidence and rotations are made on first use (_Lazy)
+
+    def _new_node_ids(self, ids) -> np.ndarray:
+        """``ids`` (any iterable of integers) as an array, checked to be new, distinct and non-negative."""
+        if isinstance(ids, range):
+            array = np.arange(ids.start, ids.stop, ids.step)
+        else:
+            array = np.asarray(ids if isinstance(ids, np.ndarray) else list(ids)).astype(np.int64).reshape(-1)
+        known = array[array < len(self._node_codes)]
+        distinct = (np.diff(array) > 0).all() or len(np.unique(array)) == len(array)  # increasing: no sort
+        if (array < 0).any() or (self._node_codes[known] >= 0).any() or not distinct:
+            raise SchemaError("add_nodes: node ids must be new, distinct and non-negative")
+        return array
 
     @_collector_paused
     def add_edges(self, type_name: str, ends, attrs: Mapping[str, object] | None = None, angles=None) -> list[int]:
@@ -517,43 +631,48 @@ class HostGraph:
         if info is None or info.abstract:
             raise SchemaError(f"edge type '{type_name}' is unknown or abstract and cannot be instantiated")
         ends = np.asarray(ends, dtype=np.int64).reshape(-1, 2)
+        self._check_new_ends(type_name, ends)
+        columns = self.schema.filled_columns(type_name, attrs or {}, len(ends), f"{type_name} edges")
+        ids = range(self._next_edge, self._next_edge + len(ends))  # kept as a range: no 10^6 ints to hold
+        self._record(_AddMany("edge", ids, self._next_edge))
+        self._next_edge += len(ends)
+        self._edge_bulk.add(np.arange(ids.start, ids.stop), columns)
+        self._index_edges(type_name, ids, ends, angles)
+        return list(ids)  # their attributes and ends are made on first use (_Lazy)
+
+    def _check_new_ends(self, type_name: str, ends: np.ndarray) -> None:
+        """Refuse (SchemaError) edges of ``type_name`` between the node pairs ``ends`` if a node does not
+        exist, an edge is a loop or joins nodes of types it cannot: that is checked once per pair of
+        end types, at the first edge with it, in the order of the pairs' type codes."""
         codes = np.where((ends >= 0) & (ends < len(self._node_codes)), self._node_codes[np.clip(ends, 0, len(
             self._node_codes) - 1)], -1) if len(ends) else ends
         if (codes < 0).any():
             raise SchemaError(f"edge {type_name}: node {int(ends[codes < 0].min())} does not exist")
         if (ends[:, 0] == ends[:, 1]).any():
             raise SchemaError(f"edge {type_name}: a self-loop at node {int(ends[ends[:, 0] == ends[:, 1]][0, 0])}")
-        _, first = np.unique(codes, axis=0, return_index=True) if len(ends) else ((), [])
-        for k in np.asarray(first, dtype=np.int64).tolist():  # one check per pair of endpoint types
+        size = len(self.type_code)
+        first = np.full(size * size, len(ends))
+        np.minimum.at(first, codes[:, 0] * size + codes[:, 1], np.arange(len(ends)))
+        for k in first[first < len(ends)].tolist():
             self._check_endpoints(type_name, int(ends[k, 0]), int(ends[k, 1]))
-        columns = self.schema.filled_columns(type_name, attrs or {}, len(ends), f"{type_name} edges")
-        ids = list(range(self._next_edge, self._next_edge + len(ends)))
-        self._record(_AddMany("edge", tuple(ids), self._next_edge))
-        self._next_edge += len(ends)
-        names = list(columns)
-        rows = [dict(zip(names, values)) for values in zip(*columns.values())] if names else [{} for _ in ids]
-        self._edge_data.update(zip(ids, rows))
-        self._index_edges(type_name, ids, ends, angles)
-        return ids
 
-    def _index_edges(self, type_name: str, ids: list[int], ends: np.ndarray, angles) -> None:
+    def _index_edges(self, type_name: str, ids: range, ends: np.ndarray, angles) -> None:
         """Type index, arrays, incidence and rotations of edges just added in bulk."""
         self.version += 1
-        self._edge_type.update(dict.fromkeys(ids, type_name))
-        self._ends.update(zip(ids, zip(ends[:, 0].tolist(), ends[:, 1].tolist())))
-        self._by_type[type_name].update(ids)
-        last = max(ids, default=0)
-        self._edge_codes, self._edge_ends = _fit(self._edge_codes, last), _fit(self._edge_ends, last)
-        self._edge_codes[ids] = self.type_code[type_name]
-        self._edge_ends[ids] = ends
-        node = ends.ravel()
-        edge = np.repeat(np.asarray(ids, dtype=np.int64), 2)
+        self._index_bulk(type_name, ids)
+        new = slice(ids.start, ids.stop)
+        self._edge_codes, self._edge_ends = _fit(self._edge_codes, new.stop - 1), _fit(self._edge_ends, new.stop - 1)
+        self._edge_codes[new] = self.type_code[type_name]
+        self._edge_ends[new] = ends
+        node = ends.ravel()  # the half-edges: each edge's source, then its target
         if angles is not None:
             key = np.asarray(angles, dtype=float).ravel()
+        elif self.angle is None:
+            key = np.zeros(len(node))  # as _rotation_key gives it
         else:
-            key = np.array([self._rotation_key(e, n)[0] for e, n in zip(edge.tolist(), node.tolist())])
-        order = np.lexsort((edge, key, node))  # by node, then as the rotation sorts its keys
-        block = _Block.of(type_name, node[order], edge[order], key[order])
+            key = np.array([self._rotation_key(ids[k // 2], n)[0] for k, n in enumerate(node.tolist())])
+        order = np.argsort(node, kind="stable")  # by node, then by edge id
+        block = _Block.of(type_name, node[order], ids.start + order // 2, key[order])
         # nodes whose tables exist already get the new edges now; the others when first used
         indexed = self._inc.keys() | self._rot_keys.keys()
         for n in (set(block.node.tolist()) & indexed) if indexed else ():
@@ -571,7 +690,7 @@ class HostGraph:
 
     def _bulk_incidence(self, n: int) -> dict[str, set[int]]:
         """The typed incidence of a node never indexed one edge at a time (from the bulk blocks)."""
-        if n not in self._node_type:
+        if not self.has_node(n):
             raise KeyError(n)
         out: dict[str, set[int]] = {}
         for block in self._blocks:
@@ -583,16 +702,54 @@ class HostGraph:
     def _bulk_rotation(self, n: int) -> tuple[list[tuple[float, int]], list[int]]:
         """The rotation keys and rotation of a node never indexed one edge at a time (from the bulk
         blocks), stored in both tables at once so that they never disagree."""
-        if n not in self._node_type:
+        if not self.has_node(n):
             raise KeyError(n)
         keys: list[tuple[float, int]] = []
         for block in self._blocks:
             lo, hi = block.span(n)
             keys += zip(block.key[lo:hi].tolist(), block.edge[lo:hi].tolist())
-        keys = sorted(keys) if len(self._blocks) > 1 else keys
+        keys.sort()
         dict.__setitem__(self._rot_keys, n, keys)
         dict.__setitem__(self._rot, n, [e for _, e in keys])
         return keys, self._rot[n]
+
+    def _bulk_attrs(self, bulk: _Bulk, codes: np.ndarray, i: int) -> dict:
+        """The attributes of a node or an edge added in bulk (``bulk`` and ``codes``: those of nodes or
+        of edges), from the columns held, or of one without attributes (KeyError for an id not in use)."""
+        if not _in_use(codes, i):
+            raise KeyError(i)
+        return bulk.pop(i)
+
+    def _bulk_type(self, codes: np.ndarray, i: int) -> str:
+        """The type of a node or an edge added in bulk, from its type-code array ``codes`` (KeyError
+        for an id not in use)."""
+        if not _in_use(codes, i):
+            raise KeyError(i)
+        return self._type_names[codes[i]]
+
+    def _index_bulk(self, type_name: str, ids: Sequence[int]) -> None:
+        """Put ids added in bulk in the type index: they wait, with the type's set taken out of it,
+        until the set is next used (:meth:`_type_members`; a rewrite of a large graph may not use it,
+        and putting in 10^6 ids costs 0.05 s)."""
+        if type_name not in self._pending:
+            self._pending[type_name] = (dict.pop(self._by_type, type_name), [])
+        self._pending[type_name][1].append(ids)
+
+    def _type_members(self, type_name: str) -> set[int]:
+        """The set of a type in the type index, with the ids added in bulk that wait for it put in, in
+        the order they were added: the set, hence its iteration order, is the one that putting
+        them in at once would have made (KeyError for a type with nothing waiting: an unknown one)."""
+        members, waiting = self._pending.pop(type_name)
+        for ids in waiting:
+            members.update(ids)
+        return members
+
+    def _bulk_ends(self, e: int) -> tuple[int, int]:
+        """The ends of an edge added in bulk, from the ends array (KeyError for an edge not in use)."""
+        if not _in_use(self._edge_codes, e):
+            raise KeyError(e)
+        u, v = self._edge_ends[e].tolist()
+        return u, v
 
     def remove_edge(self, e: int) -> None:
         u, v = self._ends[e]
@@ -626,13 +783,13 @@ class HostGraph:
         old_attrs = dict(self._node_data[n])
         kept = {k: v for k, v in old_attrs.items() if k in info.attrs}
         values = self.schema.fill_attrs(type_name, kept, f"node {n}")
-        self._set_node_type(n, type_name)
+        self._set_node_type(n, type_name, old_type)
         for e in self._rot[n]:
             u, v = self._ends[e]
             try:
                 self._check_endpoints(self._edge_type[e], u, v)
             except SchemaError:
-                self._set_node_type(n, old_type)
+                self._set_node_type(n, old_type, type_name)
                 raise
         self._record(_Retype(n, old_type, old_attrs))
         self._replace_attrs(n, values)
@@ -778,12 +935,12 @@ class HostGraph:
     # Internals
     # ------------------------------------------------------------------------------------------
 
-    def _allocate(self, requested: int | None, table: dict, kind: str) -> int:
+    def _allocate(self, requested: int | None, kind: str) -> int:
         if requested is None:
             return self._next_node if kind == "node" else self._next_edge
         if not isinstance(requested, int) or isinstance(requested, bool) or requested < 0:
             raise SchemaError(f"{kind} id must be a non-negative integer, got {requested!r}")
-        if requested in table:
+        if _in_use(self._node_codes if kind == "node" else self._edge_codes, requested):
             raise SchemaError(f"{kind} id {requested} already exists")
         return requested
 
@@ -797,10 +954,10 @@ class HostGraph:
                 f"cannot join node {u} ({tu}) and node {v} ({tv})"
             )
 
-    def _set_node_type(self, n: int, type_name: str) -> None:
-        """Record a node's type in the type index and the type-code array (creation, retype, undo)."""
+    def _set_node_type(self, n: int, type_name: str, old: str | None) -> None:
+        """Record a node's type in the type index and the type-code array (creation, retype, undo);
+        ``old``: its type until now (None for a new node)."""
         self.version += 1
-        old = self._node_type.get(n)
         if old is not None:
             self._by_type[old].discard(n)
         self._node_type[n] = type_name
@@ -809,23 +966,27 @@ class HostGraph:
         self._node_codes[n] = self.type_code[type_name]
 
     def _insert_node(self, n: int, type_name: str, attrs: dict) -> None:
-        self._node_data[n] = dict(attrs)
-        self._set_node_type(n, type_name)
+        if attrs:  # no attributes: the empty dictionary is made when first read (_bulk_attrs)
+            self._node_data[n] = dict(attrs)
+        self._set_node_type(n, type_name, None)
         self._inc[n] = {}
         self._rot[n] = []
         self._rot_keys[n] = []
 
     def _delete_node(self, n: int) -> None:
         self.version += 1
-        del self._node_data[n]
-        self._by_type[self._node_type.pop(n)].discard(n)
+        dict.pop(self._node_data, n, None)  # not there while it is still held in bulk
+        self._node_bulk.drop(n)
+        self._by_type[self._node_type[n]].discard(n)
+        dict.pop(self._node_type, n)
         self._node_codes[n] = -1
         for table in (self._inc, self._rot, self._rot_keys):
             dict.pop(table, n, None)
 
     def _insert_edge(self, e: int, type_name: str, u: int, v: int, attrs: dict, positions) -> None:
         self.version += 1
-        self._edge_data[e] = dict(attrs)
+        if attrs:  # no attributes: the empty dictionary is made when first read (_bulk_attrs)
+            self._edge_data[e] = dict(attrs)
         self._edge_type[e] = type_name
         self._ends[e] = (u, v)
         self._by_type[type_name].add(e)
@@ -853,9 +1014,12 @@ class HostGraph:
 
     def _delete_edge(self, e: int) -> None:
         self.version += 1
-        u, v = self._ends.pop(e)
-        type_name = self._edge_type.pop(e)
-        del self._edge_data[e]
+        u, v = self._ends[e]
+        dict.pop(self._ends, e)
+        type_name = self._edge_type[e]
+        dict.pop(self._edge_type, e)
+        dict.pop(self._edge_data, e, None)  # not there while it is still held in bulk
+        self._edge_bulk.drop(e)
         self._by_type[type_name].discard(e)
         self._edge_codes[e] = -1
         for n in (u, v):
@@ -891,6 +1055,14 @@ class HostGraph:
         data = self._node_data[n]
         data.clear()
         data.update(values)
+
+
+def _in_use(codes: np.ndarray, i: int) -> bool:
+    """Whether ``i`` is an id with a type in the type-code array ``codes`` (of the nodes or of the edges)."""
+    try:
+        return 0 <= i < len(codes) and codes.item(i) >= 0
+    except TypeError:  # not an integer
+        return False
 
 
 def _fit(array: np.ndarray, i: int) -> np.ndarray:

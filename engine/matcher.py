@@ -345,7 +345,7 @@ class _Search:
         """A node given from outside: it must still exist, have a fitting type and pass its checks."""
         pn = step.node
         n = self.binding[pn.var]
-        if n in self.node_type and self.node_type[n] in pn.types and self.holds(pn.checks):
+        if self.g.has_node(n) and self.node_type[n] in pn.types and self.holds(pn.checks):
             yield from self.run(nxt)
 
     def scan(self, step: Scan, nxt: int) -> Iterator[dict]:

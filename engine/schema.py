@@ -12,10 +12,13 @@ inherits from it; undirected, joining any two nodes). Both are abstract.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Mapping
+from typing import TYPE_CHECKING, Mapping
 
 from .errors import RuleTypeError, SchemaError, did_you_mean
 from .values import check_type_name, normalise_column, normalise_value, value_conforms
+
+if TYPE_CHECKING:
+    import numpy as np
 
 ROOT_NODE = "Node"
 ROOT_EDGE = "Edge"
@@ -115,9 +118,11 @@ class TypeSchema:
                 out[name] = spec.default
         return out
 
-    def filled_columns(self, type_name: str, columns: Mapping[str, object], n: int, what: str) -> dict[str, list]:
+    def filled_columns(self, type_name: str, columns: Mapping[str, object], n: int,
+                       what: str) -> dict[str, np.ndarray | list]:
         """Attribute values of ``n`` elements by column, checked (each column as a whole, or value by
-        value to name the first bad one) and with the defaults of the columns not given."""
+        value to name the first bad one) and with the defaults of the columns not given: numpy
+        arrays of numbers as :func:`~.values.normalise_column` keeps them, lists of plain values."""
         out = {}
         for name, values in columns.items():
             spec = self.attrs(type_name).get(name)

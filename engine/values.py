@@ -102,26 +102,27 @@ def normalise_value(value: object) -> object:
     return value
 
 
-def normalise_column(values, type_name: str) -> list | None:
-    """Many values of one declared type at once, made plain (as :func:`normalise_value` does each):
-    a numpy array of the type's shape is checked as a whole (finite numbers of the right kind and
-    count) and turned into a list of plain values; None when ``values`` does not fit (the caller
-    then names the first bad value)."""
+def normalise_column(values, type_name: str) -> np.ndarray | list | None:
+    """Many values of one declared type at once, made plain as :func:`normalise_value` makes each: a
+    numpy array of the type's shape is checked as a whole (finite numbers of the right kind and
+    count) and kept as a new numpy array (bool, int64, float64; vectors as rows of float64) whose
+    elements ``tolist`` makes the plain values; other values become a list of plain values. None
+    when ``values`` does not fit (the caller then names the first bad value)."""
     array = np.asarray(values)
     kind = array.dtype.kind
     if type_name in VECTORS:
         size = int(type_name[-1])
         if array.ndim != 2 or array.shape[1] != size or kind not in "iuf" or not np.isfinite(array).all():
             return None
-        return list(zip(*array.astype(float).T.tolist()))  # rows as tuples, built column-wise (faster)
+        return array.astype(float)
     if array.ndim != 1:
         return None
     if type_name == "bool":
-        return array.tolist() if kind == "b" else None
+        return array.astype(bool) if kind == "b" else None
     if type_name == "int":
-        return array.astype(int).tolist() if kind in "iu" else None
+        return array.astype(int) if kind in "iu" else None
     if type_name == "float":
-        return array.astype(float).tolist() if kind in "iuf" and np.isfinite(array).all() else None
+        return array.astype(float) if kind in "iuf" and np.isfinite(array).all() else None
     return [normalise_value(v) for v in values] if all(value_conforms(normalise_value(v), type_name)
                                                        for v in values) else None
 

@@ -14,7 +14,7 @@ from vaultgram.engine.matcher import Matcher  # noqa: E402
 from vaultgram.engine.strategy import Runner  # noqa: E402
 from vaultgram.engine.trace import replay  # noqa: E402
 
-from strategies.graphs import build_graph, permutations, typed_graphs  # noqa: E402
+from strategies.graphs import GraphSpec, build_graph, build_graph_in_bulk, permutations, typed_graphs  # noqa: E402
 from strategies.rules import book  # noqa: E402
 
 SETTINGS = settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -229,6 +229,44 @@ def test_insertion_order_irrelevant(spec, data):
     r2.run("mix")
     assert r1.trace.to_json() == r2.trace.to_json()
     assert g1.snapshot() == g2.snapshot()
+
+
+@FEW
+@given(typed_graphs(), st.lists(st.tuples(st.sampled_from(MUTATORS), st.integers(0, 1000)), max_size=8))
+def test_a_graph_built_in_bulk_rewrites_as_one_built_element_by_element(spec, steps):
+    """The bulk path keeps attributes, types, ends and the type index in arrays until they are used:
+    the same rewrites (reading and writing elements never used before) find the same matches in
+    the same order and leave the same graph, type index (in its iteration order) and journal."""
+    one, bulk = build_graph(SCHEMA, spec), build_graph_in_bulk(SCHEMA, spec)
+    for rule, k in steps:
+        found = [m.key for m in Matcher(RB.rules[rule], one).all()]
+        assert [m.key for m in Matcher(RB.rules[rule], bulk).all()] == found
+        if found:
+            for g in (one, bulk):
+                matcher = Matcher(RB.rules[rule], g)
+                Runner(RB, g).apply(matcher, matcher.all()[k % len(found)])
+    for t in ("A", "B", "C", "E", "D"):
+        assert list(bulk.of_types([t])) == list(one.of_types([t])) and bulk.count([t]) == one.count([t])
+    sizes = lambda g: (len(g), g.num_edges, g.nodes(), g.edges())  # noqa: E731
+    assert sizes(bulk) == sizes(one)
+    assert bulk.changes_since(0) == one.changes_since(0)
+    assert bulk.snapshot() == one.snapshot()
+
+
+@FEW
+@given(typed_graphs())
+def test_a_strategy_on_a_graph_built_in_bulk_then_undone(spec):
+    """A strategy run on a graph just built in bulk, then undone, then the bulk additions undone."""
+    one, bulk = build_graph(SCHEMA, spec), build_graph_in_bulk(SCHEMA, spec)
+    built = bulk.mark()
+    r1, r2 = Runner(RB, one), Runner(RB, bulk)
+    r1.run("mix")
+    r2.run("mix")
+    assert r2.trace.to_json() == r1.trace.to_json() and bulk.snapshot() == one.snapshot()
+    bulk.rollback(built)
+    assert bulk.snapshot() == build_graph(SCHEMA, spec).snapshot()
+    bulk.rollback(0)
+    assert bulk.snapshot() == build_graph(SCHEMA, GraphSpec((), ())).snapshot()
 
 
 # ------------------------------------------------------------------------------------------------

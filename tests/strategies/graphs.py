@@ -66,3 +66,20 @@ def build_graph(schema, spec: GraphSpec, node_order=None, edge_order=None) -> Ho
 def permutations(n: int):
     return st.permutations(list(range(n)))
 
+
+
+def build_graph_in_bulk(schema, spec: GraphSpec) -> HostGraph:
+    """The graph of ``spec`` built with :meth:`HostGraph.add_nodes` (one call per node type) and
+    :meth:`HostGraph.add_edges` (one call per run of consecutive edges of one type, so that the edge
+    counter gives them the ids of ``spec``): the same graph as :func:`build_graph` makes."""
+    g = HostGraph(schema)
+    for t in sorted({t for _, t, _ in spec.nodes}):
+        mine = [(i, w) for i, kind, w in spec.nodes if kind == t]
+        g.add_nodes(t, [i for i, _ in mine], {"w": [w for _, w in mine]})
+    start = 0
+    for k in range(1, len(spec.edges) + 1):
+        if k == len(spec.edges) or spec.edges[k][1] != spec.edges[start][1]:
+            run = spec.edges[start:k]
+            g.add_edges(run[0][1], [(u, v) for _, _, u, v, _ in run], {"m": [m for *_, m in run]})
+            start = k
+    return g
