@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from vaultgram.geometry.halfedges import mesh_edges
-from vaultgram.geometry.meshes import Faces, boundary_loops, with_midpoints
+from vaultgram.geometry.meshes import Faces, boundary_loops, corner_arrays, with_midpoints
 from vaultgram.geometry.surfaces import area_vectors, surface_areas
 from vaultgram.tessellation.refine import (
     LARGE,
@@ -147,9 +147,10 @@ def test_areas_kept_through_a_pass_equal_every_face_measured_again(seed):
     area = surface_areas(v, faces)
     me = mesh_edges(faces, len(v))
     nodes, strips = _nodes_to_refine(v, me, np.flatnonzero(area > LARGE * np.median(area)))
-    x, new_faces, _, origin, changed = _refined(v, faces, me, _cut_of(len(faces), nodes))
+    x, flat, sizes, _, origin, changed = _refined(v, me, _cut_of(len(faces), nodes))
     assert strips and changed.any() and not changed.all()
-    assert np.array_equal(_areas_after(x, new_faces, area[origin], changed), surface_areas(x, new_faces))
+    assert np.array_equal(_areas_after(x, flat, sizes, area[origin], changed),
+                          surface_areas(x, Faces.from_flat(flat, sizes)))
 
 
 def _refined_quad_by_quad(x, faces, cut):
@@ -197,7 +198,8 @@ def test_refined_all_at_once_equals_quad_by_quad(seed):
     label = strip_labels(me)
     chosen = rng.choice(label.max() + 1, 6, replace=False)
     cut = _cut_of(len(faces), np.flatnonzero(np.isin(label, chosen) & (label >= 0)))
-    x, new_faces, parents, origin, changed = _refined(v, faces, me, cut)
+    x, flat, sizes, parents, origin, changed = _refined(v, me, cut)
+    new_faces = Faces.from_flat(flat, sizes)
     rx, r_faces, r_parents, r_origin, r_changed = _refined_quad_by_quad(v, f, cut)
     assert cut.all(axis=1).any() and len(x) > len(v)
     assert np.array_equal(x, rx) and list(new_faces) == r_faces and parents == r_parents
@@ -216,5 +218,6 @@ def test_midpoints_inserted_at_once_equal_face_by_face(seed):
     index = {side: int(m) for side, m in zip(sorted(sides), rng.integers(0, n + 30, len(sides)))}
     expected = [with_midpoints(f, index) for f in faces]
     assert sum(len(e) for e in expected) > sum(len(f) for f in faces)
-    flat, lens = _midpoints_inserted(faces, np.array(list(index)), np.array(list(index.values())), n + 30)
+    face, u, v, _ = corner_arrays(faces)
+    flat, lens = _midpoints_inserted(face, u, v, np.array(list(index)), np.array(list(index.values())), n + 30)
     assert list(Faces.from_flat(flat, lens)) == expected

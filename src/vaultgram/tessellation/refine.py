@@ -15,8 +15,8 @@ from __future__ import annotations
 import numpy as np
 
 from vaultgram.geometry.arrays import lookup, ranges, sorted_keys
-from vaultgram.geometry.halfedges import MeshEdges, mesh_edges
-from vaultgram.geometry.meshes import Faces, corner_arrays
+from vaultgram.geometry.halfedges import MeshEdges, corner_edges
+from vaultgram.geometry.meshes import Faces, corner_arrays, corners_of_flat
 from vaultgram.geometry.surfaces import surface_areas
 from vaultgram.tessellation.strips import strip_labels
 
@@ -77,40 +77,43 @@ def _new_vertices(x: np.ndarray, quad: np.ndarray, kind: np.ndarray) -> tuple[np
     return points, np.column_stack([quad, ids[:, 1:], ids[:, 0]]), parents
 
 
-def _refined(x: np.ndarray, faces: Faces, me: MeshEdges, cut: np.ndarray
-             ) -> tuple[np.ndarray, Faces, list, np.ndarray, np.ndarray]:
-    """The mesh with the quads cut (``cut[f, d]``: quad ``f`` is cut in direction ``d``; ``me`` the
-    mesh's edges): vertices, faces, for each new vertex the vertices it is the mean of, for each face
-    the face it was cut from, and which faces are new or changed (cut, or given a midpoint: the others
-    are their origin's face as it was). All at once on the corner arrays: each cut quad's pieces take
-    its place, and each other face across a halved side (a strip's end) gets the midpoint inserted."""
+def _refined(x: np.ndarray, me: MeshEdges, cut: np.ndarray
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray, list, np.ndarray, np.ndarray]:
+    """The mesh of ``me`` with the quads cut (``cut[f, d]``: quad ``f`` is cut in direction ``d``):
+    vertices, faces (their corners end to end and their sizes), for each new vertex the vertices it is
+    the mean of, for each face the face it was cut from, and which faces are new or changed (cut, or
+    given a midpoint: the others are their origin's face as it was). All at once on the corner arrays:
+    each cut quad's pieces take its place, and each other face across a halved side (a strip's end)
+    gets the midpoint inserted."""
     quads = np.flatnonzero(cut.any(axis=1))
     kind = cut[quads, 0] + 2 * cut[quads, 1]
     corners = me.face_start[quads][:, None] + np.arange(4)
     points, row, parents = _new_vertices(x, me.corner_vertex[corners], kind)
     halved = row[:, 4:8] >= 0
     across = me.corner_twin[corners[halved]]
-    touched = np.zeros(len(faces), dtype=bool)
+    touched = np.zeros(len(cut), dtype=bool)
     touched[me.corner_face[across[across >= 0]]] = True
     beside = np.flatnonzero(touched & ~cut.any(axis=1))
     touched[quads] = True
     sides = np.column_stack([row[:, :4][halved], np.roll(row[:, :4], -1, axis=1)[halved]])
-    inserted = _midpoints_inserted([faces[f] for f in beside.tolist()], np.sort(sides, axis=1), row[:, 4:8][halved],
-                                   len(x) + len(points))
+    member, corner = ranges(me.face_start[beside], np.diff(me.face_start)[beside])
+    inserted = _midpoints_inserted(member, me.corner_vertex[corner], me.corner_next[corner], np.sort(sides, axis=1),
+                                   row[:, 4:8][halved], len(x) + len(points))
     template = PIECES[kind]
     pieces = row[np.arange(len(quads))[:, None, None], template][template[:, :, 0] >= 0]
-    counts = np.ones(len(faces), dtype=np.int64)
+    counts = np.ones(len(cut), dtype=np.int64)
     counts[quads] = 2 + 2 * (kind == 3)
-    origin = np.repeat(np.arange(len(faces)), counts)
-    new_faces = _assembled(me, beside, inserted, quads, pieces, counts)
-    return np.vstack([x, points]), new_faces, parents, origin, touched[origin]
+    origin = np.repeat(np.arange(len(cut)), counts)
+    flat, sizes = _assembled(me, beside, inserted, quads, pieces, counts)
+    return np.vstack([x, points]), flat, sizes, parents, origin, touched[origin]
 
 
 def _assembled(me: MeshEdges, beside: np.ndarray, inserted: tuple[np.ndarray, np.ndarray], quads: np.ndarray,
-               pieces: np.ndarray, counts: np.ndarray) -> Faces:
-    """The refined faces in order: each face of ``me`` as it was, or with midpoints inserted (the faces
-    ``beside``: ``inserted`` their corners end to end and sizes), or the ``counts`` quads ``pieces``
-    it is cut into (the ``quads``); the corners gathered from the three by runs, not face by face."""
+               pieces: np.ndarray, counts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The refined faces in order, their corners end to end and their sizes: each face of ``me`` as it
+    was, or with midpoints inserted (the faces ``beside``: ``inserted`` their corners end to end and
+    sizes), or the ``counts`` quads ``pieces`` it is cut into (the ``quads``); the corners gathered
+    from the three by runs, not face by face."""
     flat, sizes = inserted
     size = np.diff(me.face_start)
     at = me.face_start[:-1].copy()  # where each face's corners start, in the three end to end
@@ -120,15 +123,17 @@ def _assembled(me: MeshEdges, beside: np.ndarray, inserted: tuple[np.ndarray, np
     size[quads] = 4 * counts[quads]
     corners = np.concatenate([me.corner_vertex, flat, pieces.ravel()])[ranges(at, size)[1]]
     size[quads] = 4
-    return Faces.from_flat(corners, np.repeat(size, counts))
+    return corners, np.repeat(size, counts)
 
 
-def _midpoints_inserted(faces: list, sides: np.ndarray, mids: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`~vaultgram.geometry.meshes.with_midpoints` of every face at once (vertex ids below ``n``;
-    ``sides`` the cut sides ``(lo, hi)``, ``mids`` their midpoints), as the corners end to end and the
-    sizes: each corner's vertex, then the midpoint of the side it starts if that side was cut and the
-    midpoint is not in the face already. One sorted search over the corners, not a walk per face."""
-    face, u, v, _ = corner_arrays(faces)
+def _midpoints_inserted(face: np.ndarray, u: np.ndarray, v: np.ndarray, sides: np.ndarray, mids: np.ndarray,
+                        n: int) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`~vaultgram.geometry.meshes.with_midpoints` of every face at once, the faces given by
+    their corner arrays (corner ``k`` is the side ``u[k] -> v[k]`` of face ``face[k]``, the faces
+    numbered from 0 in order; vertex ids below ``n``), ``sides`` the cut sides ``(lo, hi)`` and
+    ``mids`` their midpoints: the corners end to end and the sizes, each corner's vertex, then the
+    midpoint of the side it starts if that side was cut and the midpoint is not in the face already.
+    One sorted search over the corners, not a walk per face."""
     keys = sides[:, 0] * n + sides[:, 1]
     order = np.argsort(keys)
     keys, mids = keys[order], mids[order]
@@ -140,7 +145,7 @@ def _midpoints_inserted(faces: list, sides: np.ndarray, mids: np.ndarray, n: int
     flat = np.empty(int(size.sum()), dtype=np.int64)
     flat[start] = u
     flat[start[cut] + 1] = m[cut]
-    return flat, np.bincount(face, weights=size, minlength=len(faces)).astype(np.int64)
+    return flat, np.bincount(face, weights=size, minlength=int(face.max()) + 1 if len(face) else 0).astype(np.int64)
 
 
 def refine_large_faces(x: np.ndarray, faces, large: float = LARGE, passes: int = PASSES
@@ -148,10 +153,13 @@ def refine_large_faces(x: np.ndarray, faces, large: float = LARGE, passes: int =
     """Refine the strips of the quads larger than ``large`` times the median quad (module docstring).
 
     Returns the vertices, the faces, for every added vertex the vertices it is the mean of, for every
-    face the input face it comes from, and the number of strips refined.
+    face the input face it comes from, and the number of strips refined. Between passes the faces are
+    their corners end to end and their sizes; they are made :class:`Faces` (tuples) after the last.
     """
     faces = faces if isinstance(faces, Faces) else Faces(tuple(f) for f in faces)
-    area, quads = surface_areas(x, faces), _quads(faces)
+    face, flat, _, _ = corner_arrays(faces)
+    sizes = np.bincount(face, minlength=len(faces))
+    area, quads = surface_areas(x, faces), sizes == 4
     limit = large * float(np.median(area[quads])) if quads.any() else np.inf
     parents: list = []
     refined = 0
@@ -160,29 +168,26 @@ def refine_large_faces(x: np.ndarray, faces, large: float = LARGE, passes: int =
         big = np.flatnonzero((area > limit) & quads)
         if not len(big):
             break  # (the strips are found only when there is something to refine)
-        me = mesh_edges(faces, len(x))
+        me = corner_edges(*corners_of_flat(flat, sizes)[:3], sizes, len(x))
         nodes, strips = _nodes_to_refine(x, me, big)
-        cut = np.zeros((len(faces), 2), dtype=bool)
+        cut = np.zeros((len(sizes), 2), dtype=bool)
         cut[nodes >> 1, nodes & 1] = True  # node 2 * quad + direction
-        x, faces, new_parents, new_origin, changed = _refined(x, faces, me, cut)
+        x, flat, sizes, new_parents, new_origin, changed = _refined(x, me, cut)
         parents += new_parents
         origin = origin[new_origin]
         refined += strips
-        area, quads = _areas_after(x, faces, area[new_origin], changed), _quads(faces)
-    return x, faces, parents, origin, refined
+        area, quads = _areas_after(x, flat, sizes, area[new_origin], changed), sizes == 4
+    return x, Faces.from_flat(flat, sizes) if refined else faces, parents, origin, refined
 
 
-def _quads(faces: Faces) -> np.ndarray:
-    """Which faces are quads."""
-    return np.bincount(corner_arrays(faces)[0], minlength=len(faces)) == 4
-
-
-def _areas_after(x: np.ndarray, faces: Faces, before: np.ndarray, changed: np.ndarray) -> np.ndarray:
-    """The area of every face of a refined mesh, given the area ``before`` of each face's origin: a
-    face that did not change keeps it (an area is its own corners' sum, the same bits in any mesh),
-    the ``changed`` ones are measured (measuring every face again took up to a second per pass at
-    10^6 faces, where a pass changes a fifth of them)."""
+def _areas_after(x: np.ndarray, flat: np.ndarray, sizes: np.ndarray, before: np.ndarray, changed: np.ndarray
+                 ) -> np.ndarray:
+    """The area of every face of a refined mesh (corners ``flat`` end to end, ``sizes``), given the area
+    ``before`` of each face's origin: a face that did not change keeps it (an area is its own corners'
+    sum, the same bits in any mesh), the ``changed`` ones are measured (measuring every face again took
+    up to a second per pass at 10^6 faces, where a pass changes a fifth of them)."""
     area = before.copy()
     redo = np.flatnonzero(changed)
-    area[redo] = surface_areas(x, [faces[f] for f in redo.tolist()])
+    _, at = ranges((np.cumsum(sizes) - sizes)[redo], sizes[redo])
+    area[redo] = surface_areas(x, Faces.from_flat(flat[at], sizes[redo]))
     return area
