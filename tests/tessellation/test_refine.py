@@ -108,6 +108,19 @@ def test_passes_repeat_until_no_quad_is_large():
     assert _areas(x1, faces1).max() > LARGE * median
 
 
+def test_faces_left_as_they_were_are_the_input_tuples():
+    """Over two passes, a refined face that is its input face as it was is that very tuple (shared, not
+    made again); every other one differs from its input face (cut, or given a midpoint)."""
+    v, f = rect_mesh([0, 1, 2, 3, 6], [0, 1, 2, 3, 6])
+    v = np.vstack([v, [[4.5, -1.0, 0.0]]])
+    f = f + [(4, 3, 25)]  # a triangle below the large column: its strip ends there
+    x, faces, parents, origin, refined = refine_large_faces(v, f)
+    same = [faces[k] is f[o] for k, o in enumerate(origin.tolist())]
+    assert refined > 2 and any(same) and not all(same)
+    assert all(faces[k] != f[o] for k, o in enumerate(origin.tolist()) if not same[k])
+    assert any(len(faces[k]) == 4 and o == len(f) - 1 for k, o in enumerate(origin.tolist()))  # the triangle's midpoint
+
+
 def test_refined_points_of_a_curved_surface_are_means_of_network_vertices():
     v, f = rect_mesh([0, 1, 2, 3, 6], range(4))
     v[:, 2] = 0.1 * v[:, 0] ** 2 + 0.05 * v[:, 1]

@@ -154,7 +154,8 @@ def refine_large_faces(x: np.ndarray, faces, large: float = LARGE, passes: int =
 
     Returns the vertices, the faces, for every added vertex the vertices it is the mean of, for every
     face the input face it comes from, and the number of strips refined. Between passes the faces are
-    their corners end to end and their sizes; they are made :class:`Faces` (tuples) after the last.
+    their corners end to end and their sizes; they are made :class:`Faces` after the last
+    (:func:`_faces_of`).
     """
     faces = faces if isinstance(faces, Faces) else Faces(tuple(f) for f in faces)
     face, flat, _, _ = corner_arrays(faces)
@@ -164,6 +165,7 @@ def refine_large_faces(x: np.ndarray, faces, large: float = LARGE, passes: int =
     parents: list = []
     refined = 0
     origin = np.arange(len(faces))
+    kept = np.ones(len(faces), dtype=bool)  # the face is its origin as it was
     for _ in range(passes):
         big = np.flatnonzero((area > limit) & quads)
         if not len(big):
@@ -174,10 +176,22 @@ def refine_large_faces(x: np.ndarray, faces, large: float = LARGE, passes: int =
         cut[nodes >> 1, nodes & 1] = True  # node 2 * quad + direction
         x, flat, sizes, new_parents, new_origin, changed = _refined(x, me, cut)
         parents += new_parents
-        origin = origin[new_origin]
+        origin, kept = origin[new_origin], kept[new_origin] & ~changed
         refined += strips
         area, quads = _areas_after(x, flat, sizes, area[new_origin], changed), sizes == 4
-    return x, Faces.from_flat(flat, sizes) if refined else faces, parents, origin, refined
+    return x, _faces_of(faces, flat, sizes, origin, kept) if refined else faces, parents, origin, refined
+
+
+def _faces_of(faces: Faces, flat: np.ndarray, sizes: np.ndarray, origin: np.ndarray, kept: np.ndarray) -> Faces:
+    """The refined faces (corners ``flat`` end to end, ``sizes``) as :class:`Faces`: a face ``kept`` as
+    its origin in ``faces`` was is that very tuple, the others are made from their corners. The input
+    mesh's tuples are shared, not made again (at 10^6 faces 0.2 GB more at the peak, and 0.3 s)."""
+    out = list(map(faces.__getitem__, origin.tolist()))
+    redo = np.flatnonzero(~kept)
+    _, at = ranges((np.cumsum(sizes) - sizes)[redo], sizes[redo])
+    for k, face in zip(redo.tolist(), Faces.from_flat(flat[at], sizes[redo])):
+        out[k] = face
+    return Faces.from_flat(flat, sizes, out)
 
 
 def _areas_after(x: np.ndarray, flat: np.ndarray, sizes: np.ndarray, before: np.ndarray, changed: np.ndarray
