@@ -69,7 +69,7 @@ from vaultgram.meshing.weld import weld
 from vaultgram.tessellation.courses import support_zones, voussoir_courses, voussoir_names
 from vaultgram.tessellation.keystones import CutMesh, cut_keystones, load_tessellation_rulebook, pinwheel
 from vaultgram.tessellation.mending import join_small_pairs, mend_meeting_points
-from vaultgram.tessellation.metrics import force_angles, summarise
+from vaultgram.tessellation.metrics import summarise
 from vaultgram.tessellation.model import Tessellation, voussoir_layout
 from vaultgram.tessellation.refine import refine_large_faces
 from vaultgram.tessellation.sizes import split_large_quads, unmerge_large
@@ -519,10 +519,8 @@ def _bond(cut: CutMesh, me, supported: np.ndarray, rhythm: int, max_concavity: f
     area_vec = area_vectors(x, faces)
     areas = steady(np.linalg.norm(area_vec, axis=1))  # equal for mirror faces, sums exact (geometry.arrays)
     rings = distinct(np.concatenate([me.face_edges(k) for k in cut.keystones])) if len(cut.keystones) else ()
-    skew = np.zeros(me.n_edges)
-    inside = np.flatnonzero(~me.boundary)
-    skew[inside] = force_angles(x, me, area_vec / np.maximum(areas, 1e-300)[:, None], inside)
-    bond = staggered_bond(x, me, quad_strips(me, faces), supported, areas, rhythm, pinwheel(cut, me), rings, skew)
+    normals = area_vec / np.maximum(areas, 1e-300)[:, None]
+    bond = staggered_bond(x, me, quad_strips(me, faces), supported, areas, rhythm, pinwheel(cut, me), rings, normals)
     removed, restored = without_concavities(x, me, bond.removed, max_concavity)
     inner = np.ones(len(x), dtype=bool)
     inner[me.edges[me.boundary].ravel()] = False

@@ -14,13 +14,14 @@ from vaultgram.geometry.halfedges import mesh_edges
 from vaultgram.geometry.meshes import grid_mesh
 from vaultgram.geometry.surfaces import area_vectors
 from vaultgram.pipeline import tessellate
-from vaultgram.tessellation.metrics import inner_vertices
+from vaultgram.tessellation.metrics import force_angles, inner_vertices
 from vaultgram.tessellation.stagger import (
     ALIGNED_COST,
     AMBIGUITY,
     SINGLE_COST,
     SKEW_COST,
     SMOOTHING,
+    _rung_skews,
     cheapest_cut,
     course_joints,
     course_runs,
@@ -328,3 +329,20 @@ def test_a_dome_has_almost_only_points_of_three_voussoirs(dome_grid):
     assert t.summary["edges_kept"]["aligned"] <= 1
     count = voussoirs_at_vertices(t.layout.edges, t.layout.group, len(t.vertices))
     assert count[inner_vertices(t.layout, len(t.vertices))].min() >= 2
+
+
+def test_rung_skews_are_the_force_angles_of_the_courses_inner_rungs(arch_grid):
+    """Measured at the inner rungs of the courses only, the angles to the force flow are those of all the
+    inner edges measured at once, bit for bit; the other edges (boundary, not a course's rung) have 0."""
+    x, me = arch_grid.vertices, arch_grid.edges
+    normals = unit_rows(area_vectors(x, arch_grid.faces))
+    courses = _courses(arch_grid)
+    skew = _rung_skews(x, me, courses, normals)
+    inside = np.flatnonzero(~me.boundary)
+    every = np.zeros(me.n_edges)
+    every[inside] = force_angles(x, me, normals, inside)
+    rung = np.zeros(me.n_edges, dtype=bool)
+    rung[np.concatenate([c.rungs for c in courses])] = True
+    assert (rung & ~me.boundary).any() and (~rung & ~me.boundary).any()
+    assert np.array_equal(skew[rung], every[rung]) and not skew[~rung].any()
+    assert not _rung_skews(x, me, courses, None).any()

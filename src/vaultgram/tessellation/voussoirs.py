@@ -189,7 +189,10 @@ def without_concavities(x: np.ndarray, me: MeshEdges, removed: np.ndarray, max_a
         group = face_groups(me, removed)
         sizes = np.bincount(group)
         multi = np.flatnonzero(sizes > 1)
-        multi = multi if faces is None else np.intersect1d(multi, group[faces])
+        if faces is not None:  # a mask, not np.intersect1d (0.4 s of hashing for 10^5 faces of a 10^6 mesh)
+            asked = np.zeros(len(sizes), dtype=bool)
+            asked[group[faces]] = True
+            multi = multi[asked[multi]]
         angle, vertex = max_corner_angles(x, outlines(me, group, multi))
         bad = angle > max_angle
         if not bad.any():
