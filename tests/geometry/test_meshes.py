@@ -18,6 +18,7 @@ from vaultgram.geometry.meshes import (
     adjacency,
     boundary_adjacency,
     boundary_loops,
+    corner_angles,
     corner_arrays,
     corner_vectors,
     grid_index,
@@ -25,7 +26,8 @@ from vaultgram.geometry.meshes import (
     has_twin,
     remove_faces,
 )
-from vaultgram.geometry.polygons import cross_z, signed_area
+from vaultgram.geometry.arrays import pieces
+from vaultgram.geometry.polygons import cross_z, signed_angles, signed_area
 
 SETTINGS = settings(max_examples=30, deadline=None)
 
@@ -115,3 +117,20 @@ def test_faces_from_flat_arrays_are_the_faces_cut_face_by_face(sizes, seed):
     expected = tuple(tuple(vert[e - k:e].tolist()) for e, k in zip(ends, lens))
     faces = Faces.from_flat(vert, lens)
     assert faces == expected and all(type(v) is int for f in faces for v in f)
+
+
+@SETTINGS
+@given(st.integers(0, 50), st.integers(1, 8))
+def test_pieces_cover_the_range_once_in_order(n, size):
+    parts = pieces(n, size)
+    assert np.array_equal(np.concatenate([np.arange(n)[part] for part in parts] or [[]]), np.arange(n))
+    assert all(len(np.arange(n)[part]) == size for part in parts[:-1])
+
+
+def test_corner_angles_are_the_signed_angles_of_the_corner_vectors():
+    """Computed in pieces (a 130 x 130 grid has 67600 corners), jittered so that some corners fold."""
+    v, f = grid_mesh(130)
+    v[:, :2] += np.random.default_rng(3).uniform(-0.4, 0.4, (len(v), 2))
+    _, u, nxt, prv = corner_arrays(f)
+    expected = signed_angles(*corner_vectors(v, u, nxt, prv))
+    assert np.array_equal(corner_angles(v, u, nxt, prv), expected) and (expected < 0).any()
