@@ -16,7 +16,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from vaultgram.errors import MeshError, NonManifoldVertexError
-from vaultgram.geometry.arrays import lookup, pieces, plan_rows, sorted_keys
+from vaultgram.geometry.arrays import lookup, pieces, plan_rows, run_starts
 from vaultgram.geometry.polygons import signed_angles
 
 __all__ = [
@@ -271,6 +271,11 @@ def has_twin(u: np.ndarray, v: np.ndarray, n: int | None = None) -> np.ndarray:
     """For each halfedge ``u[k] -> v[k]``, whether the mesh also has ``v[k] -> u[k]``: False on the
     boundary. ``n`` is any number above the largest vertex index (default: that index plus one).
 
+    The halfedges are sorted by their undirected edge ``min * n + max``, once (a stable sort: fast on
+    a mesh's keys, :func:`~vaultgram.geometry.arrays.sorted_keys`), so that an edge's halfedges lie
+    together: one has a twin when its run holds one running the other way (a loop ``u -> u`` is its
+    own twin). A search for every reversed halfedge in the sorted halfedges took twice as long.
+
     >>> has_twin(np.array([0, 1, 1]), np.array([1, 0, 2])).tolist()
     [True, True, False]
     """
@@ -278,7 +283,16 @@ def has_twin(u: np.ndarray, v: np.ndarray, n: int | None = None) -> np.ndarray:
         return np.zeros(0, dtype=bool)
     if n is None:
         n = int(max(u.max(), v.max())) + 1
-    return lookup(sorted_keys(u * n + v), v * n + u)[1]
+    edge = np.minimum(u, v) * n + np.maximum(u, v)
+    order = np.argsort(edge, kind="stable")
+    run = np.cumsum(run_starts(edge[order])) - 1
+    up = (u > v)[order]
+    has_up, has_down = np.zeros(run[-1] + 1, dtype=bool), np.zeros(run[-1] + 1, dtype=bool)
+    has_up[run[up]] = True
+    has_down[run[~up]] = True
+    out = np.empty(len(u), dtype=bool)
+    out[order] = np.where(up, has_down[run], has_up[run])
+    return out | (u == v)
 
 
 def boundary_loops(faces: Sequence[Sequence[int]]) -> list[list[int]]:
