@@ -96,7 +96,12 @@ def _corner_table(faces) -> _Corners:
     k = np.arange(len(face))
     after = np.where(k + 1 == first + size, first, k + 1)
     before = np.where(k == first, first + size - 1, k - 1)
-    return _Corners(face, u, v, p, np.where(size == 3, _TRI, 1.0), after, before, _Groups.of(u), _Groups.of(face))
+    return _Corners(face, u, v, p, _factors(face, len(faces)), after, before, _Groups.of(u), _Groups.of(face))
+
+
+def _factors(face: np.ndarray, n_faces: int) -> np.ndarray:
+    """Per corner (of face ``face``), the factor of :class:`_Corners`: :data:`_TRI` in a triangle, else 1."""
+    return np.where(np.bincount(face, minlength=n_faces)[face] == 3, _TRI, 1.0)
 
 
 def _touching(values: np.ndarray, t: _Corners, n: int, fill) -> np.ndarray:
@@ -151,9 +156,13 @@ def maximise_min_quality(vertices: np.ndarray, faces, fixed: np.ndarray | None =
     x = np.array(vertices, dtype=float)
     if len(faces) == 0:
         return x
+    face, u, v, p = corner_arrays(faces)
+    sj = _corner_jacobians(x, u, v, p, _factors(face, len(faces)))
+    if not (sj < target).any():  # no vertex below its goal, at most the target: a fine mesh, smoothed
+        return x
     table = _corner_table(faces)
     keep = np.zeros(len(x), dtype=bool) if fixed is None else np.asarray(fixed, dtype=bool).copy()
-    worst = _vertex_minima(x, table)
+    worst = _touching(sj, table, len(x), np.inf)
     if still is not None and np.any(still) and worst.min() > 0:  # unfolding comes first
         keep[_neighbours(table, np.flatnonzero(still), len(x))] = True
     slide_of = _slide_index(len(x), constraints)
@@ -191,13 +200,18 @@ def _goals(x: np.ndarray, faces, t: _Corners, target: float, sliding: np.ndarray
 
 
 def _vertex_minima(x: np.ndarray, t: _Corners) -> np.ndarray:
-    """Per vertex, the smallest scaled Jacobian of the corners it touches (as vertex, next or previous),
-    the corners' computed a cache-sized piece at a time (:func:`~vaultgram.geometry.arrays.pieces`)."""
+    """Per vertex, the smallest scaled Jacobian of the corners it touches (as vertex, next or previous)."""
+    return _touching(_corner_jacobians(x, t.u, t.v, t.p, t.factor), t, len(x), np.inf)
+
+
+def _corner_jacobians(x: np.ndarray, u: np.ndarray, v: np.ndarray, p: np.ndarray, factor: np.ndarray) -> np.ndarray:
+    """:func:`_scaled` of every corner (vertex ``u``, next ``v``, previous ``p``), computed a cache-sized
+    piece at a time (:func:`~vaultgram.geometry.arrays.pieces`)."""
     xy = np.ascontiguousarray(x[:, :2])
-    sj = np.empty(len(t.u))
-    for part in pieces(len(t.u)):
-        sj[part] = _scaled(plan_rows(xy, t.u[part]), plan_rows(xy, t.v[part]), plan_rows(xy, t.p[part]), t.factor[part])
-    return _touching(sj, t, len(x), np.inf)
+    sj = np.empty(len(u))
+    for part in pieces(len(u)):
+        sj[part] = _scaled(plan_rows(xy, u[part]), plan_rows(xy, v[part]), plan_rows(xy, p[part]), factor[part])
+    return sj
 
 
 def _independent(worst: np.ndarray, t: _Corners, candidate: np.ndarray) -> np.ndarray:

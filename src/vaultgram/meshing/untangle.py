@@ -73,10 +73,22 @@ def untangle(
     x = np.array(vertices, dtype=float)
     if len(faces) == 0:
         return x
-    face_of, u, v, p = corner_arrays(faces)
+    corners = corner_arrays(faces)
+    return _untangled(x, corners, len(faces), _scaled_jacobians(x, *corners[1:]), fixed, constraints, target, steps,
+                      power)
+
+
+def _untangled(x: np.ndarray, corners: tuple, n_faces: int, sj: np.ndarray, fixed, constraints, target: float,
+               steps: int, power: int) -> np.ndarray:
+    """:func:`untangle` of ``x`` (the caller's copy) given its faces' corner arrays and number and the
+    scaled Jacobians ``sj`` of the corners. A corner's goal is at most ``target``: with no corner below
+    it (a fine mesh's smoothing leaves none), no angle is needed."""
+    face_of, u, v, p = corners
+    if not (sj < target).any():
+        return x
     goal = _corner_targets(x, u, v, p, len(x), target)
-    bad = np.zeros(len(faces), dtype=bool)
-    bad[face_of[_scaled_jacobians(x, u, v, p) < goal]] = True
+    bad = np.zeros(n_faces, dtype=bool)
+    bad[face_of[sj < goal]] = True
     if not bad.any():
         return x
     keep = np.asarray(fixed, dtype=bool).copy() if fixed is not None else np.zeros(len(x), dtype=bool)
@@ -106,9 +118,13 @@ def improve_shapes(vertices: np.ndarray, faces, fixed: np.ndarray | None = None,
     True
     """
     x = np.array(vertices, dtype=float)
-    if len(faces) == 0 or (_scaled_jacobians(x, *corner_arrays(faces)[1:]) <= 0).any():
+    if len(faces) == 0:
         return x
-    return untangle(x, faces, fixed, constraints, target, steps, power=2)
+    corners = corner_arrays(faces)
+    sj = _scaled_jacobians(x, *corners[1:])
+    if (sj <= 0).any():
+        return x
+    return _untangled(x, corners, len(faces), sj, fixed, constraints, target, steps, power=2)
 
 
 def _within(constraints, free: np.ndarray) -> tuple:
