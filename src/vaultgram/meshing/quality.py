@@ -24,7 +24,7 @@ from vaultgram.geometry.meshes import (
     boundary_loops,
     corner_arrays,
     corner_vectors,
-    has_twin,
+    twinned_sides,
 )
 from vaultgram.geometry.polygons import bbox_diagonal, cross_z, interior_angle, regular_valence, signed_angles
 from vaultgram.geometry.polylines import polyline_hausdorff, turning_angles
@@ -226,7 +226,7 @@ def _topology(faces, nv: int) -> _Topology:
     except NonManifoldVertexError:
         loops, manifold = [], False
     on_boundary = np.zeros(nv, dtype=bool)
-    on_boundary[u[~has_twin(u, v, nv)]] = True
+    on_boundary[u[~twinned_sides(faces)]] = True
     valence = np.bincount(edges // nv, minlength=nv) + np.bincount(edges % nv, minlength=nv)
     return _Topology(face_of, u, v, w, und, on_boundary, valence, np.bincount(u, minlength=nv), loops, manifold,
                      bool((mult == 1).all()))
