@@ -5,8 +5,16 @@ from __future__ import annotations
 import numpy as np
 from formfinding.cases import assert_network_ok
 
-from vaultgram.formfinding.formdiagram import form_diagram
-from vaultgram.geometry.meshes import grid_index, grid_mesh
+from vaultgram.formfinding.formdiagram import (
+    _bare_vertices,
+    _boundary_sides,
+    _Corners,
+    _kept_edges,
+    _lone_sides,
+    form_diagram,
+)
+from vaultgram.geometry.halfedges import edges_of_sides, mesh_edges, sorted_sides
+from vaultgram.geometry.meshes import corner_arrays, grid_index, grid_mesh, remove_faces
 from vaultgram.pipeline import form_find
 
 
@@ -80,3 +88,30 @@ def test_dropped_corner_that_turns_a_face_clockwise_is_named():
     f = [(0, 1, 2, 3), (3, 2, 5, 4), (0, 3, 4)]
     with pytest.raises(FormFindingError, match=r"face \d+ \[.*\] becomes \[.*\], which is not counter-clockwise"):
         form_diagram(v, f, supports=[0, 1, 2, 4, 5])
+
+
+def _corners_of(faces):
+    face, vert, nxt, _ = corner_arrays(faces)
+    return _Corners(face, vert, nxt, np.bincount(face, minlength=len(faces)), np.arange(len(faces)))
+
+
+def test_boundary_sides_from_the_sorted_sides_are_those_of_the_edges():
+    """A grid with two holes: the sides alone on their edge, in corner order, as the edges' boundary."""
+    v, f, _ = remove_faces(*grid_mesh(8), drop=[9, 10, 45])
+    mesh = _corners_of(f)
+    sides = sorted_sides(mesh.vert, mesh.nxt, len(v))
+    edges = edges_of_sides(mesh.face, mesh.vert, mesh.nxt, mesh.lens, sides, len(v))
+    lone, boundary = _lone_sides(mesh, sides), _boundary_sides(edges)
+    assert all(np.array_equal(a, b) for a, b in zip(lone, boundary)) and len(lone[0]) == 32 + 6 + 4
+
+
+def test_bare_vertices_are_those_that_keep_no_edge():
+    """Against the edges' count of kept edges per vertex, for random supports (fully supported corners
+    and inner vertices whose four neighbours are all supported)."""
+    v, f = grid_mesh(6)
+    mesh, edges = _corners_of(f), mesh_edges(f, len(v))
+    for seed in range(20):
+        anchors = np.random.default_rng(seed).random(len(v)) < 0.7
+        for drop in (True, False):
+            _, degree = _kept_edges(edges, anchors, drop)
+            assert np.array_equal(_bare_vertices(mesh, anchors, drop), degree == 0)

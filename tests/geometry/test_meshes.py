@@ -12,20 +12,24 @@ from hypothesis import strategies as st
 
 from vaultgram.cli import main
 from vaultgram.errors import VaultgramError
+from vaultgram.geometry.arrays import pieces
 from vaultgram.geometry.meshes import (
+    Faces,
     MeshError,
     NonManifoldVertexError,
     adjacency,
     boundary_adjacency,
     boundary_loops,
+    corner_angles,
     corner_arrays,
     corner_vectors,
     grid_index,
     grid_mesh,
     has_twin,
     remove_faces,
+    twinned_sides,
 )
-from vaultgram.geometry.polygons import cross_z, signed_area
+from vaultgram.geometry.polygons import cross_z, signed_angles, signed_area
 
 SETTINGS = settings(max_examples=30, deadline=None)
 
@@ -115,3 +119,40 @@ def test_faces_from_flat_arrays_are_the_faces_cut_face_by_face(sizes, seed):
     expected = tuple(tuple(vert[e - k:e].tolist()) for e, k in zip(ends, lens))
     faces = Faces.from_flat(vert, lens)
     assert faces == expected and all(type(v) is int for f in faces for v in f)
+
+
+@SETTINGS
+@given(st.integers(0, 50), st.integers(1, 8))
+def test_pieces_cover_the_range_once_in_order(n, size):
+    parts = pieces(n, size)
+    assert np.array_equal(np.concatenate([np.arange(n)[part] for part in parts] or [[]]), np.arange(n))
+    assert all(len(np.arange(n)[part]) == size for part in parts[:-1])
+
+
+def test_corner_angles_are_the_signed_angles_of_the_corner_vectors():
+    """Computed in pieces (a 130 x 130 grid has 67600 corners), jittered so that some corners fold."""
+    v, f = grid_mesh(130)
+    v[:, :2] += np.random.default_rng(3).uniform(-0.4, 0.4, (len(v), 2))
+    _, u, nxt, prv = corner_arrays(f)
+    expected = signed_angles(*corner_vectors(v, u, nxt, prv))
+    assert np.array_equal(corner_angles(v, u, nxt, prv), expected) and (expected < 0).any()
+
+
+@SETTINGS
+@given(st.lists(st.tuples(st.integers(0, 6), st.integers(0, 6)), max_size=30))
+def test_has_twin_finds_every_reversed_halfedge(halfedges):
+    """Against a set of the halfedges, with repeats and loops (a loop is its own twin)."""
+    u = np.array([a for a, _ in halfedges], dtype=np.int64)
+    v = np.array([b for _, b in halfedges], dtype=np.int64)
+    present = set(halfedges)
+    assert has_twin(u, v).tolist() == [(b, a) in present for a, b in halfedges]
+    assert has_twin(u, v, 11).tolist() == has_twin(u, v).tolist()
+
+
+def test_faces_keep_which_sides_have_a_twin():
+    v, f, _ = remove_faces(*grid_mesh(4), drop=[5])
+    faces = Faces(f)
+    _, u, nxt, _ = corner_arrays(faces)
+    assert twinned_sides(faces) is twinned_sides(faces)
+    assert np.array_equal(twinned_sides(faces), has_twin(u, nxt)) and np.array_equal(twinned_sides(f), has_twin(u, nxt))
+    assert int((~twinned_sides(faces)).sum()) == 16 + 4  # the outer boundary and the hole's

@@ -29,7 +29,7 @@ from scipy.sparse.csgraph import breadth_first_order
 from vaultgram.formfinding.cholesky import Cholesky, ForceDensityMatrix
 from vaultgram.formfinding.diagrams import Diagram, connectivity_matrix
 from vaultgram.formfinding.formdiagram import FormDiagram
-from vaultgram.geometry.arrays import json_array, lookup
+from vaultgram.geometry.arrays import json_array
 
 __all__ = ["ForceDiagram", "force_diagram", "PinnedLaplacian", "WeightedFit"]
 
@@ -216,15 +216,30 @@ def _walked(force: ForceDiagram, target: np.ndarray) -> np.ndarray | None:
     pred = breadth_first_order(adj, root, directed=True, return_predecessors=True)[1].astype(np.int64)
     if (pred[:n] < 0).any():
         return None
-    keys = np.repeat(np.arange(n + 1), np.diff(adj.indptr)) * (n + 1) + adj.indices
-    pos, _ = lookup(keys, pred[:n] * (n + 1) + np.arange(n))
-    step = adj.data[pos].astype(np.int64)            # the tree edge into each vertex, signed
-    step[np.abs(step) > m] = 0                       # a pin, held at the origin
+    step = _tree_steps(force.edges, pred)
     walk = np.vstack([target[np.abs(step) - 1] * np.sign(step)[:, None], np.zeros((1, 2))])
     up = np.append(pred[:n], root)
     while (up != root).any():                        # pointer jumping: sums along the paths to the root
-        walk += walk[up]
-        up = up[up]
+        walk += walk.take(up, axis=0)                # (take: a third of the time of walk[up] on 10^6 rows)
+        up = up.take(up)
     xy = walk[:n]
     closure = np.abs(force.C @ xy - target).max()
     return xy if closure <= _CLOSED * max(float(np.abs(target).max()), 1e-300) else None
+
+
+def _tree_steps(edges: np.ndarray, pred: np.ndarray) -> np.ndarray:
+    """Per vertex ``v`` of a spanning tree given by its predecessors ``pred``, the edge joining it to
+    ``pred[v]``, signed: ``e + 1`` for the edge ``e = (pred[v], v)``, ``-(e + 1)`` for ``(v, pred[v])``,
+    0 at a pin (its predecessor the root, beyond the vertices). One edge joins a vertex and its
+    predecessor (:func:`_walked` turns down diagrams with two between the same faces).
+
+    >>> _tree_steps(np.array([[0, 1], [2, 1]]), np.array([3, 0, 1, -9999])).tolist()
+    [0, 1, -2]
+    """
+    a, b = edges[:, 0], edges[:, 1]
+    code = np.arange(1, len(edges) + 1)
+    step = np.zeros(len(pred) - 1, dtype=np.int64)
+    down, up = pred[b] == a, pred[a] == b
+    step[b[down]] = code[down]
+    step[a[up]] = -code[up]
+    return step

@@ -36,7 +36,7 @@ from vaultgram.errors import FormFindingError
 from vaultgram.formfinding.diagrams import Diagram, connectivity_matrix
 from vaultgram.formfinding.supports import largest_loop, manifold_loops
 from vaultgram.geometry.arrays import json_array, lookup
-from vaultgram.geometry.halfedges import MeshEdges, edges_of_sides, repeated_sides, sorted_sides
+from vaultgram.geometry.halfedges import MeshEdges, SortedSides, edges_of_sides, repeated_sides, sorted_sides
 from vaultgram.geometry.meshes import Faces, corner_arrays, corners_of_flat, loops_of, shoelace_areas
 
 __all__ = ["FormDiagram", "form_diagram", "connectivity_matrix"]
@@ -170,9 +170,11 @@ def form_diagram(vertices, faces: Sequence[Sequence[int]], supports: Iterable[in
     xy0, faces, mesh = _checked_mesh(vertices, faces)
     scale = max(float(np.ptp(xy0, axis=0).max()), 1e-300)
     sides = _check_orientation(xy0, faces, mesh, scale)
-    anchors0 = _anchor_mask(supports, xy0, sides)
-    kept, keep, degree = _drop_supported_edges(xy0, faces, sides, anchors0, update_boundaries, scale)
-    net = _renumbered(xy0, anchors0, kept, keep, degree)
+    anchors0 = _anchor_mask(supports, xy0, mesh, sides)
+    mesh, sides = _drop_bare_vertices(xy0, faces, mesh, sides, anchors0, update_boundaries, scale)
+    edges = edges_of_sides(mesh.face, mesh.vert, mesh.nxt, mesh.lens, sides, len(xy0))
+    keep, degree = _kept_edges(edges, anchors0, update_boundaries)
+    net = _renumbered(xy0, anchors0, edges, keep, degree)
     openings = _opening_faces(net)
     form = _assembled(net, openings)
     _check_network(form, scale)
@@ -245,9 +247,9 @@ def _not_counter_clockwise(xy: np.ndarray, mesh: _Corners, scale: float) -> tupl
     return area, np.flatnonzero(area <= 1e-14 * scale * scale)
 
 
-def _check_orientation(xy: np.ndarray, faces: Sequence, mesh: _Corners, scale: float) -> MeshEdges:
+def _check_orientation(xy: np.ndarray, faces: Sequence, mesh: _Corners, scale: float) -> SortedSides:
     """Every face is counter-clockwise seen from +z and every halfedge belongs to one face only; the
-    mesh's edges and the faces beside them, from one sort of its sides."""
+    mesh's sides sorted by edge (:func:`~vaultgram.geometry.halfedges.sorted_sides`)."""
     area, bad = _not_counter_clockwise(xy, mesh, scale)
     if len(bad):
         k = int(bad[0])
@@ -255,20 +257,14 @@ def _check_orientation(xy: np.ndarray, faces: Sequence, mesh: _Corners, scale: f
         raise FormFindingError(
             f"face {k} {list(_face_tuple(faces, k))} is {kind} (signed area {area[k]:.6g}); faces must be "
             f"counter-clockwise seen from +z" + (f" ({len(bad)} such faces)" if len(bad) > 1 else ""))
-    return _sides_of(mesh, len(xy), check=True)
-
-
-def _sides_of(mesh: _Corners, n: int, check: bool) -> MeshEdges:
-    """The edges of the faces and the faces beside them (:mod:`vaultgram.geometry.halfedges`); with
-    ``check``, a halfedge used by two faces is an error naming it."""
-    sides = sorted_sides(mesh.vert, mesh.nxt, n)
-    repeated = repeated_sides(sides) if check else np.zeros((0, 2), dtype=np.int64)
+    sides = sorted_sides(mesh.vert, mesh.nxt, len(xy))
+    repeated = repeated_sides(sides)
     if len(repeated):
         a, b = repeated[0]
         raise FormFindingError(
             f"halfedge {mesh.vert[a]}->{mesh.nxt[a]} is used by faces {mesh.face[a]} and {mesh.face[b]}: "
             f"inconsistent face orientation or non-manifold edge")
-    return edges_of_sides(mesh.face, mesh.vert, mesh.nxt, mesh.lens, sides, n)
+    return sides
 
 
 def _boundary_sides(edges: MeshEdges) -> tuple[np.ndarray, np.ndarray]:
@@ -278,12 +274,24 @@ def _boundary_sides(edges: MeshEdges) -> tuple[np.ndarray, np.ndarray]:
     return edges.corner_vertex[corners], edges.corner_next[corners]
 
 
-def _anchor_mask(supports, xy: np.ndarray, edges: MeshEdges) -> np.ndarray:
+def _lone_sides(mesh: _Corners, sides: SortedSides) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_boundary_sides` of a mesh without repeated sides, from its sorted sides: the sides
+    alone on their edge."""
+    pair = sides.key >> 1
+    alone = np.ones(len(pair), dtype=bool)
+    same = pair[1:] == pair[:-1]
+    alone[1:] &= ~same
+    alone[:-1] &= ~same
+    corners = np.sort(sides.order[alone])
+    return mesh.vert[corners], mesh.nxt[corners]
+
+
+def _anchor_mask(supports, xy: np.ndarray, mesh: _Corners, sides: SortedSides) -> np.ndarray:
     """The supported vertices as a boolean mask (default: the outer boundary loop; holes are open)."""
     n = len(xy)
     anchors = np.zeros(n, dtype=bool)
     if supports is None:
-        anchors[largest_loop(xy, manifold_loops(*_boundary_sides(edges)))] = True
+        anchors[largest_loop(xy, manifold_loops(*_lone_sides(mesh, sides)))] = True
     else:
         idx = np.asarray(list(supports) if not isinstance(supports, np.ndarray) else supports)
         if idx.dtype == bool:
@@ -304,31 +312,38 @@ def _anchor_mask(supports, xy: np.ndarray, edges: MeshEdges) -> np.ndarray:
 # ---- phase 2: remove what is fully supported (§5) -------------------------------------------------
 
 
-def _kept_edges(edges: MeshEdges, anchors: np.ndarray, drop_supported: bool
-                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Which edges stay (not those joining two anchors when ``drop_supported``), the kept edges per
-    vertex, and the vertices used by a face that kept none (to be deleted)."""
-    n = len(anchors)
+def _kept_edges(edges: MeshEdges, anchors: np.ndarray, drop_supported: bool) -> tuple[np.ndarray, np.ndarray]:
+    """Which edges stay (not those joining two anchors when ``drop_supported``) and the kept edges per
+    vertex."""
     keep = ~(anchors[edges.edges[:, 0]] & anchors[edges.edges[:, 1]]) if drop_supported else \
         np.ones(edges.n_edges, dtype=bool)
-    degree = np.bincount(edges.edges[keep].ravel(), minlength=n)
-    in_faces = np.zeros(n, dtype=bool)
-    in_faces[edges.corner_vertex] = True
-    return keep, degree, in_faces & (degree == 0)
+    return keep, np.bincount(edges.edges[keep].ravel(), minlength=len(anchors))
 
 
-def _drop_supported_edges(xy: np.ndarray, faces: Sequence, edges: MeshEdges, anchors: np.ndarray, drop: bool,
-                          scale: float) -> tuple[MeshEdges, np.ndarray, np.ndarray]:
-    """Remove the edges with both ends supported (when ``drop``), then delete the vertices left without
-    edges from their faces (a supported corner quad becomes a triangle; faces left with fewer than 3
-    vertices go), until every vertex of a face has an edge: compas_tna's ``update_boundaries``.
-    Returns the edges of the faces left, which of them are kept, and the kept edges per vertex."""
-    index = np.arange(len(edges.face_start) - 1)
+def _bare_vertices(mesh: _Corners, anchors: np.ndarray, drop_supported: bool) -> np.ndarray:
+    """The vertices of faces that keep no edge (:func:`_kept_edges`): an edge is some face's side, so
+    these are the vertices that end no kept side."""
+    kept = ~(anchors[mesh.vert] & anchors[mesh.nxt]) if drop_supported else np.ones(len(mesh.vert), dtype=bool)
+    has_edge = np.zeros(len(anchors), dtype=bool)
+    has_edge[mesh.vert[kept]] = True
+    has_edge[mesh.nxt[kept]] = True
+    in_faces = np.zeros(len(anchors), dtype=bool)
+    in_faces[mesh.vert] = True
+    return in_faces & ~has_edge
+
+
+def _drop_bare_vertices(xy: np.ndarray, faces: Sequence, mesh: _Corners, sides: SortedSides, anchors: np.ndarray,
+                        drop: bool, scale: float) -> tuple[_Corners, SortedSides]:
+    """Once the edges with both ends supported are removed (when ``drop``), delete the vertices left
+    without edges from their faces (a supported corner quad becomes a triangle; faces left with fewer
+    than 3 vertices go), until every vertex of a face has an edge: compas_tna's ``update_boundaries``.
+    Returns the faces left and their sorted sides (``sides`` if no vertex went): the edges are made
+    once, of the faces left."""
     while True:
-        keep, degree, dead = _kept_edges(edges, anchors, drop)
+        dead = _bare_vertices(mesh, anchors, drop)
         if not dead.any():
-            return edges, keep, degree
-        mesh, changed = _without_vertices(index, edges, dead)
+            return mesh, sides
+        mesh, changed = _without_vertices(mesh, dead)
         _, bad = _not_counter_clockwise(xy, _faces_among(mesh, changed), scale)
         if len(bad):
             k = int(changed[bad[0]])
@@ -337,14 +352,13 @@ def _drop_supported_edges(xy: np.ndarray, faces: Sequence, edges: MeshEdges, anc
                 f"face {mesh.index[k]} {list(_face_tuple(faces, mesh.index[k]))} becomes {now}, which is not "
                 f"counter-clockwise, once its supported vertices without edges are removed; support fewer "
                 f"vertices or use update_boundaries=False")
-        index, edges = mesh.index, _sides_of(mesh, len(xy), check=False)
+        sides = sorted_sides(mesh.vert, mesh.nxt, len(xy))
 
 
-def _without_vertices(index: np.ndarray, edges: MeshEdges, dead: np.ndarray) -> tuple[_Corners, np.ndarray]:
+def _without_vertices(mesh: _Corners, dead: np.ndarray) -> tuple[_Corners, np.ndarray]:
     """The faces (and their input indices) with the ``dead`` vertices dropped, faces left with < 3
     going, and the faces that lost a vertex (to check their orientation again)."""
-    fid, vert = edges.corner_face, edges.corner_vertex
-    old = np.diff(edges.face_start)
+    fid, vert, old, index = mesh.face, mesh.vert, mesh.lens, mesh.index
     alive = ~dead[vert]
     lens = np.bincount(fid[alive], minlength=len(old))
     kept = lens >= 3
@@ -371,7 +385,8 @@ class _Network(NamedTuple):
     anchors: np.ndarray
     vertex_ids: np.ndarray
     edges: np.ndarray       # (m, 2), u < v, sorted
-    faces: Faces            # the loaded faces
+    face_vertices: np.ndarray   # the loaded faces' vertices end to end,
+    face_sizes: np.ndarray      # and their sizes
     edge_faces: np.ndarray  # (m, 2): the loaded faces left and right of each edge (-1: none)
     boundary: tuple[np.ndarray, np.ndarray]   # the boundary halfedges u -> v, in corner order
 
@@ -387,10 +402,9 @@ def _renumbered(xy0: np.ndarray, anchors0: np.ndarray, edges: MeshEdges, keep: n
     anchors = anchors0[vertex_ids].copy()
     if not anchors.any():
         raise FormFindingError("no supports left after removing fully supported edges")
-    loaded = Faces.from_flat(new[edges.corner_vertex], np.diff(edges.face_start))
     starts, ends = _boundary_sides(edges)
-    return _Network(xy0[vertex_ids].copy(), anchors, vertex_ids, new[edges.edges[keep]], loaded,
-                    edges.faces_of[keep], (new[starts], new[ends]))
+    return _Network(xy0[vertex_ids].copy(), anchors, vertex_ids, new[edges.edges[keep]], new[edges.corner_vertex],
+                    np.diff(edges.face_start), edges.faces_of[keep], (new[starts], new[ends]))
 
 
 # ---- phase 3: opening faces, so that the reciprocal diagram exists -------------------------------
@@ -464,20 +478,18 @@ def _with_openings(net: _Network, openings: list[_Opening]) -> np.ndarray:
     k, a, b = (np.array(c, dtype=np.int64) for c in zip(*sides))
     n = len(net.xy)
     pos, found = lookup(net.edges[:, 0] * n + net.edges[:, 1], np.minimum(a, b) * n + np.maximum(a, b))
-    edge_faces[pos[found], (a > b)[found].astype(np.int64)] = len(net.faces) + k[found]
+    edge_faces[pos[found], (a > b)[found].astype(np.int64)] = len(net.face_sizes) + k[found]
     return edge_faces
 
 
 def _assembled(net: _Network, openings: list[_Opening]) -> FormDiagram:
-    """The frozen diagram: loaded faces, then opening faces, and the faces beside every edge."""
-    fid, vert, _, _ = corner_arrays(net.faces)
+    """The frozen diagram: loaded faces, then opening faces (their tuples and corner arrays made once,
+    from the arrays), and the faces beside every edge."""
     opening_vertices = [np.asarray(o.vertices, dtype=np.int64) for o in openings]
-    lens = np.concatenate([np.bincount(fid, minlength=len(net.faces)),
-                           np.array([len(o) for o in opening_vertices], dtype=np.int64)])
-    faces = Faces.from_flat(np.concatenate([vert, *opening_vertices]), lens,
-                            tuple(net.faces) + tuple(o.vertices for o in openings))
+    lens = np.concatenate([net.face_sizes, np.array([len(o) for o in opening_vertices], dtype=np.int64)])
+    faces = Faces.from_flat(np.concatenate([net.face_vertices, *opening_vertices]), lens)
     loaded = np.zeros(len(faces), dtype=bool)
-    loaded[: len(net.faces)] = True
+    loaded[: len(net.face_sizes)] = True
     n = len(net.xy)
     edge_faces = _with_openings(net, openings)
     for arr in (net.xy, net.edges, loaded, net.anchors, net.vertex_ids, edge_faces):

@@ -16,7 +16,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from vaultgram.errors import MeshError, NonManifoldVertexError
-from vaultgram.geometry.arrays import lookup, plan_rows, sorted_keys
+from vaultgram.geometry.arrays import lookup, pieces, plan_rows, run_starts
+from vaultgram.geometry.polygons import signed_angles
 
 __all__ = [
     "MeshError",
@@ -30,10 +31,12 @@ __all__ = [
     "corners_of_flat",
     "Faces",
     "corner_vectors",
+    "corner_angles",
     "with_midpoints",
     "has_side_in",
     "barycentre_operator",
     "has_twin",
+    "twinned_sides",
     "adjacency",
     "boundary_adjacency",
     "face_areas",
@@ -113,7 +116,9 @@ def remove_faces(vertices: np.ndarray, faces: Sequence[Sequence[int]], drop: Ite
 class Faces(tuple):
     """Faces (vertex-index sequences) that keep their corner arrays (:func:`corner_arrays`): a mesh
     that several steps flatten in turn (the tessellation's areas, normals, edges and outlines) is
-    flattened once. The arrays are read-only, as the faces are.
+    flattened once. The arrays are read-only, as the faces are. They keep which sides have a twin
+    too (:func:`twinned_sides`): the smoothing, the supports (twice) and the mesh statistics each
+    asked for a 10^6-face mesh's boundary.
 
     >>> f = Faces([(0, 1, 2), (2, 1, 3)])
     >>> corner_arrays(f)[1] is corner_arrays(f)[1], len(f), f[1]
@@ -123,6 +128,11 @@ class Faces(tuple):
     @functools.cached_property
     def corners(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         return _read_only(_flattened(self))
+
+    @functools.cached_property
+    def twinned(self) -> np.ndarray:
+        _, u, v, _ = self.corners
+        return _read_only((has_twin(u, v),))[0]
 
     def __reduce__(self):
         """Pickled as its corners end to end and the face sizes (two arrays, copied whole), not as 10^5
@@ -247,9 +257,32 @@ def corner_vectors(x: np.ndarray, u: np.ndarray, v: np.ndarray, p: np.ndarray) -
     return plan_rows(x, v) - at, plan_rows(x, p) - at
 
 
+def corner_angles(x: np.ndarray, u: np.ndarray, v: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """The signed angle (radians, in [-pi, pi]) of each corner, from its side to the next vertex ``v``
+    to its side to the previous vertex ``p`` (positive at a counter-clockwise corner): the
+    :func:`~vaultgram.geometry.polygons.signed_angles` of :func:`corner_vectors`, the same numbers,
+    computed a cache-sized piece at a time (:func:`~vaultgram.geometry.arrays.pieces`; half the
+    time on the 4 10^6 corners of a 10^6-face mesh).
+
+    >>> x = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
+    >>> corner_angles(x, np.array([0, 1]), np.array([1, 2]), np.array([2, 0])).round(4).tolist()
+    [1.5708, 0.7854]
+    """
+    xy = np.ascontiguousarray(x[:, :2])
+    out = np.empty(len(u))
+    for part in pieces(len(u)):
+        out[part] = signed_angles(*corner_vectors(xy, u[part], v[part], p[part]))
+    return out
+
+
 def has_twin(u: np.ndarray, v: np.ndarray, n: int | None = None) -> np.ndarray:
     """For each halfedge ``u[k] -> v[k]``, whether the mesh also has ``v[k] -> u[k]``: False on the
     boundary. ``n`` is any number above the largest vertex index (default: that index plus one).
+
+    The halfedges are sorted by their undirected edge ``min * n + max``, once (a stable sort: fast on
+    a mesh's keys, :func:`~vaultgram.geometry.arrays.sorted_keys`), so that an edge's halfedges lie
+    together: one has a twin when its run holds one running the other way (a loop ``u -> u`` is its
+    own twin). A search for every reversed halfedge in the sorted halfedges took twice as long.
 
     >>> has_twin(np.array([0, 1, 1]), np.array([1, 0, 2])).tolist()
     [True, True, False]
@@ -258,7 +291,29 @@ def has_twin(u: np.ndarray, v: np.ndarray, n: int | None = None) -> np.ndarray:
         return np.zeros(0, dtype=bool)
     if n is None:
         n = int(max(u.max(), v.max())) + 1
-    return lookup(sorted_keys(u * n + v), v * n + u)[1]
+    edge = np.minimum(u, v) * n + np.maximum(u, v)
+    order = np.argsort(edge, kind="stable")
+    run = np.cumsum(run_starts(edge[order])) - 1
+    up = (u > v)[order]
+    has_up, has_down = np.zeros(run[-1] + 1, dtype=bool), np.zeros(run[-1] + 1, dtype=bool)
+    has_up[run[up]] = True
+    has_down[run[~up]] = True
+    out = np.empty(len(u), dtype=bool)
+    out[order] = np.where(up, has_down[run], has_up[run])
+    return out | (u == v)
+
+
+def twinned_sides(faces: Sequence[Sequence[int]]) -> np.ndarray:
+    """Per corner of ``faces`` (:func:`corner_arrays`), whether the mesh also has its side the other way
+    (:func:`has_twin`; False on the boundary), kept by :class:`Faces`.
+
+    >>> twinned_sides([(0, 1, 2), (2, 1, 3)]).tolist()
+    [False, True, False, True, False, False]
+    """
+    if isinstance(faces, Faces):
+        return faces.twinned
+    _, u, v, _ = corner_arrays(faces)
+    return has_twin(u, v)
 
 
 def boundary_loops(faces: Sequence[Sequence[int]]) -> list[list[int]]:
@@ -380,7 +435,7 @@ def boundary_adjacency(n: int, faces) -> sp.csr_matrix:
     (8, 1.0, 0.0)
     """
     _, u, v, _ = corner_arrays(faces)
-    free = ~has_twin(u, v, n)
+    free = ~twinned_sides(faces)
     return _symmetric_adjacency(n, u[free], v[free])
 
 
@@ -435,5 +490,5 @@ def boundary_halfedges(faces: Sequence[Sequence[int]]) -> tuple[np.ndarray, np.n
     [(0, 1), (1, 2), (2, 3), (3, 0)]
     """
     _, u, v, _ = corner_arrays(faces)
-    free = ~has_twin(u, v)
+    free = ~twinned_sides(faces)
     return u[free], v[free]

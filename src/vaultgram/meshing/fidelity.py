@@ -58,11 +58,15 @@ def hold_boundary(vertices: np.ndarray, faces, constraints, tol: float) -> np.nd
     x = np.array(vertices, dtype=float)
     if not len(faces):
         return x
-    around = _faces_around(faces, len(x))
-    floor = float(face_scaled_jacobians(x, faces).min())
+    around = floor = None
     for c in constraints:
         for _ in range(len(c.vertices)):  # each pass snaps one bend or stops
-            if not _snap_worst_bend(x, faces, around, c, tol, floor):
+            k, gap = _worst_bend(x, c)
+            if gap <= tol:
+                break
+            if around is None:  # the faces round each vertex, and the mesh's worst face before any snap
+                around, floor = _faces_around(faces, len(x)), float(face_scaled_jacobians(x, faces).min())
+            if not _snap_bend(x, faces, around, c, k, gap, floor):
                 break
     return x
 
@@ -88,11 +92,12 @@ def place_on_points(vertices: np.ndarray, faces, constraints, points: np.ndarray
     points = np.asarray(points, dtype=float).reshape(-1, 2)
     if not len(faces) or not len(points):
         return x, np.zeros(len(x), dtype=bool)
-    around, wanted = _faces_around(faces, len(x)), cKDTree(points)
+    around, wanted = None, cKDTree(points)
     for c in constraints:
         poly = np.asarray(c.polyline, dtype=float)[:, :2]
         on = np.flatnonzero(wanted.query(poly, distance_upper_bound=eps)[0] < np.inf)
         for k in on[cKDTree(_chain(x, c)[0]).query(poly[on])[0] > eps] if len(on) else on:
+            around = _faces_around(faces, len(x)) if around is None else around  # once a point is bare
             _place_vertex_on(x, faces, around, c, int(k))
     return x, wanted.query(x[:, :2], distance_upper_bound=eps)[0] < np.inf
 
@@ -127,21 +132,23 @@ def _place_vertex_on(x: np.ndarray, faces, around, c: SlideConstraint, k: int) -
         x[who, :2] = poly[k]
 
 
-def _snap_worst_bend(x: np.ndarray, faces, around, c: SlideConstraint, tol: float, floor: float) -> bool:
-    """Move one of the sliding vertices of ``c`` nearest to the point of its polyline farthest from
-    the mesh boundary (if that is beyond ``tol``) to the point of the polyline, within its reach, that
-    brings the stretch's farthest point nearest; whether one moved. A position counts only if it
-    leaves the faces round the vertex at least as good as they were or as the mesh's worst
-    (``floor``)."""
-    poly = np.asarray(c.polyline, dtype=float)[:, :2]
+def _worst_bend(x: np.ndarray, c: SlideConstraint) -> tuple[int, float]:
+    """The point of the polyline of ``c`` farthest from the mesh boundary along it, and how far."""
     gaps = _gaps(x, c)
     k = int(np.argmax(gaps))
-    if gaps[k] <= tol:
-        return False
+    return k, gaps[k]
+
+
+def _snap_bend(x: np.ndarray, faces, around, c: SlideConstraint, k: int, gap: float, floor: float) -> bool:
+    """Move one of the sliding vertices of ``c`` nearest to point ``k`` of its polyline, ``gap`` from
+    the mesh boundary, to the point of the polyline, within its reach, that brings the stretch's
+    farthest point nearest; whether one moved. A position counts only if it leaves the faces round the
+    vertex at least as good as they were or as the mesh's worst (``floor``)."""
+    poly = np.asarray(c.polyline, dtype=float)[:, :2]
     for v in _nearest(x, c, poly[k]):
         ring = [faces[f] for f in around(v)]
         old, good = x[v].copy(), min(face_scaled_jacobians(x, ring).min(), floor)
-        best, where = gaps[k], None
+        best, where = gap, None
         for q in _reach(x, c, v, poly):
             x[v, :2] = q
             far = _gaps(x, c).max()

@@ -17,13 +17,14 @@ from scipy.spatial import cKDTree
 
 from vaultgram.domain.model import Domain
 from vaultgram.errors import MeshFoldError, VaultgramError
+from vaultgram.geometry.arrays import pieces
 from vaultgram.geometry.fidelity import boundary_distance
 from vaultgram.geometry.meshes import (
     NonManifoldVertexError,
     boundary_loops,
     corner_arrays,
     corner_vectors,
-    has_twin,
+    twinned_sides,
 )
 from vaultgram.geometry.polygons import bbox_diagonal, cross_z, interior_angle, regular_valence, signed_angles
 from vaultgram.geometry.polylines import polyline_hausdorff, turning_angles
@@ -66,13 +67,19 @@ def regular_boundary_faces(turning: np.ndarray) -> tuple[np.ndarray, np.ndarray]
     return faces, faces.copy()
 
 
+def _face_sizes(faces) -> np.ndarray:
+    """The number of corners of every face, which must be 3 or 4."""
+    lens = np.bincount(corner_arrays(faces)[0], minlength=len(faces))
+    if len(faces) and (lens.max() > 4 or lens.min() < 3):
+        raise VaultgramError("faces must be triangles or quads")
+    return lens
+
+
 def _face_array(faces) -> np.ndarray:
     """Faces as an (f, 4) array, triangles padded with -1 (from the corner arrays, which a welded
     mesh's faces keep)."""
     face, vert, _, _ = corner_arrays(faces)
-    lens = np.bincount(face, minlength=len(faces))
-    if len(faces) and (lens.max() > 4 or lens.min() < 3):
-        raise VaultgramError("faces must be triangles or quads")
+    lens = _face_sizes(faces)
     out = np.full((len(faces), 4), -1, dtype=np.int64)
     out[face, np.arange(len(face)) - (np.cumsum(lens) - lens)[face]] = vert  # corner k of face f at [f, k]
     return out
@@ -81,19 +88,31 @@ def _face_array(faces) -> np.ndarray:
 def face_scaled_jacobians(x: np.ndarray, faces) -> np.ndarray:
     """Per face, the smallest scaled Jacobian of its corners (the sine of the corner angle for a
     quad, scaled so that an equilateral triangle has 1); <= 0 for an inverted or degenerate face.
+    The corners are computed a cache-sized piece at a time (:func:`~vaultgram.geometry.arrays.pieces`),
+    each face's smallest taken over its run of corners.
 
     >>> face_scaled_jacobians(np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]), [(0, 1, 2, 3)]).tolist()
     [1.0]
     """
-    fa = _face_array(faces)
+    lens = _face_sizes(faces)
+    if not len(faces):
+        return np.full(0, np.inf)
     face_of, u, v, w = corner_arrays(faces)
-    e1, e2 = corner_vectors(np.asarray(x, dtype=float)[:, :2], u, v, w)
+    tri = lens[face_of] == 3
+    xy = np.ascontiguousarray(np.asarray(x, dtype=float)[:, :2])
+    sj = np.empty(len(u))
+    for part in pieces(len(u)):
+        sj[part] = _corner_jacobians(xy, u[part], v[part], w[part], tri[part])
+    return np.minimum.reduceat(sj, np.cumsum(lens) - lens)
+
+
+def _corner_jacobians(xy: np.ndarray, u: np.ndarray, v: np.ndarray, w: np.ndarray, tri: np.ndarray) -> np.ndarray:
+    """The scaled Jacobian of the corners at ``u`` (next vertex ``v``, previous ``w``; ``tri``: in a
+    triangle) of :func:`face_scaled_jacobians`; -1 where a side has no length."""
+    e1, e2 = corner_vectors(xy, u, v, w)
     norm = np.hypot(*e1.T) * np.hypot(*e2.T)
     sj = np.where(norm > 0, cross_z(e1, e2) / np.where(norm > 0, norm, 1.0), -1.0)
-    sj = np.where(fa[face_of, 3] < 0, np.minimum(sj * 2.0 / math.sqrt(3.0), 1.0), sj)
-    face_sj = np.full(len(faces), np.inf)
-    np.minimum.at(face_sj, face_of, sj)
-    return face_sj
+    return np.where(tri, np.minimum(sj * 2.0 / math.sqrt(3.0), 1.0), sj)
 
 
 def check_not_folded(mesh: QuadMesh, decomposition: Decomposition) -> None:
@@ -207,7 +226,7 @@ def _topology(faces, nv: int) -> _Topology:
     except NonManifoldVertexError:
         loops, manifold = [], False
     on_boundary = np.zeros(nv, dtype=bool)
-    on_boundary[u[~has_twin(u, v, nv)]] = True
+    on_boundary[u[~twinned_sides(faces)]] = True
     valence = np.bincount(edges // nv, minlength=nv) + np.bincount(edges % nv, minlength=nv)
     return _Topology(face_of, u, v, w, und, on_boundary, valence, np.bincount(u, minlength=nv), loops, manifold,
                      bool((mult == 1).all()))

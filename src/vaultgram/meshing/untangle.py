@@ -13,8 +13,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from vaultgram.geometry.meshes import corner_arrays, corner_vectors
-from vaultgram.geometry.polygons import cross_z, signed_angles
+from vaultgram.geometry.arrays import pieces
+from vaultgram.geometry.meshes import corner_angles, corner_arrays, corner_vectors
+from vaultgram.geometry.polygons import cross_z
 from vaultgram.meshing.quadmesh import slide
 
 __all__ = ["untangle", "improve_shapes", "UNTANGLE_TARGET", "SHAPE_TARGET"]
@@ -72,10 +73,22 @@ def untangle(
     x = np.array(vertices, dtype=float)
     if len(faces) == 0:
         return x
-    face_of, u, v, p = corner_arrays(faces)
+    corners = corner_arrays(faces)
+    return _untangled(x, corners, len(faces), _scaled_jacobians(x, *corners[1:]), fixed, constraints, target, steps,
+                      power)
+
+
+def _untangled(x: np.ndarray, corners: tuple, n_faces: int, sj: np.ndarray, fixed, constraints, target: float,
+               steps: int, power: int) -> np.ndarray:
+    """:func:`untangle` of ``x`` (the caller's copy) given its faces' corner arrays and number and the
+    scaled Jacobians ``sj`` of the corners. A corner's goal is at most ``target``: with no corner below
+    it (a fine mesh's smoothing leaves none), no angle is needed."""
+    face_of, u, v, p = corners
+    if not (sj < target).any():
+        return x
     goal = _corner_targets(x, u, v, p, len(x), target)
-    bad = np.zeros(len(faces), dtype=bool)
-    bad[face_of[_corners(x, u, v, p).sj < goal]] = True
+    bad = np.zeros(n_faces, dtype=bool)
+    bad[face_of[sj < goal]] = True
     if not bad.any():
         return x
     keep = np.asarray(fixed, dtype=bool).copy() if fixed is not None else np.zeros(len(x), dtype=bool)
@@ -105,9 +118,13 @@ def improve_shapes(vertices: np.ndarray, faces, fixed: np.ndarray | None = None,
     True
     """
     x = np.array(vertices, dtype=float)
-    if len(faces) == 0 or (_corners(x, *corner_arrays(faces)[1:]).sj <= 0).any():
+    if len(faces) == 0:
         return x
-    return untangle(x, faces, fixed, constraints, target, steps, power=2)
+    corners = corner_arrays(faces)
+    sj = _scaled_jacobians(x, *corners[1:])
+    if (sj <= 0).any():
+        return x
+    return _untangled(x, corners, len(faces), sj, fixed, constraints, target, steps, power=2)
 
 
 def _within(constraints, free: np.ndarray) -> tuple:
@@ -135,15 +152,24 @@ def _corners(x, u, v, p) -> _Corners:
     return _Corners(e1, e2, l1, l2, cross_z(e1, e2) / np.maximum(l1 * l2, 1e-300))
 
 
+def _scaled_jacobians(x, u, v, p) -> np.ndarray:
+    """The scaled Jacobians of :class:`_Corners` alone, computed a cache-sized piece at a time
+    (:func:`~vaultgram.geometry.arrays.pieces`): what untangling tests every corner of the mesh with."""
+    xy = np.ascontiguousarray(x[:, :2])
+    sj = np.empty(len(u))
+    for part in pieces(len(u)):
+        sj[part] = _corners(xy, u[part], v[part], p[part]).sj
+    return sj
+
+
 def _corner_targets(x, u, v, p, n, target: float) -> np.ndarray:
     """Per corner, the scaled Jacobian to aim at: ``target``, or half the sine of the mean corner
     angle at its vertex where that is smaller (the corners of a pole's fan of many triangles, or at
     a sharp domain corner, cannot all be wide)."""
-    e1, e2 = corner_vectors(x, u, v, p)
-    angle = np.abs(signed_angles(e1, e2))
-    total = np.bincount(u, weights=angle, minlength=n)
-    mean = total[u] / np.bincount(u, minlength=n)[u]
-    return np.minimum(target, 0.5 * np.sin(np.minimum(mean, np.pi / 2)))
+    angle = np.abs(corner_angles(x, u, v, p))
+    corners = np.bincount(u, minlength=n)
+    mean = np.bincount(u, weights=angle, minlength=n) / np.maximum(corners, 1)
+    return np.minimum(target, 0.5 * np.sin(np.minimum(mean, np.pi / 2)))[u]
 
 
 class _Region(NamedTuple):
