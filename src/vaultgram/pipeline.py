@@ -159,14 +159,16 @@ def _meshed(dec: Decomposition, target_length, smooth: int, densities, allow_fol
         layout = edge_groups(dec)
         counts = group_counts(layout, densities, target_length, max_faces)
     mesh, x = _welded_and_smoothed(layout, counts, smooth, timings)
-    if smooth > 0 and face_scaled_jacobians(x, mesh.faces).min() <= 0:
+    quality = face_scaled_jacobians(x, mesh.faces) if smooth > 0 else None
+    if quality is not None and quality.min() <= 0:
         # issue 12: where the three-quad splits of thin fans (or the counts they need) fold, Figure 3's fans
         plain = group_counts(layout, densities, target_length, max_faces, split=False)
         if split_patterns(layout, counts) or not np.array_equal(plain, counts):
             mesh, x = _welded_and_smoothed(layout, plain, smooth, timings, split=False)
+            quality = face_scaled_jacobians(x, mesh.faces)
     mesh = dataclasses.replace(mesh, vertices=x, info=_mesh_info(dec, layout, smooth), origin=dec.origin)
-    if smooth > 0 and not allow_folds:
-        check_not_folded(mesh, dec)
+    if quality is not None and not allow_folds:
+        check_not_folded(mesh, dec, quality)
     return mesh
 
 

@@ -115,9 +115,11 @@ def _corner_jacobians(xy: np.ndarray, u: np.ndarray, v: np.ndarray, w: np.ndarra
     return np.where(tri, np.minimum(sj * 2.0 / math.sqrt(3.0), 1.0), sj)
 
 
-def check_not_folded(mesh: QuadMesh, decomposition: Decomposition) -> None:
-    """Raise :class:`MeshFoldError` naming where the mesh folds, if any face is inverted."""
-    face_sj = face_scaled_jacobians(mesh.vertices, mesh.faces)
+def check_not_folded(mesh: QuadMesh, decomposition: Decomposition, face_sj: np.ndarray | None = None) -> None:
+    """Raise :class:`MeshFoldError` naming where the mesh folds, if any face is inverted; ``face_sj``:
+    the faces' :func:`face_scaled_jacobians`, if the caller has them already."""
+    if face_sj is None:
+        face_sj = face_scaled_jacobians(mesh.vertices, mesh.faces)
     bad = np.flatnonzero(face_sj <= 0)
     if not len(bad):
         return
