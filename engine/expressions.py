@@ -185,7 +185,7 @@ class ExpressionCompiler:
 
     def compile_parts(self, expr, scope: Mapping[str, Symbol]) -> tuple[Typed, dict[int, Typed]]:
         """:meth:`compile`, and the compiled form of every sub-expression it compiled on the way, by ``id``
-        (those in a quantifier's body with its variable in scope): what a condition's why-not operands
+        (those in a quantifier's body too, with its variable in scope): what a condition's why-not operands
         and vectorised form are made of, without compiling each again (issue 18)."""
         self._parts = parts = {}
         try:
