@@ -12,6 +12,7 @@ reads, and how far from a change a match can be affected (its *radius*).
 from __future__ import annotations
 
 import dataclasses
+import functools
 from dataclasses import dataclass, field
 from typing import Callable, NamedTuple
 
@@ -218,10 +219,20 @@ def written(node) -> object:
     """An AST value as nested tuples of its node kinds and fields, its source positions left out."""
     if isinstance(node, (tuple, list)):
         return tuple(written(item) for item in node)
-    if not dataclasses.is_dataclass(node) or isinstance(node, type):
+    names = _compared_fields(type(node))
+    if names is None:
         return node
-    return (type(node).__name__, *(written(getattr(node, f.name)) for f in dataclasses.fields(node)
-                                   if f.compare and f.name != "pos"))
+    return (type(node).__name__, *(written(getattr(node, name)) for name in names))
+
+
+@functools.lru_cache(maxsize=None)
+def _compared_fields(kind: type) -> tuple[str, ...] | None:
+    """The fields :func:`written` keeps of an AST node class (those compared, but its position), or None
+    for a class that is not a dataclass (a value kept as it is). Once per class: a rulebook's match keys
+    ask thousands of times."""
+    if not dataclasses.is_dataclass(kind):
+        return None
+    return tuple(f.name for f in dataclasses.fields(kind) if f.compare and f.name != "pos")
 
 
 class RuleChecker:
@@ -362,23 +373,24 @@ class RuleChecker:
         return self._condition(expr, scope, text=f"{var}.{c.attr} {c.op} ...")
 
     def _condition(self, expr, scope, text: str | None = None) -> Condition:
-        compiled = self.compiler.compile(expr, scope)
+        compiled, parts = self.compiler.compile_parts(expr, scope)
         operands: dict = {}  # the attributes and calls outside quantifiers, once per text (shown when it fails)
         bound = _quantified(expr)
         for sub in walk(expr):
             if isinstance(sub, (ast.Attr, ast.Call)) and id(sub) not in bound:
                 key = describe(sub)
                 if key not in operands:
-                    operands[key] = self.compiler.compile(sub, scope).fn
-        return Condition(compiled.fn, compiled.reads, text or describe(expr), expr.pos, self._column_test(expr, scope),
-                         tuple(operands.items()))
+                    operands[key] = parts[id(sub)].fn
+        return Condition(compiled.fn, compiled.reads, text or describe(expr), expr.pos,
+                         self._column_test(expr, scope, parts), tuple(operands.items()))
 
-    def _column_test(self, expr, scope) -> ColumnTest | None:
+    def _column_test(self, expr, scope, parts: dict) -> ColumnTest | None:
         """The vectorised form of ``degree(var, Types) op rhs`` or ``var.attr op rhs``, if ``expr`` is
-        one (``rhs`` reading parameters and literals only, ``degree`` the builtin)."""
+        one (``rhs`` reading parameters and literals only, ``degree`` the builtin); ``parts`` are its
+        compiled sub-expressions (:meth:`ExpressionCompiler.compile_parts`)."""
         if not (isinstance(expr, ast.Binary) and expr.op in _COMPARISONS):
             return None
-        rhs = self.compiler.compile(expr.right, scope)
+        rhs = parts[id(expr.right)]
         if any(scope[name].type.kind != "value" for name in rhs.reads):
             return None
         left, op = expr.left, _COMPARISONS[expr.op]

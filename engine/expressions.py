@@ -174,17 +174,29 @@ class ExpressionCompiler:
     def __init__(self, schema: TypeSchema, functions: Functions):
         self.schema = schema
         self.functions = functions
+        self._parts: dict[int, Typed] | None = None  # while compile_parts runs: what it returns
 
     def compile(self, expr, scope: Mapping[str, Symbol]) -> Typed:
         """Return the closure, the static type and the names (variables/parameters) the expression reads."""
-        return self._COMPILE[type(expr)](self, expr, scope)
+        typed = self._COMPILE[type(expr)](self, expr, scope)
+        if self._parts is not None:
+            self._parts[id(expr)] = typed
+        return typed
+
+    def compile_parts(self, expr, scope: Mapping[str, Symbol]) -> tuple[Typed, dict[int, Typed]]:
+        """:meth:`compile`, and the compiled form of every sub-expression it compiled on the way, by ``id``
+        (those in a quantifier's body too, with its variable in scope): what a condition's why-not operands
+        and vectorised form are made of, without compiling each again (issue 18)."""
+        self._parts = parts = {}
+        try:
+            return self.compile(expr, scope), parts
+        finally:
+            self._parts = None
 
     def reads_nonlocal(self, expr) -> bool:
         """Whether the expression calls a function declared non-local, or quantifies over the graph."""
-        if any(isinstance(e, ast.Quantifier) for e in walk(expr)):
-            return True
-        calls = [e for e in walk(expr) if isinstance(e, ast.Call)]
-        return any(c.func in self.functions and not self.functions[c.func].local for c in calls)
+        return any(isinstance(e, ast.Quantifier) or (isinstance(e, ast.Call) and e.func in self.functions
+                                                     and not self.functions[e.func].local) for e in walk(expr))
 
     # -- atoms -----------------------------------------------------------------------------------
 
@@ -401,10 +413,21 @@ _CHILDREN = {
 
 
 def walk(expr):
-    """Every sub-expression of ``expr`` (itself included)."""
-    yield expr
-    for child in _CHILDREN.get(type(expr), lambda e: ())(expr):
-        yield from walk(child)
+    """Every sub-expression of ``expr`` (itself included), parents before their children, children in
+    their order. By a stack, not by nested generators: each of those passed every value up through
+    every level above it, and checking a rulebook walks its expressions thousands of times.
+
+    >>> f = ast.Call("f", (ast.Name("b", None), ast.Literal(1, None)), None)
+    >>> [getattr(e, "name", None) or type(e).__name__ for e in walk(ast.Binary("+", f, ast.Name("a", None), None))]
+    ['Binary', 'Call', 'b', 'Literal', 'a']
+    """
+    stack = [expr]
+    while stack:
+        e = stack.pop()
+        yield e
+        children = _CHILDREN.get(type(e))
+        if children is not None:
+            stack.extend(reversed(children(e)))
 
 
 def _both(a: VType, b: VType, names) -> bool:

@@ -161,7 +161,7 @@ def _tree(folder):
 def test_a_run_that_fails_while_writing_leaves_the_output_folder_untouched(tmp_path, monkeypatch):
     """The decomposition's files are written, then the plot fails: --out keeps what it had, no new file
     and no staging folder is left beside it."""
-    from vaultgram.io import outputs
+    from vaultgram.io import plots
 
     out = tmp_path / "out"
     out.mkdir()
@@ -171,7 +171,7 @@ def test_a_run_that_fails_while_writing_leaves_the_output_folder_untouched(tmp_p
     def failing_plot(*args, **kwargs):
         raise OSError(28, "No space left on device")
 
-    monkeypatch.setattr(outputs, "plot_decomposition", failing_plot)
+    monkeypatch.setattr(plots, "plot_decomposition", failing_plot)
     result = run("decompose", EXAMPLES / "quad_with_hole.json", "--out", out)
     assert result.exit_code != 0
     assert _tree(out) == before

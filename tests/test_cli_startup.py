@@ -71,3 +71,22 @@ def test_a_warm_parse_cache_loads_a_rulebook_without_lark(tmp_path):
             for _ in range(2)]
     (types, cold), (types_warm, warm) = (r.stdout.split() for r in runs)
     assert types == types_warm and int(types) > 5 and (cold, warm) == ("True", "False")
+
+
+def test_the_mesh_command_imports_no_form_finding_tessellation_or_figures(tmp_path):
+    """``vaultgram mesh`` imports what meshing needs: of form finding only the supports (mesh.json
+    records them), no tessellation, no figures, none of the libraries only those use, and of scipy
+    not the graph algorithms (scipy.sparse.csgraph imports scipy.sparse.linalg)."""
+    code = ("import sys; from vaultgram.cli import main; "
+            f"sys.argv = ['vaultgram', 'mesh', {str(REPO / 'examples' / 'quad_with_hole.json')!r}, "
+            f"'--out', {str(tmp_path / 'out')!r}]\n"
+            "try:\n    main()\nexcept SystemExit:\n    pass\n"
+            "print('LOADED', *sorted(sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    loaded = out.stdout.rpartition("LOADED")[2].split()
+    assert (tmp_path / "out" / "mesh.json").is_file() and "vaultgram.meshpipeline" in loaded
+    heavy = ("vaultgram.tessellation", "vaultgram.io.figures", "vaultgram.io.plots", "vaultgram.pipeline",
+             "matplotlib", "cvxopt", "networkx", "scipy.sparse.csgraph", "scipy.sparse.linalg")
+    unwanted = [m for m in loaded if m.startswith(heavy)
+                or (m.startswith("vaultgram.formfinding.") and m != "vaultgram.formfinding.supports")]
+    assert unwanted == []

@@ -396,7 +396,7 @@ def decompose_command(domain_path: str, out_dir: str, spacing: float, rules_dir:
     """
     from vaultgram.domain import load_domain
     from vaultgram.io.outputs import parse_formats, write_decomposition, write_drawings
-    from vaultgram.pipeline import decompose
+    from vaultgram.meshpipeline import decompose
 
     formats = parse_formats(formats)
     domain = load_domain(domain_path, input_format, layer_names(layers), spacing)
@@ -435,7 +435,7 @@ def trace_command(domain_path: str, out_dir: str, spacing: float, rules_dir: str
     rules, matched elements red and created ones green, and index.html stepping through them."""
     from vaultgram.domain import load_domain
     from vaultgram.io.traceview import write_trace_view
-    from vaultgram.pipeline import decompose
+    from vaultgram.meshpipeline import decompose
     from vaultgram.topology.rulebook import load_vault_rulebook
 
     dec = decompose(load_domain(domain_path), spacing, rules_dir, trace=True)
@@ -637,7 +637,7 @@ def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities
     from vaultgram.meshing.densities import load_densities
     from vaultgram.meshing.quality import mesh_stats
     from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
-    from vaultgram.pipeline import mesh_domain
+    from vaultgram.meshpipeline import mesh_domain
 
     formats = parse_formats(formats)
     domain = load_domain(domain_path, input_format, layer_names(layers), spacing)

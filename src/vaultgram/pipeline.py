@@ -7,8 +7,10 @@ Each stage is a function from one plain value to the next::
            -> FormDiagram -> ForceDiagram -> ThrustNetwork                     (form finding, §5)
 
 :func:`decompose`, :func:`mesh_decomposition` and :func:`form_find` run one part each; :func:`design`
-runs them all. Stage values carry no timings: pass a dict as ``timings`` and every function adds
-the seconds each stage took (the command line prints them; they are never written to files).
+runs them all. The first two, and :func:`mesh_domain`, are :mod:`vaultgram.meshpipeline`'s, which what
+needs only a mesh imports alone (not form finding, not tessellation). Stage values carry no timings:
+pass a dict as ``timings`` and every function adds the seconds each stage took (the command line
+prints them; they are never written to files).
 
 Example
 -------
@@ -22,7 +24,6 @@ from __future__ import annotations
 
 import dataclasses
 import json
-from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -30,14 +31,11 @@ import numpy as np
 
 from vaultgram import progress
 from vaultgram.domain import Domain, check_feature_spacing
-from vaultgram.domain.layouts import check_feature_layout
-from vaultgram.engine.strategy import first_option
 from vaultgram.errors import (
     ConvergenceError,
     FormFindingError,
     HorizontalEquilibriumError,
     TessellationError,
-    VaultgramError,
     VerticalEquilibriumError,
 )
 from vaultgram.formfinding.forcediagram import force_diagram
@@ -52,20 +50,12 @@ from vaultgram.geometry.arrays import distinct, steady
 from vaultgram.geometry.halfedges import mesh_edges
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.surfaces import area_vectors, vertex_normals
-from vaultgram.geometry.text import plan_frame
 from vaultgram.io.files import collector_paused, freed_memory_kept
 from vaultgram.limits import MAX_FACES
-from vaultgram.meshing.densities import CHORD_TOLERANCE, DensitySpec, group_counts
-from vaultgram.meshing.fans import even_fans, held_vertices, poles_to_retry
-from vaultgram.meshing.fidelity import SAME_POINT, hold_boundary, on_points, place_on_points
-from vaultgram.meshing.layout import Layout, edge_groups, kept_points
-from vaultgram.meshing.optimise import maximise_min_quality
+from vaultgram.meshing.densities import DensitySpec
 from vaultgram.meshing.quadmesh import QuadMesh
-from vaultgram.meshing.quality import check_not_folded, face_scaled_jacobians
-from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS, laplacian_smooth
-from vaultgram.meshing.splits import split_patterns
-from vaultgram.meshing.untangle import improve_shapes, untangle
-from vaultgram.meshing.weld import weld
+from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
+from vaultgram.meshpipeline import decompose, domain_frame, mesh_decomposition, mesh_domain
 from vaultgram.tessellation.courses import support_zones, voussoir_courses, voussoir_names
 from vaultgram.tessellation.keystones import CutMesh, cut_keystones, load_tessellation_rulebook, pinwheel
 from vaultgram.tessellation.mending import join_small_pairs, mend_meeting_points
@@ -79,221 +69,10 @@ from vaultgram.tessellation.stagger import staggered_bond
 from vaultgram.tessellation.strips import quad_strips
 from vaultgram.tessellation.surface import ThrustSurface, surface_from_network
 from vaultgram.tessellation.voussoirs import MAX_CONCAVITY, face_groups, without_concavities
-from vaultgram.topology.decomposition import Decomposition, block_decomposition
-from vaultgram.topology.discretise import discretise
-from vaultgram.topology.recovery import triangulate_recovering
-from vaultgram.topology.rulebook import load_vault_rulebook
-from vaultgram.topology.skeleton import skeleton
+from vaultgram.topology.decomposition import Decomposition
 
 __all__ = ["decompose", "mesh_decomposition", "mesh_domain", "form_find", "thrust_of_mesh", "tessellate", "design",
            "Design", "TessellationOptions", "default_rise"]
-
-
-@contextmanager
-def _timed(timings: dict | None, stage: str):
-    """Add the seconds the ``with`` block takes to ``timings[stage]`` (nothing if ``timings`` is None);
-    the stage's start and end are reported (:func:`vaultgram.progress.timed`)."""
-    with progress.timed(timings, stage):
-        yield
-
-
-# --------------------------------------------------------------------------------------------
-# Topology (§3.1, §4)
-# --------------------------------------------------------------------------------------------
-
-
-def decompose(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None = None, smooth: bool = False,
-              timings: dict | None = None, check_invariants: bool = False, trace: bool = False,
-              chooser=None) -> Decomposition:
-    """Topology finding (§3.1, §4): discretise, triangulate, skeletonise, rewrite with the rules, patch.
-
-    ``rules_dir`` holds the rulebook (default: the one shipped with vaultgram); ``smooth`` smooths the
-    skeleton branches with splines; ``check_invariants`` checks the rulebook's invariants while its
-    strategies run (as ``vaultgram rules test`` does); ``trace`` keeps the graph the rules start from
-    for a replay (``Decomposition.start_graph``); ``chooser`` resolves the rulebook's ``choose`` steps
-    (default: the first option; exploration replays a variant's choices).
-    """
-    with _frame(domain):
-        check_feature_layout(domain)
-        rulebook = load_vault_rulebook(rules_dir)
-        with _timed(timings, "discretise"):
-            disc = discretise(domain, spacing)
-        with _timed(timings, "triangulate"):
-            tri = triangulate_recovering(disc)
-        with _timed(timings, "skeleton"):
-            sk = skeleton(tri, smooth=smooth)
-        with _timed(timings, "rules"):
-            return block_decomposition(sk, rulebook, check_invariants, trace, chooser or first_option)
-
-
-def _frame(domain: Domain):
-    """Messages of the stages name places in the plan's coordinates, also for a plan worked on in its
-    local frame (:mod:`vaultgram.geometry.frames`)."""
-    return plan_frame(domain.origin, domain.diagonal)
-
-
-# --------------------------------------------------------------------------------------------
-# Geometry (§3.2)
-# --------------------------------------------------------------------------------------------
-
-
-def mesh_decomposition(dec: Decomposition, target_length: float | None = None, smooth: int = DEFAULT_ITERATIONS,
-                       densities: DensitySpec | None = None, allow_folds: bool = False,
-                       timings: dict | None = None, max_faces: int = MAX_FACES) -> QuadMesh:
-    """Geometry of §3.2 for a decomposition: edge groups, densities, Coons patches, welding, smoothing.
-
-    A smoothed mesh with inverted faces raises :class:`~vaultgram.errors.MeshFoldError` unless
-    ``allow_folds``; the raw Coons patches (``smooth=0``) are returned as they are. Densities that ask
-    for more than ``max_faces`` faces are refused before any is made (:mod:`vaultgram.meshing.guards`).
-    """
-    if smooth < 0:
-        raise VaultgramError(f"smoothing iterations must be >= 0, got {smooth}")
-    with _frame(dec.disc.domain):
-        return _meshed(dec, target_length, smooth, densities, allow_folds, timings, max_faces)
-
-
-def _meshed(dec: Decomposition, target_length, smooth: int, densities, allow_folds: bool, timings,
-            max_faces: int) -> QuadMesh:
-    """The stages of :func:`mesh_decomposition`; the mesh in the decomposition's frame."""
-    with _timed(timings, "groups"):
-        layout = edge_groups(dec)
-        counts = group_counts(layout, densities, target_length, max_faces)
-    mesh, x = _welded_and_smoothed(layout, counts, smooth, timings)
-    quality = face_scaled_jacobians(x, mesh.faces) if smooth > 0 else None
-    if quality is not None and quality.min() <= 0:
-        # issue 12: where the three-quad splits of thin fans (or the counts they need) fold, Figure 3's fans
-        plain = group_counts(layout, densities, target_length, max_faces, split=False)
-        if split_patterns(layout, counts) or not np.array_equal(plain, counts):
-            mesh, x = _welded_and_smoothed(layout, plain, smooth, timings, split=False)
-            quality = face_scaled_jacobians(x, mesh.faces)
-    mesh = dataclasses.replace(mesh, vertices=x, info=_mesh_info(dec, layout, smooth), origin=dec.origin)
-    if quality is not None and not allow_folds:
-        check_not_folded(mesh, dec, quality)
-    return mesh
-
-
-def _welded_and_smoothed(layout: Layout, counts, smooth: int, timings: dict | None,
-                         split: bool = True) -> tuple[QuadMesh, np.ndarray]:
-    """The welded mesh (with or without the three-quad splits of :mod:`vaultgram.meshing.splits`) and
-    its vertices after smoothing, untangling, the max-min optimisation and the boundary's bends put
-    back (§3.2)."""
-    with _timed(timings, "weld"):
-        welded = weld(layout, counts, split)
-    mesh, x, refused = _smoothed(welded, layout, smooth, timings)
-    retry = poles_to_retry(x, mesh.faces, mesh.face_patch, refused) if smooth > 0 else ()
-    if retry:  # a pole whose evening was refused bounds the mesh: smoothed again with it evened
-        again, y, _ = _smoothed(welded, layout, smooth, timings, retry)
-        if face_scaled_jacobians(y, mesh.faces).min() > face_scaled_jacobians(x, mesh.faces).min():
-            mesh, x = again, y
-    return mesh, x
-
-
-def _smoothed(mesh: QuadMesh, layout: Layout, smooth: int, timings: dict | None, regardless=frozenset()
-              ) -> tuple[QuadMesh, np.ndarray, tuple]:
-    """The welded ``mesh`` smoothed (§3.2): its fans evened (those round the poles in ``regardless``
-    without the check, :func:`~vaultgram.meshing.fans.even_fans`, and again after smoothing,
-    :func:`_evened_again`), Laplacian smoothing, untangling, the
-    max-min optimisation and the boundary's bends put back; the mesh with its labels, its vertices and
-    the poles whose evening was refused."""
-    with _timed(timings, "smooth"):
-        x, rays, refused = mesh.vertices, (), ()
-        if smooth > 0:  # the fans round poles evened, their spokes sliding on rays (§3.2, issue 12)
-            held = held_vertices(mesh.fixed, mesh.boundary, mesh.constraints)
-            x, rays, refused = even_fans(x, mesh.faces, mesh.face_patch, mesh.pole, held, regardless)
-        x = laplacian_smooth(x, mesh.faces, smooth, mesh.fixed, mesh.constraints + rays)
-        if smooth > 0 and regardless:
-            x, rays = _evened_again(x, mesh, held, rays, regardless)
-        slides = mesh.constraints + rays
-    with _timed(timings, "untangle"):
-        if smooth > 0:
-            x = untangle(x, mesh.faces, mesh.fixed, slides)
-            x = improve_shapes(x, mesh.faces, mesh.fixed, slides)
-            x = maximise_min_quality(x, mesh.faces, mesh.fixed, slides, still=mesh.feature)
-            x, mesh = _held_to_the_plan(x, mesh, layout.decomposition.disc)
-    return mesh, x, refused
-
-
-def _evened_again(x: np.ndarray, mesh: QuadMesh, held: np.ndarray, rays: tuple, poles) -> tuple[np.ndarray, tuple]:
-    """The fans round ``poles`` evened once more after smoothing, and the rays with their spokes' new
-    ones: smoothing moves the spokes that stay (a quad's side, a patch's side sliding on the boundary),
-    so a run evened between them before smoothing is uneven after it (fig7's curve end (1, 1): 10
-    triangles in 165 degrees, the eight between two held spokes at 14.7 degrees, the two at the ends at
-    22 and 26; evened again 16.5 each, the mesh's worst face 0.293 -> 0.314, its mean unchanged)."""
-    only = np.zeros(len(x), dtype=bool)
-    only[list(poles)] = True
-    x, again, _ = even_fans(x, mesh.faces, mesh.face_patch, only, held, frozenset(poles))
-    turned = {int(r.vertices[0]) for r in again}
-    return x, tuple(r for r in rays if int(r.vertices[0]) not in turned) + again
-
-
-def _held_to_the_plan(x: np.ndarray, mesh: QuadMesh, disc) -> tuple[np.ndarray, QuadMesh]:
-    """The smoothed boundary put back on the plan (§3.2, issue 12 What 5; :mod:`vaultgram.meshing.fidelity`):
-    a vertex on each sharp ring vertex the sliding left bare, the faces optimised again with those
-    fixed (where one was placed), and the bends that chords cut off put back; the mesh with its labels
-    of the ring points following the vertices (``fixed`` the vertices on sharp ring vertices too,
-    ``turning`` the turning of the ring point a boundary vertex sits on)."""
-    tol, eps = CHORD_TOLERANCE * disc.domain.diagonal, SAME_POINT * disc.domain.diagonal
-    sharp = disc.points[kept_points(disc) & (disc.ring >= 0)]
-    placed, on_sharp = place_on_points(x, mesh.faces, mesh.constraints, sharp, eps)
-    if not np.array_equal(placed, x):
-        placed = hold_boundary(placed, mesh.faces, mesh.constraints, tol)
-        placed = maximise_min_quality(placed, mesh.faces, mesh.fixed | on_sharp, mesh.constraints,
-                                      still=mesh.feature, moved=np.flatnonzero(np.any(placed != x, axis=1)))
-    placed = hold_boundary(placed, mesh.faces, mesh.constraints, tol)
-    on_ring = disc.ring >= 0
-    turning = mesh.turning.copy()
-    turning[mesh.boundary] = on_points(placed[mesh.boundary], disc.points[on_ring], disc.turning[on_ring], eps)
-    return placed, dataclasses.replace(mesh, fixed=mesh.fixed | on_sharp, turning=turning)
-
-
-def _mesh_info(dec: Decomposition, layout: Layout, smooth: int) -> dict:
-    """What ``mesh.json`` records of how the mesh was made."""
-    domain = dec.disc.domain
-    return {
-        "domain": domain.name,
-        "spacing": dec.disc.spacing,
-        "diagonal": domain.diagonal,
-        "patches": len(layout.patterns),
-        "triangle_patches": sum(p.pole is not None for p in layout.patterns),
-        "edge_groups": layout.n_groups,
-        "smooth": smooth,
-    }
-
-
-def mesh_domain(domain: Domain, spacing: float = 0.02, target_length: float | None = None,
-                smooth: int = DEFAULT_ITERATIONS, densities: DensitySpec | None = None, rules_dir=None,
-                allow_folds: bool = False, timings: dict | None = None, max_faces: int = MAX_FACES) -> QuadMesh:
-    """Topology and geometry of §3: a smooth quad mesh of ``domain``.
-
-    Parameters
-    ----------
-    domain : Domain
-    spacing : float
-        Relative discretisation spacing of the decomposition (§3.1).
-    target_length : float, optional
-        Global target edge length in the domain's units; default a fraction
-        (:data:`vaultgram.meshing.densities.TARGET_FRACTION`) of the bounding-box diagonal. Overrides the
-        density file's.
-    smooth : int
-        Laplacian smoothing iterations.
-    densities : DensitySpec, optional
-        Local density control (:func:`vaultgram.meshing.densities.load_densities`).
-    allow_folds : bool
-        Return a mesh that still has inverted faces after smoothing instead of raising.
-    max_faces : int
-        Refuse densities that ask for more faces (:mod:`vaultgram.meshing.guards`).
-
-    Raises
-    ------
-    VaultgramError
-        From any stage (invalid domain, a patch that is not 3- or 4-sided, bad densities, too many faces);
-        :class:`~vaultgram.errors.MeshFoldError` when the smoothed mesh has inverted faces (unless
-        ``allow_folds``).
-    """
-    with _frame(domain):
-        check_feature_spacing(domain, spacing)
-    dec = decompose(domain, spacing, rules_dir, timings=timings)
-    return mesh_decomposition(dec, target_length, smooth, densities, allow_folds, timings, max_faces)
 
 
 # --------------------------------------------------------------------------------------------
@@ -347,7 +126,7 @@ def form_find(mesh_vertices, faces, supports=None, *, zmax: float | None = None,
     """
     if relax_mode not in RELAX_MODES:
         raise FormFindingError(f"unknown relax mode {relax_mode!r}; use one of {', '.join(RELAX_MODES)}")
-    with _timed(timings, "form"):
+    with progress.timed(timings, "form"):
         form = form_diagram(mesh_vertices, faces, supports, update_boundaries=update_boundaries)
     n_open = int((~form.loaded).sum())
     modes = _relax_modes(relax, relax_mode, n_open)
@@ -392,14 +171,14 @@ def _equilibrium(form, n_open: int, mode: str | None, sag: float, alpha: float, 
                  timings: dict | None, vertical_options: dict) -> ThrustNetwork:
     """Relaxation of the openings (``mode``, None for none), force diagram, horizontal and vertical
     equilibrium of a form diagram."""
-    with _timed(timings, "relax"):
+    with progress.timed(timings, "relax"):
         relaxed = relax(form, sag, mode=mode) if mode is not None else None
-    with _timed(timings, "force"):
+    with progress.timed(timings, "force"):
         form = relaxed.form if relaxed is not None else form
         force = force_diagram(form, relaxed.q if mode == "all" else None)
-    with _timed(timings, "horizontal"):
+    with progress.timed(timings, "horizontal"):
         h = horizontal(form, force, alpha=alpha, kmax=kmax, tol_deg=tol_deg)
-    with _timed(timings, "vertical"):
+    with progress.timed(timings, "vertical"):
         v = vertical(h.form, h.q, **vertical_options)
     return thrust_network(h, v, n_open)
 
@@ -482,29 +261,29 @@ def tessellate(surface: ThrustSurface, rhythm: int = 2, thickness: float = 1.0,
     _check_tessellation_options(rhythm, thickness, max_concavity, surface_smooth)
     rulebook = load_tessellation_rulebook(rules_dir)
     with collector_paused(), freed_memory_kept():
-        with _timed(timings, "refine"):
+        with progress.timed(timings, "refine"):
             x, faces, supported, refined = _refine(surface)
-        with _timed(timings, "keystones"):
+        with progress.timed(timings, "keystones"):
             cut = cut_keystones(x, faces, mesh_edges(faces, len(x)), rulebook)
             supported = np.where(cut.source >= 0, supported[np.maximum(cut.source, 0)], False)
             me = mesh_edges(cut.faces, len(cut.vertices))
-        with _timed(timings, "stagger"):
+        with progress.timed(timings, "stagger"):
             removed, bond, kept = _bond(cut, me, supported, rhythm, max_concavity)
-        with _timed(timings, "sizes"):
+        with progress.timed(timings, "sizes"):
             cut, me, group, kept["cut"] = _cut_large(cut, face_groups(me, removed), bond.target)
             layout = voussoir_layout(cut, me, group)
             supported = np.concatenate([supported, np.zeros(len(cut.vertices) - len(supported), dtype=bool)])
-        with _timed(timings, "surface_smooth"):
+        with progress.timed(timings, "surface_smooth"):
             fixed = supported.copy()
             fixed[me.edges[me.boundary].ravel()] = True
             x = smooth_on_surface(cut.vertices, cut.faces, layout.loops, fixed, surface.vertices, surface.faces,
                                   surface_smooth, max_concavity)
-        with _timed(timings, "solids"):
+        with progress.timed(timings, "solids"):
             normals = vertex_normals(x, cut.faces)
             solids = voussoir_solids(x, normals, layout.loops, thickness, flat_extrados)
-        with _timed(timings, "courses"):
+        with progress.timed(timings, "courses"):
             courses, zones = _courses(layout, supported, me)
-        with _timed(timings, "metrics"):
+        with progress.timed(timings, "metrics"):
             summary = summarise(x, normals, layout, max_concavity, {**kept, "refined_strips": refined},
                                 surface.holes, solid_volumes(solids, layout.n_voussoirs))
     return Tessellation(layout, x, normals, solids, courses, zones, tuple(voussoir_names(courses, zones)),
@@ -638,7 +417,7 @@ def design(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None =
     """
     timings: dict = {}
     done = on_stage if on_stage is not None else (lambda name, value: None)
-    with _frame(domain):
+    with domain_frame(domain):
         check_feature_spacing(domain, spacing)
     done("domain", domain)
     dec = decompose(domain, spacing, rules_dir, timings=timings, trace=trace)
@@ -647,7 +426,7 @@ def design(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None =
     done("mesh", mesh)
     spec = domain.supports if supports is None else supports
     spec = {"vertices": spec} if isinstance(spec, list) else spec
-    with _timed(timings, "supports"):
+    with progress.timed(timings, "supports"):
         anchors = support_vertices(mesh.vertices, mesh.faces, spec, domain, mesh.origin)
     done("supports", anchors)
     # the specification itself, not its vertices: a failure's hint names the holes it leaves open
@@ -656,7 +435,7 @@ def design(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None =
     voussoirs = None
     if tessellation is not None:
         t = tessellation
-        with _timed(timings, "surface"):
+        with progress.timed(timings, "surface"):
             surface = surface_from_network(network)
         voussoirs = tessellate(surface, t.rhythm, thickness, t.max_concavity, t.flat_extrados, t.surface_smooth,
                                rules_dir, timings)

@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from vaultgram import pipeline
+from vaultgram import meshpipeline
 from vaultgram.domain import load_domain
 from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.meshing.fans import FAN_FLOOR, even_fans, fan_bounds
@@ -127,7 +127,7 @@ def test_a_refused_pole_that_bounds_the_mesh_is_smoothed_again_evened(monkeypatc
     degrees (a run of 8 equal ones) instead of 9.8."""
     domain = load_domain(EXAMPLES / "fig7_curves.json")
     retried = mesh_domain(domain)
-    monkeypatch.setattr(pipeline, "poles_to_retry", lambda *args: frozenset())
+    monkeypatch.setattr(meshpipeline, "poles_to_retry", lambda *args: frozenset())
     checked = mesh_domain(domain)
     end = int(np.argmin(np.hypot(*(retried.vertices[:, :2] - [1.0, 1.0]).T)))
     worst = [face_scaled_jacobians(m.vertices, m.faces).min() for m in (retried, checked)]

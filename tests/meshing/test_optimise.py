@@ -48,7 +48,7 @@ MIN_PASS = ["armadillo_vault", "armadillo_vault_plan", "british_museum_map", "hi
             # curves.vgr: the fan at the end (5, 7.5), 0.25 above the branch round it, was 0.250)
             "features_combined",
             # since a refused pole that holds the worst face is evened regardless, and again after smoothing
-            # (vaultgram.meshing.fans.poles_to_retry, vaultgram.pipeline._evened_again): the fan at the
+            # (vaultgram.meshing.fans.poles_to_retry, vaultgram.meshpipeline._evened_again): the fan at the
             # curve end (1, 1) was 0.196
             "fig7_curves"]
 LAYOUT = "skewed quads all over (median scaled Jacobian below 0.9): the patch layout, not smoothing"

@@ -65,9 +65,9 @@ def test_plans_that_folded_mesh_now(name):
 
 def test_the_optimisation_is_what_unfolds_them(monkeypatch):
     """Without the max-min optimisation the plan with a triangular hole folds."""
-    import vaultgram.pipeline as pipeline
+    import vaultgram.meshpipeline as meshpipeline
 
-    monkeypatch.setattr(pipeline, "maximise_min_quality", lambda x, *_a, **_k: x)
+    monkeypatch.setattr(meshpipeline, "maximise_min_quality", lambda x, *_a, **_k: x)
     data, spacing = FOLDED_BEFORE["hole"]
     mesh = mesh_domain(domain_from_dict({"name": "hole", **data}), spacing, allow_folds=True)
     assert mesh_stats(mesh)["inverted_faces"] > 0

@@ -15,7 +15,7 @@ from vaultgram.meshing.quality import face_scaled_jacobians, mesh_stats
 from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
 from vaultgram.meshing.splits import fan_estimate, split_counts, split_patterns
 from vaultgram.meshing.weld import weld
-from vaultgram.pipeline import _welded_and_smoothed, decompose, mesh_decomposition
+from vaultgram.meshpipeline import _welded_and_smoothed, decompose, mesh_decomposition
 
 from paths import EXAMPLES
 

@@ -58,7 +58,7 @@ class Evaluation:
 
 def evaluate(job: Job) -> Evaluation:
     """Rebuild, mesh and measure one variant (see the module docstring)."""
-    from vaultgram.pipeline import decompose, mesh_decomposition
+    from vaultgram.meshpipeline import decompose, mesh_decomposition
 
     dec = decompose(job.domain, job.spacing, job.rules_dir, chooser=Scripted(job.answers))
     layout = layout_of(dec.graph, list(dec.patches))

@@ -17,8 +17,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
-__all__ = ["TIE", "TIED", "PIECE", "cross_rows", "distinct", "json_array", "lookup", "nearest", "pieces", "plan_rows",
-           "ranges", "row_dot", "run_starts", "sorted_keys", "steady", "unit_rows"]
+__all__ = ["TIE", "TIED", "PIECE", "cross_rows", "distinct", "json_array", "link_components", "lookup", "nearest",
+           "pieces", "plan_rows", "ranges", "row_dot", "run_starts", "sorted_keys", "steady", "unit_rows"]
 
 #: Relative difference under which two computed values are a tie (round-off differs between
 #: machines by some 1e-15 relative; the stages' real differences are far above 1e-9).
@@ -39,6 +39,30 @@ def distinct(values) -> np.ndarray:
     """
     s = sorted_keys(np.asarray(values).ravel())
     return s[run_starts(s)]
+
+
+def link_components(n: int, a, b) -> np.ndarray:
+    """The smallest element of the component of each of ``n`` elements linked in pairs ``(a[k], b[k])``.
+
+    Each round hooks every link's larger root under the smaller one and flattens the trees by pointer
+    jumping, all vectorised; it ends when every link's two ends have one root. The components are
+    scipy's ``connected_components``'s, without importing ``scipy.sparse.csgraph``, which imports
+    ``scipy.sparse.linalg``: 10 ms of every ``vaultgram mesh`` (issue 18).
+
+    >>> link_components(6, [4, 1, 5], [1, 3, 0]).tolist()
+    [0, 1, 2, 1, 1, 0]
+    """
+    root = np.arange(n)
+    a, b = np.asarray(a, dtype=np.int64), np.asarray(b, dtype=np.int64)
+    while True:
+        ra, rb = root[a], root[b]
+        if np.array_equal(ra, rb):
+            return root
+        low = np.minimum(ra, rb)
+        np.minimum.at(root, ra, low)
+        np.minimum.at(root, rb, low)
+        while not np.array_equal(up := root[root], root):
+            root = up
 
 
 def json_array(values, arrays: bool = False):

@@ -11,22 +11,27 @@ files (:mod:`vaultgram.io.files`). ``formats`` (:data:`OUTPUT_FORMATS`) choose t
 * ``3dm`` -- ``result.3dm``, ``dxf`` -- ``result.dxf``: one layer per stage (:mod:`vaultgram.io.cadfiles`).
 
 Without ``formats`` a writer writes ``json`` and ``obj`` (:data:`DEFAULT_FORMATS`), as it always has.
+The figures' modules (:mod:`vaultgram.io.plots`) and the optional formats' are imported where a figure
+is drawn or such a file written, and the stages' models only named: ``vaultgram mesh``, which draws
+nothing, imports no form finding, tessellation or figures (issue 18).
 """
 
 from __future__ import annotations
 
 import shutil
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from vaultgram import progress
 from vaultgram.errors import VaultgramError
-from vaultgram.formfinding.thrust import ThrustNetwork
 from vaultgram.io.files import collector_paused, write_json, write_obj, write_obj_groups, write_text
 from vaultgram.io.meshfiles import mesh_to_json
-from vaultgram.io.plots import plot_decomposition, plot_mesh, plot_tessellation, plot_thrust
-from vaultgram.meshing.quadmesh import QuadMesh
-from vaultgram.tessellation.model import Tessellation
-from vaultgram.topology.decomposition import Decomposition
+
+if TYPE_CHECKING:
+    from vaultgram.formfinding.thrust import ThrustNetwork
+    from vaultgram.meshing.quadmesh import QuadMesh
+    from vaultgram.tessellation.model import Tessellation
+    from vaultgram.topology.decomposition import Decomposition
 
 __all__ = ["write_decomposition", "write_mesh_files", "write_thrust", "write_tessellation", "write_design",
            "write_drawings", "design_summary", "mesh_quality", "write_design_figures",
@@ -78,6 +83,8 @@ def write_decomposition(dec: Decomposition, out: Path, plot: bool = True, format
         write_json(out / "decomposition.json", dec.to_json())
         write_json(out / "patches.json", dec.patches_json())
         if plot:
+            from vaultgram.io.plots import plot_decomposition
+
             plot_decomposition(dec, out / "decomposition.png")
     if trace and dec.start_graph is not None:
         write_json(out / "trace.json", dec.trace)
@@ -91,6 +98,8 @@ def write_mesh_files(mesh: QuadMesh, out: Path, supports=None, plot: bool = True
     if "json" in formats:
         write_json(out / "mesh.json", mesh_to_json(mesh, supports, arrays=True))
         if plot:
+            from vaultgram.io.plots import plot_mesh
+
             plot_mesh(mesh, out / "mesh.png")
     if "obj" in formats:
         write_obj(out / "mesh.obj", mesh.vertices, mesh.faces)
@@ -112,6 +121,8 @@ def write_thrust(network: ThrustNetwork, out: Path, plot: bool = False, formats=
     if "json" in formats:
         write_json(out / "summary.json", network.summary)
         if plot:
+            from vaultgram.io.plots import plot_thrust
+
             plot_thrust(network, out / "thrust.png")
     if "compas" in formats:
         from vaultgram.io.compasfiles import compas_json, to_formdiagram
@@ -136,6 +147,8 @@ def write_tessellation(tessellation: Tessellation, out: Path, summary: bool = Fa
         if summary:
             write_json(out / "summary.json", tessellation.summary)
         if plot:
+            from vaultgram.io.plots import plot_tessellation
+
             plot_tessellation(tessellation, out / "tessellation.png")
     if "compas" in formats:
         _write_compas(out / "voussoirs.compas.json", tessellation)

@@ -52,13 +52,11 @@ from typing import NamedTuple
 
 import numpy as np
 import shapely
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
 from scipy.spatial import Delaunay, QhullError, cKDTree
 
 from vaultgram.domain.model import ring_name
 from vaultgram.errors import DomainError
-from vaultgram.geometry.arrays import distinct
+from vaultgram.geometry.arrays import distinct, link_components
 from vaultgram.geometry.polygons import bbox_diagonal, signed_area, triangle_areas
 from vaultgram.geometry.text import fmt_point
 from vaultgram.topology.discretise import Discretisation
@@ -453,9 +451,7 @@ def _cells(pts, tri, neighbours, centres, radii, areas, ctol, atol):
     m = len(tri)
     sliver = areas < atol
     ea, eb = _cell_links(pts, tri, neighbours, centres, sliver, ctol)
-    graph = coo_matrix((np.ones(len(ea)), (ea, eb)), shape=(m, m))
-    _, labels = connected_components(graph, directed=False)
-    cell = _numbered_by_first_face(labels, m)
+    cell = _numbered_by_first_face(link_components(m, ea, eb), m)
     cc, rr = _cell_centres(pts, tri, cell, centres, radii, sliver)
     return cell.astype(np.int64), cc, rr
 

@@ -1,0 +1,247 @@
+"""The pipeline's first part, the plan to the quad mesh (§3): topology finding (:func:`decompose`: discretise,
+triangulate, skeletonise, rewrite with the rules, patch) and geometry (:func:`mesh_decomposition`: edge groups,
+Coons patches, welding, smoothing); :func:`mesh_domain` runs both.
+
+It is a module of its own so that what needs only a mesh (``vaultgram mesh``, ``decompose``, the exploration)
+imports neither form finding nor tessellation (issue 18); :mod:`vaultgram.pipeline` chains it with them and
+names these functions too. As there, ``timings`` (a dict) gets the seconds of every stage.
+
+Example
+-------
+>>> from vaultgram.domain import load_domain
+>>> mesh = mesh_domain(load_domain("examples/quad_with_hole.json"))
+>>> mesh.info["patches"], len(mesh.faces) > 500
+(12, True)
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+
+from vaultgram import progress
+from vaultgram.domain import Domain, check_feature_spacing
+from vaultgram.domain.layouts import check_feature_layout
+from vaultgram.engine.strategy import first_option
+from vaultgram.errors import VaultgramError
+from vaultgram.geometry.text import plan_frame
+from vaultgram.limits import MAX_FACES
+from vaultgram.meshing.densities import CHORD_TOLERANCE, DensitySpec, group_counts
+from vaultgram.meshing.fans import even_fans, held_vertices, poles_to_retry
+from vaultgram.meshing.fidelity import SAME_POINT, hold_boundary, on_points, place_on_points
+from vaultgram.meshing.layout import Layout, edge_groups, kept_points
+from vaultgram.meshing.optimise import maximise_min_quality
+from vaultgram.meshing.quadmesh import QuadMesh
+from vaultgram.meshing.quality import check_not_folded, face_scaled_jacobians
+from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS, laplacian_smooth
+from vaultgram.meshing.splits import split_patterns
+from vaultgram.meshing.untangle import improve_shapes, untangle
+from vaultgram.meshing.weld import weld
+from vaultgram.topology.decomposition import Decomposition, block_decomposition
+from vaultgram.topology.discretise import discretise
+from vaultgram.topology.recovery import triangulate_recovering
+from vaultgram.topology.rulebook import load_vault_rulebook
+from vaultgram.topology.skeleton import skeleton
+
+__all__ = ["decompose", "mesh_decomposition", "mesh_domain", "domain_frame"]
+
+
+# --------------------------------------------------------------------------------------------
+# Topology (§3.1, §4)
+# --------------------------------------------------------------------------------------------
+
+
+def decompose(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None = None, smooth: bool = False,
+              timings: dict | None = None, check_invariants: bool = False, trace: bool = False,
+              chooser=None) -> Decomposition:
+    """Topology finding (§3.1, §4): discretise, triangulate, skeletonise, rewrite with the rules, patch.
+
+    ``rules_dir`` holds the rulebook (default: the one shipped with vaultgram); ``smooth`` smooths the
+    skeleton branches with splines; ``check_invariants`` checks the rulebook's invariants while its
+    strategies run (as ``vaultgram rules test`` does); ``trace`` keeps the graph the rules start from
+    for a replay (``Decomposition.start_graph``); ``chooser`` resolves the rulebook's ``choose`` steps
+    (default: the first option; exploration replays a variant's choices).
+    """
+    with domain_frame(domain):
+        check_feature_layout(domain)
+        rulebook = load_vault_rulebook(rules_dir)
+        with progress.timed(timings, "discretise"):
+            disc = discretise(domain, spacing)
+        with progress.timed(timings, "triangulate"):
+            tri = triangulate_recovering(disc)
+        with progress.timed(timings, "skeleton"):
+            sk = skeleton(tri, smooth=smooth)
+        with progress.timed(timings, "rules"):
+            return block_decomposition(sk, rulebook, check_invariants, trace, chooser or first_option)
+
+
+def domain_frame(domain: Domain):
+    """Messages of the stages name places in the plan's coordinates, also for a plan worked on in its
+    local frame (:mod:`vaultgram.geometry.frames`)."""
+    return plan_frame(domain.origin, domain.diagonal)
+
+
+# --------------------------------------------------------------------------------------------
+# Geometry (§3.2)
+# --------------------------------------------------------------------------------------------
+
+
+def mesh_decomposition(dec: Decomposition, target_length: float | None = None, smooth: int = DEFAULT_ITERATIONS,
+                       densities: DensitySpec | None = None, allow_folds: bool = False,
+                       timings: dict | None = None, max_faces: int = MAX_FACES) -> QuadMesh:
+    """Geometry of §3.2 for a decomposition: edge groups, densities, Coons patches, welding, smoothing.
+
+    A smoothed mesh with inverted faces raises :class:`~vaultgram.errors.MeshFoldError` unless
+    ``allow_folds``; the raw Coons patches (``smooth=0``) are returned as they are. Densities that ask
+    for more than ``max_faces`` faces are refused before any is made (:mod:`vaultgram.meshing.guards`).
+    """
+    if smooth < 0:
+        raise VaultgramError(f"smoothing iterations must be >= 0, got {smooth}")
+    with domain_frame(dec.disc.domain):
+        return _meshed(dec, target_length, smooth, densities, allow_folds, timings, max_faces)
+
+
+def _meshed(dec: Decomposition, target_length, smooth: int, densities, allow_folds: bool, timings,
+            max_faces: int) -> QuadMesh:
+    """The stages of :func:`mesh_decomposition`; the mesh in the decomposition's frame."""
+    with progress.timed(timings, "groups"):
+        layout = edge_groups(dec)
+        counts = group_counts(layout, densities, target_length, max_faces)
+    mesh, x = _welded_and_smoothed(layout, counts, smooth, timings)
+    quality = face_scaled_jacobians(x, mesh.faces) if smooth > 0 else None
+    if quality is not None and quality.min() <= 0:
+        # issue 12: where the three-quad splits of thin fans (or the counts they need) fold, Figure 3's fans
+        plain = group_counts(layout, densities, target_length, max_faces, split=False)
+        if split_patterns(layout, counts) or not np.array_equal(plain, counts):
+            mesh, x = _welded_and_smoothed(layout, plain, smooth, timings, split=False)
+            quality = face_scaled_jacobians(x, mesh.faces)
+    mesh = dataclasses.replace(mesh, vertices=x, info=_mesh_info(dec, layout, smooth), origin=dec.origin)
+    if quality is not None and not allow_folds:
+        check_not_folded(mesh, dec, quality)
+    return mesh
+
+
+def _welded_and_smoothed(layout: Layout, counts, smooth: int, timings: dict | None,
+                         split: bool = True) -> tuple[QuadMesh, np.ndarray]:
+    """The welded mesh (with or without the three-quad splits of :mod:`vaultgram.meshing.splits`) and
+    its vertices after smoothing, untangling, the max-min optimisation and the boundary's bends put
+    back (§3.2)."""
+    with progress.timed(timings, "weld"):
+        welded = weld(layout, counts, split)
+    mesh, x, refused = _smoothed(welded, layout, smooth, timings)
+    retry = poles_to_retry(x, mesh.faces, mesh.face_patch, refused) if smooth > 0 else ()
+    if retry:  # a pole whose evening was refused bounds the mesh: smoothed again with it evened
+        again, y, _ = _smoothed(welded, layout, smooth, timings, retry)
+        if face_scaled_jacobians(y, mesh.faces).min() > face_scaled_jacobians(x, mesh.faces).min():
+            mesh, x = again, y
+    return mesh, x
+
+
+def _smoothed(mesh: QuadMesh, layout: Layout, smooth: int, timings: dict | None, regardless=frozenset()
+              ) -> tuple[QuadMesh, np.ndarray, tuple]:
+    """The welded ``mesh`` smoothed (§3.2): its fans evened (those round the poles in ``regardless``
+    without the check, :func:`~vaultgram.meshing.fans.even_fans`, and again after smoothing,
+    :func:`_evened_again`), Laplacian smoothing, untangling, the
+    max-min optimisation and the boundary's bends put back; the mesh with its labels, its vertices and
+    the poles whose evening was refused."""
+    with progress.timed(timings, "smooth"):
+        x, rays, refused = mesh.vertices, (), ()
+        if smooth > 0:  # the fans round poles evened, their spokes sliding on rays (§3.2, issue 12)
+            held = held_vertices(mesh.fixed, mesh.boundary, mesh.constraints)
+            x, rays, refused = even_fans(x, mesh.faces, mesh.face_patch, mesh.pole, held, regardless)
+        x = laplacian_smooth(x, mesh.faces, smooth, mesh.fixed, mesh.constraints + rays)
+        if smooth > 0 and regardless:
+            x, rays = _evened_again(x, mesh, held, rays, regardless)
+        slides = mesh.constraints + rays
+    with progress.timed(timings, "untangle"):
+        if smooth > 0:
+            x = untangle(x, mesh.faces, mesh.fixed, slides)
+            x = improve_shapes(x, mesh.faces, mesh.fixed, slides)
+            x = maximise_min_quality(x, mesh.faces, mesh.fixed, slides, still=mesh.feature)
+            x, mesh = _held_to_the_plan(x, mesh, layout.decomposition.disc)
+    return mesh, x, refused
+
+
+def _evened_again(x: np.ndarray, mesh: QuadMesh, held: np.ndarray, rays: tuple, poles) -> tuple[np.ndarray, tuple]:
+    """The fans round ``poles`` evened once more after smoothing, and the rays with their spokes' new
+    ones: smoothing moves the spokes that stay (a quad's side, a patch's side sliding on the boundary),
+    so a run evened between them before smoothing is uneven after it (fig7's curve end (1, 1): 10
+    triangles in 165 degrees, the eight between two held spokes at 14.7 degrees, the two at the ends at
+    22 and 26; evened again 16.5 each, the mesh's worst face 0.293 -> 0.314, its mean unchanged)."""
+    only = np.zeros(len(x), dtype=bool)
+    only[list(poles)] = True
+    x, again, _ = even_fans(x, mesh.faces, mesh.face_patch, only, held, frozenset(poles))
+    turned = {int(r.vertices[0]) for r in again}
+    return x, tuple(r for r in rays if int(r.vertices[0]) not in turned) + again
+
+
+def _held_to_the_plan(x: np.ndarray, mesh: QuadMesh, disc) -> tuple[np.ndarray, QuadMesh]:
+    """The smoothed boundary put back on the plan (§3.2, issue 12 What 5; :mod:`vaultgram.meshing.fidelity`):
+    a vertex on each sharp ring vertex the sliding left bare, the faces optimised again with those
+    fixed (where one was placed), and the bends that chords cut off put back; the mesh with its labels
+    of the ring points following the vertices (``fixed`` the vertices on sharp ring vertices too,
+    ``turning`` the turning of the ring point a boundary vertex sits on)."""
+    tol, eps = CHORD_TOLERANCE * disc.domain.diagonal, SAME_POINT * disc.domain.diagonal
+    sharp = disc.points[kept_points(disc) & (disc.ring >= 0)]
+    placed, on_sharp = place_on_points(x, mesh.faces, mesh.constraints, sharp, eps)
+    if not np.array_equal(placed, x):
+        placed = hold_boundary(placed, mesh.faces, mesh.constraints, tol)
+        placed = maximise_min_quality(placed, mesh.faces, mesh.fixed | on_sharp, mesh.constraints,
+                                      still=mesh.feature, moved=np.flatnonzero(np.any(placed != x, axis=1)))
+    placed = hold_boundary(placed, mesh.faces, mesh.constraints, tol)
+    on_ring = disc.ring >= 0
+    turning = mesh.turning.copy()
+    turning[mesh.boundary] = on_points(placed[mesh.boundary], disc.points[on_ring], disc.turning[on_ring], eps)
+    return placed, dataclasses.replace(mesh, fixed=mesh.fixed | on_sharp, turning=turning)
+
+
+def _mesh_info(dec: Decomposition, layout: Layout, smooth: int) -> dict:
+    """What ``mesh.json`` records of how the mesh was made."""
+    domain = dec.disc.domain
+    return {
+        "domain": domain.name,
+        "spacing": dec.disc.spacing,
+        "diagonal": domain.diagonal,
+        "patches": len(layout.patterns),
+        "triangle_patches": sum(p.pole is not None for p in layout.patterns),
+        "edge_groups": layout.n_groups,
+        "smooth": smooth,
+    }
+
+
+def mesh_domain(domain: Domain, spacing: float = 0.02, target_length: float | None = None,
+                smooth: int = DEFAULT_ITERATIONS, densities: DensitySpec | None = None, rules_dir=None,
+                allow_folds: bool = False, timings: dict | None = None, max_faces: int = MAX_FACES) -> QuadMesh:
+    """Topology and geometry of §3: a smooth quad mesh of ``domain``.
+
+    Parameters
+    ----------
+    domain : Domain
+    spacing : float
+        Relative discretisation spacing of the decomposition (§3.1).
+    target_length : float, optional
+        Global target edge length in the domain's units; default a fraction
+        (:data:`vaultgram.meshing.densities.TARGET_FRACTION`) of the bounding-box diagonal. Overrides the
+        density file's.
+    smooth : int
+        Laplacian smoothing iterations.
+    densities : DensitySpec, optional
+        Local density control (:func:`vaultgram.meshing.densities.load_densities`).
+    allow_folds : bool
+        Return a mesh that still has inverted faces after smoothing instead of raising.
+    max_faces : int
+        Refuse densities that ask for more faces (:mod:`vaultgram.meshing.guards`).
+
+    Raises
+    ------
+    VaultgramError
+        From any stage (invalid domain, a patch that is not 3- or 4-sided, bad densities, too many faces);
+        :class:`~vaultgram.errors.MeshFoldError` when the smoothed mesh has inverted faces (unless
+        ``allow_folds``).
+    """
+    with domain_frame(domain):
+        check_feature_spacing(domain, spacing)
+    dec = decompose(domain, spacing, rules_dir, timings=timings)
+    return mesh_decomposition(dec, target_length, smooth, densities, allow_folds, timings, max_faces)
