@@ -34,6 +34,7 @@ from vaultgram.topology.patches import (
     key_polyline,
     plan_faces,
 )
+from vaultgram.topology.reflex import reflex_chord
 from vaultgram.topology.statecache import by_content, per_state
 from vaultgram.topology.strips import register_strip_helpers
 from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE, DUAL, PATCH_CORNER, PLAN_EDGES
@@ -485,7 +486,8 @@ def vault_functions() -> Functions:
 def _register_corner_helpers(f: Functions) -> None:
     """The helpers of ``rules/corners.vgr`` (:mod:`vaultgram.topology.corners`): the regular valence
     of a boundary vertex by its angle, whether the plan is rectilinear, where a reflex corner's chord
-    ends, and where two chords cross."""
+    ends, and where two chords cross; and on any plan, the side a reflex corner's chord runs to
+    (:mod:`vaultgram.topology.reflex`)."""
     f.register("regular_valence", lambda theta: int(regular_valence(theta)), ("number",), "int")
     f.register("boundary_angle", corners.boundary_angle, ("node",), "float", uses_graph=True, local=False)
     f.register("rectilinear_plan", corners.rectilinear_plan, (), "bool", uses_graph=True, local=False)
@@ -493,3 +495,4 @@ def _register_corner_helpers(f: Functions) -> None:
     f.register("segments_cross", corners.segments_cross, ("vec2", "vec2", "vec2", "vec2"), "bool")
     f.register("segment_crossing", corners.segment_crossing, ("vec2", "vec2", "vec2", "vec2"), "vec2")
     f.register("neck_corner", corners.neck_corner, ("node", "vec2", "vec2"), "bool", uses_graph=True, local=False)
+    f.register("reflex_chord", reflex_chord, ("node", "node"), "edge", uses_graph=True, local=False)
