@@ -20,7 +20,7 @@ from vaultgram.engine.expressions import Functions
 from vaultgram.errors import RuleError
 from vaultgram.geometry.polygons import interior_angle, regular_valence, signed_area
 from vaultgram.geometry.polylines import arc_lengths, point_at_length
-from vaultgram.topology import corners
+from vaultgram.topology import corners, reflex
 from vaultgram.topology.lone_branch import register_lone_branch_helpers
 from vaultgram.topology.ogrid import register_o_grid_helpers
 from vaultgram.topology.patches import (
@@ -34,7 +34,6 @@ from vaultgram.topology.patches import (
     key_polyline,
     plan_faces,
 )
-from vaultgram.topology.reflex import reflex_chord
 from vaultgram.topology.statecache import by_content, per_state
 from vaultgram.topology.strips import register_strip_helpers
 from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE, DUAL, PATCH_CORNER, PLAN_EDGES
@@ -495,4 +494,9 @@ def _register_corner_helpers(f: Functions) -> None:
     f.register("segments_cross", corners.segments_cross, ("vec2", "vec2", "vec2", "vec2"), "bool")
     f.register("segment_crossing", corners.segment_crossing, ("vec2", "vec2", "vec2", "vec2"), "vec2")
     f.register("neck_corner", corners.neck_corner, ("node", "vec2", "vec2"), "bool", uses_graph=True, local=False)
-    f.register("reflex_chord", reflex_chord, ("node", "node"), "edge", uses_graph=True, local=False)
+    f.register("reflex_chord", reflex.reflex_chord, ("node", "node"), "edge", uses_graph=True, local=False)
+    f.register("reflex_side", reflex.reflex_side, ("node", "node"), "node", uses_graph=True, local=False)
+    f.register("reflex_cut", reflex.reflex_cut, ("node", "node"), "edge", uses_graph=True, local=False)
+    f.register("reflex_cut_index", reflex.reflex_cut_index, ("node", "node"), "int", uses_graph=True, local=False)
+    f.register("reflex_cut_at", reflex.reflex_cut_at, ("node",), "bool", uses_graph=True, local=False)
+    f.register("reflex_foot", reflex.reflex_foot, ("node", "node"), "node", uses_graph=True, local=False)

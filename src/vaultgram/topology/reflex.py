@@ -15,7 +15,7 @@ one face more (three: regular), the strip's corners are regular, and the one sin
 is the split's inner point: the index the corner gives up goes inside the plan.
 
 :func:`reflex_chord` picks, among the corner's quads and their sides a strip may cut and complete
-across (:func:`~vaultgram.topology.strips.strip_from_curve_end`), the chord whose worst angle is
+across (:func:`~vaultgram.topology.strips.strip_walk`), the chord whose worst angle is
 widest: the three patch angles at the corner after the split and the chord's two angles with the side
 it ends on. Where that worst angle is below :data:`MIN_ANGLE` the corner is left as it is (a sliver
 of a patch would cost more in the mesh's worst element than the singularity).
@@ -26,13 +26,23 @@ from __future__ import annotations
 import math
 import weakref
 
-from vaultgram.topology.corners import boundary_angle
+from vaultgram.topology.corners import _cache as _ring_cache
+from vaultgram.topology.corners import boundary_angle, graph_rings
 from vaultgram.topology.patches import half_edge_polyline
 from vaultgram.topology.statecache import per_state
-from vaultgram.topology.strips import _across, _halves, patch_sides, side_edge, strip_from_curve_end, strip_walk
-from vaultgram.topology.types import BOUNDARY_VERTEX, PATCH_CORNER
+from vaultgram.topology.strips import (
+    _across,
+    _halves,
+    _inside,
+    patch_sides,
+    side_edge,
+    strip_boundary_end,
+    strip_walk,
+)
+from vaultgram.topology.types import BOUNDARY, BOUNDARY_VERTEX, PATCH_CORNER
 
-__all__ = ["reflex_chord", "MIN_ANGLE", "MAX_POLE_ANGLE"]
+__all__ = ["reflex_chord", "reflex_side", "reflex_foot", "reflex_cut", "reflex_cut_index", "reflex_cut_at", "MIN_ANGLE",
+           "MAX_POLE_ANGLE"]
 
 #: Degrees: no chord whose worst angle (at the corner or where it meets the side) is narrower.
 MIN_ANGLE = 20.0
@@ -41,6 +51,11 @@ MIN_ANGLE = 20.0
 MAX_POLE_ANGLE = 160.0
 
 _STATE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> {state: {corner: choice}}
+
+
+def _ring_place(graph, r: int) -> tuple[int, int]:
+    """The ring of the boundary point ``r`` and its place along it (:func:`graph_rings`)."""
+    return _ring_cache(graph)["where"][r]
 
 
 def _direction(a, b) -> float:
@@ -53,7 +68,7 @@ def _ccw(start: float, end: float) -> float:
     return math.degrees(end - start) % 360.0
 
 
-def _side_tangent(graph, edge: int) -> float:
+def _edge_tangent(graph, edge: int) -> float:
     """The direction (radians) of a plan edge at its strip point (the middle, where the chord ends)."""
     before, mid, after = _halves(graph, edge)
     ahead = after[0] if len(after) else graph.get(graph.ends(edge)[1], "pos")
@@ -61,22 +76,48 @@ def _side_tangent(graph, edge: int) -> float:
     return _direction(back, ahead)
 
 
-def _angles(graph, found, k: int, j: int, edge: int, other: float) -> tuple[float, float]:
-    """For the chord from corner ``k`` of the quad ``found`` to the middle of ``edge``, its side from
-    corner ``k + j`` (``j`` 1 or 2): the worst angle (degrees: the two parts of the quad's angle at
-    the corner, ``other`` the angle of the corner's other patch, the chord's angles with the side)
-    and the angle at the corner of the triangle the chord cuts off."""
+def _ring_tangent(graph, w: int) -> float:
+    """The direction (radians) of the boundary at the boundary point ``w``, between its two
+    neighbours along the ring."""
+    a, b = (graph.other(e, w) for e in graph.incident(w, [BOUNDARY]))
+    return _direction(graph.get(a, "pos"), graph.get(b, "pos"))
+
+
+def _angles(graph, found, k: int, j: int, end, tangent: float, other: float) -> tuple[float, float]:
+    """For the chord from corner ``k`` of the quad ``found`` to the point ``end`` on its side from
+    corner ``k + j`` (``j`` 1 or 2), whose direction there is ``tangent`` (radians): the worst angle
+    (degrees: the two parts of the quad's angle at the corner, ``other`` the angle of the corner's
+    other patch, the chord's angles with the side) and the angle at the corner of the triangle the
+    chord cuts off."""
     pos, d_out, whole = _corner(graph, found, k)
-    d_chord = _direction(pos, _halves(graph, edge)[1])
+    d_chord = _direction(pos, end)
     first = _ccw(d_out, d_chord)  # between the leaving side and the chord
     if not 0.0 < first < whole:
         return -1.0, 360.0
-    meet = _ccw(_side_tangent(graph, edge), d_chord) % 180.0
+    meet = _ccw(tangent, d_chord) % 180.0
     return min(first, whole - first, other, meet, 180.0 - meet), first if j == 1 else whole - first
 
 
-def _choose(graph, r: int) -> tuple[int, int] | None:
-    """The (patch, edge) of the chord from the reflex corner ``r`` (:func:`reflex_chord`), or None."""
+def _targets(graph, patch: int, found, k: int, j: int) -> tuple | None:
+    """Where a chord from corner ``k`` of a quad may end on its side from corner ``k + j``: the middle
+    of that side's plan edge where a strip may cut it and carry on (``("edge", edge, point,
+    tangent)``), or the free boundary point nearest the middle of a boundary side where the chord
+    runs inside the quad (``("point", node, point, tangent)``); None where neither."""
+    r, y = found.corners[k], found.corners[(k + j) % 4]
+    edge = side_edge(graph, patch, y)
+    if edge >= 0:
+        ok = _strip_ends_well(graph, patch, r, edge)
+        return ("edge", edge, _halves(graph, edge)[1], _edge_tangent(graph, edge)) if ok else None
+    w = strip_boundary_end(graph, patch, y)
+    if w == y or not _inside(found, graph.get(r, "pos"), graph.get(w, "pos")):
+        return None
+    return "point", w, graph.get(w, "pos"), _ring_tangent(graph, w)
+
+
+def _choose(graph, r: int) -> tuple | None:
+    """The chord from the reflex corner ``r`` (see the module docstring): ``(patch, kind, target,
+    side)``, ``kind`` ``"edge"`` (``target`` the plan edge cut halfway) or ``"point"`` (a boundary
+    point), ``side`` the corner where the side it ends on starts; or None."""
     patches = sorted({graph.ends(e)[0] for e in graph.incident(r, [PATCH_CORNER])})
     found = [patch_sides(graph, p) for p in patches]
     if any(f is None for f in found):
@@ -89,25 +130,27 @@ def _choose(graph, r: int) -> tuple[int, int] | None:
         k = sides.corners.index(r)
         other = theta - _corner(graph, sides, k)[2]
         for j in (1, 2):
-            edge = side_edge(graph, p, sides.corners[(k + j) % 4])
-            if edge < 0:
+            target = _targets(graph, p, sides, k, j)
+            if target is None:
                 continue
-            worst, pole = _angles(graph, sides, k, j, edge, other)
-            if worst >= MIN_ANGLE and pole <= MAX_POLE_ANGLE and (best is None or worst > best[0]) \
-                    and _strip_ends_well(graph, p, r, edge):
-                best = (worst, p, edge)
+            worst, pole = _angles(graph, sides, k, j, target[2], target[3], other)
+            if worst >= MIN_ANGLE and pole <= MAX_POLE_ANGLE and (best is None or worst > best[0]):
+                best = (worst, p, target[0], target[1], sides.corners[(k + j) % 4])
     return None if best is None else best[1:]
 
 
 def _strip_ends_well(graph, patch: int, r: int, edge: int) -> bool:
-    """Whether the chord from ``r`` to the middle of ``edge`` runs inside the quad and the strip it
-    starts in the patch beyond completes (:func:`~vaultgram.topology.strips.strip_from_curve_end`)
-    without ending in a triangle at a boundary point: that point would gain a face, a boundary
-    singularity (rv_star_pattern's 215 degree vertex, the strip from its 256 degree corner)."""
-    if not strip_from_curve_end(graph, patch, r, edge):
+    """Whether the chord from ``r`` (a corner of the quad ``patch`` or a point of one of its sides) to
+    the middle of ``edge`` runs inside the quad and the strip it starts in the patch beyond completes
+    (:func:`~vaultgram.topology.strips.strip_walk`, as for Figure 8's split to a side, §4.2) without
+    ending in a triangle at a boundary point: that point would gain a face, a boundary singularity
+    (rv_star_pattern's 215 degree vertex, the strip from its 256 degree corner)."""
+    found, beyond = patch_sides(graph, patch), _across(graph, patch, edge)
+    if found is None or beyond is None or not _inside(found, graph.get(r, "pos"), _halves(graph, edge)[1]):
         return False
-    beyond = _across(graph, patch, edge)
     walk = strip_walk(graph, beyond[0], beyond[1], frozenset([patch]))
+    if walk is None:
+        return False
     ends = graph.node_type(walk.end) if walk.end is not None else None
     return ends is None or not graph.schema.is_subtype(ends, BOUNDARY_VERTEX) or len(
         patch_sides(graph, walk.patches[-1]).corners) == 4
@@ -125,12 +168,100 @@ def _corner(graph, found, k: int) -> tuple[tuple, float, float]:
     return pos, d_out, _ccw(d_out, _direction(pos, back))
 
 
-def reflex_chord(graph, patch: int, r: int) -> int:
-    """The plan edge to whose middle the chord from the reflex corner ``r`` runs in the quad
-    ``patch`` (a whole side of it away from ``r``), where this quad and side are the corner's best
-    chord (see the module docstring); -1 otherwise. Worked out once per corner and state."""
+def _chosen(graph, r: int) -> tuple | None:
+    """:func:`_choose`, worked out once per corner and state of the graph."""
     memo = per_state(_STATE, graph, lambda g: {})
     if r not in memo:
         memo[r] = _choose(graph, r)
-    choice = memo[r]
-    return choice[1] if choice is not None and choice[0] == patch else -1
+    return memo[r]
+
+
+def reflex_chord(graph, patch: int, r: int) -> int:
+    """The plan edge to whose middle the chord from the reflex corner ``r`` runs in the quad
+    ``patch`` (a whole side of it away from ``r``; a strip carries it on beyond), where this is the
+    corner's best chord (see the module docstring); -1 otherwise."""
+    choice = _chosen(graph, r)
+    return choice[2] if choice is not None and choice[:2] == (patch, "edge") else -1
+
+
+def reflex_side(graph, patch: int, r: int) -> int:
+    """The corner of the quad ``patch`` where the side starts on which the chord from the reflex
+    corner ``r`` ends, where this is the corner's best chord; ``r`` itself otherwise."""
+    choice = _chosen(graph, r)
+    return choice[3] if choice is not None and choice[0] == patch else r
+
+
+def reflex_foot(graph, patch: int, r: int) -> int:
+    """The boundary point (on a side of the quad ``patch`` away from ``r``) where the chord from the
+    reflex corner ``r`` ends, where this is the corner's best chord; ``r`` itself otherwise."""
+    choice = _chosen(graph, r)
+    return choice[2] if choice is not None and choice[:2] == (patch, "point") else r
+
+
+def _on_side(graph, r: int) -> tuple[int, int] | None:
+    """The Patch node with the boundary point ``r`` inside one of its sides, and that side's index:
+    found from the first patch corner before ``r`` along its ring (a patch's boundary side runs in
+    ring order, the domain on its left); None where ``r`` is a patch's corner or none is found."""
+    if graph.degree(r, [PATCH_CORNER]):
+        return None
+    _, nodes = graph_rings(graph)
+    ring, k = _ring_place(graph, r)
+    ids = nodes[ring]
+    a = next((ids[k - j] for j in range(1, len(ids)) if graph.degree(ids[k - j], [PATCH_CORNER])), None)
+    for q in sorted({graph.ends(e)[0] for e in graph.incident(a, [PATCH_CORNER])} if a is not None else ()):
+        found = patch_sides(graph, q)
+        if found is None or a not in found.corners:
+            continue
+        i = found.corners.index(a)
+        if any(u == r for _, u in found.sides[i]):
+            return q, i
+    return None
+
+
+def _cut(graph, r: int) -> tuple | None:
+    """The chord across the quad on whose side the reflex corner ``r`` lies (:func:`reflex_cut`):
+    ``(patch, side index, edge)``, or None."""
+    at = _on_side(graph, r)
+    if at is None or len(patch_sides(graph, at[0]).corners) != 4:
+        return None
+    patch, i = at
+    found = patch_sides(graph, patch)
+    edge = side_edge(graph, patch, found.corners[(i + 2) % 4])
+    if edge < 0 or not _strip_ends_well(graph, patch, r, edge):
+        return None
+    pos, mid = graph.get(r, "pos"), _halves(graph, edge)[1]
+    d_chord = _direction(pos, mid)
+    ahead = _ring_tangent(graph, r)
+    first = _ccw(ahead, d_chord)  # between the boundary ahead and the chord
+    meet = _ccw(_edge_tangent(graph, edge), d_chord) % 180.0
+    worst = min(first, boundary_angle(graph, r) - first, meet, 180.0 - meet)
+    return (patch, i, edge) if worst >= MIN_ANGLE else None
+
+
+def _cut_chosen(graph, r: int) -> tuple | None:
+    """:func:`_cut`, worked out once per corner and state of the graph."""
+    memo = per_state(_STATE, graph, lambda g: {})
+    if ("cut", r) not in memo:
+        memo[("cut", r)] = _cut(graph, r)
+    return memo[("cut", r)]
+
+
+def reflex_cut(graph, patch: int, r: int) -> int:
+    """Where the reflex corner ``r`` lies inside a side of the quad ``patch`` (the corner of no patch:
+    two faces where its angle asks for three), the plan edge opposite that side, to whose middle a
+    chord from ``r`` runs, carried on beyond as a strip; -1 where there is none (the chord would
+    leave the quad, its strip would not complete, an angle would be below :data:`MIN_ANGLE`)."""
+    cut = _cut_chosen(graph, r)
+    return cut[2] if cut is not None and cut[0] == patch else -1
+
+
+def reflex_cut_index(graph, patch: int, r: int) -> int:
+    """The index of the side of the quad ``patch`` inside which the reflex corner ``r`` lies, where
+    :func:`reflex_cut` has a chord for it; -1 otherwise."""
+    cut = _cut_chosen(graph, r)
+    return cut[1] if cut is not None and cut[0] == patch else -1
+
+
+def reflex_cut_at(graph, r: int) -> bool:
+    """Whether :func:`reflex_cut` has a chord for the reflex corner ``r`` in some quad."""
+    return _cut_chosen(graph, r) is not None
