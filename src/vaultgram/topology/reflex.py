@@ -1,24 +1,29 @@
-"""Reflex corners of any plan given a patch of their own: the helper of ``rules/patching.vgr``'s
-``split_quad_at_reflex_corner_to_side`` (issue 12, item 2).
+"""Reflex corners of any plan given a patch of their own: the helpers of ``rules/corners.vgr``'s
+``reflex_corner_patches`` (issue 12, item 2; paper §3.1 and its conclusion).
 
 The medial axis sends no branch to a reflex corner (§3.1). Where a rebranch arrives there the corner
 is the corner of two patches, which share its 225-315 degrees with one face each: valence 3 where its
 angle asks for 4 (a boundary singularity, the distortion the paper's conclusion names, after Rigby
 [11] and Fogg et al. [10]). On a rectilinear plan the chords of ``rules/corners.vgr`` avoid it; on
 any other plan one of the corner's quads is split by a chord from the corner to the middle of one of
-its two sides away from the corner (a branch, rebranch or diagonal): a triangle with the corner as
-its marked pole, and a quad. The chord's far end is a T-junction on the patch beyond, carried across
-the layout as a strip of quads (``rules/strips.vgr``) to the boundary or into a triangle. The
-triangle is meshed as three quads meeting at an inner point of valence 3 (the mesher splits a
-triangle whose marked pole is a boundary point, :mod:`vaultgram.meshing.splits`), so the corner gets
-one face more (three: regular), the strip's corners are regular, and the one singular vertex added
-is the split's inner point: the index the corner gives up goes inside the plan.
+its two sides away from the corner: a triangle with the corner as its marked pole, and a quad. On a
+branch, rebranch or diagonal the chord's far end is a T-junction on the patch beyond, carried across
+the layout as a strip of quads (``rules/strips.vgr``) to the boundary or into a triangle
+(``split_quad_at_reflex_corner_to_side``, :func:`reflex_chord`); on a boundary side it ends at the
+free boundary point nearest the middle (``_to_boundary``, :func:`reflex_foot`). The triangle is
+meshed as three quads meeting at an inner point of valence 3 (the mesher splits a triangle whose
+marked pole is a boundary point, :mod:`vaultgram.meshing.splits`), so the corner gets one face more
+(three: regular), the strip's corners are regular, and the one singular vertex added is the split's
+inner point: the index the corner gives up goes inside the plan. A reflex corner inside a patch's
+side (the corner of no patch) is first made the corner of two quads by a chord across its quad, a
+strip too (``cut_quad_at_reflex_corner``, :func:`reflex_cut`).
 
-:func:`reflex_chord` picks, among the corner's quads and their sides a strip may cut and complete
-across (:func:`~vaultgram.topology.strips.strip_walk`), the chord whose worst angle is
-widest: the three patch angles at the corner after the split and the chord's two angles with the side
-it ends on. Where that worst angle is below :data:`MIN_ANGLE` the corner is left as it is (a sliver
-of a patch would cost more in the mesh's worst element than the singularity).
+:func:`reflex_chord` and :func:`reflex_foot` pick, among the corner's quads and their sides, where the
+chord runs inside the quad and its strip completes (:func:`~vaultgram.topology.strips.strip_walk`)
+without ending in a triangle at a point the split would change (:func:`_strip_ends_well`), the chord
+whose worst angle is widest: the three patch angles at the corner after the split and the chord's two
+angles with the side it ends on. Where that worst angle is below :data:`MIN_ANGLE` the corner is left
+as it is (a sliver of a patch would cost more in the mesh's worst element than the singularity).
 """
 
 from __future__ import annotations
