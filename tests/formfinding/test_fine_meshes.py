@@ -51,11 +51,8 @@ def test_without_the_lp_a_hopeless_iteration_gives_up_early():
 def test_lobes_at_ten_thousand_faces_unfold_at_the_notches(architecture_dir):
     """The multiple-lobes plan (every boundary supported) has no compression-only reciprocal as meshed,
     and equal densities fold about 40 faces at the notches between its lobes (the grid lines along the
-    boundary pull straight over the reflex corners): the densities become unequal there until nothing
-    is folded; reciprocal at once, compression only. Since the notches are the corners of three
-    patches (rules/corners.vgr) the mesh at this target length has 11,600 faces (6,400 before) and a
-    third of the unequal densities lie along grid lines running from the notches across the lobes,
-    farther than 15 edges from them (all did before)."""
+    boundary pull straight over the reflex corners): the densities become unequal there, and only
+    there, until nothing is folded; reciprocal at once, compression only."""
     from scipy.spatial import cKDTree
 
     from vaultgram.geometry.meshes import face_areas
@@ -76,4 +73,4 @@ def test_lobes_at_ten_thousand_faces_unfold_at_the_notches(architecture_dir):
     unequal = form.active & ((q > 2) | (q < 0.5))
     assert 10 < unequal.sum() < 0.05 * form.active.sum()
     distance, _ = cKDTree(reflex).query(form.xy[form.edges[unequal]].mean(axis=1))
-    assert np.mean(distance < 15 * np.median(form.edge_lengths())) > 0.6
+    assert distance.max() < 15 * np.median(form.edge_lengths())
