@@ -196,13 +196,15 @@ def test_an_unknown_relax_mode_is_named():
 
 
 def test_a_rise_without_vertical_equilibrium_gives_way_to_the_next(monkeypatch):
-    """multiple_lobes: vertical equilibrium does not converge for twenty times the shorter side (the
-    self-weight grows with the height faster than the scale can follow), put first in RISES here
+    """multiple_lobes: vertical equilibrium does not converge for a thousand times the shorter side
+    (the self-weight grows with the height faster than the scale can follow), put first in RISES here
     (the plan's meshes converge at every rise of RISES), so the vault gets the next rise (its
-    summary's zmax); an explicit zmax is never replaced."""
+    summary's zmax); an explicit zmax is never replaced. (Twenty times did not converge on main
+    72f01a2; since rules/corners.vgr cuts the quad across the notch between the left lobes, session
+    15, 20, 40, 100 and 300 times converge, 1000 does not.)"""
     import vaultgram.pipeline
 
-    rises = (20.0, *RISES)
+    rises = (1000.0, *RISES)
     monkeypatch.setattr(vaultgram.pipeline, "RISES", rises)
     domain = load_domain(shared_plan("multiple_lobes"))
     mesh = mesh_domain(domain)

@@ -25,7 +25,8 @@ def test_the_program_runs_topology_then_the_patch_step_then_patching():
     strategies = [i.strategy for i in program]
     first_patch = strategies.index("patch nodes")
     assert set(strategies[:first_patch]) == {"topology", "curve_topology", "reflex_corners"}
-    assert set(strategies[first_patch + 1:]) == {"curve_patching", "patching", "strip"}  # strip: run by both
+    # strip: run by both; reflex_corner_patches: run by patching (rules/corners.vgr)
+    assert set(strategies[first_patch + 1:]) == {"curve_patching", "patching", "strip", "reflex_corner_patches"}
 
 
 def test_no_answers_is_the_default_decomposition():

@@ -70,15 +70,20 @@ def forced_boundary_singular(layout, counts=None) -> int:
     vertex has index ``2 - faces`` with ``faces`` in its regular range
     (:func:`vaultgram.meshing.quality.regular_boundary_faces`); each boundary singularity moves the sum by at
     least one, so at least ``distance(4 chi - I - F, [sum of lows, sum of highs])`` are forced.
+    A triangle meshed as three quads (``counts`` given: :func:`~vaultgram.meshing.splits.split_patterns`)
+    gives its pole one face and adds an inner vertex of valence 3 (index 1): the same for an inner
+    pole, but a pole on the boundary (a reflex corner's triangle, rules/corners.vgr) takes that face
+    on the ring.
     """
     dec = layout.decomposition
     disc = dec.disc
     corners = {}
-    for pat in layout.patterns:
+    split = split_patterns(layout, counts) if counts is not None else frozenset()
+    for i, pat in enumerate(layout.patterns):
         for k, n in enumerate(pat.corners):
-            corners[n] = corners.get(n, 0) + (pat.pole != k)
+            corners[n] = corners.get(n, 0) + (pat.pole != k or i in split)
     on_ring = {n for n in corners if 0 <= n < disc.n_points and disc.ring[n] >= 0}
-    interior = sum(4 - c for n, c in corners.items() if n not in on_ring)
+    interior = sum(4 - c for n, c in corners.items() if n not in on_ring) + len(split)
     feature = {n for n in on_ring if is_feature_node(dec, n)}
     given = sum(2 - corners[n] for n in feature)
     ring_pts = np.array([p for p in np.flatnonzero(disc.ring >= 0) if p not in feature], dtype=np.int64)

@@ -53,7 +53,9 @@ MIN_PASS = ["armadillo_vault", "armadillo_vault_plan", "british_museum_map", "hi
             "fig7_curves"]
 LAYOUT = "skewed quads all over (median scaled Jacobian below 0.9): the patch layout, not smoothing"
 MEAN_MISSES = {
-    "mexico_airport": LAYOUT, "multiple_lobes": LAYOUT, "rv_star_pattern": LAYOUT,
+    # rv_star_pattern reaches 0.903 since its reflex corners are the corners of three patches
+    # (rules/corners.vgr, split_quad_at_reflex_corner_to_boundary: 0.887 before)
+    "mexico_airport": LAYOUT, "multiple_lobes": LAYOUT,
     "fig7_curves": LAYOUT,
     "two_holes_five_points": LAYOUT, "square_point_loads": LAYOUT,
 }

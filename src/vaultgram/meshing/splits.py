@@ -24,7 +24,7 @@ import numpy as np
 
 from vaultgram.geometry.polygons import regular_valence
 from vaultgram.meshing.fans import FAN_FLOOR
-from vaultgram.meshing.layout import Layout, PatchPattern, _outside_angle, is_feature_node
+from vaultgram.meshing.layout import Layout, PatchPattern, _is_boundary_node, _outside_angle, is_feature_node
 
 __all__ = ["fan_estimate", "split_patterns", "split_counts", "split_points"]
 
@@ -62,7 +62,20 @@ def _thin(layout: Layout, pat: PatchPattern, side_count: np.ndarray) -> bool:
     angle = _pole_angle(layout, pat)
     if angle > MAX_SPLIT_ANGLE or math.sin(math.radians(angle)) < FAN_FLOOR:
         return False
-    return fan_estimate(angle, int(side_count[pat.sides[(pat.pole + 1) % 3][0]])) < FAN_FLOOR
+    return (fan_estimate(angle, int(side_count[pat.sides[(pat.pole + 1) % 3][0]])) < FAN_FLOOR
+            or _boundary_pole(layout, pat))
+
+
+def _boundary_pole(layout: Layout, pat: PatchPattern) -> bool:
+    """A triangle whose pole a rule marked on the boundary, not at a point feature: a reflex corner
+    given a patch of its own (``split_quad_at_reflex_corner_to_side``, rules/corners.vgr). A fan of
+    ``n >= 2`` triangles there would be a boundary singularity whatever its shape (the corner is
+    regular with one face in this patch), so the patch is split into three quads like a thin fan."""
+    dec = layout.decomposition
+    node = pat.corners[pat.pole]
+    patch = dec.patches[pat.patch]
+    return (dec.marked_pole(patch) == node and _is_boundary_node(dec.graph, node)
+            and not is_feature_node(dec, node))
 
 
 def _inner_point_feature(layout: Layout, node: int) -> bool:

@@ -20,7 +20,7 @@ from vaultgram.engine.expressions import Functions
 from vaultgram.errors import RuleError
 from vaultgram.geometry.polygons import interior_angle, regular_valence, signed_area
 from vaultgram.geometry.polylines import arc_lengths, point_at_length
-from vaultgram.topology import corners
+from vaultgram.topology import corners, reflex
 from vaultgram.topology.lone_branch import register_lone_branch_helpers
 from vaultgram.topology.ogrid import register_o_grid_helpers
 from vaultgram.topology.patches import (
@@ -485,7 +485,8 @@ def vault_functions() -> Functions:
 def _register_corner_helpers(f: Functions) -> None:
     """The helpers of ``rules/corners.vgr`` (:mod:`vaultgram.topology.corners`): the regular valence
     of a boundary vertex by its angle, whether the plan is rectilinear, where a reflex corner's chord
-    ends, and where two chords cross."""
+    ends, and where two chords cross; and on any plan, the side a reflex corner's chord runs to
+    (:mod:`vaultgram.topology.reflex`)."""
     f.register("regular_valence", lambda theta: int(regular_valence(theta)), ("number",), "int")
     f.register("boundary_angle", corners.boundary_angle, ("node",), "float", uses_graph=True, local=False)
     f.register("rectilinear_plan", corners.rectilinear_plan, (), "bool", uses_graph=True, local=False)
@@ -493,3 +494,9 @@ def _register_corner_helpers(f: Functions) -> None:
     f.register("segments_cross", corners.segments_cross, ("vec2", "vec2", "vec2", "vec2"), "bool")
     f.register("segment_crossing", corners.segment_crossing, ("vec2", "vec2", "vec2", "vec2"), "vec2")
     f.register("neck_corner", corners.neck_corner, ("node", "vec2", "vec2"), "bool", uses_graph=True, local=False)
+    f.register("reflex_chord", reflex.reflex_chord, ("node", "node"), "edge", uses_graph=True, local=False)
+    f.register("reflex_side", reflex.reflex_side, ("node", "node"), "node", uses_graph=True, local=False)
+    f.register("reflex_cut", reflex.reflex_cut, ("node", "node"), "edge", uses_graph=True, local=False)
+    f.register("reflex_cut_index", reflex.reflex_cut_index, ("node", "node"), "int", uses_graph=True, local=False)
+    f.register("reflex_cut_at", reflex.reflex_cut_at, ("node",), "bool", uses_graph=True, local=False)
+    f.register("reflex_foot", reflex.reflex_foot, ("node", "node"), "node", uses_graph=True, local=False)

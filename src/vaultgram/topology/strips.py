@@ -193,7 +193,16 @@ def strip_boundary_end(graph, patch: int, corner: int) -> int:
     """The point where a strip ends on a boundary side of a Patch node (the side from ``corner``, all
     boundary pieces): the free boundary point nearest its middle by arc length (no patch's corner, no
     feature, no polygon corner), or ``corner`` itself where there is none or the side is not on the
-    boundary."""
+    boundary. Once per state of the graph (``end_strip_at_boundary`` asks it for every boundary point
+    it tries as the end)."""
+    memo = _memo(graph)
+    if ("end", patch, corner) not in memo:
+        memo[("end", patch, corner)] = _boundary_end(graph, patch, corner)
+    return memo[("end", patch, corner)]
+
+
+def _boundary_end(graph, patch: int, corner: int) -> int:
+    """:func:`strip_boundary_end`, worked out."""
     found = patch_sides(graph, patch)
     if found is None or corner not in found.corners:
         return corner

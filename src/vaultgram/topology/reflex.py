@@ -1,0 +1,304 @@
+"""Reflex corners of any plan given a patch of their own: the helpers of ``rules/corners.vgr``'s
+``reflex_corner_patches`` (issue 12, item 2; paper §3.1 and its conclusion).
+
+The medial axis sends no branch to a reflex corner (§3.1). Where a rebranch arrives there the corner
+is the corner of two patches, which share its 225-315 degrees with one face each: valence 3 where its
+angle asks for 4 (a boundary singularity, the distortion the paper's conclusion names, after Rigby
+[11] and Fogg et al. [10]). On a rectilinear plan the chords of ``rules/corners.vgr`` avoid it; on
+any other plan one of the corner's quads is split by a chord from the corner to the middle of one of
+its two sides away from the corner: a triangle with the corner as its marked pole, and a quad. On a
+branch, rebranch or diagonal the chord's far end is a T-junction on the patch beyond, carried across
+the layout as a strip of quads (``rules/strips.vgr``) to the boundary or into a triangle
+(``split_quad_at_reflex_corner_to_side``, :func:`reflex_chord`); on a boundary side it ends at the
+free boundary point nearest the middle (``_to_boundary``, :func:`reflex_foot`). The triangle is
+meshed as three quads meeting at an inner point of valence 3 (the mesher splits a triangle whose
+marked pole is a boundary point, :mod:`vaultgram.meshing.splits`), so the corner gets one face more
+(three: regular), the strip's corners are regular, and the one singular vertex added is the split's
+inner point: the index the corner gives up goes inside the plan. A reflex corner inside a patch's
+side (the corner of no patch) is first made the corner of two quads by a chord across its quad, a
+strip too (``cut_quad_at_reflex_corner``, :func:`reflex_cut`).
+
+:func:`reflex_chord` and :func:`reflex_foot` pick, among the corner's quads and their sides, where the
+chord runs inside the quad and its strip completes (:func:`~vaultgram.topology.strips.strip_walk`)
+without ending in a triangle at a point the split would change (:func:`_strip_ends_well`), the chord
+whose worst angle is widest: the three patch angles at the corner after the split and the chord's two
+angles with the side it ends on. Where that worst angle is below :data:`MIN_ANGLE` the corner is left
+as it is (a sliver of a patch would cost more in the mesh's worst element than the singularity).
+"""
+
+from __future__ import annotations
+
+import math
+import weakref
+
+from vaultgram.geometry.polylines import arc_lengths
+from vaultgram.topology.corners import _cache as _ring_cache
+from vaultgram.topology.corners import boundary_angle, graph_rings
+from vaultgram.topology.patches import half_edge_polyline
+from vaultgram.topology.statecache import per_state
+from vaultgram.topology.strips import (
+    _across,
+    _halves,
+    _inside,
+    patch_sides,
+    side_edge,
+    strip_boundary_end,
+    strip_walk,
+)
+from vaultgram.topology.types import BOUNDARY, BOUNDARY_VERTEX, CURVE_POINT, FEATURE_POINT, PATCH_CORNER
+
+__all__ = ["reflex_chord", "reflex_side", "reflex_foot", "reflex_cut", "reflex_cut_index", "reflex_cut_at", "MIN_ANGLE",
+           "MAX_POLE_ANGLE", "MAX_RATIO"]
+
+#: The node types at which a strip may not end in a triangle (:func:`_strip_ends_well`).
+KEPT_ENDS = (BOUNDARY_VERTEX, FEATURE_POINT, CURVE_POINT)
+#: Degrees: no chord whose worst angle (at the corner or where it meets the side) is narrower.
+MIN_ANGLE = 30.0
+#: The lengths of the sides a chord joins in one edge group may differ by this factor at most.
+MAX_RATIO = 2.5
+#: Degrees: the triangle's angle at the corner must allow the three-quad split
+#: (:data:`vaultgram.meshing.splits.MAX_SPLIT_ANGLE`).
+MAX_POLE_ANGLE = 160.0
+
+_STATE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> {state: {corner: choice}}
+
+
+def _ring_place(graph, r: int) -> tuple[int, int]:
+    """The ring of the boundary point ``r`` and its place along it (:func:`graph_rings`)."""
+    return _ring_cache(graph)["where"][r]
+
+
+def _direction(a, b) -> float:
+    """The direction (radians) from point ``a`` to point ``b``."""
+    return math.atan2(float(b[1]) - float(a[1]), float(b[0]) - float(a[0]))
+
+
+def _ccw(start: float, end: float) -> float:
+    """Degrees turning counter-clockwise from direction ``start`` to ``end``, in [0, 360)."""
+    return math.degrees(end - start) % 360.0
+
+
+def _edge_tangent(graph, edge: int) -> float:
+    """The direction (radians) of a plan edge at its strip point (the middle, where the chord ends)."""
+    before, mid, after = _halves(graph, edge)
+    ahead = after[0] if len(after) else graph.get(graph.ends(edge)[1], "pos")
+    back = before[-1] if len(before) else graph.get(graph.ends(edge)[0], "pos")
+    return _direction(back, ahead)
+
+
+def _ring_tangent(graph, w: int) -> float:
+    """The direction (radians) of the boundary at the boundary point ``w``, between its two
+    neighbours along the ring."""
+    a, b = (graph.other(e, w) for e in graph.incident(w, [BOUNDARY]))
+    return _direction(graph.get(a, "pos"), graph.get(b, "pos"))
+
+
+def _angles(graph, found, k: int, j: int, end, tangent: float, other: float) -> tuple[float, float]:
+    """For the chord from corner ``k`` of the quad ``found`` to the point ``end`` on its side from
+    corner ``k + j`` (``j`` 1 or 2), whose direction there is ``tangent`` (radians): the worst angle
+    (degrees: the two parts of the quad's angle at the corner, ``other`` the angle of the corner's
+    other patch, the chord's angles with the side) and the angle at the corner of the triangle the
+    chord cuts off."""
+    pos, d_out, whole = _corner(graph, found, k)
+    d_chord = _direction(pos, end)
+    first = _ccw(d_out, d_chord)  # between the leaving side and the chord
+    if not 0.0 < first < whole:
+        return -1.0, 360.0
+    meet = _ccw(tangent, d_chord) % 180.0
+    return min(first, whole - first, other, meet, 180.0 - meet), first if j == 1 else whole - first
+
+
+def _targets(graph, patch: int, found, k: int, j: int) -> tuple | None:
+    """Where a chord from corner ``k`` of a quad may end on its side from corner ``k + j``: the middle
+    of that side's plan edge where a strip may cut it and carry on (``("edge", edge, point,
+    tangent)``), or the free boundary point nearest the middle of a boundary side where the chord
+    runs inside the quad (``("point", node, point, tangent)``); None where neither."""
+    r, y = found.corners[k], found.corners[(k + j) % 4]
+    edge = side_edge(graph, patch, y)
+    if edge >= 0:
+        ok = _strip_ends_well(graph, patch, r, edge)
+        return ("edge", edge, _halves(graph, edge)[1], _edge_tangent(graph, edge)) if ok else None
+    w = strip_boundary_end(graph, patch, y)
+    if w == y or not _inside(found, graph.get(r, "pos"), graph.get(w, "pos")):
+        return None
+    return "point", w, graph.get(w, "pos"), _ring_tangent(graph, w)
+
+
+def _choose(graph, r: int) -> tuple | None:
+    """The chord from the reflex corner ``r`` (see the module docstring): ``(patch, kind, target,
+    side)``, ``kind`` ``"edge"`` (``target`` the plan edge cut halfway) or ``"point"`` (a boundary
+    point), ``side`` the corner where the side it ends on starts; or None."""
+    patches = sorted({graph.ends(e)[0] for e in graph.incident(r, [PATCH_CORNER])})
+    found = [patch_sides(graph, p) for p in patches]
+    if any(f is None for f in found):
+        return None
+    theta = boundary_angle(graph, r)
+    best = None
+    for p, sides in zip(patches, found):
+        if len(sides.corners) != 4:
+            continue
+        k = sides.corners.index(r)
+        other = theta - _corner(graph, sides, k)[2]
+        for j in (1, 2):
+            target = _targets(graph, p, sides, k, j)
+            if target is None:
+                continue
+            worst, pole = _angles(graph, sides, k, j, target[2], target[3], other)
+            if worst >= MIN_ANGLE and pole <= MAX_POLE_ANGLE and (best is None or worst > best[0]) \
+                    and _even_group(graph, p, sides, k, j, target[2]):
+                best = (worst, p, target[0], target[1], sides.corners[(k + j) % 4])
+    return None if best is None else best[1:]
+
+
+def _strip_ends_well(graph, patch: int, r: int, edge: int) -> bool:
+    """Whether the chord from ``r`` (a corner of the quad ``patch`` or a point of one of its sides) to
+    the middle of ``edge`` runs inside the quad and the strip it starts in the patch beyond completes
+    (:func:`~vaultgram.topology.strips.strip_walk`, as for Figure 8's split to a side, §4.2) without
+    ending in a triangle at a point the split would change: a boundary point gains a face, a boundary
+    singularity (rv_star_pattern's 215 degree vertex, the strip from its 256 degree corner); a point
+    feature's fan carries its load (§4.1: a random plan's worst quad went from 0.31 to 0.20 there);
+    a curve is a cut the layout keeps (§4.2)."""
+    found, beyond = patch_sides(graph, patch), _across(graph, patch, edge)
+    if found is None or beyond is None or not _inside(found, graph.get(r, "pos"), _halves(graph, edge)[1]):
+        return False
+    walk = strip_walk(graph, beyond[0], beyond[1], frozenset([patch]))
+    if walk is None:
+        return False
+    if walk.end is None or len(patch_sides(graph, walk.patches[-1]).corners) == 4:
+        return True
+    kind = graph.node_type(walk.end)
+    return not (graph.get(walk.end, "feature") or any(graph.schema.is_subtype(kind, t) for t in KEPT_ENDS))
+
+
+def _side_length(graph, side) -> float:
+    """The length of a patch side (its half-edges' polylines)."""
+    return sum(float(arc_lengths(half_edge_polyline(graph, e, u))[-1]) for e, u in side)
+
+
+def _even_group(graph, patch: int, found, k: int, j: int, end) -> bool:
+    """Whether the chord from corner ``k`` to ``end`` leaves its edge group even: the triangle's two
+    sides at the corner (its pole) are one group (Figure 3, §3.2), and the side along the quad's
+    side from the corner is in one group with the opposite side of the patch beyond it. Where these
+    lengths differ by more than :data:`MAX_RATIO`, the count the longest needs over-refines the
+    shortest: multiple_lobes' notch corners sit at fan-shaped patches (a side of 0.7 opposite one of
+    4.7), and chords of 5.7 beside them doubled the mesh (2338 faces for 1110) with slivers of
+    0.05 x 0.17 that made the tessellation refine to 7150 voussoirs from 974."""
+    side = found.sides[k] if j == 1 else found.sides[k - 1]
+    lengths = [math.dist(graph.get(found.corners[k], "pos"), end), _side_length(graph, side)]
+    if len(side) == 1:
+        beyond = _across(graph, patch, side[0][0])
+        sides = patch_sides(graph, beyond[0]) if beyond else None
+        if sides is not None and len(sides.corners) == 4:
+            lengths.append(_side_length(graph, sides.sides[(beyond[1] + 2) % 4]))
+    return max(lengths) <= MAX_RATIO * min(lengths)
+
+
+def _corner(graph, found, k: int) -> tuple[tuple, float, float]:
+    """A patch's corner ``k``: its position, the direction (radians) of the side leaving it and the
+    patch's interior angle there (degrees), between the first steps of its two sides."""
+    pos = graph.get(found.corners[k], "pos")
+    e, u = found.sides[k][0]
+    out = half_edge_polyline(graph, e, u)[1]  # the first step along the side leaving the corner
+    e, u = found.sides[k - 1][-1]
+    back = half_edge_polyline(graph, e, u)[-2]  # the last step of the side arriving there, reversed
+    d_out = _direction(pos, out)
+    return pos, d_out, _ccw(d_out, _direction(pos, back))
+
+
+def _chosen(graph, r: int) -> tuple | None:
+    """:func:`_choose`, worked out once per corner and state of the graph."""
+    memo = per_state(_STATE, graph, lambda g: {})
+    if r not in memo:
+        memo[r] = _choose(graph, r)
+    return memo[r]
+
+
+def reflex_chord(graph, patch: int, r: int) -> int:
+    """The plan edge to whose middle the chord from the reflex corner ``r`` runs in the quad
+    ``patch`` (a whole side of it away from ``r``; a strip carries it on beyond), where this is the
+    corner's best chord (see the module docstring); -1 otherwise."""
+    choice = _chosen(graph, r)
+    return choice[2] if choice is not None and choice[:2] == (patch, "edge") else -1
+
+
+def reflex_side(graph, patch: int, r: int) -> int:
+    """The corner of the quad ``patch`` where the side starts on which the chord from the reflex
+    corner ``r`` ends, where this is the corner's best chord; ``r`` itself otherwise."""
+    choice = _chosen(graph, r)
+    return choice[3] if choice is not None and choice[0] == patch else r
+
+
+def reflex_foot(graph, patch: int, r: int) -> int:
+    """The boundary point (on a side of the quad ``patch`` away from ``r``) where the chord from the
+    reflex corner ``r`` ends, where this is the corner's best chord; ``r`` itself otherwise."""
+    choice = _chosen(graph, r)
+    return choice[2] if choice is not None and choice[:2] == (patch, "point") else r
+
+
+def _on_side(graph, r: int) -> tuple[int, int] | None:
+    """The Patch node with the boundary point ``r`` inside one of its sides, and that side's index:
+    found from the first patch corner before ``r`` along its ring (a patch's boundary side runs in
+    ring order, the domain on its left); None where ``r`` is a patch's corner or none is found."""
+    if graph.degree(r, [PATCH_CORNER]):
+        return None
+    _, nodes = graph_rings(graph)
+    ring, k = _ring_place(graph, r)
+    ids = nodes[ring]
+    a = next((ids[k - j] for j in range(1, len(ids)) if graph.degree(ids[k - j], [PATCH_CORNER])), None)
+    for q in sorted({graph.ends(e)[0] for e in graph.incident(a, [PATCH_CORNER])} if a is not None else ()):
+        found = patch_sides(graph, q)
+        if found is None or a not in found.corners:
+            continue
+        i = found.corners.index(a)
+        if any(u == r for _, u in found.sides[i]):
+            return q, i
+    return None
+
+
+def _cut(graph, r: int) -> tuple | None:
+    """The chord across the quad on whose side the reflex corner ``r`` lies (:func:`reflex_cut`):
+    ``(patch, side index, edge)``, or None."""
+    at = _on_side(graph, r)
+    if at is None or len(patch_sides(graph, at[0]).corners) != 4:
+        return None
+    patch, i = at
+    found = patch_sides(graph, patch)
+    edge = side_edge(graph, patch, found.corners[(i + 2) % 4])
+    if edge < 0 or not _strip_ends_well(graph, patch, r, edge):
+        return None
+    pos, mid = graph.get(r, "pos"), _halves(graph, edge)[1]
+    d_chord = _direction(pos, mid)
+    ahead = _ring_tangent(graph, r)
+    first = _ccw(ahead, d_chord)  # between the boundary ahead and the chord
+    meet = _ccw(_edge_tangent(graph, edge), d_chord) % 180.0
+    worst = min(first, boundary_angle(graph, r) - first, meet, 180.0 - meet)
+    return (patch, i, edge) if worst >= MIN_ANGLE else None
+
+
+def _cut_chosen(graph, r: int) -> tuple | None:
+    """:func:`_cut`, worked out once per corner and state of the graph."""
+    memo = per_state(_STATE, graph, lambda g: {})
+    if ("cut", r) not in memo:
+        memo[("cut", r)] = _cut(graph, r)
+    return memo[("cut", r)]
+
+
+def reflex_cut(graph, patch: int, r: int) -> int:
+    """Where the reflex corner ``r`` lies inside a side of the quad ``patch`` (the corner of no patch:
+    two faces where its angle asks for three), the plan edge opposite that side, to whose middle a
+    chord from ``r`` runs, carried on beyond as a strip; -1 where there is none (the chord would
+    leave the quad, its strip would not complete, an angle would be below :data:`MIN_ANGLE`)."""
+    cut = _cut_chosen(graph, r)
+    return cut[2] if cut is not None and cut[0] == patch else -1
+
+
+def reflex_cut_index(graph, patch: int, r: int) -> int:
+    """The index of the side of the quad ``patch`` inside which the reflex corner ``r`` lies, where
+    :func:`reflex_cut` has a chord for it; -1 otherwise."""
+    cut = _cut_chosen(graph, r)
+    return cut[1] if cut is not None and cut[0] == patch else -1
+
+
+def reflex_cut_at(graph, r: int) -> bool:
+    """Whether :func:`reflex_cut` has a chord for the reflex corner ``r`` in some quad."""
+    return _cut_chosen(graph, r) is not None
