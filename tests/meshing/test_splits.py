@@ -89,15 +89,16 @@ def test_a_designers_odd_count_keeps_the_fan():
                    for k in split_patterns(layout, designed))
 
 
-# Draw 187 of benchmarks/reliability.py's fixed plans (seed 17, spacing 0.02): a pentagon with a triangular
-# hole and two points. (Draw 70, the case before, no longer folds since a chamfer's softer corner is a
-# smooth boundary point.)
-FALLS_BACK = {"outer": [[4.387912809451864, 2.397127693021015], [-1.4179463146097309, 7.541860198602797],
-                        [-6.836503760292386, 0.8820968720148556], [-4.281799453724895, -9.036934958163702],
-                        [7.211597785510813, -6.808260006142418]],
-              "holes": [[[-1.3818274721626378, -0.5801046242186727], [-2.7043312437989444, -1.34365253277719],
-                         [-2.7043312437989453, 0.18344328433984425]]],
-              "points": [[3.4859117201476373, 0.07941304259614945], [-4.374121499453109, 3.9085265520848274]]}
+# A random plan of benchmarks/reliability.py's kind (seed 17, draws 200-700): a nonagon with a square hole.
+# (The cases before, draws 70 and 187, no longer fold since a chamfer's softer end is a smooth boundary
+# point and a reflex corner the corner of three patches.)
+FALLS_BACK = {"outer": [[5.605092302580799, 1.9407831051030058], [5.135623206553726, 8.580522960770331],
+                        [-1.2062392118930707, 7.531987259628235], [-4.738904835280627, 4.105171809760683],
+                        [-8.49894809530069, 0.13372087864196996], [-6.386384444376759, -5.1898134837493135],
+                        [-1.2173097609577725, -6.320564160542736], [4.114149196782514, -7.392094336640449],
+                        [7.4051597309074975, -2.8279638688394297]],
+              "holes": [[[1.4343637820390653, 1.5041693597366859], [-0.8302876285292812, -0.7604820508316608],
+                         [-3.094939039097628, 1.5041693597366856], [-0.8302876285292817, 3.7688207703050325]]]}
 
 
 def test_a_split_that_folds_falls_back_to_the_fans():
