@@ -189,8 +189,9 @@ def chord_deviation(poly: np.ndarray, samples: np.ndarray) -> float:
 
 def _share_counts(lengths: np.ndarray, n: int) -> np.ndarray:
     """``n`` subdivisions shared among pieces in proportion to their lengths, at least one each, by
-    rounding the pieces' cumulative ends: the sample at each break is the nearest to where a uniform
-    subdivision of the whole polyline would put it, so every sample stays within half a subdivision
+    rounding the pieces' cumulative ends (§3.2: a side's subdivisions, fixed by its edge group, placed
+    along it): the sample at each break is the nearest to where a uniform subdivision of the whole
+    polyline would put it, so every sample stays within half a subdivision
     (where no piece is held at its one) of its uniform arc-length place.
 
     Why cumulative: rounding each piece on its own (largest remainders) lets the errors add up along a
