@@ -83,15 +83,18 @@ def _reflex_corners(domain, origin) -> np.ndarray:
     return outer[np.degrees(np.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], (a * b).sum(1))) < -20]
 
 
+@pytest.mark.xfail(strict=True, reason="issue 18, open: the supports' spacing drifts by up to an edge between "
+                   "resolutions (pieces rounded one by one); cumulative counts (dfc3f56) fix it but change 6 "
+                   "other plans' meshes: benchmarks/README, session 15 s15-heights")
 def test_lobes_heights_agree_between_resolutions_away_from_the_notches(architecture_dir):
     """Issue 18's heights floor on the multiple-lobes plan at 3,948 and 7,960 faces, at the coarser
     network's vertices farther than 1.5 m from the outline's reflex corners (nearer, the unfolding's
     bands differ: not met there yet): 99th percentile within 2% of zmax, median within 0.6%. The
     relaxation places every free vertex by the supports' spacing in index space, so the boundary
     vertices between kept outline points must sit where a uniform subdivision of the side puts them at
-    every resolution (cumulative counts, :func:`vaultgram.geometry.polylines.resample_polyline`); with
-    the pieces rounded one by one they drifted by up to an edge, and the heights by 4.81% (99th
-    percentile) and 1.15% (median); now 1.49% and 0.32%."""
+    every resolution (cumulative counts in :func:`vaultgram.geometry.polylines.resample_polyline`, as
+    in dfc3f56); with the pieces rounded one by one (main) they drift by up to an edge, and the heights
+    by 4.81% (99th percentile) and 1.15% (median); with cumulative counts 1.49% and 0.32%."""
     from scipy.interpolate import LinearNDInterpolator
     from scipy.spatial import cKDTree
 
