@@ -248,7 +248,8 @@ def run_plans(plans, face_counts) -> None:
                 ok = np.flatnonzero(np.isfinite(z))
                 d = np.abs(z[ok] - previous[ok, 2]) / s["zmax"]
                 dz, p99 = f"{d.max():.2%}", f"{np.percentile(d, 99):.2%}"
-                where = f"  (99th percentile {p99}; largest at {fmt_point(previous[ok[np.argmax(d)], :2])})"
+                where = (f"  (99th percentile {p99}, median {np.median(d):.2%}; largest at "
+                         f"{fmt_point(previous[ok[np.argmax(d)], :2])})")
             previous = xyz
             peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
             compression = str(bool(np.all(tn.q[tn.form.active] > 0)))
