@@ -89,22 +89,21 @@ def test_a_designers_odd_count_keeps_the_fan():
                    for k in split_patterns(layout, designed))
 
 
-# A random plan of benchmarks/reliability.py's kind (seed 17, draws 200-700): a nonagon with a square hole.
-# (The cases before, draws 70 and 187, no longer fold since a chamfer's softer end is a smooth boundary
-# point and a reflex corner the corner of three patches.)
-FALLS_BACK = {"outer": [[5.605092302580799, 1.9407831051030058], [5.135623206553726, 8.580522960770331],
-                        [-1.2062392118930707, 7.531987259628235], [-4.738904835280627, 4.105171809760683],
-                        [-8.49894809530069, 0.13372087864196996], [-6.386384444376759, -5.1898134837493135],
-                        [-1.2173097609577725, -6.320564160542736], [4.114149196782514, -7.392094336640449],
-                        [7.4051597309074975, -2.8279638688394297]],
-              "holes": [[[1.4343637820390653, 1.5041693597366859], [-0.8302876285292812, -0.7604820508316608],
-                         [-3.094939039097628, 1.5041693597366856], [-0.8302876285292817, 3.7688207703050325]]]}
+# Draw 70 of benchmarks/reliability.py's fixed plans (seed 17, spacing 0.03; its -5e-324 as 0): four
+# points and a curve in an octagon.
+FALLS_BACK = {"outer": [[5.388755136395837, 2.6384309882897248], [3.1937863083294027, 9.321489307755366],
+                        [-2.33842148645929, 4.776013036590429], [-5.676077742611723, 1.9447728555869477],
+                        [-6.297157131259193, -3.0832008678643037], [-2.4261781222834715, -7.081122918773187],
+                        [3.4991589610352656, -7.146713674920552], [9.23604221728679, -3.164509897810106]],
+              "points": [[3.510862245437796, 1.1791723000490535], [7.380714206877152, -0.36608114987298235],
+                         [-0.9553695377621163, 5.912382104381663], [-3.739577260755161, -5.724652794506071]],
+              "curves": [[[0.0, 1.1063395951484711], [-1.3568401035271442, 2.0108613012609426]]]}
 
 
 def test_a_split_that_folds_falls_back_to_the_fans():
     """Its split mesh folds, Figure 3's fans at the plain counts do not: the pipeline returns the
     fans' mesh, valid."""
-    dec = decompose(domain_from_dict(FALLS_BACK), 0.02)
+    dec = decompose(domain_from_dict(FALLS_BACK), 0.03)
     layout = edge_groups(dec)
     counts = group_counts(layout)
     assert split_patterns(layout, counts)

@@ -9,8 +9,6 @@ from hypothesis import strategies as st
 
 from vaultgram.domain import domain_from_dict, load_domain
 from vaultgram.errors import DomainError
-from vaultgram.meshing.quality import mesh_stats
-from vaultgram.pipeline import mesh_domain
 from vaultgram.topology.discretise import discretise
 
 L_SHAPE = [[0, 0], [10, 0], [10, 5], [5, 5], [5, 10], [0, 10]]
@@ -103,30 +101,3 @@ def test_features_are_labelled_and_inserted():
 def test_spacing_out_of_range(lshape, bad):
     with pytest.raises(DomainError, match="spacing"):
         discretise(lshape, bad)
-
-
-#: A square whose corner (10, 10) is cut by a chamfer from (10, 7) (146.3 degrees) to (8, 10) (123.7).
-CHAMFERED = {"outer": [[0, 0], [10, 0], [10, 7], [8, 10], [0, 10]]}
-
-
-def test_a_chamfers_softer_end_is_a_smooth_boundary_point():
-    """The chamfer's 146 degree end, next to its sharper 124 degree end, is no corner (issue 12: two faces
-    at a corner of 135-225 degrees); the mesh has four patch corners, and no singular vertex at all."""
-    disc = discretise(domain_from_dict(CHAMFERED), 0.03)
-    corners = {tuple(map(float, p)) for p in disc.points[disc.is_corner]}
-    assert corners == {(0.0, 0.0), (10.0, 0.0), (8.0, 10.0), (0.0, 10.0)}
-    stats = mesh_stats(mesh_domain(domain_from_dict(CHAMFERED), 0.03))
-    assert stats["boundary_singular"] == 0 and stats["interior_singular"] == 0
-
-
-def test_a_lone_soft_corner_and_equal_corners_stay_corners(architecture_dir):
-    """multiple_lobes' 136 degree corner, between a reflex corner and a vertex turning by less than 30
-    degrees, stays a patch corner (its lobes would otherwise leave three patches for the whole plan),
-    and so do the equal corners of a regular octagon."""
-    lobes = load_domain(architecture_dir / "multiple_lobes.json")
-    disc = discretise(lobes, 0.02)
-    corners = disc.points[disc.is_corner]
-    assert np.isclose(np.hypot(*(corners - lobes.outer[13]).T), 0).any()
-    t = np.linspace(0, 2 * np.pi, 9)[:-1]
-    octagon = discretise(domain_from_dict({"outer": np.c_[np.cos(t), np.sin(t)].tolist()}), 0.03)
-    assert octagon.is_corner.sum() == 8

@@ -14,8 +14,7 @@ Method
 * Corners are decided by angle: an input vertex is a *corner* when its turning angle exceeds
   ``corner_angle`` degrees; it is *convex* when the ring turns towards the domain (left, since the
   domain lies left of every normalised ring) and *reflex* otherwise. Points added by the
-  subdivision are never corners, nor is a chamfer's softer end (:func:`_chamfer_ends`: 135 to 150
-  degrees next to a sharper convex corner), which the regular valence makes a smooth point.
+  subdivision are never corners.
 * Curve features (§4.2) are open polylines discretised the same way. An end point lying on the
   boundary is inserted into its ring (it becomes a ring point, so the boundary segment it lies on
   is split and stays a triangle edge), and the curve shares that point.
@@ -54,12 +53,6 @@ RING_POINT = -2
 DENSE_RUN = 0.02
 THINNING_TOLERANCE = 1e-3
 BOUNDARY_FIDELITY_ANGLE = 15.0
-#: A ring vertex turning towards the domain by more than this many degrees (an interior angle under
-#: 135) is a convex corner by the regular valence (:func:`_chamfer_ends`).
-CONVEX_TURN = 45.0
-#: Ring vertices turning by less than this many degrees are points on a straight stretch (a feature
-#: point or a chord's foot inserted there).
-STRAIGHT_TURN = 1e-6
 
 
 @dataclass(frozen=True, eq=False)
@@ -466,51 +459,12 @@ def _merge_coincident_features(samples: _Samples, curves: list, feature: np.ndar
     return samples.subset(keep), [final[c] for c in curves], final[feature]
 
 
-def _chamfer_ends(samples: _Samples, corner_angle: float) -> np.ndarray:
-    """Ring vertices turning by ``corner_angle`` to :data:`CONVEX_TURN` degrees towards the domain
-    (interior angles of 135 to 150 degrees) next to a sharper convex corner (the ring vertex before
-    or after, points inserted on a straight stretch aside): the two make one chamfered corner of the
-    plan, whose patch corner is the sharper one. The softer is a smooth boundary point, regular with
-    two faces as the regular valence has it (issue 12: "a 150 degree corner is a smooth boundary
-    point, not a patch corner"); as a patch corner too it would be the corner of a quad of 135-150
-    degrees, a boundary singularity.
-
-    >>> ring = np.zeros(6, dtype=int)
-    >>> turning = np.array([90.0, 40.0, 0.0, 40.0, 0.0, 40.0])  # a chamfer's 140 degree end; a lone one
-    >>> _chamfer_ends(_Samples(np.zeros((6, 2)), ring, np.arange(6), turning, np.ones(6, bool)), 30.0).tolist()
-    [False, True, False, False, False, True]
-    """
-    at = np.flatnonzero((samples.ring >= 0) & samples.is_vertex & (np.abs(samples.turning) > STRAIGHT_TURN))
-    t, ring = samples.turning[at], samples.ring[at]
-    before, after = _ring_neighbours(ring)
-    sharper = np.maximum(t[before], t[after]) > t + 1e-6  # not a regular polygon's equal corners
-    out = np.zeros(len(samples.ring), dtype=bool)
-    out[at] = (t > corner_angle) & (t <= CONVEX_TURN) & sharper
-    return out
-
-
-def _ring_neighbours(ring: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """For points listed ring after ring, each ring's in order, the position of the point before and
-    after each one in its ring (cyclically).
-
-    >>> [b.tolist() for b in _ring_neighbours(np.array([0, 0, 0, 1, 1]))]
-    [[2, 0, 1, 4, 3], [1, 2, 0, 4, 3]]
-    """
-    k = np.arange(len(ring))
-    first = np.r_[True, ring[1:] != ring[:-1]]
-    last = np.r_[ring[1:] != ring[:-1], True]
-    run = np.cumsum(first) - 1
-    before = np.where(first, np.flatnonzero(last)[run], k - 1)
-    after = np.where(last, np.flatnonzero(first)[run], k + 1)
-    return before, after
-
-
 def _corners(samples: _Samples, curves: list, corner_angle: float) -> tuple[np.ndarray, np.ndarray]:
     """Ring points turning by more than ``corner_angle`` are corners, convex (1) when the ring turns
     towards the domain, reflex (-1) otherwise. Curve features cut the domain (§4.2): where a curve
     meets a ring, and where a curve turns sharply, the regions on either side see a convex corner."""
     ring, turning = samples.ring, samples.turning
-    is_corner = (ring >= 0) & (np.abs(turning) > corner_angle) & ~_chamfer_ends(samples, corner_angle)
+    is_corner = (ring >= 0) & (np.abs(turning) > corner_angle)
     corner_kind = np.zeros(len(ring), dtype=np.int8)
     corner_kind[is_corner & (turning > 0)] = 1
     corner_kind[is_corner & (turning < 0)] = -1
