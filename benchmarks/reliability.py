@@ -1,9 +1,12 @@
 """Reliability measurements of issue 17 (results in benchmarks/README.md, with the machine load).
 
-* ``python benchmarks/reliability.py plans [--count 200]`` -- ``mesh`` on a fixed list of random valid
-  plans (``vaultgram.testing.domains.vault_domains``: star-shaped non-convex outlines, 0-3 holes,
-  0-3 inner and boundary points, 0-2 curves; drawn with a fixed seed, so the list is the same every
-  run): how many give a valid mesh (no inverted face), and the refusals grouped by their message.
+* ``python benchmarks/reliability.py plans [--count 200] [--plans-file F]`` -- ``mesh`` on a fixed list of
+  random valid plans (``vaultgram.testing.domains.vault_domains``: star-shaped non-convex outlines, 0-3
+  holes, 0-3 inner and boundary points, 0-2 curves; drawn with a fixed seed): how many give a valid
+  mesh (no inverted face), and the refusals grouped by their message. The draws are the same every
+  run of the same code, but hypothesis mixes the constants of the loaded local modules into its
+  draws, so another version of vaultgram draws other plans: to compare two versions on the same
+  plans, the first run saves them to ``--plans-file`` and the second reads them from it.
 * ``python benchmarks/reliability.py ngon N`` -- seconds to mesh a regular N-gon, per stage.
 * ``python benchmarks/reliability.py guard`` -- seconds to refuse ``--target-length 1e-3`` on
   examples/quad_with_hole.json (in-process, after imports, and the whole command).
@@ -51,7 +54,18 @@ def random_plans(count: int, seed: int = 17) -> list:
     return plans
 
 
-def mesh_rate(count: int) -> dict:
+def saved_plans(count: int, path: Path | None) -> list:
+    """The plans in ``path`` (a JSON list of [domain dict, spacing]) if it exists, else ``count`` new
+    draws of :func:`random_plans`, saved there when a path is given."""
+    if path is not None and path.is_file():
+        return [tuple(plan) for plan in json.loads(path.read_text())]
+    plans = random_plans(count)
+    if path is not None:
+        path.write_text(json.dumps(plans))
+    return plans
+
+
+def mesh_rate(count: int, path: Path | None = None) -> dict:
     """Mesh every plan; count the valid meshes and group the refusals by their message's kind."""
     from vaultgram.domain import domain_from_dict
     from vaultgram.errors import VaultgramError
@@ -59,7 +73,7 @@ def mesh_rate(count: int) -> dict:
     from vaultgram.pipeline import mesh_domain
 
     ok, refusals = 0, collections.Counter()
-    plans = random_plans(count)
+    plans = saved_plans(count, path)
     for data, spacing in plans:
         try:
             mesh = mesh_domain(domain_from_dict(data), spacing)
@@ -117,12 +131,15 @@ def peak(target_length: float) -> dict:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="what", required=True)
-    sub.add_parser("plans").add_argument("--count", type=int, default=200)
+    plans = sub.add_parser("plans")
+    plans.add_argument("--count", type=int, default=200)
+    plans.add_argument("--plans-file", type=Path, default=None,
+                       help="JSON of the plans: read if it exists, else the new draws are saved there")
     sub.add_parser("ngon").add_argument("n", type=int)
     sub.add_parser("guard")
     sub.add_parser("peak").add_argument("--target-length", type=float, default=0.0316)
     args = parser.parse_args()
-    result = {"plans": lambda: mesh_rate(args.count), "ngon": lambda: ngon(args.n), "guard": guard,
+    result = {"plans": lambda: mesh_rate(args.count, args.plans_file), "ngon": lambda: ngon(args.n), "guard": guard,
               "peak": lambda: peak(args.target_length)}[args.what]()
     print(json.dumps(result, indent=1, default=str))
 
