@@ -172,17 +172,17 @@ def test_the_halves_of_an_edge_are_kept_by_its_geometry():
     g = stepper.graph
     e = next(e for e in g.of_types(list(strips.SPLITTABLE)) if not g.edge_attrs(e).get("polyline"))
     u, v = g.ends(e)
-    halves = strips._halves(g, e)
+    halves = strips.edge_halves(g, e)
     assert all(not a.flags.writeable for a in halves)
     mark = g.mark()
     g.set_node_attr(g.add_node("StripPoint", {"pos": (0.0, 0.0)}), "pos", (1.0, 1.0))  # a change elsewhere
-    assert strips._halves(g, e) is halves
+    assert strips.edge_halves(g, e) is halves
     (x, y) = g.get(v, "pos")
     g.set_node_attr(v, "pos", (x + 2.0, y))
     moved = strips.strip_point(g, e)
     assert moved != tuple(halves[1]) and np.allclose(moved, (np.add(g.get(u, "pos"), (x + 2.0, y))) / 2)
     g.rollback(mark)
-    assert strips._halves(g, e) is halves
+    assert strips.edge_halves(g, e) is halves
 
 
 def test_patch_sides_share_the_prepared_polygon_of_their_face():

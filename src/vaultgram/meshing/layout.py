@@ -42,6 +42,7 @@ __all__ = [
     "edge_groups",
     "choose_pole",
     "is_feature_node",
+    "is_boundary_node",
     "kept_points",
     "side_anchors",
     "KEEP_ANGLE",
@@ -160,7 +161,8 @@ class Layout:
 # --------------------------------------------------------------------------------------------
 
 
-def _is_boundary_node(graph, n: int) -> bool:
+def is_boundary_node(graph, n: int) -> bool:
+    """Whether node ``n`` of the decomposition's graph is a boundary vertex (of any subtype)."""
     return graph.schema.is_subtype(graph.node_type(n), "BoundaryVertex")
 
 
@@ -210,7 +212,7 @@ def choose_pole(decomposition: Decomposition, patch) -> int:
     # a point inside a curve feature is naked too: the curve cuts the domain (§4.2), and a pole there
     # would be a singular vertex on the curve
     on_cut = [graph.node_type(c) == "CurvePoint" for c in corners]
-    inner = [k for k, c in enumerate(corners) if not _is_boundary_node(graph, c) and not on_cut[k]]
+    inner = [k for k, c in enumerate(corners) if not is_boundary_node(graph, c) and not on_cut[k]]
     if len(inner) == 1:
         return inner[0]
     # NB: _outside_angle is 360 degrees minus the interior angle, so this takes the corner with the

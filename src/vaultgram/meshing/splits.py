@@ -24,7 +24,7 @@ import numpy as np
 
 from vaultgram.geometry.polygons import regular_valence
 from vaultgram.meshing.fans import FAN_FLOOR
-from vaultgram.meshing.layout import Layout, PatchPattern, _is_boundary_node, _outside_angle, is_feature_node
+from vaultgram.meshing.layout import Layout, PatchPattern, _outside_angle, is_boundary_node, is_feature_node
 
 __all__ = ["fan_estimate", "split_patterns", "split_counts", "split_points"]
 
@@ -74,7 +74,7 @@ def _boundary_pole(layout: Layout, pat: PatchPattern) -> bool:
     dec = layout.decomposition
     node = pat.corners[pat.pole]
     patch = dec.patches[pat.patch]
-    return (dec.marked_pole(patch) == node and _is_boundary_node(dec.graph, node)
+    return (dec.marked_pole(patch) == node and is_boundary_node(dec.graph, node)
             and not is_feature_node(dec, node))
 
 

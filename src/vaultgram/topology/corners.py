@@ -26,8 +26,9 @@ from vaultgram.geometry.polygons import cross_z, interior_angle, regular_valence
 from vaultgram.topology.statecache import per_state
 from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE_POINT, FEATURE_POINT
 
-__all__ = ["rectilinear_rings", "chord_feet", "ray_hit", "graph_rings", "boundary_angle", "rectilinear_plan",
-           "chord_end", "segments_cross", "segment_crossing", "neck_corner", "RIGHT_ANGLE_TOLERANCE"]
+__all__ = ["rectilinear_rings", "chord_feet", "ray_hit", "graph_rings", "boundary_angle", "ring_place",
+           "rectilinear_plan", "chord_end", "segments_cross", "segment_crossing", "neck_corner",
+           "RIGHT_ANGLE_TOLERANCE"]
 
 #: Degrees by which a corner of a rectilinear plan may differ from 90, 180 or 270.
 RIGHT_ANGLE_TOLERANCE = 1.0
@@ -146,6 +147,11 @@ def _cache(graph) -> dict:
     return per_state(_RINGS, graph, _rings_now)[2]
 
 
+def ring_place(graph, v: int) -> tuple[int, int]:
+    """The ring of boundary vertex ``v`` and its place along it (:func:`graph_rings`)."""
+    return _cache(graph)["where"][v]
+
+
 def boundary_angle(graph, v: int) -> float:
     """The domain's interior angle (degrees) at boundary vertex ``v``, between its ring neighbours."""
     return _cache(graph)["angle"][v]
@@ -187,7 +193,7 @@ def chord_end(graph, r: int, side: int) -> int:
 def _chord_end(graph, r: int, side: int) -> int:
     """:func:`chord_end`, computed."""
     rings, nodes = graph_rings(graph)
-    ring_of, k = _cache(graph)["where"][r]
+    ring_of, k = ring_place(graph, r)
     ring = rings[ring_of]
     p = ring[k]
     d = p - ring[k - 1] if side == 0 else p - ring[(k + 1) % len(ring)]

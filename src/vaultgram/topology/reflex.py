@@ -32,14 +32,13 @@ import math
 import weakref
 
 from vaultgram.geometry.polylines import arc_lengths
-from vaultgram.topology.corners import _cache as _ring_cache
-from vaultgram.topology.corners import boundary_angle, graph_rings
+from vaultgram.topology.corners import boundary_angle, graph_rings, ring_place
 from vaultgram.topology.patches import half_edge_polyline
 from vaultgram.topology.statecache import per_state
 from vaultgram.topology.strips import (
-    _across,
-    _halves,
-    _inside,
+    chord_inside,
+    edge_halves,
+    patch_across,
     patch_sides,
     side_edge,
     strip_boundary_end,
@@ -63,11 +62,6 @@ MAX_POLE_ANGLE = 160.0
 _STATE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> {state: {corner: choice}}
 
 
-def _ring_place(graph, r: int) -> tuple[int, int]:
-    """The ring of the boundary point ``r`` and its place along it (:func:`graph_rings`)."""
-    return _ring_cache(graph)["where"][r]
-
-
 def _direction(a, b) -> float:
     """The direction (radians) from point ``a`` to point ``b``."""
     return math.atan2(float(b[1]) - float(a[1]), float(b[0]) - float(a[0]))
@@ -80,7 +74,7 @@ def _ccw(start: float, end: float) -> float:
 
 def _edge_tangent(graph, edge: int) -> float:
     """The direction (radians) of a plan edge at its strip point (the middle, where the chord ends)."""
-    before, mid, after = _halves(graph, edge)
+    before, mid, after = edge_halves(graph, edge)
     ahead = after[0] if len(after) else graph.get(graph.ends(edge)[1], "pos")
     back = before[-1] if len(before) else graph.get(graph.ends(edge)[0], "pos")
     return _direction(back, ahead)
@@ -117,9 +111,9 @@ def _targets(graph, patch: int, found, k: int, j: int) -> tuple | None:
     edge = side_edge(graph, patch, y)
     if edge >= 0:
         ok = _strip_ends_well(graph, patch, r, edge)
-        return ("edge", edge, _halves(graph, edge)[1], _edge_tangent(graph, edge)) if ok else None
+        return ("edge", edge, edge_halves(graph, edge)[1], _edge_tangent(graph, edge)) if ok else None
     w = strip_boundary_end(graph, patch, y)
-    if w == y or not _inside(found, graph.get(r, "pos"), graph.get(w, "pos")):
+    if w == y or not chord_inside(found, graph.get(r, "pos"), graph.get(w, "pos")):
         return None
     return "point", w, graph.get(w, "pos"), _ring_tangent(graph, w)
 
@@ -158,8 +152,8 @@ def _strip_ends_well(graph, patch: int, r: int, edge: int) -> bool:
     singularity (rv_star_pattern's 215 degree vertex, the strip from its 256 degree corner); a point
     feature's fan carries its load (§4.1: a random plan's worst quad went from 0.31 to 0.20 there);
     a curve is a cut the layout keeps (§4.2)."""
-    found, beyond = patch_sides(graph, patch), _across(graph, patch, edge)
-    if found is None or beyond is None or not _inside(found, graph.get(r, "pos"), _halves(graph, edge)[1]):
+    found, beyond = patch_sides(graph, patch), patch_across(graph, patch, edge)
+    if found is None or beyond is None or not chord_inside(found, graph.get(r, "pos"), edge_halves(graph, edge)[1]):
         return False
     walk = strip_walk(graph, beyond[0], beyond[1], frozenset([patch]))
     if walk is None:
@@ -186,7 +180,7 @@ def _even_group(graph, patch: int, found, k: int, j: int, end) -> bool:
     side = found.sides[k] if j == 1 else found.sides[k - 1]
     lengths = [math.dist(graph.get(found.corners[k], "pos"), end), _side_length(graph, side)]
     if len(side) == 1:
-        beyond = _across(graph, patch, side[0][0])
+        beyond = patch_across(graph, patch, side[0][0])
         sides = patch_sides(graph, beyond[0]) if beyond else None
         if sides is not None and len(sides.corners) == 4:
             lengths.append(_side_length(graph, sides.sides[(beyond[1] + 2) % 4]))
@@ -205,33 +199,34 @@ def _corner(graph, found, k: int) -> tuple[tuple, float, float]:
     return pos, d_out, _ccw(d_out, _direction(pos, back))
 
 
-def _chosen(graph, r: int) -> tuple | None:
-    """:func:`_choose`, worked out once per corner and state of the graph."""
+def _once(graph, work, r: int):
+    """``work(graph, r)`` (:func:`_choose` or :func:`_cut`), worked out once per corner and state of
+    the graph."""
     memo = per_state(_STATE, graph, lambda g: {})
-    if r not in memo:
-        memo[r] = _choose(graph, r)
-    return memo[r]
+    if (work, r) not in memo:
+        memo[(work, r)] = work(graph, r)
+    return memo[(work, r)]
 
 
 def reflex_chord(graph, patch: int, r: int) -> int:
     """The plan edge to whose middle the chord from the reflex corner ``r`` runs in the quad
     ``patch`` (a whole side of it away from ``r``; a strip carries it on beyond), where this is the
     corner's best chord (see the module docstring); -1 otherwise."""
-    choice = _chosen(graph, r)
+    choice = _once(graph, _choose, r)
     return choice[2] if choice is not None and choice[:2] == (patch, "edge") else -1
 
 
 def reflex_side(graph, patch: int, r: int) -> int:
     """The corner of the quad ``patch`` where the side starts on which the chord from the reflex
     corner ``r`` ends, where this is the corner's best chord; ``r`` itself otherwise."""
-    choice = _chosen(graph, r)
+    choice = _once(graph, _choose, r)
     return choice[3] if choice is not None and choice[0] == patch else r
 
 
 def reflex_foot(graph, patch: int, r: int) -> int:
     """The boundary point (on a side of the quad ``patch`` away from ``r``) where the chord from the
     reflex corner ``r`` ends, where this is the corner's best chord; ``r`` itself otherwise."""
-    choice = _chosen(graph, r)
+    choice = _once(graph, _choose, r)
     return choice[2] if choice is not None and choice[:2] == (patch, "point") else r
 
 
@@ -242,7 +237,7 @@ def _on_side(graph, r: int) -> tuple[int, int] | None:
     if graph.degree(r, [PATCH_CORNER]):
         return None
     _, nodes = graph_rings(graph)
-    ring, k = _ring_place(graph, r)
+    ring, k = ring_place(graph, r)
     ids = nodes[ring]
     a = next((ids[k - j] for j in range(1, len(ids)) if graph.degree(ids[k - j], [PATCH_CORNER])), None)
     for q in sorted({graph.ends(e)[0] for e in graph.incident(a, [PATCH_CORNER])} if a is not None else ()):
@@ -266,7 +261,7 @@ def _cut(graph, r: int) -> tuple | None:
     edge = side_edge(graph, patch, found.corners[(i + 2) % 4])
     if edge < 0 or not _strip_ends_well(graph, patch, r, edge):
         return None
-    pos, mid = graph.get(r, "pos"), _halves(graph, edge)[1]
+    pos, mid = graph.get(r, "pos"), edge_halves(graph, edge)[1]
     d_chord = _direction(pos, mid)
     ahead = _ring_tangent(graph, r)
     first = _ccw(ahead, d_chord)  # between the boundary ahead and the chord
@@ -275,30 +270,22 @@ def _cut(graph, r: int) -> tuple | None:
     return (patch, i, edge) if worst >= MIN_ANGLE else None
 
 
-def _cut_chosen(graph, r: int) -> tuple | None:
-    """:func:`_cut`, worked out once per corner and state of the graph."""
-    memo = per_state(_STATE, graph, lambda g: {})
-    if ("cut", r) not in memo:
-        memo[("cut", r)] = _cut(graph, r)
-    return memo[("cut", r)]
-
-
 def reflex_cut(graph, patch: int, r: int) -> int:
     """Where the reflex corner ``r`` lies inside a side of the quad ``patch`` (the corner of no patch:
     two faces where its angle asks for three), the plan edge opposite that side, to whose middle a
     chord from ``r`` runs, carried on beyond as a strip; -1 where there is none (the chord would
     leave the quad, its strip would not complete, an angle would be below :data:`MIN_ANGLE`)."""
-    cut = _cut_chosen(graph, r)
+    cut = _once(graph, _cut, r)
     return cut[2] if cut is not None and cut[0] == patch else -1
 
 
 def reflex_cut_index(graph, patch: int, r: int) -> int:
     """The index of the side of the quad ``patch`` inside which the reflex corner ``r`` lies, where
     :func:`reflex_cut` has a chord for it; -1 otherwise."""
-    cut = _cut_chosen(graph, r)
+    cut = _once(graph, _cut, r)
     return cut[1] if cut is not None and cut[0] == patch else -1
 
 
 def reflex_cut_at(graph, r: int) -> bool:
     """Whether :func:`reflex_cut` has a chord for the reflex corner ``r`` in some quad."""
-    return _cut_chosen(graph, r) is not None
+    return _once(graph, _cut, r) is not None

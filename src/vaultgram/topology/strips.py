@@ -48,7 +48,7 @@ from vaultgram.topology.types import (
 
 __all__ = ["SPLITTABLE", "PatchSides", "patch_sides", "side_edge", "corner_chord_angle", "strip_point",
            "strip_piece", "side_through", "strip_boundary_end", "Walk", "strip_walk", "strip_through", "strip_start",
-           "strip_from_curve_end", "register_strip_helpers"]
+           "strip_from_curve_end", "register_strip_helpers", "edge_halves", "chord_inside", "patch_across"]
 
 #: The plan edges a strip may cut in two (not a curve feature: the layout must not cross it, §4.2;
 #: not the boundary, which a strip ends at, at one of its points).
@@ -141,12 +141,12 @@ def corner_chord_angle(graph, patch: int, x: int) -> float:
     return interior_angle(graph.get(before, "pos"), graph.get(x, "pos"), graph.get(after, "pos"))
 
 
-#: The edges cut halfway kept (the most recently asked) by :func:`_halves`.
+#: The edges cut halfway kept (the most recently asked) by :func:`edge_halves`.
 HALVES = 1024
 _HALVES: OrderedDict = OrderedDict()
 
 
-def _halves(graph, edge: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def edge_halves(graph, edge: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """An edge's polyline (from its source) cut at half its length: the piece before, the point, the
     piece after (the point is in neither; read-only arrays). Kept by what the edge's points are made
     of (:func:`~vaultgram.topology.patches.half_edge_key`), so every state of the search with that
@@ -162,19 +162,19 @@ def _cut_halfway(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     after = j + int(bool(np.allclose(pts[j], mid)))
     halves = pts[:j], mid, pts[after:]
     for array in halves:
-        array.flags.writeable = False  # shared by every state with this edge (see _halves)
+        array.flags.writeable = False  # shared by every state with this edge (see edge_halves)
     return halves
 
 
 def strip_point(graph, edge: int) -> tuple[float, float]:
     """Where a strip cuts a plan edge: halfway along it."""
-    mid = _halves(graph, edge)[1]
+    mid = edge_halves(graph, edge)[1]
     return float(mid[0]), float(mid[1])
 
 
 def strip_piece(graph, edge: int, end: int) -> tuple:
     """The part of a plan edge from its end ``end`` to the strip point, as a polyline."""
-    before, mid, after = _halves(graph, edge)
+    before, mid, after = edge_halves(graph, edge)
     piece = np.vstack([before, mid[None]]) if graph.ends(edge)[0] == end else np.vstack([after[::-1], mid[None]])
     return tuple((float(x), float(y)) for x, y in piece)
 
@@ -221,7 +221,7 @@ def _free_boundary_point(graph, n: int) -> bool:
             and graph.degree(n, PLAN_EDGES) == 2)
 
 
-def _inside(found: PatchSides, a, b) -> bool:
+def chord_inside(found: PatchSides, a, b) -> bool:
     """Whether the straight chord from ``a`` to ``b`` (points of the outline) runs inside the patch,
     touching its outline only at its ends."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
@@ -229,7 +229,7 @@ def _inside(found: PatchSides, a, b) -> bool:
     return bool(shapely.contains_properly(found.polygon, shapely.LineString([a + d, b - d])))
 
 
-def _across(graph, patch: int, edge: int) -> tuple[int, int] | None:
+def patch_across(graph, patch: int, edge: int) -> tuple[int, int] | None:
     """The Patch node on the other side of a plan edge that is a whole side of ``patch``, and the
     index of that side there; None where there is none (or more than one)."""
     found = [(q, k) for q in _patches_at(graph, graph.ends(edge)[0]) if q != patch
@@ -277,14 +277,14 @@ def strip_walk(graph, patch: int, k: int, seen: frozenset = frozenset()) -> Walk
         if nxt < 0:  # the end: the triangle's corner opposite the strip, or a point of a boundary side
             end = out if len(found.corners) == 3 else strip_boundary_end(graph, patch, out)
             ok = end != out or len(found.corners) == 3
-            return Walk(tuple(patches), tuple(edges), end) if ok and _inside(found, here, graph.get(
+            return Walk(tuple(patches), tuple(edges), end) if ok and chord_inside(found, here, graph.get(
                 end, "pos")) else None
-        if not _inside(found, here, strip_point(graph, nxt)):
+        if not chord_inside(found, here, strip_point(graph, nxt)):
             return None
         if nxt == edges[0]:
             return Walk(tuple(patches), tuple(edges), None)
         edges.append(nxt)
-        beyond = _across(graph, patch, nxt)
+        beyond = patch_across(graph, patch, nxt)
         patch, k, entry = (beyond[0], beyond[1], nxt) if beyond else (patch, k, -1)
 
 
@@ -295,7 +295,7 @@ def strip_through(graph, patch: int, corner: int, edge: int) -> tuple[Walk, Walk
     found = patch_sides(graph, patch)
     if side_edge(graph, patch, corner) != edge:
         return None
-    beyond = _across(graph, patch, edge)
+    beyond = patch_across(graph, patch, edge)
     one = strip_walk(graph, patch, found.corners.index(corner)) if beyond else None
     if one is None:
         return None
@@ -329,8 +329,8 @@ def strip_from_curve_end(graph, patch: int, x: int, edge: int) -> bool:
     found = patch_sides(graph, patch)
     if found is None or edge < 0 or x not in found.corners:
         return False
-    beyond = _across(graph, patch, edge)
-    return (beyond is not None and _inside(found, graph.get(x, "pos"), strip_point(graph, edge))
+    beyond = patch_across(graph, patch, edge)
+    return (beyond is not None and chord_inside(found, graph.get(x, "pos"), strip_point(graph, edge))
             and strip_walk(graph, beyond[0], beyond[1], frozenset([patch])) is not None)
 
 
