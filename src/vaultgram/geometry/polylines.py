@@ -188,14 +188,28 @@ def chord_deviation(poly: np.ndarray, samples: np.ndarray) -> float:
 
 
 def _share_counts(lengths: np.ndarray, n: int) -> np.ndarray:
-    """``n`` subdivisions shared among pieces in proportion to their lengths, at least one each."""
-    share = lengths / lengths.sum() * n
-    m = np.maximum(1, np.floor(share)).astype(np.int64)
-    while m.sum() > n:  # take back from the pieces given most above their share
-        m[np.argmax(np.where(m > 1, m - share, -np.inf))] -= 1
-    while m.sum() < n:
-        m[np.argmax(share - m)] += 1
-    return m
+    """``n`` subdivisions shared among pieces in proportion to their lengths, at least one each, by
+    rounding the pieces' cumulative ends: the sample at each break is the nearest to where a uniform
+    subdivision of the whole polyline would put it, so every sample stays within half a subdivision
+    (where no piece is held at its one) of its uniform arc-length place.
+
+    Why cumulative: rounding each piece on its own (largest remainders) lets the errors add up along a
+    side split by many kept points (multiple_lobes: 0.79 m outline segments with 1 or 2 edges of 0.47
+    m at 10^4 faces, 4-6 at 10^5), so a resolution's boundary vertices drifted up to a whole coarse
+    edge (0.50 m) from a finer one's at the same index fraction, and the equal-density relaxation of
+    form finding (§5), a function of the supports' spacing in index space, took the drift into the
+    vault's heights (3.8% of zmax between 10^4 and 10^5 faces, 3 m from any reflex corner).
+
+    >>> _share_counts(np.array([1.5, 1.5, 1.5, 1.5]), 6).tolist()      # not [2, 2, 1, 1]
+    [2, 1, 2, 1]
+    """
+    share = np.cumsum(lengths / lengths.sum() * n)
+    ends = np.floor(share + 0.5).astype(np.int64)
+    ends[-1] = n
+    k = np.arange(1, len(ends) + 1)
+    ends = np.maximum.accumulate(np.maximum(ends, k) - k) + k          # at least one per piece, forwards
+    ends = np.minimum(ends, n - (len(ends) - k))                          # room for the pieces after
+    return np.diff(np.concatenate([[0], ends]))
 
 
 def resample_polyline(poly: np.ndarray, n: int, anchors=()) -> tuple[np.ndarray, list[int]]:
