@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import numpy as np
-import pytest
 import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -91,8 +90,6 @@ def test_locate_agrees_with_projection(poly, p, closed):
     assert abs(d - np.hypot(*(q - p))) <= 1e-9 * (1.0 + np.abs(poly).max() + np.abs(p).max())
 
 
-@pytest.mark.xfail(strict=True, reason="issue 18, open: pieces rounded one by one (largest remainders); "
-                   "cumulative counts: dfc3f56, benchmarks/README session 15 s15-heights")
 @SETTINGS
 @given(st.lists(st.floats(0.05, 5.0), min_size=2, max_size=12), st.floats(1.0, 6.0))
 def test_resample_puts_each_anchor_within_half_a_subdivision_of_its_uniform_place(pieces, per_unit):

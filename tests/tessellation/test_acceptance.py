@@ -238,7 +238,12 @@ def test_a_tighter_concavity_threshold_is_kept_too(name):
 def test_smoothing_on_the_surface_keeps_voussoirs_convex_and_joints_normal(name):
     """``--surface-smooth 5``: the Laplacian steps that would push a voussoir corner past the threshold
     are undone; the joints stay normal to the surface and follow the force flow better (measured on
-    the Armadillo: 9.99 -> 9.45 degrees)."""
+    the Armadillo: 9.99 -> 9.45 degrees; 7.95 -> 7.43 in session 16). On the Armadillo the change of the
+    median is a draw from a spread, not a constant: over ten target lengths 0.3-0.6 (230-1,000 faces)
+    it is -0.20 degrees on average, standard deviation 0.37, from -0.89 to +0.52 (the per-joint changes
+    are +-2 degrees and more, both ways, all over the vault), so a new mesh can cross the 0.1 bound
+    without anything being wrong in the smoothing (session 15's 1924157 with cumulative boundary
+    counts: 8.20 -> 8.62); benchmarks/README, session 16 s16-heights."""
     d, surface = _designed(name)
     t = tessellate(surface, thickness=1.0, surface_smooth=5)
     assert _concave_merges(t, MAX_CONCAVITY) == [] and solid_failures(t) == []
