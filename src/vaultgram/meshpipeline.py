@@ -43,9 +43,16 @@ from vaultgram.topology.decomposition import Decomposition, block_decomposition
 from vaultgram.topology.discretise import discretise
 from vaultgram.topology.recovery import triangulate_recovering
 from vaultgram.topology.rulebook import load_vault_rulebook
-from vaultgram.topology.skeleton import skeleton
+from vaultgram.topology.skeleton import Skeleton, skeleton
 
-__all__ = ["decompose", "mesh_decomposition", "mesh_domain", "domain_frame"]
+__all__ = ["decompose", "plan_skeleton", "mesh_decomposition", "mesh_domain", "domain_frame"]
+
+#: A patch corner wider than this many degrees turns past straight: a quad mesh of the patch folds there
+#: at any density (:func:`vaultgram.meshing.quality.check_not_folded` names it), so chamfers whose
+#: smoothing makes a layout with a corner that wide stay corners (:func:`_settled_skeleton`). A degree
+#: above 180: a corner on a straight stretch, 180 degrees up to the sampling (180.1 where a cut
+#: rectangle's chord meets its side), meshes well.
+LAYOUT_TURN_LIMIT = 181.0
 
 
 # --------------------------------------------------------------------------------------------
@@ -67,14 +74,59 @@ def decompose(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | Non
     with domain_frame(domain):
         check_feature_layout(domain)
         rulebook = load_vault_rulebook(rules_dir)
-        with progress.timed(timings, "discretise"):
-            disc = discretise(domain, spacing)
-        with progress.timed(timings, "triangulate"):
-            tri = triangulate_recovering(disc)
-        with progress.timed(timings, "skeleton"):
-            sk = skeleton(tri, smooth=smooth)
-        with progress.timed(timings, "rules"):
-            return block_decomposition(sk, rulebook, check_invariants, trace, chooser or first_option)
+
+        def rewrite(sk: Skeleton, how) -> Decomposition:
+            with progress.timed(timings, "rules"):
+                return block_decomposition(sk, rulebook, check_invariants, trace, how)
+
+        sk, default = _settled_skeleton(domain, spacing, smooth, timings, rewrite)
+        return default if chooser is None and default is not None else rewrite(sk, chooser or first_option)
+
+
+def plan_skeleton(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None = None) -> Skeleton:
+    """The skeleton :func:`decompose` rewrites (chamfers smoothed or kept, :func:`_settled_skeleton`), for
+    a search of the rules' choices (the exploration) that :func:`decompose` then replays."""
+    with domain_frame(domain):
+        rulebook = load_vault_rulebook(rules_dir)
+        return _settled_skeleton(domain, spacing, False, None,
+                                 lambda sk, how: block_decomposition(sk, rulebook, chooser=how))[0]
+
+
+def _settled_skeleton(domain: Domain, spacing: float, smooth: bool, timings: dict | None, rewrite
+                      ) -> tuple[Skeleton, Decomposition | None]:
+    """The skeleton of the plan with its chamfers as smooth points (issue 12, :mod:`vaultgram.topology.discretise`),
+    and the rules' default layout of it (``rewrite`` with the first option of every choice; None for a
+    plan without chamfers, where there is nothing to decide); but where
+    that layout has a patch corner wider than :data:`LAYOUT_TURN_LIMIT` degrees and wider than any of
+    the layout with the chamfers as corners, that skeleton and layout: the smoothed corner changed the
+    skeleton, and with it the patching elsewhere (at a hole's or a curve's corner, mostly), leaving a
+    patch that turns past 180 degrees at a corner, where its quads fold. The
+    decision takes the default choices, so that an exploration's variants (:func:`plan_skeleton`) and
+    their replays see one skeleton."""
+    sk = _skeleton(domain, spacing, smooth, timings, chamfers=True)
+    if not len(sk.triangulation.disc.smoothed):
+        return sk, None
+    default = rewrite(sk, first_option)
+    if widest_corner(default) <= LAYOUT_TURN_LIMIT:
+        return sk, default
+    plain = _skeleton(domain, spacing, smooth, timings, chamfers=False)
+    plain_default = rewrite(plain, first_option)
+    return (sk, default) if widest_corner(default) <= widest_corner(plain_default) else (plain, plain_default)
+
+
+def widest_corner(dec: Decomposition) -> float:
+    """The widest interior angle (degrees) at a corner of any patch of ``dec``."""
+    return max(float(patch.corner_angles().max()) for patch in dec.patches)
+
+
+def _skeleton(domain: Domain, spacing: float, smooth: bool, timings: dict | None, chamfers: bool) -> Skeleton:
+    """Discretise, triangulate and skeletonise the plan (§3.1), chamfers smooth or not."""
+    with progress.timed(timings, "discretise"):
+        disc = discretise(domain, spacing, chamfers=chamfers)
+    with progress.timed(timings, "triangulate"):
+        tri = triangulate_recovering(disc)
+    with progress.timed(timings, "skeleton"):
+        return skeleton(tri, smooth=smooth)
 
 
 def domain_frame(domain: Domain):

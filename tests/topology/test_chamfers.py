@@ -1,0 +1,130 @@
+"""Chamfers as smooth boundary points (issue 12, item 3): a plan's corner cut off by a wall at 135
+degrees has two 135 degree vertices, regular with two faces each (valence 3), so neither is a patch
+corner; where the layout this gives turns by more than 180 degrees at a patch corner, the chamfers
+stay corners (vaultgram.meshpipeline._settled_skeleton)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+
+from vaultgram.domain import domain_from_dict
+from vaultgram.meshing.quality import mesh_stats
+from vaultgram.meshpipeline import (
+    LAYOUT_TURN_LIMIT,
+    _skeleton,
+    decompose,
+    mesh_domain,
+    plan_skeleton,
+    widest_corner,
+)
+from vaultgram.testing.domains import vault_domains
+from vaultgram.topology.decomposition import block_decomposition
+from vaultgram.topology.discretise import discretise
+from vaultgram.topology.rulebook import load_vault_rulebook
+
+#: Chamfered plans: one corner of a rectangle cut at 135 degrees (a long and a short cut), two
+#: neighbouring corners cut, two opposite corners cut, and an octagon-ish plan of four 135 degree
+#: corners between two right angles.
+CHAMFERED = {
+    "one_cut": [[0, 0], [10, 0], [10, 4], [8, 6], [0, 6]],
+    "short_cut": [[0, 0], [10, 0], [10, 5.5], [9.5, 6], [0, 6]],
+    "two_cuts": [[0, 0], [10, 0], [10, 4], [8, 6], [2, 6], [0, 4]],
+    "opposite_cuts": [[2, 0], [10, 0], [10, 4], [8, 6], [0, 6], [0, 2]],
+    "octagonal_end": [[0, 0], [6, 0], [9, 3], [9, 7], [6, 10], [0, 10]],
+}
+
+
+def _corner_points(disc) -> set:
+    return {tuple(np.round(p, 9)) for p in disc.points[disc.is_corner]}
+
+
+def test_a_cut_corner_has_no_patch_corner():
+    """The rectangle's cut corner: its two 135 degree vertices are smooth points, the other three
+    corners stay; without ``chamfers`` all five are corners (as before issue 12's item 3)."""
+    domain = domain_from_dict({"outer": CHAMFERED["one_cut"]})
+    disc = discretise(domain, 0.02)
+    assert _corner_points(disc) == {(0, 0), (10, 0), (0, 6)}
+    assert {tuple(p) for p in disc.points[disc.smoothed]} == {(10, 4), (8, 6)}
+    assert disc.chamfers and (disc.corner_kind[disc.smoothed] == 0).all()
+    kept = discretise(domain, 0.02, chamfers=False)
+    assert _corner_points(kept) == {(0, 0), (10, 0), (10, 4), (8, 6), (0, 6)} and not len(kept.smoothed)
+
+
+def _polygon(turning) -> list:
+    """The ring of unit edges turning left by ``turning`` (degrees) at its vertices, in order; closed
+    when the second half of ``turning`` repeats the first and each half turns by 180 degrees."""
+    heading = np.radians(np.cumsum(turning))
+    return np.cumsum(np.column_stack([np.cos(heading), np.sin(heading)]), axis=0).tolist()
+
+
+@pytest.mark.parametrize("turning", [
+    [40, 40, 20, 20, 20, 20, 20] * 2,  # two rounded tips of two 140 degree vertices (the Armadillo's feet)
+    [45] * 8,  # a regular octagon: its corners alike, none sharper (the O-grid's plan)
+    [40, 20, 40, 20, 40, 20] * 2,  # soft corners between softer bends
+])
+def test_soft_corners_next_to_no_sharper_corner_stay_corners(turning):
+    """A run of 135-150 degree vertices between softer bends is no chamfer: its vertices stay corners."""
+    disc = discretise(domain_from_dict({"outer": _polygon(turning)}), 0.02)
+    assert np.allclose(np.sort(disc.turning[disc.is_input_vertex]), np.sort(turning))
+    assert not len(disc.smoothed)
+    assert disc.is_corner[disc.is_input_vertex].sum() == sum(t > 30 for t in turning)
+
+
+def test_a_sharper_corner_makes_the_run_beside_it_a_chamfer():
+    """The rounded tips again, each with a 120 degree vertex (turning 60) after its two 140 degree
+    ones instead of three softer bends: the tips' vertices are chamfers of the sharper corners."""
+    disc = discretise(domain_from_dict({"outer": _polygon([40, 40, 60, 20, 20] * 2)}), 0.02)
+    assert disc.turning[disc.smoothed].round(6).tolist() == [40.0] * 4
+    assert disc.turning[disc.is_corner].round(6).tolist() == [60.0] * 2
+
+
+@pytest.mark.parametrize("name", sorted(CHAMFERED))
+def test_chamfered_plans_mesh_without_boundary_singularities(name):
+    """Every chamfer vertex has two faces (valence 3, regular at 135 degrees), every other boundary
+    vertex its regular valence; no face folds and none is worse than 0.6 (0.67-0.78 measured; with
+    the chamfers as corners 0.50-0.71)."""
+    domain = domain_from_dict({"outer": CHAMFERED[name]})
+    mesh = mesh_domain(domain)
+    stats = mesh_stats(mesh, domain)
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
+    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] > 0.6
+
+
+#: A random plan (reliability.py's draw 34 of 700, rounded) whose smoothed chamfers give a layout with
+#: a patch turning by 249 degrees at a corner; with them as corners its widest patch corner is 148.
+FOLDING_WITH_CHAMFERS = [[6.635, 2.253], [2.672, 5.42], [-2.201, 6.483], [-5.282, 2.604], [-4.735, -1.608],
+                         [-2.605, -5.284], [2.253, -6.635], [8.938, -4.407]]
+
+
+def _layout(domain, chamfers: bool, spacing: float = 0.05):
+    """The rules' default layout of ``domain``, chamfers smoothed or not."""
+    return block_decomposition(_skeleton(domain, spacing, False, None, chamfers), load_vault_rulebook())
+
+
+def test_chamfers_stay_corners_where_their_layout_would_fold():
+    """A plan whose smoothed chamfers leave a patch turning past 180 degrees at a corner keeps them as
+    corners (the layout of main, before chamfers), and meshes."""
+    domain = domain_from_dict({"outer": FOLDING_WITH_CHAMFERS})
+    smoothed, plain = _layout(domain, True), _layout(domain, False)
+    assert len(smoothed.disc.smoothed) and widest_corner(smoothed) > LAYOUT_TURN_LIMIT
+    assert widest_corner(plain) < 150
+    dec = decompose(domain, 0.05)
+    assert not dec.disc.chamfers and not len(dec.disc.smoothed)
+    assert widest_corner(dec) == widest_corner(plain)
+    assert plan_skeleton(domain, 0.05).triangulation.disc.chamfers is False
+    assert mesh_stats(mesh_domain(domain, 0.05), domain)["inverted_faces"] == 0
+
+
+@given(vault_domains())
+@settings(max_examples=40, deadline=None, suppress_health_check=list(HealthCheck))
+def test_smoothed_chamfers_make_no_patch_corner_past_the_limit(plan):
+    """The property the fall-back keeps: where chamfers are smooth points, no patch of the layout turns
+    by more than LAYOUT_TURN_LIMIT degrees at a corner, unless the layout with them as corners turns
+    by as much (at a curve's or a hole's corner, which the chamfers do not make)."""
+    data, spacing = plan
+    domain = domain_from_dict(data)
+    dec = decompose(domain, spacing)
+    if len(dec.disc.smoothed) and widest_corner(dec) > LAYOUT_TURN_LIMIT:
+        assert widest_corner(dec) <= widest_corner(_layout(domain, False, spacing))
