@@ -69,7 +69,9 @@ def decompose(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | Non
     skeleton branches with splines; ``check_invariants`` checks the rulebook's invariants while its
     strategies run (as ``vaultgram rules test`` does); ``trace`` keeps the graph the rules start from
     for a replay (``Decomposition.start_graph``); ``chooser`` resolves the rulebook's ``choose`` steps
-    (default: the first option; exploration replays a variant's choices).
+    (default: the first option; exploration replays a variant's choices). The plan's chamfers are
+    smooth boundary points unless their layout would turn past straight at a patch corner
+    (:func:`_settled_skeleton`).
     """
     with domain_frame(domain):
         check_feature_layout(domain)
@@ -94,15 +96,16 @@ def plan_skeleton(domain: Domain, spacing: float = 0.02, rules_dir: str | Path |
 
 def _settled_skeleton(domain: Domain, spacing: float, smooth: bool, timings: dict | None, rewrite
                       ) -> tuple[Skeleton, Decomposition | None]:
-    """The skeleton of the plan with its chamfers as smooth points (issue 12, :mod:`vaultgram.topology.discretise`),
-    and the rules' default layout of it (``rewrite`` with the first option of every choice; None for a
-    plan without chamfers, where there is nothing to decide); but where
-    that layout has a patch corner wider than :data:`LAYOUT_TURN_LIMIT` degrees and wider than any of
-    the layout with the chamfers as corners, that skeleton and layout: the smoothed corner changed the
-    skeleton, and with it the patching elsewhere (at a hole's or a curve's corner, mostly), leaving a
-    patch that turns past 180 degrees at a corner, where its quads fold. The
-    decision takes the default choices, so that an exploration's variants (:func:`plan_skeleton`) and
-    their replays see one skeleton."""
+    """The skeleton of the plan with its chamfers as smooth points (issue 12,
+    :func:`vaultgram.topology.discretise.discretise`) and the rules' default layout of it (``rewrite``
+    with the first option of every choice; None for a plan without chamfers: nothing to decide).
+
+    Where that layout has a patch corner wider than :data:`LAYOUT_TURN_LIMIT` degrees, and wider than
+    any of the layout with the chamfers as corners, the latter skeleton and layout instead: the
+    smoothed corners changed the skeleton, and with it the patching elsewhere (at a hole's or a
+    curve's corner, mostly), leaving a patch that turns past 180 degrees at a corner, where its quads
+    fold (1924157 on 700 random plans: 11 folds). The decision takes the default choices, so that an
+    exploration's variants (:func:`plan_skeleton`) and their replays see one skeleton."""
     sk = _skeleton(domain, spacing, smooth, timings, chamfers=True)
     if not len(sk.triangulation.disc.smoothed):
         return sk, None

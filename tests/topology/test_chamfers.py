@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from vaultgram.domain import domain_from_dict
 from vaultgram.meshing.quality import mesh_stats
@@ -21,7 +22,7 @@ from vaultgram.meshpipeline import (
 )
 from vaultgram.testing.domains import vault_domains
 from vaultgram.topology.decomposition import block_decomposition
-from vaultgram.topology.discretise import discretise
+from vaultgram.topology.discretise import _anchored_runs, discretise
 from vaultgram.topology.rulebook import load_vault_rulebook
 
 #: Chamfered plans: one corner of a rectangle cut at 135 degrees (a long and a short cut), two
@@ -78,6 +79,30 @@ def test_a_sharper_corner_makes_the_run_beside_it_a_chamfer():
     disc = discretise(domain_from_dict({"outer": _polygon([40, 40, 60, 20, 20] * 2)}), 0.02)
     assert disc.turning[disc.smoothed].round(6).tolist() == [40.0] * 4
     assert disc.turning[disc.is_corner].round(6).tolist() == [60.0] * 2
+
+
+def _walk_to_hard(soft, k, step) -> int:
+    """The first entry from ``k`` on, going by ``step`` round the closed sequence, that is not soft."""
+    n = len(soft)
+    j = (k + step) % n
+    while soft[j]:
+        j = (j + step) % n
+    return j
+
+
+@given(st.lists(st.sampled_from(["soft", "sharp", "other"]), min_size=1, max_size=30))
+@settings(max_examples=200, deadline=None)
+def test_anchored_runs_are_the_soft_runs_beside_a_sharp_entry(kinds):
+    """_anchored_runs against a walk from each soft entry to the nearest entries that are not soft."""
+    soft = np.array([k == "soft" for k in kinds])
+    sharp = np.array([k == "sharp" for k in kinds])
+    got = _anchored_runs(soft, sharp)
+    if soft.all():
+        assert not got.any()
+        return
+    want = [bool(soft[k] and (sharp[_walk_to_hard(soft, k, -1)] or sharp[_walk_to_hard(soft, k, 1)]))
+            for k in range(len(kinds))]
+    assert got.tolist() == want
 
 
 @pytest.mark.parametrize("name", sorted(CHAMFERED))

@@ -110,7 +110,8 @@ class Discretisation:
     chamfers : bool
         Whether chamfers were made smooth points (:func:`discretise`'s argument).
     smoothed : ndarray (m,) int
-        The chamfer points that turn by more than ``corner_angle`` but are no corners.
+        The chamfer points: they turn by more than ``corner_angle`` but are no corners (a curve's end
+        on one is a corner all the same).
     """
 
     domain: Domain
@@ -208,7 +209,7 @@ def discretise(domain: Domain, spacing: float = 0.02, corner_angle: float = 30.0
     return Discretisation(
         domain, spacing, h, samples.points, samples.ring, samples.index, is_corner, corner_kind, samples.turning,
         samples.is_vertex, rings=tuple(ring_members), curves=tuple(curve_members), feature_points=feature,
-        chamfers=chamfers, smoothed=np.flatnonzero(smoothed),
+        chamfers=chamfers, smoothed=np.flatnonzero(smoothed & ~is_corner),
     )
 
 
