@@ -153,3 +153,14 @@ def test_smoothed_chamfers_make_no_patch_corner_past_the_limit(plan):
     dec = decompose(domain, spacing)
     if len(dec.disc.smoothed) and widest_corner(dec) > LAYOUT_TURN_LIMIT:
         assert widest_corner(dec) <= widest_corner(_layout(domain, False, spacing))
+
+
+@pytest.mark.parametrize("ring, spacing", [(CHAMFERED["one_cut"], 0.02), (FOLDING_WITH_CHAMFERS, 0.05)])
+def test_the_exploration_searches_the_skeleton_decompose_rewrites(ring, spacing):
+    """plan_skeleton (the exploration's search) and decompose (its replays) settle on one skeleton: the
+    chamfered one for the cut rectangle, the one with corners for the plan whose chamfers would fold."""
+    domain = domain_from_dict({"outer": ring})
+    searched, replayed = plan_skeleton(domain, spacing).triangulation.disc, decompose(domain, spacing).disc
+    assert searched.chamfers == replayed.chamfers == (ring is CHAMFERED["one_cut"])
+    assert np.array_equal(searched.smoothed, replayed.smoothed)
+    assert np.array_equal(searched.is_corner, replayed.is_corner)
