@@ -1,7 +1,7 @@
 """Chamfers as smooth boundary points (issue 12, item 3): a plan's corner cut off by a wall at 135
 degrees has two 135 degree vertices, regular with two faces each (valence 3), so neither is a patch
-corner; where the layout this gives turns by more than 180 degrees at a patch corner, the chamfers
-stay corners (vaultgram.meshpipeline._settled_skeleton)."""
+corner; where the layout this gives turns by more than 180 degrees at a patch corner, or keeps a
+thinner fan, the chamfers stay corners (vaultgram.meshpipeline._settled_skeleton)."""
 
 from __future__ import annotations
 
@@ -11,10 +11,13 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from vaultgram.domain import domain_from_dict
+from vaultgram.meshing.fans import FAN_FLOOR
 from vaultgram.meshing.quality import mesh_stats
 from vaultgram.meshpipeline import (
+    FAN_MARGIN,
     LAYOUT_TURN_LIMIT,
     _skeleton,
+    _thinnest_fan,
     decompose,
     mesh_domain,
     plan_skeleton,
@@ -142,17 +145,53 @@ def test_chamfers_stay_corners_where_their_layout_would_fold():
     assert mesh_stats(mesh_domain(domain, 0.05), domain)["inverted_faces"] == 0
 
 
+#: Draw 33 of the 700 random plans, its coordinates as saved (rounded to 6 decimals, its layout
+#: changes): draw 34's outline with an octagonal hole and three point features on the boundary.
+#: Smoothed, its chamfers leave a triangle patch whose pole, the point feature at (8.01, -1.73),
+#: faces the whole upper right side: a fan of 19 triangles in 46 degrees.
+THIN_FAN_WITH_CHAMFERS = {
+    "outer": [[6.634689100346438, 2.2526850581031006], [2.6721748535224727, 5.419579149428707],
+              [-2.2010460937904153, 6.482600164324887], [-5.281935078625707, 2.6043081401495325],
+              [-4.734539515810863, -1.6075246726646024], [-2.605226302161977, -5.283797251563933],
+              [2.2526850581030993, -6.6346891003464386], [8.937520243990575, -4.4067290448848215]],
+    "holes": [[[3.304446543748042, -0.5412224733129181], [2.5933300102028127, -2.258009653025553],
+               [0.8765428304901778, -2.9691261865707825], [-0.8402443492224572, -2.258009653025553],
+               [-1.5513608827676868, -0.5412224733129184], [-0.8402443492224576, 1.1755647063997168],
+               [0.8765428304901772, 1.8866812399449464], [2.5933300102028123, 1.1755647063997172]]],
+    "points": [[6.418103257416057, -5.24641472943088], [0.6016668453395098, -6.175572644649706],
+               [8.011047947312624, -1.727521454891337]],
+}
+
+
+def test_chamfers_stay_corners_where_their_layout_keeps_a_thinner_fan():
+    """Draw 33: its smoothed layout turns by less than LAYOUT_TURN_LIMIT at every patch corner, but its
+    thinnest fan is far below the floor and the corner layout's, so the chamfers stay corners, and the
+    mesh keeps main's worst face (0.40; 0.034 with the thin fan)."""
+    domain = domain_from_dict(THIN_FAN_WITH_CHAMFERS)
+    smoothed, plain = _layout(domain, True), _layout(domain, False)
+    assert len(smoothed.disc.smoothed) and widest_corner(smoothed) <= LAYOUT_TURN_LIMIT
+    assert _thinnest_fan(smoothed) < 0.1 < FAN_FLOOR < _thinnest_fan(plain)
+    assert not decompose(domain, 0.05).disc.chamfers
+    stats = mesh_stats(mesh_domain(domain, 0.05), domain)
+    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] > 0.3
+
+
 @given(vault_domains())
 @settings(max_examples=40, deadline=None, suppress_health_check=list(HealthCheck))
-def test_smoothed_chamfers_make_no_patch_corner_past_the_limit(plan):
-    """The property the fall-back keeps: where chamfers are smooth points, no patch of the layout turns
+def test_smoothed_chamfers_make_no_patch_corner_past_the_limit_nor_a_thinner_fan(plan):
+    """The properties the fall-back keeps: where chamfers are smooth points, no patch of the layout turns
     by more than LAYOUT_TURN_LIMIT degrees at a corner, unless the layout with them as corners turns
-    by as much (at a curve's or a hole's corner, which the chamfers do not make)."""
+    by as much (at a curve's or a hole's corner, which the chamfers do not make), and no fan is
+    thinner than the floor and than FAN_MARGIN times the corner layout's thinnest."""
     data, spacing = plan
     domain = domain_from_dict(data)
     dec = decompose(domain, spacing)
-    if len(dec.disc.smoothed) and widest_corner(dec) > LAYOUT_TURN_LIMIT:
+    if not len(dec.disc.smoothed):
+        return
+    if widest_corner(dec) > LAYOUT_TURN_LIMIT:
         assert widest_corner(dec) <= widest_corner(_layout(domain, False, spacing))
+    if _thinnest_fan(dec) < FAN_FLOOR:
+        assert _thinnest_fan(dec) >= FAN_MARGIN * _thinnest_fan(_layout(domain, False, spacing))
 
 
 @pytest.mark.parametrize("ring, spacing", [(CHAMFERED["one_cut"], 0.02), (FOLDING_WITH_CHAMFERS, 0.05)])
