@@ -29,23 +29,35 @@ from vaultgram.errors import VaultgramError
 from vaultgram.geometry.text import plan_frame
 from vaultgram.limits import MAX_FACES
 from vaultgram.meshing.densities import CHORD_TOLERANCE, DensitySpec, group_counts
-from vaultgram.meshing.fans import even_fans, held_vertices, poles_to_retry
+from vaultgram.meshing.fans import FAN_FLOOR, even_fans, held_vertices, poles_to_retry
 from vaultgram.meshing.fidelity import SAME_POINT, hold_boundary, on_points, place_on_points
 from vaultgram.meshing.layout import Layout, edge_groups, kept_points
 from vaultgram.meshing.optimise import maximise_min_quality
 from vaultgram.meshing.quadmesh import QuadMesh
 from vaultgram.meshing.quality import check_not_folded, face_scaled_jacobians
 from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS, laplacian_smooth
-from vaultgram.meshing.splits import split_patterns
+from vaultgram.meshing.splits import split_patterns, thinnest_fan
 from vaultgram.meshing.untangle import improve_shapes, untangle
 from vaultgram.meshing.weld import weld
 from vaultgram.topology.decomposition import Decomposition, block_decomposition
 from vaultgram.topology.discretise import discretise
 from vaultgram.topology.recovery import triangulate_recovering
 from vaultgram.topology.rulebook import load_vault_rulebook
-from vaultgram.topology.skeleton import skeleton
+from vaultgram.topology.skeleton import Skeleton, skeleton
 
-__all__ = ["decompose", "mesh_decomposition", "mesh_domain", "domain_frame"]
+__all__ = ["decompose", "plan_skeleton", "mesh_decomposition", "mesh_domain", "domain_frame"]
+
+#: A patch corner wider than this many degrees turns past straight: a quad mesh of the patch folds there
+#: at any density (:func:`vaultgram.meshing.quality.check_not_folded` names it), so chamfers whose
+#: smoothing makes a layout with a corner that wide stay corners (:func:`_settled_skeleton`). A degree
+#: above 180: a corner on a straight stretch, 180 degrees up to the sampling (180.1 where a cut
+#: rectangle's chord meets its side), meshes well.
+LAYOUT_TURN_LIMIT = 181.0
+#: Chamfers stay corners where their layout's thinnest fan is below the floor and below this fraction
+#: of the corner layout's (:func:`_settled_skeleton`): 5 percent spares near ties (draws 216 and 217 of
+#: 700 random plans, fans of 0.079 against 0.082: min scaled Jacobian 0.090 -> 0.082, 2 boundary
+#: singularities fewer).
+FAN_MARGIN = 0.95
 
 
 # --------------------------------------------------------------------------------------------
@@ -62,19 +74,89 @@ def decompose(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | Non
     skeleton branches with splines; ``check_invariants`` checks the rulebook's invariants while its
     strategies run (as ``vaultgram rules test`` does); ``trace`` keeps the graph the rules start from
     for a replay (``Decomposition.start_graph``); ``chooser`` resolves the rulebook's ``choose`` steps
-    (default: the first option; exploration replays a variant's choices).
+    (default: the first option; exploration replays a variant's choices). The plan's chamfers are
+    smooth boundary points unless their layout would turn past straight at a patch corner or keep a
+    thinner fan (:func:`_settled_skeleton`).
     """
     with domain_frame(domain):
         check_feature_layout(domain)
         rulebook = load_vault_rulebook(rules_dir)
-        with progress.timed(timings, "discretise"):
-            disc = discretise(domain, spacing)
-        with progress.timed(timings, "triangulate"):
-            tri = triangulate_recovering(disc)
-        with progress.timed(timings, "skeleton"):
-            sk = skeleton(tri, smooth=smooth)
-        with progress.timed(timings, "rules"):
-            return block_decomposition(sk, rulebook, check_invariants, trace, chooser or first_option)
+
+        def rewrite(sk: Skeleton, how) -> Decomposition:
+            with progress.timed(timings, "rules"):
+                return block_decomposition(sk, rulebook, check_invariants, trace, how)
+
+        sk, default = _settled_skeleton(domain, spacing, smooth, timings, rewrite)
+        return default if chooser is None and default is not None else rewrite(sk, chooser or first_option)
+
+
+def plan_skeleton(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None = None) -> Skeleton:
+    """The skeleton :func:`decompose` rewrites (chamfers smoothed or kept, :func:`_settled_skeleton`), for
+    a search of the rules' choices (the exploration) that :func:`decompose` then replays."""
+    with domain_frame(domain):
+        rulebook = load_vault_rulebook(rules_dir)
+        return _settled_skeleton(domain, spacing, False, None,
+                                 lambda sk, how: block_decomposition(sk, rulebook, chooser=how))[0]
+
+
+def _settled_skeleton(domain: Domain, spacing: float, smooth: bool, timings: dict | None, rewrite
+                      ) -> tuple[Skeleton, Decomposition | None]:
+    """The skeleton of the plan with its chamfers as smooth points (issue 12,
+    :func:`vaultgram.topology.discretise.discretise`) and the rules' default layout of it (``rewrite``
+    with the first option of every choice; None for a plan without chamfers: nothing to decide).
+
+    The skeleton and layout with the chamfers as corners instead where the smoothed layout is worse
+    than theirs in either of two ways, both read off the layouts (no mesh is made):
+
+    * a patch corner wider than :data:`LAYOUT_TURN_LIMIT` degrees, and wider than any of theirs: the
+      smoothed corners changed the skeleton, and with it the patching elsewhere (at a hole's or a
+      curve's corner, mostly), leaving a patch that turns past 180 degrees at a corner, where its
+      quads fold (1924157 on 700 random plans: 11 folds);
+    * a fan below :data:`~vaultgram.meshing.fans.FAN_FLOOR` thinner than :data:`FAN_MARGIN` times
+      their thinnest (:func:`_thinnest_fan`), which the mesh keeps: e.g. a triangle patch whose pole,
+      a point feature on the boundary, now faces a long side (draw 33 of the 700: min scaled
+      Jacobian 0.40 with corners, 0.034 smoothed; on the 700, 55 plans so kept corners, 44 of which
+      were worse by more than 0.01 smoothed, benchmarks/README.md).
+
+    The decision takes the default choices, so that an exploration's variants (:func:`plan_skeleton`)
+    and their replays see one skeleton."""
+    sk = _skeleton(domain, spacing, smooth, timings, chamfers=True)
+    if not len(sk.triangulation.disc.smoothed):
+        return sk, None
+    default = rewrite(sk, first_option)
+    wide, thin = widest_corner(default), _thinnest_fan(default)
+    if wide <= LAYOUT_TURN_LIMIT and thin >= FAN_FLOOR:
+        return sk, default
+    plain = _skeleton(domain, spacing, smooth, timings, chamfers=False)
+    plain_default = rewrite(plain, first_option)
+    worse = (wide > max(LAYOUT_TURN_LIMIT, widest_corner(plain_default))
+             or thin < min(FAN_FLOOR, FAN_MARGIN * _thinnest_fan(plain_default)))
+    return (plain, plain_default) if worse else (sk, default)
+
+
+def _thinnest_fan(dec: Decomposition) -> float:
+    """:func:`~vaultgram.meshing.splits.thinnest_fan` of ``dec`` at the default counts (a mesh asked at
+    other densities may differ); 0 for a layout the mesher refuses (its patches overlap)."""
+    try:
+        layout = edge_groups(dec)
+        return thinnest_fan(layout, group_counts(layout))
+    except VaultgramError:
+        return 0.0
+
+
+def widest_corner(dec: Decomposition) -> float:
+    """The widest interior angle (degrees) at a corner of any patch of ``dec``."""
+    return max(float(patch.corner_angles().max()) for patch in dec.patches)
+
+
+def _skeleton(domain: Domain, spacing: float, smooth: bool, timings: dict | None, chamfers: bool) -> Skeleton:
+    """Discretise, triangulate and skeletonise the plan (§3.1), chamfers smooth or not."""
+    with progress.timed(timings, "discretise"):
+        disc = discretise(domain, spacing, chamfers=chamfers)
+    with progress.timed(timings, "triangulate"):
+        tri = triangulate_recovering(disc)
+    with progress.timed(timings, "skeleton"):
+        return skeleton(tri, smooth=smooth)
 
 
 def domain_frame(domain: Domain):

@@ -18,9 +18,9 @@ from vaultgram.pipeline import mesh_domain
 
 from strategies.domains import convex_domains
 
-# Examples that meet every acceptance property, and for the others the property that fails (kept as
-# strict xfails so that a fix shows up). "Boundary singularities" are compared with the number the
-# index theorem forces for the decomposition (see forced_boundary_singular), each boundary vertex
+# The examples and shared plans, which all meet every acceptance property. "Boundary singularities"
+# are compared with the number the index theorem forces for the decomposition (see
+# forced_boundary_singular), each boundary vertex
 # counted by the regular valence of its angle: 0 for most plans, more where the medial axis leaves
 # reflex corners without a branch of their own (none on a rectilinear plan such as the L-shape,
 # rules/corners.vgr).
@@ -28,11 +28,8 @@ PASSING = ["l_shape", "quad_with_hole", "square_point_loads", "british_museum_ma
            "rolex_learning_centre", "hiroshi_senju_museum", "multiple_lobes",
            "rv_lips_pattern", "rv_pillow_pattern", "rv_quad_pattern", "rv_ring_pattern", "armadillo_vault_plan",
            "mexico_airport",  # since its vertices turning by 12 degrees and more are kept (boundary fidelity)
-           "rv_star_pattern"]  # since a 214 degree vertex two rebranches end at spreads them (< 225 degrees)
-FAILING = {
-    "two_holes_five_points": "1 boundary singularity at (4.76, 9.01): the boundary feature (4.5, 9.22) is the corner "
-                             "of two quads whose far corners are on the boundary, and Figure 4 splits one",
-}
+           "rv_star_pattern",  # since a 214 degree vertex two rebranches end at spreads them (< 225 degrees)
+           "two_holes_five_points"]  # since its chamfer's 137 degree end is a smooth boundary point
 
 
 #: A face whose minimum scaled Jacobian is at most this is counted as degenerate.
@@ -127,7 +124,7 @@ def acceptance_failures(mesh, stats, domain, forced: int = 0) -> list[str]:
     return out
 
 
-@pytest.mark.parametrize("name", PASSING + sorted(FAILING))
+@pytest.mark.parametrize("name", PASSING)
 def test_index_theorem(meshed, name):
     """The meshes obey the index theorem, and have at least the forced boundary singularities."""
     domain, layout, counts, mesh, stats = meshed(name)
@@ -152,17 +149,6 @@ def test_examples_meet_acceptance(meshed, name):
     assert set(stats["interior_singular_vertices"]) == expected_interior_singular(layout, counts, mesh)
     # interior singularities sit at decomposition nodes (singularities, loop cuts) and poles
     assert (mesh.singular | mesh.pole)[stats["interior_singular_vertices"]].all()
-
-
-@pytest.mark.parametrize("name", sorted(FAILING))
-def test_examples_with_known_defects(meshed, name):
-    """Still a valid, consistently oriented mesh; the listed acceptance property fails (strict xfail)."""
-    domain, layout, counts, mesh, stats = meshed(name)
-    assert stats["manifold"] and stats["oriented"]
-    assert set(stats["interior_singular_vertices"]) == expected_interior_singular(layout, counts, mesh)
-    if acceptance_failures(mesh, stats, domain, forced_boundary_singular(layout, counts)):
-        pytest.xfail(FAILING[name])
-    pytest.fail(f"{name} now meets every acceptance property: move it to PASSING")
 
 
 @pytest.mark.parametrize("name", ["l_shape", "quad_with_hole", "rv_lips_pattern", "rv_quad_pattern",

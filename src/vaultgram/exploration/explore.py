@@ -31,10 +31,7 @@ from vaultgram.exploration.ranking import DEFAULT_PARETO, pareto_front, score
 from vaultgram.exploration.search import SearchResult, check_bounds, search
 from vaultgram.io.files import read_json, write_json, write_text
 from vaultgram.topology.decomposition import decomposition_graph
-from vaultgram.topology.discretise import discretise
 from vaultgram.topology.rulebook import load_vault_rulebook
-from vaultgram.topology.skeleton import skeleton
-from vaultgram.topology.triangulation import triangulate
 
 STATE_SPACE = "state_space.json"
 
@@ -91,7 +88,9 @@ def explore(domain: Domain, options: ExploreOptions, workers: int = 1, client=No
     """Search, evaluate and rank the variants of ``domain`` (see the module docstring)."""
     check_bounds(options.limit, options.depth)
     rulebook = load_vault_rulebook(options.rules_dir)
-    sk = skeleton(triangulate(discretise(domain, options.spacing)))
+    from vaultgram.meshpipeline import plan_skeleton  # as evaluate does: the mesh path's modules on use
+
+    sk = plan_skeleton(domain, options.spacing, options.rules_dir)
     result = search(rulebook, decomposition_graph(sk, rulebook), sk.triangulation.disc, options.limit,
                     options.depth, options.seed, options.order)
     jobs = [_job(domain, options, result, v.id) for v in result.variants]

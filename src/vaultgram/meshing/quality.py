@@ -26,7 +26,7 @@ from vaultgram.geometry.meshes import (
     corner_vectors,
     twinned_sides,
 )
-from vaultgram.geometry.polygons import bbox_diagonal, cross_z, interior_angle, regular_valence, signed_angles
+from vaultgram.geometry.polygons import bbox_diagonal, cross_z, regular_valence, signed_angles
 from vaultgram.geometry.polylines import polyline_hausdorff, turning_angles
 from vaultgram.geometry.text import fmt_point
 from vaultgram.meshing.quadmesh import QuadMesh
@@ -127,8 +127,7 @@ def check_not_folded(mesh: QuadMesh, decomposition: Decomposition, face_sj: np.n
     where = mesh.vertices[list(mesh.faces[first]), :2].mean(axis=0)
     patch = decomposition.patches[int(mesh.face_patch[first])]
     corners = ", ".join(fmt_point(decomposition.graph.get(c, "pos")) for c in patch.corners)
-    angles = [interior_angle(patch.sides[k - 1][-2], patch.sides[k][0], patch.sides[k][1])
-              for k in range(patch.n_sides)]
+    angles = patch.corner_angles()
     k = int(np.argmax(angles))
     if angles[k] > 180:
         why = (f"the patch turns by {angles[k]:.0f} degrees at its corner {fmt_point(patch.sides[k][0])}, which no "

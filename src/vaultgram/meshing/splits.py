@@ -26,7 +26,7 @@ from vaultgram.geometry.polygons import regular_valence
 from vaultgram.meshing.fans import FAN_FLOOR
 from vaultgram.meshing.layout import Layout, PatchPattern, _outside_angle, is_boundary_node, is_feature_node
 
-__all__ = ["fan_estimate", "split_patterns", "split_counts", "split_points"]
+__all__ = ["fan_estimate", "split_patterns", "split_counts", "split_points", "thinnest_fan"]
 
 #: No split where the pole's angle is wider: the quad there would keep a flat or reflex corner
 #: (a fan spans any angle).
@@ -114,6 +114,31 @@ def split_patterns(layout: Layout, counts) -> frozenset:
             if n % 2 == 0 and n < 2 * m:
                 out.add(k)
     return frozenset(_keep_feature_poles(layout, side_count, _whole_poles(layout, side_count, out)))
+
+
+def thinnest_fan(layout: Layout, counts) -> float:
+    """The smallest :func:`fan_estimate` of the layout's fans of two or more triangles that stay fans
+    (not in :func:`split_patterns`) at ``counts``; 1.0 where there is none.
+
+    A cheap forecast of the mesh's worst face, from the layout alone: a fan's triangles share the
+    patch's angle at the pole, and a fan below the floor is neither split nor evened, so the mesh
+    keeps it (draw 33 of 700 random plans: a fan of 19 triangles in 46 degrees at a boundary point
+    feature, estimate 0.049, meshed 0.034). A lone triangle is left out: at a skeleton vertex,
+    which smoothing moves, its corner in the layout says little (draw 278: 5.6 degrees, meshed 0.24).
+
+    >>> from vaultgram.domain import load_domain
+    >>> from vaultgram.meshing.densities import group_counts
+    >>> from vaultgram.meshing.layout import edge_groups
+    >>> from vaultgram.pipeline import decompose
+    >>> layout = edge_groups(decompose(load_domain("examples/quad_with_hole.json")))
+    >>> thinnest_fan(layout, group_counts(layout))  # quads only
+    1.0
+    """
+    side_count = np.asarray(counts)[layout.group_of]
+    split = split_patterns(layout, counts)
+    fans = [_fan_of(layout, pat, side_count) for k, pat in enumerate(layout.patterns)
+            if pat.pole is not None and k not in split and _pole_counts(pat, side_count)[1] >= 2]
+    return min(fans, default=1.0)
 
 
 def _whole_poles(layout: Layout, side_count: np.ndarray, split: set) -> set:

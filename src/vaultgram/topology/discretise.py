@@ -14,7 +14,9 @@ Method
 * Corners are decided by angle: an input vertex is a *corner* when its turning angle exceeds
   ``corner_angle`` degrees; it is *convex* when the ring turns towards the domain (left, since the
   domain lies left of every normalised ring) and *reflex* otherwise. Points added by the
-  subdivision are never corners.
+  subdivision are never corners, nor (with ``chamfers``, the default) are the vertices of a
+  chamfer (:func:`_chamfer_points`): 135 to 150 degree vertices, in a run of such vertices that
+  ends at a sharper convex corner; the regular valence makes them smooth points (issue 12).
 * Curve features (§4.2) are open polylines discretised the same way. An end point lying on the
   boundary is inserted into its ring (it becomes a ring point, so the boundary segment it lies on
   is split and stays a triangle edge), and the curve shares that point.
@@ -27,7 +29,7 @@ over rings and features.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import NamedTuple
 
 import numpy as np
@@ -53,6 +55,15 @@ RING_POINT = -2
 DENSE_RUN = 0.02
 THINNING_TOLERANCE = 1e-3
 BOUNDARY_FIDELITY_ANGLE = 15.0
+#: A ring vertex turning towards the domain by more than this many degrees (an interior angle under
+#: 135) is a convex corner by the regular valence (:func:`_chamfer_points`).
+CONVEX_TURN = 45.0
+#: Ring vertices turning by less than this many degrees are points on a straight stretch (a feature
+#: point or a chord's foot inserted there), not a chamfer's neighbour.
+STRAIGHT_TURN = 1e-6
+#: Turning angles closer than this (degrees) are equal: a regular octagon's corners, 45 degrees each up
+#: to rounding, are all alike (none is sharper, so none is a chamfer's).
+ANGLE_TOLERANCE = 1e-6
 
 
 @dataclass(frozen=True, eq=False)
@@ -96,6 +107,11 @@ class Discretisation:
         extremities").
     feature_points : ndarray (k,) int
         Index of the point of each point feature, in the domain's order.
+    chamfers : bool
+        Whether chamfers were made smooth points (:func:`discretise`'s argument).
+    smoothed : ndarray (m,) int
+        The chamfer points: they turn by more than ``corner_angle`` but are no corners (a curve's end
+        on one is a corner all the same).
     """
 
     domain: Domain
@@ -111,6 +127,8 @@ class Discretisation:
     rings: tuple
     curves: tuple
     feature_points: np.ndarray
+    chamfers: bool = True
+    smoothed: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
 
     @property
     def n_points(self) -> int:
@@ -133,7 +151,8 @@ class Discretisation:
         )
 
 
-def discretise(domain: Domain, spacing: float = 0.02, corner_angle: float = 30.0) -> Discretisation:
+def discretise(domain: Domain, spacing: float = 0.02, corner_angle: float = 30.0, chamfers: bool = True
+               ) -> Discretisation:
     """Sample the boundaries and features of ``domain`` (paper §3.1; features §4).
 
     Feature points on the boundary or on a curve are inserted into it; the rings and curves are
@@ -149,7 +168,10 @@ def discretise(domain: Domain, spacing: float = 0.02, corner_angle: float = 30.0
         diagonal; the paper recommends 0.01 to 0.05 (:data:`SPACING_RANGE`). Must lie in
         ``(0, 0.2]``.
     corner_angle : float
-        A ring vertex turning by more than this many degrees is a corner (convex or reflex).
+        A ring vertex turning by more than this many degrees is a corner (convex or reflex), but a
+        chamfer's.
+    chamfers : bool
+        Make the vertices of chamfers smooth points (:func:`_chamfer_points`), not corners.
 
     Returns
     -------
@@ -180,12 +202,14 @@ def discretise(domain: Domain, spacing: float = 0.02, corner_angle: float = 30.0
     samples = _Samples.concatenate(rings + curves + isolated)
     samples, curve_members, feature = _merge_coincident_features(samples, curve_members, feature, n_ring_points,
                                                                  tol)
-    is_corner, corner_kind = _corners(samples, curve_members, corner_angle)
+    smoothed = _chamfer_points(samples, corner_angle) if chamfers else np.zeros(len(samples.ring), dtype=bool)
+    is_corner, corner_kind = _corners(samples, curve_members, corner_angle, smoothed)
     for a in (*samples, is_corner, corner_kind, feature):
         a.setflags(write=False)
     return Discretisation(
         domain, spacing, h, samples.points, samples.ring, samples.index, is_corner, corner_kind, samples.turning,
         samples.is_vertex, rings=tuple(ring_members), curves=tuple(curve_members), feature_points=feature,
+        chamfers=chamfers, smoothed=np.flatnonzero(smoothed & ~is_corner),
     )
 
 
@@ -459,12 +483,60 @@ def _merge_coincident_features(samples: _Samples, curves: list, feature: np.ndar
     return samples.subset(keep), [final[c] for c in curves], final[feature]
 
 
-def _corners(samples: _Samples, curves: list, corner_angle: float) -> tuple[np.ndarray, np.ndarray]:
-    """Ring points turning by more than ``corner_angle`` are corners, convex (1) when the ring turns
-    towards the domain, reflex (-1) otherwise. Curve features cut the domain (§4.2): where a curve
-    meets a ring, and where a curve turns sharply, the regions on either side see a convex corner."""
+def _chamfer_points(samples: _Samples, corner_angle: float) -> np.ndarray:
+    """The ring vertices of chamfers: vertices turning towards the domain by ``corner_angle`` to
+    :data:`CONVEX_TURN` degrees (interior angles of 135 to 150 degrees) in a run of such vertices
+    (consecutive along the ring, points on a straight stretch aside) that ends next to a sharper
+    convex corner: a plan's corner cut off by one or more short walls (the two 135 degree vertices
+    of a rectangle's cut corner) or eased by a softer bend next to it. The regular valence makes
+    each one a smooth boundary point with two faces (issue 12: "a 150 degree corner is a smooth
+    boundary point, not a patch corner"); as a patch corner it would be the corner of one quad of
+    135-150 degrees, a boundary singularity. Runs that end at no sharper corner (a rounded tip, a
+    polygon of soft corners only, which the O-grid rules take) stay corners.
+
+    >>> ring = np.zeros(7, dtype=int)
+    >>> turning = np.array([90.0, 40.0, 0.0, 40.0, 20.0, 40.0, 20.0])  # a chamfer of two; a lone 140
+    >>> samples = _Samples(np.zeros((7, 2)), ring, np.arange(7), turning, np.ones(7, bool))
+    >>> np.flatnonzero(_chamfer_points(samples, 30.0)).tolist()
+    [1, 3]
+    """
+    at = np.flatnonzero((samples.ring >= 0) & samples.is_vertex & (np.abs(samples.turning) > STRAIGHT_TURN))
+    turning, ring = samples.turning[at], samples.ring[at]
+    soft = (turning > corner_angle) & (turning <= CONVEX_TURN + ANGLE_TOLERANCE)
+    out = np.zeros(len(samples.ring), dtype=bool)
+    for r in np.unique(ring[soft]):
+        on = ring == r
+        out[at[on]] = _anchored_runs(soft[on], turning[on] > CONVEX_TURN + ANGLE_TOLERANCE)
+    return out
+
+
+def _anchored_runs(soft: np.ndarray, sharp: np.ndarray) -> np.ndarray:
+    """In a closed sequence, the ``soft`` entries whose run of consecutive soft entries has a
+    ``sharp`` entry just before or just after it (cyclically); none if every entry is soft.
+
+    >>> _anchored_runs(np.array([0, 1, 1, 0, 1, 0, 1], bool), np.array([1, 0, 0, 0, 0, 0, 0], bool)).tolist()
+    [False, True, True, False, False, False, True]
+    """
+    n = len(soft)
+    if soft.all():
+        return np.zeros(n, dtype=bool)
+    k = np.arange(n)
+    hard = np.flatnonzero(~soft)
+    before = np.maximum.accumulate(np.where(soft, -1, k))
+    before = np.where(before < 0, hard[-1], before)
+    after = np.minimum.accumulate(np.where(soft, n, k)[::-1])[::-1]
+    after = np.where(after >= n, hard[0], after)
+    return soft & (sharp[before] | sharp[after])
+
+
+def _corners(samples: _Samples, curves: list, corner_angle: float, smoothed: np.ndarray
+             ) -> tuple[np.ndarray, np.ndarray]:
+    """Ring points turning by more than ``corner_angle`` are corners (but those ``smoothed``, a
+    chamfer's), convex (1) when the ring turns towards the domain, reflex (-1) otherwise. Curve
+    features cut the domain (§4.2): where a curve meets a ring, and where a curve turns sharply, the
+    regions on either side see a convex corner."""
     ring, turning = samples.ring, samples.turning
-    is_corner = (ring >= 0) & (np.abs(turning) > corner_angle)
+    is_corner = (ring >= 0) & (np.abs(turning) > corner_angle) & ~smoothed
     corner_kind = np.zeros(len(ring), dtype=np.int8)
     corner_kind[is_corner & (turning > 0)] = 1
     corner_kind[is_corner & (turning < 0)] = -1

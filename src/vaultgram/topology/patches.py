@@ -21,7 +21,7 @@ from vaultgram.engine.embedding import face_index, faces
 from vaultgram.engine.graph import HostGraph
 from vaultgram.errors import DomainError, RewriteError
 from vaultgram.geometry.frames import NO_ORIGIN, to_plan
-from vaultgram.geometry.polygons import signed_area
+from vaultgram.geometry.polygons import interior_angle, signed_area
 from vaultgram.geometry.text import fmt_point
 from vaultgram.topology.discretise import Discretisation
 from vaultgram.topology.statecache import by_content
@@ -51,6 +51,13 @@ class Patch:
     @property
     def n_sides(self) -> int:
         return len(self.corners)
+
+    def corner_angles(self) -> np.ndarray:
+        """The interior angle (degrees) at each corner, between the ends of the sides meeting there: a
+        quad mesh of the patch can turn by no more than 180 degrees at a corner (over 180 it folds
+        there at any density)."""
+        return np.array([interior_angle(self.sides[k - 1][-2], self.sides[k][0], self.sides[k][1])
+                         for k in range(self.n_sides)])
 
     def polygon(self) -> np.ndarray:
         """The patch outline: the concatenated sides without repeated points."""

@@ -41,7 +41,7 @@ def triangulate_recovering(disc: Discretisation, rounds: int = MAX_ROUNDS) -> Tr
         except BoundaryRecoveryError as exc:
             if k == rounds:
                 raise
-            disc = discretise(with_midpoints(disc.domain, exc.segments), disc.spacing)
+            disc = discretise(with_midpoints(disc.domain, exc.segments), disc.spacing, chamfers=disc.chamfers)
     raise AssertionError("unreachable")  # pragma: no cover
 
 
