@@ -203,8 +203,8 @@ def test_the_skeleton_does_not_depend_on_the_order_of_the_triangles_or_their_cor
     for seed in range(4):
         rng = np.random.default_rng(seed)
 
-        def shuffled(pts, rng=rng):
-            t = delaunay(pts)
+        def shuffled(pts, diagonal=None, rng=rng):
+            t = delaunay(pts, diagonal)
             turn = (rng.integers(0, 3, len(t))[:, None] + np.arange(3)) % 3
             return np.take_along_axis(t, turn, axis=1)[rng.permutation(len(t))]
 

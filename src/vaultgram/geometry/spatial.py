@@ -19,36 +19,40 @@ scipy.sparse, scipy.linalg and scipy.special), most of the command's time on a 1
 
 from __future__ import annotations
 
-from fractions import Fraction
-
 import numpy as np
 import shapely
 
 from vaultgram.geometry.arrays import lookup, ranges
 
-__all__ = ["close_pairs", "delaunay", "incircle", "nearest_within", "orientation", "pairs_within"]
+__all__ = ["close_pairs", "delaunay", "incircle", "nearest_within", "pairs_within"]
 
 #: The grid's cells are at least this fraction of the points' extent wide, so that cell indices stay
 #: below 2^20 in each direction (an int64 key holds both) however small ``r`` is.
 MIN_CELL = 2.0**-20
 
 
-#: Before GEOS triangulates them, the sites move by this fraction of their extent, each in a direction
-#: hashed from its index: GEOS's predicates are in floating point, and on the samples of a slanted
-#: straight side (collinear to round-off) it returned overlapping and flat triangles; moved, no three
-#: sites are collinear to round-off. The triangles are then made Delaunay for the sites as given
-#: (:func:`_legalised`, exact), so the move only decides where the plan leaves a choice.
+#: Before GEOS triangulates them, the sites move by this fraction of the plan's size (at most a fifth
+#: of the sagitta of the finest arc the closest two sites could sample, :func:`_move`), each in a
+#: direction hashed from its index. GEOS's predicates are in floating point: on the samples of a
+#: slanted straight side (collinear to round-off) it returned overlapping and flat triangles; moved,
+#: no three sites are collinear, or four co-circular, to round-off.
 PERTURBATION = 1e-9
+#: In-circle determinants above this fraction of their permanent are flipped (:func:`_legalised`):
+#: far above round-off (1e-16), below what the move can change.
+ILLEGAL = 1e-12
 
 
-def delaunay(points) -> np.ndarray:
+def delaunay(points, diagonal: float | None = None) -> np.ndarray:
     """The Delaunay triangles (m, 3) of the plan points ``points`` (n, 2): counter-clockwise, each
     starting at its lowest index, sorted. They cover the convex hull of the points (but for flat
-    triangles of collinear hull points); of points that coincide exactly, the lowest index is used;
-    among co-circular points the diagonals are those of the sites moved by :data:`PERTURBATION`.
+    triangles of collinear hull points); of points that coincide exactly, the lowest index is used.
+    Where the points leave a choice (co-circular points: a lattice, a regular polygon) the triangles
+    are those of the points moved by :data:`PERTURBATION` of ``diagonal`` (the plan's size; default
+    the points' extent: :mod:`vaultgram.topology.triangulation` passes the plan's, without its far
+    frame); edges illegal by more than :data:`ILLEGAL` for the points as given are flipped.
 
-    Why GEOS's and not qhull's: same speed, without importing scipy (see the module's docstring), and
-    co-circular points (a regular polygon) cost it no facet merging.
+    Why GEOS's and not qhull's: same speed on plans, without importing scipy (see the module's
+    docstring). Its insertion order (by x) makes points on one circle quadratic (a 20,000-gon: 2 s).
 
     >>> delaunay(np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.1]])).tolist()
     [[0, 1, 2], [1, 3, 2]]
@@ -58,15 +62,25 @@ def delaunay(points) -> np.ndarray:
     if len(sites) < 3:
         return np.zeros((0, 3), dtype=np.int64)
     q = pts[sites]
-    angle = 2.0 * np.pi * ((sites.astype(np.uint64) * np.uint64(2654435761)) % np.uint64(2**32)) / 2.0**32
-    moved = q + PERTURBATION * max(float(np.ptp(q, axis=0).max()), 1e-300) * np.column_stack([np.cos(angle),
-                                                                                              np.sin(angle)])
-    parts = shapely.get_parts(shapely.delaunay_triangles(shapely.multipoints(moved)))
-    tri = _indices_of(moved, shapely.get_coordinates(parts).reshape(-1, 4, 2)[:, :3].reshape(-1, 2)).reshape(-1, 3)
-    turn = orientation(q, tri[:, 0], tri[:, 1], tri[:, 2])
+    size = max(float(np.ptp(q, axis=0).max()) if diagonal is None else diagonal, 1e-300)
+    tri = _geos(q, sites, PERTURBATION * size)
+    closest = float(np.sqrt(((q[tri] - q[np.roll(tri, 1, axis=1)]) ** 2).sum(axis=2).min())) if len(tri) else size
+    if 0.2 * closest**2 / size < PERTURBATION * size:  # sites finer than the move: move less
+        tri = _geos(q, sites, max(0.2 * closest**2 / size, 1e-13 * size))
+    a, b, c = q[tri[:, 0]], q[tri[:, 1]], q[tri[:, 2]]
+    turn = np.sign((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]))
     tri = tri[turn != 0]  # flat triangles of collinear hull points
     tri[turn[turn != 0] < 0] = tri[turn[turn != 0] < 0][:, [0, 2, 1]]
     return _canonical(sites[_legalised(q, tri)])
+
+
+def _geos(q: np.ndarray, sites: np.ndarray, amount: float) -> np.ndarray:
+    """GEOS's Delaunay triangles of the sites ``q`` moved by ``amount`` each, in a direction hashed
+    from its index ``sites``: the triangles' rows of ``q``."""
+    angle = 2.0 * np.pi * ((sites.astype(np.uint64) * np.uint64(2654435761)) % np.uint64(2**32)) / 2.0**32
+    moved = q + amount * np.column_stack([np.cos(angle), np.sin(angle)])
+    parts = shapely.get_parts(shapely.delaunay_triangles(shapely.multipoints(moved)))
+    return _indices_of(moved, shapely.get_coordinates(parts).reshape(-1, 4, 2)[:, :3].reshape(-1, 2)).reshape(-1, 3)
 
 
 def _distinct_rows(pts: np.ndarray) -> np.ndarray:
@@ -89,28 +103,6 @@ def _indices_of(pts: np.ndarray, coords: np.ndarray) -> np.ndarray:
     return order[pos].astype(np.int64)
 
 
-#: Shewchuk's bound on the floating-point orientation determinant's error, relative to its permanent.
-ORIENTATION_ERROR = (3.0 + 16.0 * 2.0**-53) * 2.0**-53
-
-
-def orientation(pts: np.ndarray, a, b, c) -> np.ndarray:
-    """The sign of the turn ``a -> b -> c`` (index arrays into ``pts``), exactly: 1 counter-clockwise,
-    -1 clockwise, 0 collinear. Floating point where its error bound decides, rationals elsewhere.
-
-    >>> orientation(np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [0.0, 1.0]]), [0, 0], [1, 1], [3, 2]).tolist()
-    [1, 0]
-    """
-    a, b, c = (np.asarray(i, dtype=np.int64) for i in (a, b, c))
-    left = (pts[a, 0] - pts[c, 0]) * (pts[b, 1] - pts[c, 1])
-    right = (pts[a, 1] - pts[c, 1]) * (pts[b, 0] - pts[c, 0])
-    sign = np.sign(left - right).astype(np.int64)
-    for k in np.flatnonzero(np.abs(left - right) <= ORIENTATION_ERROR * (np.abs(left) + np.abs(right))):
-        (ax, ay), (bx, by), (cx, cy) = ((Fraction(float(v[0])), Fraction(float(v[1]))) for v in pts[[a[k], b[k], c[k]]])
-        det = (ax - cx) * (by - cy) - (ay - cy) * (bx - cx)
-        sign[k] = (det > 0) - (det < 0)
-    return sign
-
-
 def _complex_rows(xy: np.ndarray) -> np.ndarray:
     """The rows ``(x, y)`` as the complex numbers ``x + iy``, bit for bit."""
     out = np.empty(len(xy), dtype=np.complex128)
@@ -127,15 +119,14 @@ def _canonical(tri: np.ndarray) -> np.ndarray:
 
 
 def _legalised(pts: np.ndarray, tri: np.ndarray) -> np.ndarray:
-    """Counter-clockwise triangles ``tri`` with Lawson's flips applied until no edge is illegal (the
-    vertex across it strictly inside the other triangle's circumcircle, by the exact test
-    :func:`incircle`). GEOS's own test is in floating point: on the samples of a slanted straight
-    side (collinear to round-off) it leaves such edges, near-flat triangles along the side. Each round
-    flips every illegal edge that is the lowest-numbered illegal edge of both its triangles (the
-    flips of a round touch distinct triangles), so a round costs one sort of the edges."""
+    """Counter-clockwise triangles ``tri`` with Lawson's flips applied until no edge is illegal: the
+    vertex across it inside the other triangle's circumcircle by more than :data:`ILLEGAL`
+    (:func:`incircle`). Each round flips every illegal edge that is the lowest-numbered illegal edge
+    of both its triangles (the flips of a round touch distinct triangles), so a round costs one sort
+    of the edges. The moved sites' triangles need none or a few."""
     while len(tri):
         t, u, p, a, b, q = _interior_edges(tri)
-        bad = np.flatnonzero(incircle(pts, p, a, b, q) > 0)
+        bad = np.flatnonzero(incircle(pts, p, a, b, q) > ILLEGAL)
         if not len(bad):
             return tri
         first = np.full(len(tri), len(t))
@@ -162,43 +153,20 @@ def _interior_edges(tri: np.ndarray) -> tuple[np.ndarray, ...]:
     return t, u, tri.ravel()[keep], a[keep], b[keep], tri.ravel()[twin[keep]]
 
 
-#: Shewchuk's bound on the floating-point in-circle determinant's error, relative to its permanent
-#: ("Adaptive precision floating-point arithmetic and fast robust geometric predicates", 1997).
-INCIRCLE_ERROR = (10.0 + 96.0 * 2.0**-53) * 2.0**-53
-
-
 def incircle(pts: np.ndarray, a, b, c, d) -> np.ndarray:
-    """The sign of the in-circle determinant of points ``a, b, c, d`` (index arrays into ``pts``):
-    positive where ``d`` lies strictly inside the circle through the counter-clockwise ``a, b, c``,
-    0 on it, exactly. Floating point where its error bound decides, exact rationals elsewhere
-    (co-circular and near-co-circular points: a few per plan).
+    """The in-circle determinant of points ``a, b, c, d`` (index arrays into ``pts``) over its
+    permanent (the sum of its terms' magnitudes): positive where ``d`` lies inside the circle through
+    the counter-clockwise ``a, b, c``, negative outside, about 0 (within some 1e-15) on it.
 
     >>> sq = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 0.5]])
-    >>> incircle(sq, np.array([0, 0]), np.array([1, 1]), np.array([2, 2]), np.array([3, 4])).tolist()
-    [0, 1]
+    >>> incircle(sq, np.array([0, 0]), np.array([1, 1]), np.array([2, 2]), np.array([3, 4])).round(6).tolist()
+    [0.0, 0.666667]
     """
     ad, bd, cd = pts[a] - pts[d], pts[b] - pts[d], pts[c] - pts[d]
     al, bl, cl = (ad**2).sum(axis=1), (bd**2).sum(axis=1), (cd**2).sum(axis=1)
-    bc, ca, ab = (bd[:, 0] * cd[:, 1] - cd[:, 0] * bd[:, 1], cd[:, 0] * ad[:, 1] - ad[:, 0] * cd[:, 1],
-                  ad[:, 0] * bd[:, 1] - bd[:, 0] * ad[:, 1])
-    det = al * bc + bl * ca + cl * ab
-    permanent = (al * (np.abs(bd[:, 0] * cd[:, 1]) + np.abs(cd[:, 0] * bd[:, 1]))
-                 + bl * (np.abs(cd[:, 0] * ad[:, 1]) + np.abs(ad[:, 0] * cd[:, 1]))
-                 + cl * (np.abs(ad[:, 0] * bd[:, 1]) + np.abs(bd[:, 0] * ad[:, 1])))
-    sign = np.sign(det).astype(np.int64)
-    for k in np.flatnonzero(np.abs(det) <= INCIRCLE_ERROR * permanent):
-        sign[k] = _exact_incircle(*(pts[i[k]] for i in (a, b, c, d)))
-    return sign
-
-
-def _exact_incircle(a, b, c, d) -> int:
-    """The sign of the in-circle determinant in rationals (every float is one)."""
-    rows = [(Fraction(float(p[0])) - Fraction(float(d[0])), Fraction(float(p[1])) - Fraction(float(d[1])))
-            for p in (a, b, c)]
-    (ax, ay), (bx, by), (cx, cy) = rows
-    det = (ax * ax + ay * ay) * (bx * cy - cx * by) + (bx * bx + by * by) * (cx * ay - ax * cy) \
-        + (cx * cx + cy * cy) * (ax * by - bx * ay)
-    return (det > 0) - (det < 0)
+    terms = np.stack([al * bd[:, 0] * cd[:, 1], -al * cd[:, 0] * bd[:, 1], bl * cd[:, 0] * ad[:, 1],
+                      -bl * ad[:, 0] * cd[:, 1], cl * ad[:, 0] * bd[:, 1], -cl * bd[:, 0] * ad[:, 1]])
+    return terms.sum(axis=0) / np.maximum(np.abs(terms).sum(axis=0), 1e-300)
 
 
 def pairs_within(points, queries, r: float) -> tuple[np.ndarray, np.ndarray]:

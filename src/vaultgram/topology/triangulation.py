@@ -247,7 +247,7 @@ def _delaunay(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     mid, big = 0.5 * (lo + hi), 10.0 * max(bbox_diagonal(pts), 1e-300)
     ang = np.radians([15.0, 105.0, 195.0, 285.0, 60.0])
     frame = mid + big * np.stack([np.cos(ang), np.sin(ang)], axis=1) * np.array([[1.0], [1.1], [1.0], [1.2], [1.3]])
-    tri = delaunay(np.concatenate([pts, frame]))
+    tri = delaunay(np.concatenate([pts, frame]), bbox_diagonal(pts))  # the plan's size: not the frame's
     tri = tri[(tri < n).all(axis=1)]
     centroid = (pts[tri[:, 0]] + pts[tri[:, 1]] + pts[tri[:, 2]]) / 3.0
     return tri, np.abs(triangle_areas(pts, tri)), centroid
