@@ -7,9 +7,10 @@ scipy.sparse, scipy.linalg and scipy.special), most of the command's time on a 1
 18). Here instead:
 
 * :func:`delaunay`: GEOS's incremental Delaunay triangulation (``shapely.delaunay_triangles``; shapely
-  is imported anyway), whose triangles come back as coordinates, mapped back to the input's indices
-  exactly (GEOS copies the input coordinates) and put in a canonical order: counter-clockwise, the
-  lowest index first, triangles sorted.
+  is imported anyway) of the sites moved by a tiny deterministic amount (GEOS's predicates are in
+  floating point), whose triangles come back as coordinates, mapped back to the input's indices
+  exactly (GEOS copies the input coordinates), edges illegal for the sites as given flipped, and put
+  in a canonical order: counter-clockwise, the lowest index first, triangles sorted.
 * :func:`pairs_within`, :func:`close_pairs`, :func:`nearest_within`: a grid hash. Points go into square
   cells at least as wide as the distance ``r``, so the points within ``r`` of a point lie in its cell
   or the eight around it; the cells of the larger set are sorted once, the smaller set's nine
