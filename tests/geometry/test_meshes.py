@@ -18,6 +18,7 @@ from vaultgram.geometry.meshes import (
     MeshError,
     NonManifoldVertexError,
     adjacency,
+    barycentre_operator,
     boundary_adjacency,
     boundary_loops,
     corner_angles,
@@ -67,7 +68,9 @@ def test_corner_arrays_adjacency_and_twins_of_a_grid(nx, ny):
     e1, e2 = corner_vectors(v, u, nxt, prv)
     assert (cross_z(e1, e2) > 0).all()  # every corner of a counter-clockwise grid turns left
     a = adjacency(len(v), f)
-    assert (a != a.T).nnz == 0 and a.nnz == 2 * ((nx + 1) * ny + (ny + 1) * nx)
+    pairs = set(zip(a.rows.tolist(), a.cols.tolist()))
+    assert pairs == {(j, i) for i, j in pairs} and a.nnz == len(pairs) == 2 * ((nx + 1) * ny + (ny + 1) * nx)
+    assert np.array_equal(np.lexsort((a.cols, a.rows)), np.arange(a.nnz))  # sorted by row, then column
     b = boundary_adjacency(len(v), f)
     assert b.nnz == 2 * 2 * (nx + ny)
     assert (~has_twin(u, nxt)).sum() == 2 * (nx + ny)
@@ -156,3 +159,33 @@ def test_faces_keep_which_sides_have_a_twin():
     assert twinned_sides(faces) is twinned_sides(faces)
     assert np.array_equal(twinned_sides(faces), has_twin(u, nxt)) and np.array_equal(twinned_sides(f), has_twin(u, nxt))
     assert int((~twinned_sides(faces)).sum()) == 16 + 4  # the outer boundary and the hole's
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.integers(1, 12), st.integers(1, 12), st.integers(0, 2**32 - 1), st.sampled_from([1, 2, 3]),
+       st.booleans())
+def test_the_mean_operator_is_scipys_sparse_product(nx, ny, seed, columns, large):
+    """``barycentre_operator``: the means of scipy's ``D^-1 A`` CSR product to round-off (the order of
+    the sums differs), on a grid with some faces dropped (vertices of degree 0 to 4), the plain and
+    the boundary adjacency, one to three columns; below ``SCIPY_FROM`` vertices by numpy, from it
+    (``large``: the bound lowered to 0) by its own CSR matrix."""
+    import scipy.sparse as sp
+
+    import vaultgram.geometry.meshes as meshes
+
+    rng = np.random.default_rng(seed)
+    v, f = grid_mesh(nx, ny)
+    f = [face for face in f if rng.random() > 0.2]
+    x = rng.normal(size=(len(v), columns)) * 10.0 ** rng.integers(-3, 4)
+    for a in (adjacency(len(v), f), boundary_adjacency(len(v), f)):
+        m = sp.coo_matrix((np.ones(a.nnz), (a.rows, a.cols)), shape=(len(v), len(v))).tocsr()
+        bound, meshes.SCIPY_FROM = meshes.SCIPY_FROM, 0 if large else meshes.SCIPY_FROM
+        try:
+            w, deg = barycentre_operator(a)
+        finally:
+            meshes.SCIPY_FROM = bound
+        assert (w.matrix is not None) == large
+        assert np.array_equal(deg, np.asarray(m.sum(axis=1)).ravel())
+        reference = (sp.diags(1.0 / np.maximum(deg, 1)) @ m) @ x
+        assert np.allclose(w @ x, reference, rtol=1e-14, atol=1e-14 * np.abs(x).max())
+        assert np.array_equal(w @ x[:, 0], (w @ x)[:, 0])

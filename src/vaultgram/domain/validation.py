@@ -18,6 +18,7 @@ from vaultgram.domain.model import Domain, ring_name
 from vaultgram.errors import DomainError
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.polylines import locate_on_polyline
+from vaultgram.geometry.spatial import close_pairs
 from vaultgram.geometry.text import fmt_point
 
 __all__ = ["validate_domain", "check_feature_spacing", "check_finite", "FEATURE_CLEARANCE"]
@@ -118,11 +119,9 @@ def _check_polyline(pts: np.ndarray, what: str, closed: bool, tol: float) -> Non
 
 
 def _close_pairs(pts: np.ndarray, r: float) -> np.ndarray:
-    """The index pairs (i < j) of points within ``r`` of each other, by a k-d tree. (scipy.spatial is
-    imported here, not with the module: reading a domain need not pay for it, issue 18.)"""
-    from scipy.spatial import cKDTree
-
-    return cKDTree(pts).query_pairs(r=r, output_type="ndarray")
+    """The index pairs (i < j) of points within ``r`` of each other (a grid hash,
+    :func:`vaultgram.geometry.spatial.close_pairs`)."""
+    return close_pairs(pts, r)
 
 
 def _check_duplicates(pts: np.ndarray, what: str, tol: float) -> None:

@@ -15,7 +15,6 @@ everywhere.
 from __future__ import annotations
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 __all__ = ["TIE", "TIED", "PIECE", "cross_rows", "distinct", "json_array", "link_components", "lookup", "nearest",
            "pieces", "plan_rows", "ranges", "row_dot", "run_starts", "sorted_keys", "steady", "unit_rows"]
@@ -209,6 +208,8 @@ def nearest(points: np.ndarray, queries: np.ndarray) -> np.ndarray:
     [0, 2]
     """
     points, queries = np.asarray(points, dtype=float), np.asarray(queries, dtype=float)
+    from scipy.spatial import cKDTree  # not with the module: the mesh command does without scipy (issue 18)
+
     both = np.vstack([points, queries])
     tol = TIE * max(float(np.ptp(both, axis=0).max()) if len(both) else 0.0, 1e-300)
     tree = cKDTree(points, compact_nodes=False)
@@ -219,7 +220,7 @@ def nearest(points: np.ndarray, queries: np.ndarray) -> np.ndarray:
     return found[0]
 
 
-def _lowest_of_nearest(tree: cKDTree, queries: np.ndarray, k: int, tol: float) -> tuple[np.ndarray, np.ndarray]:
+def _lowest_of_nearest(tree, queries: np.ndarray, k: int, tol: float) -> tuple[np.ndarray, np.ndarray]:
     """The lowest index among the ``k`` nearest points within ``tol`` of the nearest, and whether all
     ``k`` were that near (more might be)."""
     d, i = tree.query(queries, k=k, workers=-1)

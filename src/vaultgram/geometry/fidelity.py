@@ -17,6 +17,7 @@ import numpy as np
 from vaultgram.geometry.meshes import boundary_halfedges
 from vaultgram.geometry.polygons import bbox_diagonal
 from vaultgram.geometry.polylines import turning_angles
+from vaultgram.geometry.spatial import nearest_within
 
 __all__ = ["boundary_distance", "boundary_deviation", "missed_vertices"]
 
@@ -72,14 +73,11 @@ def missed_vertices(vertices: np.ndarray, boundary: np.ndarray, rings, angle: fl
     >>> missed_vertices(x, np.ones(4, bool), square)
     [(0, 3)]
     """
-    from scipy.spatial import cKDTree
-
-    tree = cKDTree(np.asarray(vertices, dtype=float)[np.asarray(boundary, dtype=bool), :2])
+    on_boundary = np.asarray(vertices, dtype=float)[np.asarray(boundary, dtype=bool), :2]
     limit = tol * bbox_diagonal(np.asarray(rings[0])[:, :2])
     out = []
     for r, ring in enumerate(rings):
         ring = np.asarray(ring, dtype=float)[:, :2]
         sharp = np.flatnonzero(np.abs(turning_angles(ring)) > angle)
-        gap = tree.query(ring[sharp])[0] if len(sharp) else np.zeros(0)
-        out += [(r, int(i)) for i in sharp[gap > limit]]
+        out += [(r, int(i)) for i in sharp[nearest_within(on_boundary, ring[sharp], limit)[0] < 0]]
     return out

@@ -10,7 +10,6 @@ extrados, and closest points keep smoothed vertices on the surface.
 from __future__ import annotations
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from vaultgram.geometry.arrays import cross_rows, row_dot, unit_rows
 from vaultgram.geometry.meshes import corner_arrays
@@ -183,6 +182,8 @@ def project_to_surface(points: np.ndarray, vertices: np.ndarray, triangles: np.n
     >>> project_to_surface(np.array([[0.25, 0.5, 0.3]]), v, np.array([[0, 1, 2], [0, 2, 3]])).tolist()
     [[0.25, 0.5, 0.0]]
     """
+    from scipy.spatial import cKDTree  # only the tessellation's smoothing projects: not with the module (issue 18)
+
     points = np.asarray(points, dtype=float)
     tri = np.asarray(vertices, dtype=float)[np.asarray(triangles, dtype=np.int64)]
     k = min(candidates, len(tri))

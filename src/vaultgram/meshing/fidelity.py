@@ -24,10 +24,10 @@ points, not over vertices; the distances are vectorised per stretch.
 from __future__ import annotations
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.geometry.polylines import densified, project_to_polyline
+from vaultgram.geometry.spatial import nearest_within
 from vaultgram.meshing.quadmesh import SlideConstraint
 from vaultgram.meshing.quality import face_scaled_jacobians
 
@@ -92,14 +92,14 @@ def place_on_points(vertices: np.ndarray, faces, constraints, points: np.ndarray
     points = np.asarray(points, dtype=float).reshape(-1, 2)
     if not len(faces) or not len(points):
         return x, np.zeros(len(x), dtype=bool)
-    around, wanted = None, cKDTree(points)
+    around = None
     for c in constraints:
         poly = np.asarray(c.polyline, dtype=float)[:, :2]
-        on = np.flatnonzero(wanted.query(poly, distance_upper_bound=eps)[0] < np.inf)
-        for k in on[cKDTree(_chain(x, c)[0]).query(poly[on])[0] > eps] if len(on) else on:
+        on = np.flatnonzero(nearest_within(points, poly, eps)[0] >= 0)
+        for k in on[nearest_within(_chain(x, c)[0], poly[on], eps)[0] < 0]:
             around = _faces_around(faces, len(x)) if around is None else around  # once a point is bare
             _place_vertex_on(x, faces, around, c, int(k))
-    return x, wanted.query(x[:, :2], distance_upper_bound=eps)[0] < np.inf
+    return x, nearest_within(points, x, eps)[0] >= 0
 
 
 def on_points(vertices: np.ndarray, points: np.ndarray, values: np.ndarray, eps: float) -> np.ndarray:
@@ -110,9 +110,8 @@ def on_points(vertices: np.ndarray, points: np.ndarray, values: np.ndarray, eps:
     """
     if not len(points):
         return np.zeros(len(vertices))
-    dist, at = cKDTree(np.asarray(points, dtype=float)[:, :2]).query(np.asarray(vertices, dtype=float)[:, :2],
-                                                                   distance_upper_bound=eps)
-    return np.where(dist < np.inf, np.asarray(values, dtype=float)[np.minimum(at, len(points) - 1)], 0.0)
+    at = nearest_within(points, vertices, eps)[0]
+    return np.where(at >= 0, np.asarray(values, dtype=float)[at], 0.0)
 
 
 def _place_vertex_on(x: np.ndarray, faces, around, c: SlideConstraint, k: int) -> None:

@@ -13,7 +13,6 @@ import math
 from typing import NamedTuple
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from vaultgram.domain.model import Domain
 from vaultgram.errors import MeshFoldError, VaultgramError
@@ -28,6 +27,7 @@ from vaultgram.geometry.meshes import (
 )
 from vaultgram.geometry.polygons import bbox_diagonal, cross_z, regular_valence, signed_angles
 from vaultgram.geometry.polylines import polyline_hausdorff, turning_angles
+from vaultgram.geometry.spatial import nearest_within
 from vaultgram.geometry.text import fmt_point
 from vaultgram.meshing.quadmesh import QuadMesh
 from vaultgram.topology.decomposition import Decomposition
@@ -331,8 +331,7 @@ def _curve_bends(x: np.ndarray, curve: np.ndarray, lines: list, diag: float) -> 
         sharp = [ln[1:-1][np.abs(turning_angles(ln, closed=False)[1:-1]) > CORNER_ANGLE] for ln in lines if len(ln) > 2]
         sharp = np.vstack(sharp) if sharp else np.zeros((0, 2))
         if len(sharp):
-            d, _ = cKDTree(sharp).query(x)
-            bend = (d <= 1e-9 * diag) & (curve >= 0)
+            bend = (nearest_within(sharp, x, 1e-9 * diag)[0] >= 0) & (curve >= 0)
     return bend
 
 

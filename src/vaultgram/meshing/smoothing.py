@@ -7,11 +7,12 @@ after each iteration, to allow them to slide along it. Usually, a small number o
 sufficient to obtain a globally smooth mesh." (§3.2) During smoothing, feature points stay fixed and
 curve-feature vertices are projected onto their curve (§4.1, §4.2).
 
-One iteration is one sparse matrix product ``x <- D^-1 A x`` (``A`` the vertex adjacency of the mesh
-edges, ``D`` the degrees), fixed vertices reset, then each :class:`SlideConstraint`'s vertices
-projected onto its polyline: the nearest point over all segments, computed for all vertices of the
-constraint at once (:func:`vaultgram.geometry.polylines.project_to_polyline`). No Python loop runs
-over vertices. Faces that smoothing leaves folded are repaired by :mod:`vaultgram.meshing.untangle`.
+One iteration is one sparse product ``x <- D^-1 A x`` (``A`` the vertex adjacency of the mesh edges,
+``D`` the degrees; :class:`vaultgram.geometry.meshes.MeanOperator`), fixed vertices reset, then each
+:class:`SlideConstraint`'s vertices projected onto its polyline: the nearest point over all
+segments, computed for all vertices of the constraint at once
+(:func:`vaultgram.geometry.polylines.project_to_polyline`). No Python loop runs over vertices. Faces
+that smoothing leaves folded are repaired by :mod:`vaultgram.meshing.untangle`.
 """
 
 from __future__ import annotations
@@ -19,11 +20,11 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-import scipy.sparse as sp
 
 from vaultgram import progress
 from vaultgram.geometry.arrays import distinct, pieces
 from vaultgram.geometry.meshes import (
+    MeanOperator,
     MeshError,
     adjacency,
     barycentre_operator,
@@ -106,7 +107,7 @@ def laplacian_smooth(
     return x
 
 
-def _laplacian_step(x: np.ndarray, w: sp.csr_matrix, keep: np.ndarray, anchor: np.ndarray, constraints) -> np.ndarray:
+def _laplacian_step(x: np.ndarray, w: MeanOperator, keep: np.ndarray, anchor: np.ndarray, constraints) -> np.ndarray:
     """One iteration (§3.2): every vertex to the barycentre of its neighbours, the ``keep`` vertices
     back at ``anchor``, the sliding ones projected back onto their polylines."""
     y = w @ x
@@ -114,16 +115,15 @@ def _laplacian_step(x: np.ndarray, w: sp.csr_matrix, keep: np.ndarray, anchor: n
     return slide(y, constraints)
 
 
-def _barycentre_operator(n: int, faces, tangential: bool) -> tuple[sp.csr_matrix, np.ndarray]:
-    """The sparse matrix ``D^-1 A`` that moves every vertex to the barycentre of its neighbours, and
+def _barycentre_operator(n: int, faces, tangential: bool) -> tuple[MeanOperator, np.ndarray]:
+    """The operator ``D^-1 A`` that moves every vertex to the barycentre of its neighbours, and
     the degrees ``D``. With ``tangential``, a vertex on the mesh boundary averages its two boundary
     neighbours only: it moves along the boundary, so it cannot be dragged onto a corner or across a
     narrow part."""
     a = adjacency(n, faces)
     if tangential:
         b = boundary_adjacency(n, faces)
-        on_b = np.asarray(b.sum(axis=1)).ravel() > 0
-        a = sp.diags((~on_b).astype(float)) @ a + sp.diags(on_b.astype(float)) @ b
+        a = a.rows_of(b, b.degrees() > 0)
     return barycentre_operator(a)
 
 

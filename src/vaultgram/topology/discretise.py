@@ -33,11 +33,11 @@ from dataclasses import dataclass, field
 from typing import NamedTuple
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from vaultgram.domain.model import Domain
 from vaultgram.errors import DomainError
 from vaultgram.geometry.polylines import locate_on_polyline, subdivide_polyline, thinned_dense_runs, turning_angles
+from vaultgram.geometry.spatial import close_pairs
 from vaultgram.limits import SPACING_MAX, SPACING_RANGE
 from vaultgram.topology.corners import chord_feet
 
@@ -470,9 +470,8 @@ def _merge_coincident_features(samples: _Samples, curves: list, feature: np.ndar
     if n <= n_ring_points:
         return samples, curves, feature
     remap = np.arange(n)
-    pairs = cKDTree(samples.points).query_pairs(r=tol, output_type="ndarray")
+    pairs = close_pairs(samples.points, tol)
     if len(pairs):
-        pairs = np.sort(pairs, axis=1)
         pairs = pairs[pairs[:, 1] >= n_ring_points]
         for a, b in pairs[np.lexsort((pairs[:, 0], pairs[:, 1]))]:
             remap[b] = remap[a] if remap[a] == a else remap[remap[a]]

@@ -308,14 +308,16 @@ def _leaf_corner(graph: _CellGraph, live: _Live, disc, c: int) -> int | None:
 
 
 def _nodes(graph: _CellGraph, live: _Live, tri: Triangulation) -> tuple:
-    """The skeleton nodes, sorted by x then y: live cells of degree 3 or more (singularities), 1
+    """The skeleton nodes, sorted by x then y (then by their cell's centre: not by the faces'
+    numbering, which is the triangulator's): live cells of degree 3 or more (singularities), 1
     (corners) or 0 (the centre of a domain without corners or holes)."""
     cells = np.flatnonzero(live.cells & ((live.degree >= 3) | (live.degree <= 1)))
     unsorted = [_node(graph, live, tri, int(c)) for c in cells]
     if not unsorted:
         return ()
     pos = np.array([n.pos for n in unsorted])
-    order = np.lexsort((pos[:, 1], pos[:, 0]))
+    centre = tri.cell_centres[[n.cell for n in unsorted]]  # two corner nodes at one point feature
+    order = np.lexsort((centre[:, 1], centre[:, 0], pos[:, 1], pos[:, 0]))
     nodes = tuple(dataclasses.replace(unsorted[i], id=k) for k, i in enumerate(order))
     for n in nodes:
         n.pos.setflags(write=False)
@@ -354,7 +356,9 @@ def _centre_dual(graph: _CellGraph, tri: Triangulation, c: int) -> tuple:
 
 def _dual(graph: _CellGraph, live: _Live, tri: Triangulation, c: int) -> tuple:
     """One point per gap between consecutive live links around cell ``c``, ccw (see the module
-    docstring): the middle point of the outline of the cell between the two links."""
+    docstring): the middle point of the outline of the cell between the two links; starting at the
+    lowest point index, so that the tuple does not depend on the order of the triangulation's faces
+    (which edge of the cell's outline :func:`_cell_outline` meets first)."""
     cycle = _cell_outline(graph, live, tri, c)
     at_link = [i for i, (_, _, linked) in enumerate(cycle) if linked]
     dual = []
@@ -366,7 +370,8 @@ def _dual(graph: _CellGraph, live: _Live, tri: Triangulation, c: int) -> tuple:
             chain.append(cycle[q][1])
             q = (q + 1) % len(cycle)
         dual.append(int(chain[(len(chain) - 1) // 2]))
-    return tuple(dual)
+    first = dual.index(min(dual)) if dual else 0
+    return tuple(dual[first:] + dual[:first])
 
 
 def _cell_outline(graph: _CellGraph, live: _Live, tri: Triangulation, c: int) -> list[tuple[int, int, bool]]:
@@ -428,8 +433,9 @@ def _walk(graph: _CellGraph, live: _Live, stops: dict, used: np.ndarray, c0: int
 
 def _branches(walks: list, nodes: tuple, graph: _CellGraph, tri: Triangulation, s: float | None) -> tuple:
     """Branches from the cell chains: directed from the smaller node id, through the cell centres (a
-    corner end at its corner vertex), optionally smoothed (``s`` per point), sorted by their ends
-    and faces."""
+    corner end at its corner vertex), optionally smoothed (``s`` per point), sorted by their ends,
+    then points (a loop back to its node runs first through the lower of its end cells): positions,
+    not the faces' numbering, which is the triangulator's."""
     node_of_cell = {node.cell: node for node in nodes}
 
     def pos_face(c: int):
@@ -441,7 +447,7 @@ def _branches(walks: list, nodes: tuple, graph: _CellGraph, tri: Triangulation, 
     out = []
     for cells in walks:
         start, end = node_of_cell[cells[0]].id, node_of_cell[cells[-1]].id
-        if start > end or (start == end and graph.rep_face[cells[1]] > graph.rep_face[cells[-2]]):
+        if start > end or (start == end and _position_key(tri, cells[1]) > _position_key(tri, cells[-2])):
             cells = cells[::-1]
             start, end = end, start
         pf = [pos_face(c) for c in cells]
@@ -449,21 +455,39 @@ def _branches(walks: list, nodes: tuple, graph: _CellGraph, tri: Triangulation, 
         if s is not None:
             poly = _smooth(poly, s)
         out.append(Branch(-1, start, end, poly, tuple(f for _, f in pf)))
-    out.sort(key=lambda b: (b.start, b.end, b.faces))
+    out.sort(key=lambda b: (b.start, b.end, b.polyline.tolist()))  # positions: not the faces' numbering
     return tuple(dataclasses.replace(b, id=i) for i, b in enumerate(out))
 
 
+def _position_key(tri: Triangulation, c: int) -> tuple:
+    """The centre of cell ``c`` as a sort key (the centres are on a grid: exact ties are real ones)."""
+    return tuple(tri.cell_centres[c].tolist())
+
+
 def _loops(walks: list, graph: _CellGraph, tri: Triangulation, s: float | None) -> tuple:
-    """Loops from the closed cell chains, through the cell centres, optionally smoothed, sorted by
-    their smallest face."""
+    """Loops from the closed cell chains, through the cell centres, optionally smoothed; each from its
+    lowest point (x, then y) towards the lower of that point's two neighbours, the loops sorted by
+    that point: positions, not the faces' numbering, which is the triangulator's."""
     out = []
     for cells in walks:
+        cells = _from_lowest(tri, cells)
         poly = np.array([tri.cell_centres[c] for c in cells], dtype=float)
         if s is not None:
             poly = _smooth(poly, s)
         out.append((poly, tuple(int(graph.rep_face[c]) for c in cells)))
-    out.sort(key=lambda lp: min(lp[1]))
+    out.sort(key=lambda lp: lp[0][0].tolist())
     return tuple(Loop(i, p, f) for i, (p, f) in enumerate(out))
+
+
+def _from_lowest(tri: Triangulation, cells: list[int]) -> list[int]:
+    """The closed chain ``cells`` (its first cell is its last) turned to start at its lowest cell
+    centre and to go on towards the lower of its two neighbours."""
+    body = cells[:-1]
+    first = min(range(len(body)), key=lambda i: _position_key(tri, body[i]))
+    body = body[first:] + body[:first]
+    if len(body) > 2 and _position_key(tri, body[-1]) < _position_key(tri, body[1]):
+        body = body[:1] + body[:0:-1]
+    return body + body[:1]
 
 
 def _smooth(poly: np.ndarray, s_per_point: float) -> np.ndarray:

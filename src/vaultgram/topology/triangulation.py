@@ -7,10 +7,8 @@ corner faces those with only one adjacent face." (§3.1)
 
 Method
 ------
-1. Delaunay triangulation of all sample points (:func:`delaunay_triangles`: qhull's, or where many
-   samples lie on one circle qhull's of the points moved by a tiny deterministic amount,
-   :func:`perturbed_delaunay`, so that it stays O(n log n)), triangles re-oriented counter-clockwise
-   (:func:`_delaunay`).
+1. Delaunay triangulation of all sample points (:func:`vaultgram.geometry.spatial.delaunay`, GEOS's),
+   inside a far frame, counter-clockwise (:func:`_delaunay`).
 2. Faces whose centroid is outside the outer ring or inside a hole are removed
    (``shapely.contains_xy``, vectorised).
 3. Every boundary segment must be an edge of a kept triangle, with the triangle on the domain side
@@ -29,7 +27,7 @@ Method
 Degenerate cases: skeleton cells
 --------------------------------
 Evenly sampled straight edges make *cocircular* point sets (e.g. four points on one circle): their
-Delaunay triangulation is not unique, qhull picks an arbitrary diagonal, and two faces with the
+Delaunay triangulation is not unique, the triangulator picks an arbitrary diagonal, and two faces with the
 same circumcircle appear. Counted face by face they can yield two singular faces joined by a
 zero-length skeleton branch, or a singular face next to a regular one at the same centre. We
 therefore group faces into **cells**, the faces of the true Delaunay *subdivision*:
@@ -39,6 +37,17 @@ therefore group faces into **cells**, the faces of the true Delaunay *subdivisio
   which is one skeleton vertex whatever the diagonal;
 * faces of near-zero area (``area < sliver_tol * h**2``, whose circumcentres are meaningless) are
   merged into the neighbour across their longest edge.
+
+Round-off: a cell's centre is the skeleton's node or branch point there, and the rules compare
+positions (a strip point on a symmetric plan's axis, a chord to the nearer of two mirror points), so
+their last bits decide between mirror choices; those bits follow the order in which the
+triangulator lists a triangle's corners (the circumcentre is computed from the first). The centres
+are therefore rounded to a power of two near 1e-12 of the plan's extent (:data:`CENTRE_GRID`,
+:func:`vaultgram.geometry.arrays.steady`): mirror points are exact mirrors whichever triangulator,
+and the move stays far below the stages' tolerances (1e-9). (Measured with qhull's triangles, their
+corners turned at random: fig7_curves and features_combined at spacing 0.05 and three non-default
+strip options of quad_with_hole, fig6 and fig7 failed with an 11- or 12-sided patch for some turns,
+none once rounded; rounded to 1e-9 instead, the notch plan's reflex corner got a second vertex.)
 
 The skeleton (:mod:`vaultgram.topology.skeleton`) is built on cells, not faces; ``kind`` stays the paper's
 per-face classification. Ear faces at points that are not corners by angle are handled there (they
@@ -52,12 +61,12 @@ from typing import NamedTuple
 
 import numpy as np
 import shapely
-from scipy.spatial import Delaunay, QhullError, cKDTree
 
 from vaultgram.domain.model import ring_name
 from vaultgram.errors import DomainError
-from vaultgram.geometry.arrays import distinct, link_components
+from vaultgram.geometry.arrays import distinct, link_components, steady
 from vaultgram.geometry.polygons import bbox_diagonal, signed_area, triangle_areas
+from vaultgram.geometry.spatial import delaunay
 from vaultgram.geometry.text import fmt_point
 from vaultgram.topology.discretise import Discretisation
 
@@ -67,6 +76,9 @@ __all__ = ["Triangulation", "triangulate", "circumcentres", "KIND_CORNER", "KIND
 KIND_CORNER = 1
 KIND_REGULAR = 2
 KIND_SINGULAR = 3
+#: The cell centres are rounded to a power of two near ``TIE * CENTRE_GRID`` (1e-12) of the plan's
+#: extent (see "Round-off" above): far above round-off (1e-16), far below the stages' tolerances (1e-9).
+CENTRE_GRID = 1e-3
 
 
 @dataclass(frozen=True, eq=False)
@@ -206,6 +218,7 @@ def triangulate(
     centres, radii = circumcentres(pts, tri)
     cell, cell_centres, cell_radii = _cells(pts, tri, neighbours, centres, radii, areas,
                                             cocircular_tol * disc.h, sliver_tol * disc.h**2)
+    cell_centres = steady(cell_centres, CENTRE_GRID * float(np.abs(pts).max()))  # "Round-off" in the module docstring
     for arr in (tri, neighbours, kind, centres, radii, areas, cell, cell_centres, cell_radii):
         arr.setflags(write=False)
     return Triangulation(disc, pts, tri, neighbours, kind, centres, radii, areas, cell, cell_centres, cell_radii,
@@ -214,19 +227,19 @@ def triangulate(
 
 def _faces_inside(disc: Discretisation) -> tuple[np.ndarray, np.ndarray]:
     """The counter-clockwise Delaunay triangles whose centroid lies in the domain, and their areas."""
-    tri, signed, centroid = _delaunay(disc.points)
+    tri, area, centroid = _delaunay(disc.points)
     poly = disc.domain.polygon()
     shapely.prepare(poly)
     inside = shapely.contains_xy(poly, centroid[:, 0], centroid[:, 1])
-    return tri[inside], np.abs(signed[inside])
+    return tri[inside], area[inside]
 
 
 def _delaunay(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The Delaunay triangles of ``pts`` (:func:`delaunay_triangles`), made counter-clockwise, with
-    their signed areas (before the turn) and centroids.
+    """The counter-clockwise Delaunay triangles of ``pts`` (:func:`vaultgram.geometry.spatial.delaunay`),
+    their areas and centroids.
 
     A far frame around the points means no sample lies on the convex hull, so collinear boundary
-    samples never produce qhull's flat (zero-area) hull triangles; triangles touching the frame are
+    samples on it never make flat (zero-area) hull triangles; triangles touching the frame are
     dropped.
     """
     n = len(pts)
@@ -234,88 +247,10 @@ def _delaunay(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     mid, big = 0.5 * (lo + hi), 10.0 * max(bbox_diagonal(pts), 1e-300)
     ang = np.radians([15.0, 105.0, 195.0, 285.0, 60.0])
     frame = mid + big * np.stack([np.cos(ang), np.sin(ang)], axis=1) * np.array([[1.0], [1.1], [1.0], [1.2], [1.3]])
-    tri = delaunay_triangles(np.concatenate([pts, frame]), bbox_diagonal(pts))
+    tri = delaunay(np.concatenate([pts, frame]), bbox_diagonal(pts))  # the plan's size: not the frame's
     tri = tri[(tri < n).all(axis=1)]
-    signed = triangle_areas(pts, tri)
     centroid = (pts[tri[:, 0]] + pts[tri[:, 1]] + pts[tri[:, 2]]) / 3.0
-    flip = signed < 0
-    tri[flip] = tri[flip][:, [0, 2, 1]]
-    return tri, signed, centroid
-
-
-#: Size of the perturbation of :func:`perturbed_delaunay`, relative to the squared distance of the
-#: closest two points over the diagonal (the sagitta of the finest sampled arc of a circle as wide as
-#: the plan: below it no point leaves the place it has among its neighbours; much smaller, and qhull
-#: still sees co-circular points and merges), and its floor relative to the diagonal (above round-off).
-PERTURBATION = 0.2
-PERTURBATION_FLOOR = 1e-12
-#: Co-circular groups of up to this many faces are left to qhull's Delaunay (:func:`delaunay_triangles`).
-COCIRCULAR_LIMIT = 1000
-
-
-def delaunay_triangles(pts: np.ndarray, diagonal: float | None = None) -> np.ndarray:
-    """Delaunay triangles of ``pts`` (k, 2) in O(n log n) whatever their degeneracy; ``diagonal`` is
-    the size of the plan (default the points' bounding-box diagonal; :func:`_delaunay` passes the
-    plan's, without its far frame, which would make the perturbation 25 times too small for qhull).
-
-    The triangulation of the perturbed points (:func:`perturbed_delaunay`) first; where none of its
-    groups of faces with one circumcircle (of the points as given) has more than
-    :data:`COCIRCULAR_LIMIT` faces, qhull's Delaunay of the points as given, which is fast there and
-    whose choice among co-circular diagonals every decomposition so far was made with; the perturbed
-    one where a group is larger (a finely sampled circle, a regular polygon of many sides), on which
-    qhull's facet merging is quadratic (a regular 20,000-gon took 30 s, a 100,000-gon minutes).
-
-    >>> t = 2 * np.pi * np.arange(5000) / 5000
-    >>> len(delaunay_triangles(np.column_stack([np.cos(t), np.sin(t)])))  # a regular 5000-gon, fast
-    4998
-    """
-    tri = perturbed_delaunay(pts, diagonal)
-    if _largest_cocircular_group(pts, tri) > COCIRCULAR_LIMIT:
-        return tri
-    return _qhull(pts)
-
-
-def perturbed_delaunay(pts: np.ndarray, diagonal: float | None = None) -> np.ndarray:
-    """Delaunay triangles of ``pts`` (k, 2) moved by a tiny deterministic amount: point ``i`` by
-    ``PERTURBATION * d^2 / diagonal`` (``d`` the distance of the closest two points; at least
-    ``PERTURBATION_FLOOR`` times the diagonal) along a direction hashed from ``i``.
-
-    Why: evenly sampled circles and regular polygons put many points on one circle, which qhull can
-    only triangulate by merging facets, quadratically; moved, the points are in general position.
-    The move is a fifth of the sagitta of the finest sampled arc, so every triangle is one of the
-    points as given (a Delaunay one, or among co-circular points one of the Delaunay diagonals,
-    always the same); the co-circular faces still form one cell (:func:`_cells`, from the circumcentres
-    of the points as given).
-
-    >>> square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
-    >>> len(perturbed_delaunay(square))  # co-circular: two triangles, one diagonal
-    2
-    """
-    diag = max(bbox_diagonal(pts) if diagonal is None else diagonal, 1e-300)
-    closest = cKDTree(pts).query(pts, k=2)[0][:, 1].min() if len(pts) > 1 else diag
-    amount = max(PERTURBATION * closest**2 / diag, PERTURBATION_FLOOR * diag)
-    k = np.arange(len(pts), dtype=np.uint64)
-    angle = 2.0 * np.pi * ((k * np.uint64(2654435761)) % np.uint64(2**32)).astype(float) / 2.0**32
-    return _qhull(pts + amount * np.column_stack([np.cos(angle), np.sin(angle)]))
-
-
-def _qhull(pts: np.ndarray) -> np.ndarray:
-    """qhull's Delaunay triangles of ``pts`` (:class:`scipy.spatial.Delaunay`)."""
-    try:
-        return Delaunay(pts).simplices.astype(np.int64)
-    except QhullError as e:  # pragma: no cover - validated domains are never flat
-        raise DomainError(f"Delaunay triangulation failed: {str(e).splitlines()[0]}") from None
-
-
-def _largest_cocircular_group(pts: np.ndarray, tri: np.ndarray) -> int:
-    """The most faces of ``tri`` sharing one circumcentre (to 1e-6 of the diagonal)."""
-    if not len(tri):
-        return 0
-    centre, _ = circumcentres(pts, tri)
-    finite = np.isfinite(centre).all(axis=1)
-    tol = 1e-6 * max(bbox_diagonal(pts), 1e-300)
-    keys = np.round(centre[finite] / tol)
-    return int(np.unique(keys, axis=0, return_counts=True)[1].max()) if finite.any() else 0
+    return tri, np.abs(triangle_areas(pts, tri)), centroid
 
 
 def _edge_keys(tri: np.ndarray, n: int) -> np.ndarray:
