@@ -13,6 +13,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.spatial import Delaunay
 
+from vaultgram.geometry import spatial
 from vaultgram.geometry.spatial import ILLEGAL, close_pairs, delaunay, nearest_within, pairs_within
 
 SETTINGS = settings(max_examples=40, deadline=None)
@@ -103,6 +104,22 @@ def test_delaunay_of_a_regular_polygon_of_many_sides():
     assert len(tri) == 1498
     centre, radius = _circumcircles(pts, tri)
     assert np.allclose(centre, 0.0, atol=1e-6) and np.allclose(radius, 10.0)
+
+
+@pytest.mark.parametrize("kind", ["polygon", "lattice", "random"])
+def test_delaunay_is_the_same_whichever_library_triangulates(kind, monkeypatch):
+    """Below QHULL_FROM sites GEOS triangulates, from it qhull: the moved sites have one Delaunay
+    triangulation, so both give the same triangles, also where the points as given leave a choice."""
+    if kind == "polygon":
+        t = 2 * np.pi * np.arange(600) / 600
+        pts = np.column_stack([np.cos(t), np.sin(t)])
+    elif kind == "lattice":
+        pts = np.stack(np.meshgrid(np.arange(25.0), np.arange(20.0)), axis=-1).reshape(-1, 2)
+    else:
+        pts = np.random.default_rng(3).random((700, 2))
+    by_geos = delaunay(pts)
+    monkeypatch.setattr(spatial, "QHULL_FROM", 3)
+    assert np.array_equal(delaunay(pts), by_geos)
 
 
 def test_delaunay_of_repeated_and_too_few_points():
