@@ -51,13 +51,18 @@ class Condition:
     text: str
     pos: object
     column: ColumnTest | None = None
-    operands: tuple[tuple[str, Compiled], ...] = ()  # its attributes and calls, for why-not reports
+    operands: tuple[tuple[object, Compiled], ...] = ()  # its attributes and calls, for why-not reports
 
     def values(self, graph, binding) -> dict[str, object]:
-        """The value of each attribute and function call in the condition at ``binding`` (those that
-        cannot be evaluated there are left out): what a why-not report shows."""
+        """The value of each attribute and function call in the condition at ``binding``, by its text
+        (the first of those written alike; those that cannot be evaluated there are left out): what a
+        why-not report shows. The texts are rendered here, not when the rule is compiled: most
+        conditions never need them."""
         out = {}
-        for text, fn in self.operands:
+        for sub, fn in self.operands:
+            text = describe(sub)
+            if text in out:
+                continue
             try:
                 out[text] = fn(graph, binding)
             except Exception:  # noqa: BLE001 - a report must not fail where the condition itself would
@@ -374,15 +379,11 @@ class RuleChecker:
 
     def _condition(self, expr, scope, text: str | None = None) -> Condition:
         compiled, parts = self.compiler.compile_parts(expr, scope)
-        operands: dict = {}  # the attributes and calls outside quantifiers, once per text (shown when it fails)
-        bound = _quantified(expr)
-        for sub in walk(expr):
-            if isinstance(sub, (ast.Attr, ast.Call)) and id(sub) not in bound:
-                key = describe(sub)
-                if key not in operands:
-                    operands[key] = parts[id(sub)].fn
+        bound = _quantified(expr)  # the attributes and calls outside quantifiers (shown when it fails)
+        operands = tuple((sub, parts[id(sub)].fn) for sub in walk(expr)
+                         if isinstance(sub, (ast.Attr, ast.Call)) and id(sub) not in bound)
         return Condition(compiled.fn, compiled.reads, text or describe(expr), expr.pos,
-                         self._column_test(expr, scope, parts), tuple(operands.items()))
+                         self._column_test(expr, scope, parts), operands)
 
     def _column_test(self, expr, scope, parts: dict) -> ColumnTest | None:
         """The vectorised form of ``degree(var, Types) op rhs`` or ``var.attr op rhs``, if ``expr`` is
