@@ -29,7 +29,7 @@ from vaultgram.errors import VaultgramError
 from vaultgram.geometry.text import plan_frame
 from vaultgram.limits import MAX_FACES
 from vaultgram.meshing.densities import CHORD_TOLERANCE, DensitySpec, group_counts
-from vaultgram.meshing.fans import FAN_FLOOR, even_fans, held_vertices, poles_to_retry
+from vaultgram.meshing.fans import FAN_FLOOR, even_fans, held_vertices, poles_to_retry, poles_to_widen
 from vaultgram.meshing.fidelity import SAME_POINT, hold_boundary, on_points, place_on_points
 from vaultgram.meshing.layout import Layout, edge_groups, kept_points
 from vaultgram.meshing.optimise import maximise_min_quality
@@ -212,30 +212,48 @@ def _welded_and_smoothed(layout: Layout, counts, smooth: int, timings: dict | No
     back (§3.2)."""
     with progress.timed(timings, "weld"):
         welded = weld(layout, counts, split)
-    mesh, x, refused = _smoothed(welded, layout, smooth, timings)
-    retry = poles_to_retry(x, mesh.faces, mesh.face_patch, refused) if smooth > 0 else ()
-    if retry:  # a pole whose evening was refused bounds the mesh: smoothed again with it evened
-        again, y, _ = _smoothed(welded, layout, smooth, timings, retry)
-        if face_scaled_jacobians(y, mesh.faces).min() > face_scaled_jacobians(x, mesh.faces).min():
-            mesh, x = again, y
+    mesh, x = _fans_evened_and_smoothed(welded, layout, smooth, timings)
+    if smooth > 0 and poles_to_widen(x, mesh.faces, welded.pole):  # a fan hemmed in by quads bounds it
+        mesh, x = _better(mesh, x, *_fans_evened_and_smoothed(welded, layout, smooth, timings, wide=True))
     return mesh, x
 
 
-def _smoothed(mesh: QuadMesh, layout: Layout, smooth: int, timings: dict | None, regardless=frozenset()
-              ) -> tuple[QuadMesh, np.ndarray, tuple]:
+def _fans_evened_and_smoothed(welded: QuadMesh, layout: Layout, smooth: int, timings: dict | None,
+                              wide: bool = False) -> tuple[QuadMesh, np.ndarray]:
+    """The ``welded`` mesh smoothed (:func:`_smoothed`), and smoothed again with the poles whose
+    evening was refused evened regardless where one of them holds the worst face
+    (:func:`~vaultgram.meshing.fans.poles_to_retry`), the better of the two."""
+    mesh, x, refused = _smoothed(welded, layout, smooth, timings, wide=wide)
+    retry = poles_to_retry(x, mesh.faces, mesh.face_patch, refused) if smooth > 0 else ()
+    if retry:  # a pole whose evening was refused bounds the mesh: smoothed again with it evened
+        mesh, x = _better(mesh, x, *_smoothed(welded, layout, smooth, timings, retry, wide)[:2])
+    return mesh, x
+
+
+def _better(mesh: QuadMesh, x: np.ndarray, other: QuadMesh, y: np.ndarray) -> tuple[QuadMesh, np.ndarray]:
+    """The mesh of the two (same faces, vertices ``x`` and ``y``) whose worst face is better; the
+    first where they tie."""
+    if face_scaled_jacobians(y, mesh.faces).min() > face_scaled_jacobians(x, mesh.faces).min():
+        return other, y
+    return mesh, x
+
+
+def _smoothed(mesh: QuadMesh, layout: Layout, smooth: int, timings: dict | None, regardless=frozenset(),
+              wide: bool = False) -> tuple[QuadMesh, np.ndarray, tuple]:
     """The welded ``mesh`` smoothed (§3.2): its fans evened (those round the poles in ``regardless``
     without the check, :func:`~vaultgram.meshing.fans.even_fans`, and again after smoothing,
-    :func:`_evened_again`), Laplacian smoothing, untangling, the
+    :func:`_evened_again`; where ``wide``, with the corners of the quads round each pole in the share),
+    Laplacian smoothing, untangling, the
     max-min optimisation and the boundary's bends put back; the mesh with its labels, its vertices and
     the poles whose evening was refused."""
     with progress.timed(timings, "smooth"):
         x, rays, refused = mesh.vertices, (), ()
         if smooth > 0:  # the fans round poles evened, their spokes sliding on rays (§3.2, issue 12)
             held = held_vertices(mesh.fixed, mesh.boundary, mesh.constraints)
-            x, rays, refused = even_fans(x, mesh.faces, mesh.face_patch, mesh.pole, held, regardless)
+            x, rays, refused = even_fans(x, mesh.faces, mesh.face_patch, mesh.pole, held, regardless, wide)
         x = laplacian_smooth(x, mesh.faces, smooth, mesh.fixed, mesh.constraints + rays)
         if smooth > 0 and regardless:
-            x, rays = _evened_again(x, mesh, held, rays, regardless)
+            x, rays = _evened_again(x, mesh, held, rays, regardless, wide)
         slides = mesh.constraints + rays
     with progress.timed(timings, "untangle"):
         if smooth > 0:
@@ -246,7 +264,8 @@ def _smoothed(mesh: QuadMesh, layout: Layout, smooth: int, timings: dict | None,
     return mesh, x, refused
 
 
-def _evened_again(x: np.ndarray, mesh: QuadMesh, held: np.ndarray, rays: tuple, poles) -> tuple[np.ndarray, tuple]:
+def _evened_again(x: np.ndarray, mesh: QuadMesh, held: np.ndarray, rays: tuple, poles, wide: bool = False
+                  ) -> tuple[np.ndarray, tuple]:
     """The fans round ``poles`` evened once more after smoothing, and the rays with their spokes' new
     ones: smoothing moves the spokes that stay (a quad's side, a patch's side sliding on the boundary),
     so a run evened between them before smoothing is uneven after it (fig7's curve end (1, 1): 10
@@ -254,7 +273,7 @@ def _evened_again(x: np.ndarray, mesh: QuadMesh, held: np.ndarray, rays: tuple, 
     22 and 26; evened again 16.5 each, the mesh's worst face 0.293 -> 0.314, its mean unchanged)."""
     only = np.zeros(len(x), dtype=bool)
     only[list(poles)] = True
-    x, again, _ = even_fans(x, mesh.faces, mesh.face_patch, only, held, frozenset(poles))
+    x, again, _ = even_fans(x, mesh.faces, mesh.face_patch, only, held, frozenset(poles), wide)
     turned = {int(r.vertices[0]) for r in again}
     return x, tuple(r for r in rays if int(r.vertices[0]) not in turned) + again
 

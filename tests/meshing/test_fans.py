@@ -11,9 +11,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from vaultgram import meshpipeline
-from vaultgram.domain import load_domain
+from vaultgram.domain import domain_from_dict, load_domain
 from vaultgram.geometry.meshes import corner_arrays
-from vaultgram.meshing.fans import FAN_FLOOR, even_fans, fan_bounds
+from vaultgram.meshing.fans import FAN_FLOOR, even_fans, fan_bounds, poles_to_widen, sector_needs
 from vaultgram.meshing.quadmesh import slide
 from vaultgram.meshing.quality import face_scaled_jacobians
 from vaultgram.meshing.smoothing import laplacian_smooth
@@ -134,3 +134,65 @@ def test_a_refused_pole_that_bounds_the_mesh_is_smoothed_again_evened(monkeypatc
     assert worst[0] >= 0.3 and worst[1] < 0.2
     narrowest = [_pole_corners(m.vertices, m.faces, end).min() for m in (retried, checked)]
     assert narrowest[0] > 15 and narrowest[1] < 10
+
+
+@given(st.integers(0, 12), st.integers(0, 6), st.floats(0.3, 2 * math.pi))
+@settings(max_examples=60, deadline=None)
+def test_a_runs_shares_give_its_faces_the_best_quality_they_can_reach_together(n_tri, n_quad, total):
+    """The faces round a boundary pole that take the shares of ``total`` that :func:`sector_needs`
+    gives reach the pole's fan bound, all of them alike (none better than the worst); where the angle
+    is no limit, triangles and quads share it as their best corners do, 60 to 90 degrees."""
+    tri = np.array([True] * n_tri + [False] * n_quad)
+    if not len(tri):
+        return
+    need = sector_needs(tri, total)
+    share = need / need.sum() * total
+    v, f = _fan(share, tri)
+    quality = face_scaled_jacobians(v, f)
+    bound = fan_bounds(v, f)[0]
+    assert math.isclose(share.sum(), total, rel_tol=1e-12)
+    if bound < 1 - 1e-9:
+        assert np.allclose(quality, bound, atol=1e-7)
+    elif tri.any() and not tri.all():  # room to spare: shared as 60 to 90 degrees, the kinds' best
+        assert np.allclose(share[~tri] / share[tri][0], 1.5)
+
+
+def _fan(share: np.ndarray, tri: np.ndarray) -> tuple[np.ndarray, list]:
+    """A pole at the origin whose faces, triangles where ``tri`` and kites elsewhere, take the angles
+    ``share`` (radians) in turn."""
+    turn = np.concatenate([[0.0], np.cumsum(share)])
+    v, f = [[0.0, 0.0]] + [[math.cos(a), math.sin(a)] for a in turn], []
+    for k, t in enumerate(tri):
+        if t:
+            f.append((0, 1 + k, 2 + k))
+        else:  # the kite's far corner makes its other corners right angles: only the pole's corner counts
+            mid = 0.5 * (turn[k] + turn[k + 1])
+            v.append([math.cos(mid) / math.cos(share[k] / 2), math.sin(mid) / math.cos(share[k] / 2)])
+            f.append((0, 1 + k, len(v) - 1, 2 + k))
+    return np.array(v), f
+
+
+PLAN_243 = {  # draw 243 of benchmarks/reliability.py's saved random plans: a point feature on the outline
+    "outer": [[7.33475147438538, 3.714993784750535], [2.987619885394223, 9.120068660746524],
+              [-2.3493932985574495, 4.638558489987499], [-5.327961668875928, 1.745373288587605],
+              [-8.242101182168025, -4.17455925697946], [-1.8678550945989285, -5.7018520978346],
+              [3.3467471662220096, -6.607698460386625], [4.997573100322219, -1.6371421453763222]],
+    "holes": [], "curves": [],
+    "points": [[5.119217636602514, 6.469712853721305], [-5.2388711678764, -4.8941442302069555]]}
+
+
+def test_a_fan_hemmed_in_by_quads_is_evened_with_their_corners(monkeypatch):
+    """Round the point feature on the outline at (-5.24, -4.89), 9 triangles and a quad share 180
+    degrees. Evened between the quad's sides, which stay, the quad keeps 99 degrees, eight triangles
+    get 6 each and the mesh's worst face is 0.120. With the quad's corner in the share (the wide
+    evening that :func:`poles_to_widen` asks for: 17.7 degrees per triangle, 20.6 for the quad), the
+    mesh reaches the pole's fan bound, 0.351, over the floor."""
+    domain = domain_from_dict(PLAN_243)
+    wide = mesh_domain(domain, 0.03)
+    monkeypatch.setattr(meshpipeline, "poles_to_widen", lambda *args: frozenset())
+    narrow = mesh_domain(domain, 0.03)
+    worst = [face_scaled_jacobians(m.vertices, m.faces).min() for m in (wide, narrow)]
+    pole = int(np.argmin(np.hypot(*(wide.vertices[:, :2] - [-5.2388711678764, -4.8941442302069555]).T)))
+    assert worst[1] < 0.15 < FAN_FLOOR <= worst[0]
+    assert math.isclose(worst[0], fan_bounds(wide.vertices, wide.faces)[pole], rel_tol=0.02)
+    assert poles_to_widen(narrow.vertices, narrow.faces, narrow.pole) == {pole}

@@ -26,7 +26,7 @@ from vaultgram.geometry.polygons import signed_angles
 from vaultgram.meshing.quadmesh import SlideConstraint
 from vaultgram.meshing.quality import face_scaled_jacobians
 
-__all__ = ["FAN_FLOOR", "fan_bounds", "even_fans", "poles_to_retry", "held_vertices"]
+__all__ = ["FAN_FLOOR", "fan_bounds", "even_fans", "poles_to_retry", "poles_to_widen", "held_vertices", "sector_needs"]
 
 #: The worst scaled Jacobian a mesh should keep (issue 12's floor): a fan whose triangles would be
 #: thinner is split (:mod:`vaultgram.meshing.splits`), evened where that reaches it
@@ -92,7 +92,7 @@ RAY_SPAN = (0.05, 4.0)
 
 
 def even_fans(vertices: np.ndarray, faces, face_patch: np.ndarray, pole: np.ndarray, held: np.ndarray,
-              regardless: frozenset = frozenset()) -> tuple[np.ndarray, tuple, tuple]:
+              regardless: frozenset = frozenset(), wide: bool = False) -> tuple[np.ndarray, tuple, tuple]:
     """The poles' fans made even: the vertices round each pole between two of its triangles turned to
     equal angles about it, the rays from the pole along which smoothing then lets them slide, and the
     poles whose evening the check below refused.
@@ -151,7 +151,7 @@ def even_fans(vertices: np.ndarray, faces, face_patch: np.ndarray, pole: np.ndar
         if reach[c] < FAN_FLOOR:  # below it, evened or not, the fan stays as the patches give it
             continue
         turned = _even_pole(x, faces, int(c), corners, size, at[corners[1][at] == c], np.asarray(face_patch), held,
-                            check=int(c) not in regardless)
+                            check=int(c) not in regardless, wide=wide)
         rays += turned or []
         refused += [int(c)] if turned is None else []
     return x, tuple(rays), tuple(refused)
@@ -181,17 +181,38 @@ def poles_to_retry(x: np.ndarray, faces, face_patch: np.ndarray, refused) -> fro
     return frozenset(c for c in refused if worst in patch[face_of[u == c]])
 
 
+def poles_to_widen(x: np.ndarray, faces, pole: np.ndarray) -> frozenset:
+    """The poles of the smoothed mesh's (``x``) worst face whose :func:`fan_bounds` reaches the floor,
+    where that face is under it: their fans may be hemmed in by quads round the pole, whose sides
+    :func:`even_fans` holds, and evened better with the quads' corners in the share (its ``wide``).
+
+    Example
+    -------
+    Pole 0 has a thin triangle (0, 1, 2) beside a quad that takes most of its angle:
+
+    >>> v = np.array([[0, 0], [1, 0], [1, 0.1], [-1, 0], [-1, -1], [1, -1.0]])
+    >>> sorted(poles_to_widen(v, [(0, 1, 2), (0, 3, 4, 5)], np.arange(6) == 0))
+    [0]
+    """
+    sj = face_scaled_jacobians(x, faces)
+    worst = int(np.argmin(sj))
+    if sj[worst] >= FAN_FLOOR:
+        return frozenset()
+    bound = fan_bounds(x, faces)
+    return frozenset(int(c) for c in faces[worst] if pole[c] and bound[c] >= FAN_FLOOR)
+
+
 def _even_pole(x: np.ndarray, faces, c: int, corners: tuple, size: np.ndarray, mine: np.ndarray,
-               face_patch: np.ndarray, held: np.ndarray, check: bool = True) -> list | None:
+               face_patch: np.ndarray, held: np.ndarray, check: bool = True, wide: bool = False) -> list | None:
     """Pole ``c``'s fans evened in place (its corners ``mine``; see :func:`even_fans`) unless, where
     ``check``, that makes the worst corner of its spokes' faces worse (of its own triangles, round a pole
     of triangles only); the rays of the spokes that turned, or None where the check refused."""
     face_of, u, v, p = corners
     tri = size[face_of[mine]] == 3
-    region = np.isin(face_patch, face_patch[face_of[mine[tri]]])  # the patches of its fans
+    region = np.isin(face_patch, face_patch[face_of[mine if wide else mine[tri]]])  # the patches of its fans
     stays = np.asarray(held, dtype=bool).copy()
     stays[u[~region[face_of]]] = True  # their far sides
-    spokes, angles = _even_spokes(x[:, :2], c, v[mine], p[mine], tri, stays)
+    spokes, angles = _even_spokes(x[:, :2], c, v[mine], p[mine], tri, stays, wide)
     if not spokes:
         return []
     spokes = np.asarray(spokes)
@@ -213,7 +234,7 @@ def _worst_corner(x: np.ndarray, faces, face_of: np.ndarray, mask: np.ndarray) -
 
 
 def _even_spokes(x: np.ndarray, c: int, nxt: np.ndarray, prev: np.ndarray, tri: np.ndarray,
-                 held: np.ndarray) -> tuple[list, list]:
+                 held: np.ndarray, wide: bool = False) -> tuple[list, list]:
     """The free spokes round pole ``c`` (its corners' next and previous vertices ``nxt``, ``prev``) and
     their even angles: sectors in turn from a spoke that starts a chain (a boundary pole) or from the
     lowest one (a closed fan)."""
@@ -232,10 +253,11 @@ def _even_spokes(x: np.ndarray, c: int, nxt: np.ndarray, prev: np.ndarray, tri: 
     sides = x[chain] - x[c]
     angle = signed_angles(sides[:-1], sides[1:])
     turn = np.concatenate([[0.0], np.cumsum(np.where(angle <= 0, angle + 2 * math.pi, angle))])
-    free = [0 < i < len(chain) - 1 and kinds[i - 1] and kinds[i] and not held[chain[i]] for i in range(len(chain))]
+    free = [0 < i < len(chain) - 1 and (wide or kinds[i - 1] and kinds[i]) and not held[chain[i]]
+            for i in range(len(chain))]
     if not ends and all(kinds) and not any(held[chain[:-1]]):
         return _closed_fan(x, c, chain[:-1], turn)
-    return _runs(x, c, chain, turn, free)
+    return _runs(x, c, chain, turn, free, kinds)
 
 
 def _closed_fan(x: np.ndarray, c: int, spokes: list, turn: np.ndarray) -> tuple[list, list]:
@@ -246,20 +268,42 @@ def _closed_fan(x: np.ndarray, c: int, spokes: list, turn: np.ndarray) -> tuple[
     return spokes, list(math.atan2(d[1], d[0]) + offset + step * np.arange(len(spokes)))
 
 
-def _runs(x: np.ndarray, c: int, chain: list, turn: np.ndarray, free: list) -> tuple[list, list]:
-    """The free spokes of ``chain`` spread evenly between the spokes that stay on either side."""
+def _runs(x: np.ndarray, c: int, chain: list, turn: np.ndarray, free: list, kinds: list) -> tuple[list, list]:
+    """The free spokes of ``chain`` placed between the spokes that stay on either side, each run's
+    angle shared among its faces by what each kind needs (:func:`sector_needs`: ``kinds`` tells the
+    triangles from the quads)."""
     d = x[chain[0]] - x[c]
     base = math.atan2(d[1], d[0])
     spokes, angles, last = [], [], 0
     for i in range(1, len(chain)):
         if free[i]:
             continue
-        k = i - last
-        for j in range(1, k):
+        need = sector_needs(np.asarray(kinds[last:i], dtype=bool), turn[i] - turn[last])
+        cumulative = np.cumsum(need)
+        for j in range(1, i - last):
             spokes.append(chain[last + j])
-            angles.append(base + turn[last] + j * (turn[i] - turn[last]) / k)
+            angles.append(base + turn[last] + cumulative[j - 1] * (turn[i] - turn[last]) / cumulative[-1])
         last = i
     return spokes, angles
+
+
+def sector_needs(tri: np.ndarray, total: float) -> np.ndarray:
+    """The angles that the faces of a run round a pole (triangles where ``tri``) need for the best
+    scaled Jacobian all of them can reach together in the run's ``total`` (radians; :func:`_bisected`),
+    relative to the least of them: a run shares its angle in these proportions. A quad needs more
+    than a triangle for the same quality (``asin(s)`` against ``asin(s sqrt(3) / 2)``); faces of one
+    kind need the same (exactly 1 each, so that a run of triangles is divided exactly evenly).
+
+    >>> need = sector_needs(np.array([True, True, False]), math.pi / 2)
+    >>> np.round(np.degrees(need / need.sum() * math.pi / 2), 3).tolist()  # degrees of the 90
+    [28.365, 28.365, 33.27]
+    >>> sector_needs(np.array([True, True]), math.pi / 2).tolist()
+    [1.0, 1.0]
+    """
+    n_tri, n_quad = np.array([tri.sum()], dtype=float), np.array([(~tri).sum()], dtype=float)
+    s = _bisected(n_tri, n_quad, np.array([total]))
+    need = np.where(tri, np.arcsin(np.minimum(1.0, s * math.sqrt(3.0) / 2)), np.arcsin(s))
+    return need / need.min()
 
 
 def _turn_about(x: np.ndarray, c: int, moving: np.ndarray, turn: np.ndarray) -> None:
