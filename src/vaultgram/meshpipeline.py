@@ -84,7 +84,8 @@ def decompose(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | Non
     for a replay (``Decomposition.start_graph``); ``chooser`` resolves the rulebook's ``choose`` steps
     (default: the first option; exploration replays a variant's choices). The plan's chamfers are
     smooth boundary points unless their layout would turn past straight at a patch corner or keep a
-    thinner fan (:func:`_settled_skeleton`).
+    thinner fan, and so are its other 135 to 150 degree corners, run by run, where their layout is no
+    worse either and bends no patch side further (:func:`_settled_skeleton`).
     """
     with domain_frame(domain):
         check_feature_layout(domain)
@@ -111,7 +112,8 @@ def _settled_skeleton(domain: Domain, spacing: float, smooth: bool, timings: dic
                       ) -> tuple[Skeleton, Decomposition | None]:
     """The skeleton of the plan with its chamfers as smooth points (issue 12,
     :func:`vaultgram.topology.discretise.discretise`) and the rules' default layout of it (``rewrite``
-    with the first option of every choice; None for a plan without chamfers: nothing to decide).
+    with the first option of every choice; None for a plan without chamfers or other 135 to 150
+    degree corners: nothing to decide).
 
     The skeleton and layout with the chamfers as corners instead where the smoothed layout is worse
     than theirs in either of two ways, both read off the layouts (no mesh is made):
@@ -180,25 +182,36 @@ def _soft_runs_settled(sk: Skeleton, settled: _Measured | None, rewrite, skeleto
     where each, tried one by one in ring order, gives a layout no worse (:func:`_worse`) than the one
     before it (issue 12: 1 + max(1, round(theta / 90)) faces at a corner of theta degrees, two at 135
     to 150), and no patch side turns by more than :data:`SIDE_TURN_LIMIT` degrees unless one of the
-    layout before did as much. ``skeleton_at(points)`` is the plan's skeleton with the soft corners at
-    ``points`` smooth. A run whose trial the rules or the triangulation refuse stays corners."""
+    layout before did as much; a run refused as a whole is tried corner by corner. ``skeleton_at(points)``
+    is the plan's skeleton with the soft corners at ``points`` smooth. A run whose trial the rules or the
+    triangulation refuse stays corners."""
     disc = sk.triangulation.disc
     done = set(disc.smoothed.tolist())
     runs = [run for run in disc.soft_runs if not done.issuperset(run.tolist())]
     if not runs:
         return sk, settled
     settled = settled or _measured(rewrite(sk, first_option))
-    at = disc.smooth_at
-    for run in runs:
-        trial_at = np.concatenate([at, disc.points[run]])
-        try:
-            trial_sk = skeleton_at(trial_at)
-            trial = _measured(rewrite(trial_sk, first_option))
-        except VaultgramError:
-            continue
-        if not _worse(trial, settled) and trial.bent <= max(SIDE_TURN_LIMIT, settled.bent):
-            sk, settled, at = trial_sk, trial, trial_at
+    for run in runs:  # a run as a whole, and where that is refused its corners one by one
+        for part in [run] + ([run[k:k + 1] for k in range(len(run))] if len(run) > 1 else []):
+            sk, settled, taken = _tried(sk, settled, disc.points[part], rewrite, skeleton_at)
+            if taken and part is run:
+                break
     return sk, settled
+
+
+def _tried(sk: Skeleton, settled: _Measured, points: np.ndarray, rewrite, skeleton_at
+           ) -> tuple[Skeleton, _Measured, bool]:
+    """The skeleton and layout with the soft corners at ``points`` smooth too and True, if that layout
+    is no worse than ``settled`` (:func:`_worse`, :data:`SIDE_TURN_LIMIT`); else ``sk``, ``settled``
+    and False (also where the rules or the triangulation refuse it)."""
+    try:
+        trial_sk = skeleton_at(np.concatenate([sk.triangulation.disc.smooth_at, points]))
+        trial = _measured(rewrite(trial_sk, first_option))
+    except VaultgramError:
+        return sk, settled, False
+    if _worse(trial, settled) or trial.bent > max(SIDE_TURN_LIMIT, settled.bent):
+        return sk, settled, False
+    return trial_sk, trial, True
 
 
 def _thinnest_fan(dec: Decomposition) -> float:

@@ -134,3 +134,29 @@ def test_smoothed_soft_runs_bend_no_side_nor_corner_past_the_limits(plan):
                                  load_vault_rulebook())
     assert _bent(dec) <= max(SIDE_TURN_LIMIT, _bent(before)) + 1e-9
     assert widest_corner(dec) <= max(LAYOUT_TURN_LIMIT, widest_corner(before)) + 1e-9
+
+
+#: Draw 533 of the 700 saved random plans (reliability.py), as saved: a hexagon with a chamfer of a 150
+#: and a 137 degree corner beside a sharper one, at spacing 0.04.
+RUN_OF_TWO = [[6.311667882601061, 3.2125129271709395e-40], [4.236333277636447, 7.337544474661115],
+              [-4.999999999999997, 8.660254037844386], [-5.740830131008939, 7.030489244388777e-16],
+              [-3.162045601177867, -5.476823637089734], [4.999999999999993, -8.66025403784439]]
+
+
+def test_a_run_refused_as_a_whole_is_tried_corner_by_corner():
+    """Both corners of draw 533's chamfer smooth leave a patch corner of 200 degrees (past
+    LAYOUT_TURN_LIMIT; 150 with both corners): the chamfer stays corners, its run is refused as a whole
+    again, and then one of its corners is smooth alone. One boundary singularity of two is left, min
+    scaled Jacobian 0.688 (0.502 with both corners)."""
+    domain = domain_from_dict({"outer": RUN_OF_TWO})
+    disc = discretise(domain, 0.04)
+    (run,) = disc.soft_runs
+    assert len(run) == 2 and np.array_equal(np.sort(run), disc.smoothed)
+    assert widest_corner(_layout(domain, (), 0.04)) > LAYOUT_TURN_LIMIT
+    dec = decompose(domain, 0.04)
+    assert not dec.disc.chamfers
+    assert len(dec.disc.smoothed) == 1 and dec.disc.smoothed[0] in run
+    assert widest_corner(dec) <= LAYOUT_TURN_LIMIT
+    stats = mesh_stats(mesh_domain(domain, 0.04), domain)
+    assert stats["boundary_singular"] == 1 and stats["inverted_faces"] == 0
+    assert stats["min_scaled_jacobian"] > 0.65
