@@ -170,10 +170,12 @@ def armadillo():
 
 
 def test_auto_relaxes_every_free_vertex_when_the_boundary_alone_folds(armadillo):
-    """The Armadillo Vault on its three feet: bending only the open arches folds the form diagram, so
-    ``auto`` relaxes every free vertex, as ``all`` does, and its summary says why."""
+    """The Armadillo Vault on its three feet: bending only the open arches folds the form diagram or
+    leaves no compression-only equilibrium (which of the two depends on the mesh: the latter since its
+    141 degree corner is a smooth point, meshpipeline._soft_runs_settled), so ``auto`` relaxes every
+    free vertex, as ``all`` does, and its summary says why."""
     domain, mesh = armadillo
-    with pytest.raises(FormFindingError, match="folded") as boundary:
+    with pytest.raises(FormFindingError, match="folded|no compression-only") as boundary:
         thrust_of_mesh(mesh, domain.supports, domain, relax_mode="boundary")
     auto = thrust_of_mesh(mesh, domain.supports, domain)
     every = thrust_of_mesh(mesh, domain.supports, domain, relax_mode="all")

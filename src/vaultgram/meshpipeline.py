@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import dataclasses
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -58,6 +59,13 @@ LAYOUT_TURN_LIMIT = 181.0
 #: 700 random plans, fans of 0.079 against 0.082: min scaled Jacobian 0.090 -> 0.082, 2 boundary
 #: singularities fewer).
 FAN_MARGIN = 0.95
+#: A run of 135 to 150 degree corners stays corners where smoothing it leaves a patch side whose net
+#: turning between its corners exceeds this many degrees and the widest of the layout before it
+#: (:func:`_soft_runs_settled`): the side bulges or curls, and the patch's Coons map skews its quads
+#: (the Armadillo's rounded foot: one patch with a side turning by 101 degrees where the corners made
+#: five, min scaled Jacobian 0.589 -> 0.508; multiple_lobes: a side round two lobes turning by 259,
+#: 0.395 -> 0.010). A quarter disc's arc turns by 90 and meshes well.
+SIDE_TURN_LIMIT = 90.0
 
 
 # --------------------------------------------------------------------------------------------
@@ -76,7 +84,8 @@ def decompose(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | Non
     for a replay (``Decomposition.start_graph``); ``chooser`` resolves the rulebook's ``choose`` steps
     (default: the first option; exploration replays a variant's choices). The plan's chamfers are
     smooth boundary points unless their layout would turn past straight at a patch corner or keep a
-    thinner fan (:func:`_settled_skeleton`).
+    thinner fan, and so are its other 135 to 150 degree corners, run by run, where their layout is no
+    worse either and bends no patch side further (:func:`_settled_skeleton`).
     """
     with domain_frame(domain):
         check_feature_layout(domain)
@@ -103,7 +112,8 @@ def _settled_skeleton(domain: Domain, spacing: float, smooth: bool, timings: dic
                       ) -> tuple[Skeleton, Decomposition | None]:
     """The skeleton of the plan with its chamfers as smooth points (issue 12,
     :func:`vaultgram.topology.discretise.discretise`) and the rules' default layout of it (``rewrite``
-    with the first option of every choice; None for a plan without chamfers: nothing to decide).
+    with the first option of every choice; None for a plan without chamfers or other 135 to 150
+    degree corners: nothing to decide).
 
     The skeleton and layout with the chamfers as corners instead where the smoothed layout is worse
     than theirs in either of two ways, both read off the layouts (no mesh is made):
@@ -118,20 +128,90 @@ def _settled_skeleton(domain: Domain, spacing: float, smooth: bool, timings: dic
       Jacobian 0.40 with corners, 0.034 smoothed; on the 700, 55 plans so kept corners, 44 of which
       were worse by more than 0.01 smoothed, benchmarks/README.md).
 
+    Then the other runs of 135 to 150 degree corners, one by one (:func:`_soft_runs_settled`).
+
     The decision takes the default choices, so that an exploration's variants (:func:`plan_skeleton`)
     and their replays see one skeleton."""
     sk = _skeleton(domain, spacing, smooth, timings, chamfers=True)
-    if not len(sk.triangulation.disc.smoothed):
-        return sk, None
-    default = rewrite(sk, first_option)
-    wide, thin = widest_corner(default), _thinnest_fan(default)
-    if wide <= LAYOUT_TURN_LIMIT and thin >= FAN_FLOOR:
-        return sk, default
-    plain = _skeleton(domain, spacing, smooth, timings, chamfers=False)
-    plain_default = rewrite(plain, first_option)
-    worse = (wide > max(LAYOUT_TURN_LIMIT, widest_corner(plain_default))
-             or thin < min(FAN_FLOOR, FAN_MARGIN * _thinnest_fan(plain_default)))
-    return (plain, plain_default) if worse else (sk, default)
+    settled = None
+    if len(sk.triangulation.disc.smoothed):
+        settled = _measured(rewrite(sk, first_option))
+        if _worse(settled, None):
+            plain = _skeleton(domain, spacing, smooth, timings, chamfers=False)
+            plain_default = _measured(rewrite(plain, first_option))
+            if _worse(settled, plain_default):
+                sk, settled = plain, plain_default
+    chamfers = sk.triangulation.disc.chamfers
+    sk, settled = _soft_runs_settled(sk, settled, rewrite,
+                                     lambda at: _skeleton(domain, spacing, smooth, timings, chamfers, at))
+    return sk, settled and settled.dec
+
+
+class _Measured(NamedTuple):
+    """A layout with its widest patch corner and thinnest fan (:func:`_worse` compares them)."""
+
+    dec: Decomposition
+    wide: float
+    thin: float
+    bent: float
+
+
+def _measured(dec: Decomposition) -> _Measured:
+    """``dec`` with its widest patch corner, thinnest fan and most bent patch side."""
+    return _Measured(dec, widest_corner(dec), _thinnest_fan(dec), _bent(dec))
+
+
+def _bent(dec: Decomposition) -> float:
+    """The largest net turning (degrees, either way) of a patch side of ``dec`` between its corners."""
+    return max(float(np.abs(patch.side_turnings()).max()) for patch in dec.patches)
+
+
+def _worse(layout: _Measured, than: _Measured | None) -> bool:
+    """Whether ``layout`` has a patch corner wider than :data:`LAYOUT_TURN_LIMIT` and than
+    ``than``'s widest, or a fan below the floor thinner than :data:`FAN_MARGIN` times ``than``'s
+    thinnest (with ``than`` None: outside the limits alone)."""
+    wide, thin = (LAYOUT_TURN_LIMIT, FAN_FLOOR) if than is None else (than.wide, FAN_MARGIN * than.thin)
+    return layout.wide > max(LAYOUT_TURN_LIMIT, wide) or layout.thin < min(FAN_FLOOR, thin)
+
+
+def _soft_runs_settled(sk: Skeleton, settled: _Measured | None, rewrite, skeleton_at
+                       ) -> tuple[Skeleton, _Measured | None]:
+    """The skeleton and default layout with the plan's other runs of 135 to 150 degree corners
+    (:attr:`~vaultgram.topology.discretise.Discretisation.soft_runs` not smoothed yet: runs between
+    softer bends, reflex corners or alike corners, and chamfers kept as corners) smooth points too
+    where each, tried one by one in ring order, gives a layout no worse (:func:`_worse`) than the one
+    before it (issue 12: 1 + max(1, round(theta / 90)) faces at a corner of theta degrees, two at 135
+    to 150), and no patch side turns by more than :data:`SIDE_TURN_LIMIT` degrees unless one of the
+    layout before did as much; a run refused as a whole is tried corner by corner. ``skeleton_at(points)``
+    is the plan's skeleton with the soft corners at ``points`` smooth. A run whose trial the rules or the
+    triangulation refuse stays corners."""
+    disc = sk.triangulation.disc
+    done = set(disc.smoothed.tolist())
+    runs = [run for run in disc.soft_runs if not done.issuperset(run.tolist())]
+    if not runs:
+        return sk, settled
+    settled = settled or _measured(rewrite(sk, first_option))
+    for run in runs:  # a run as a whole, and where that is refused its corners one by one
+        for part in [run] + ([run[k:k + 1] for k in range(len(run))] if len(run) > 1 else []):
+            sk, settled, taken = _tried(sk, settled, disc.points[part], rewrite, skeleton_at)
+            if taken and part is run:
+                break
+    return sk, settled
+
+
+def _tried(sk: Skeleton, settled: _Measured, points: np.ndarray, rewrite, skeleton_at
+           ) -> tuple[Skeleton, _Measured, bool]:
+    """The skeleton and layout with the soft corners at ``points`` smooth too and True, if that layout
+    is no worse than ``settled`` (:func:`_worse`, :data:`SIDE_TURN_LIMIT`); else ``sk``, ``settled``
+    and False (also where the rules or the triangulation refuse it)."""
+    try:
+        trial_sk = skeleton_at(np.concatenate([sk.triangulation.disc.smooth_at, points]))
+        trial = _measured(rewrite(trial_sk, first_option))
+    except VaultgramError:
+        return sk, settled, False
+    if _worse(trial, settled) or trial.bent > max(SIDE_TURN_LIMIT, settled.bent):
+        return sk, settled, False
+    return trial_sk, trial, True
 
 
 def _thinnest_fan(dec: Decomposition) -> float:
@@ -149,10 +229,12 @@ def widest_corner(dec: Decomposition) -> float:
     return max(float(patch.corner_angles().max()) for patch in dec.patches)
 
 
-def _skeleton(domain: Domain, spacing: float, smooth: bool, timings: dict | None, chamfers: bool) -> Skeleton:
-    """Discretise, triangulate and skeletonise the plan (§3.1), chamfers smooth or not."""
+def _skeleton(domain: Domain, spacing: float, smooth: bool, timings: dict | None, chamfers: bool,
+              smooth_at=()) -> Skeleton:
+    """Discretise, triangulate and skeletonise the plan (§3.1), chamfers smooth or not, and the 135 to
+    150 degree corners at ``smooth_at`` smooth."""
     with progress.timed(timings, "discretise"):
-        disc = discretise(domain, spacing, chamfers=chamfers)
+        disc = discretise(domain, spacing, chamfers=chamfers, smooth_at=smooth_at)
     with progress.timed(timings, "triangulate"):
         tri = triangulate_recovering(disc)
     with progress.timed(timings, "skeleton"):

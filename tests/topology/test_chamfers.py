@@ -133,14 +133,17 @@ def _layout(domain, chamfers: bool, spacing: float = 0.05):
 
 def test_chamfers_stay_corners_where_their_layout_would_fold():
     """A plan whose smoothed chamfers leave a patch turning past 180 degrees at a corner keeps them as
-    corners (the layout of main, before chamfers), and meshes."""
+    corners (the layout of main, before chamfers), and meshes. Of its two chamfer runs, tried one by one
+    afterwards (test_soft_corners.py), the 134/146 degree pair is smooth: the 148 degree corner alone
+    makes the corner of 249 degrees, and stays a corner."""
     domain = domain_from_dict({"outer": FOLDING_WITH_CHAMFERS})
     smoothed, plain = _layout(domain, True), _layout(domain, False)
     assert len(smoothed.disc.smoothed) and widest_corner(smoothed) > LAYOUT_TURN_LIMIT
     assert widest_corner(plain) < 150
     dec = decompose(domain, 0.05)
-    assert not dec.disc.chamfers and not len(dec.disc.smoothed)
-    assert widest_corner(dec) == widest_corner(plain)
+    assert not dec.disc.chamfers
+    assert dec.disc.turning[dec.disc.smoothed].round(0).tolist() == [44, 34]
+    assert widest_corner(dec) < 150
     assert plan_skeleton(domain, 0.05).triangulation.disc.chamfers is False
     assert mesh_stats(mesh_domain(domain, 0.05), domain)["inverted_faces"] == 0
 

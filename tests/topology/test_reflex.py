@@ -65,12 +65,13 @@ def test_the_triangle_at_a_reflex_corner_is_three_quads():
     assert tri in split_patterns(layout, group_counts(layout))
 
 
-@pytest.mark.parametrize("name, left", [("rv_star_pattern", 0), ("armadillo_vault", 2),
-                                        ("armadillo_vault_plan", 2)])
+@pytest.mark.parametrize("name, left", [("rv_star_pattern", 0), ("armadillo_vault", 1),
+                                        ("armadillo_vault_plan", 1)])
 def test_shared_plans_keep_no_reflex_corner_singular(name, left):
     """The reflex corners the medial axis left with two faces (rv_star_pattern's 249 and 256 degree
     corners, the armadillo's 225 degree bend of a hole) are regular; what is left are corners of
-    135-145 degrees (issue 12, item 3)."""
+    135-145 degrees (issue 12, item 3): the armadillo's 143 degree one (its 141 degree neighbour is
+    a smooth point, meshpipeline._soft_runs_settled)."""
     domain = _shared(name)
     stats = mesh_stats(mesh_decomposition(decompose(domain)), domain)
     assert stats["boundary_singular"] == left

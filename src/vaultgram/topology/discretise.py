@@ -16,7 +16,9 @@ Method
   domain lies left of every normalised ring) and *reflex* otherwise. Points added by the
   subdivision are never corners, nor (with ``chamfers``, the default) are the vertices of a
   chamfer (:func:`_chamfer_points`): 135 to 150 degree vertices, in a run of such vertices that
-  ends at a sharper convex corner; the regular valence makes them smooth points (issue 12).
+  ends at a sharper convex corner; the regular valence makes them smooth points (issue 12). Other
+  runs of 135 to 150 degree vertices (:attr:`Discretisation.soft_runs`) are smooth points where the
+  caller asks (``smooth_at``; :func:`vaultgram.meshpipeline.decompose` tries them run by run).
 * Curve features (§4.2) are open polylines discretised the same way. An end point lying on the
   boundary is inserted into its ring (it becomes a ring point, so the boundary segment it lies on
   is split and stays a triangle edge), and the curve shares that point.
@@ -110,8 +112,14 @@ class Discretisation:
     chamfers : bool
         Whether chamfers were made smooth points (:func:`discretise`'s argument).
     smoothed : ndarray (m,) int
-        The chamfer points: they turn by more than ``corner_angle`` but are no corners (a curve's end
-        on one is a corner all the same).
+        The chamfer points and those at ``smooth_at``: they turn by more than ``corner_angle`` but are
+        no corners (a curve's end on one is a corner all the same).
+    smooth_at : ndarray (k, 2) float
+        The points asked smooth besides the chamfers (:func:`discretise`'s argument).
+    soft_runs : tuple of ndarray
+        Every run of ring vertices turning towards the domain by ``corner_angle`` to
+        :data:`CONVEX_TURN` degrees (interior angles of 135 to 150), consecutive along their ring
+        (points on a straight stretch aside), as point indices; smoothed or not.
     """
 
     domain: Domain
@@ -129,6 +137,8 @@ class Discretisation:
     feature_points: np.ndarray
     chamfers: bool = True
     smoothed: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    smooth_at: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    soft_runs: tuple = ()
 
     @property
     def n_points(self) -> int:
@@ -151,8 +161,8 @@ class Discretisation:
         )
 
 
-def discretise(domain: Domain, spacing: float = 0.02, corner_angle: float = 30.0, chamfers: bool = True
-               ) -> Discretisation:
+def discretise(domain: Domain, spacing: float = 0.02, corner_angle: float = 30.0, chamfers: bool = True,
+               smooth_at=()) -> Discretisation:
     """Sample the boundaries and features of ``domain`` (paper §3.1; features §4).
 
     Feature points on the boundary or on a curve are inserted into it; the rings and curves are
@@ -172,6 +182,9 @@ def discretise(domain: Domain, spacing: float = 0.02, corner_angle: float = 30.0
         chamfer's.
     chamfers : bool
         Make the vertices of chamfers smooth points (:func:`_chamfer_points`), not corners.
+    smooth_at : array_like (k, 2)
+        Points (in the domain's coordinates) where a ring vertex of 135 to 150 degrees is a smooth
+        point too, chamfer or not (within the domain's tolerance; other points there are ignored).
 
     Returns
     -------
@@ -202,14 +215,17 @@ def discretise(domain: Domain, spacing: float = 0.02, corner_angle: float = 30.0
     samples = _Samples.concatenate(rings + curves + isolated)
     samples, curve_members, feature = _merge_coincident_features(samples, curve_members, feature, n_ring_points,
                                                                  tol)
+    smooth_at = np.asarray(smooth_at, dtype=float).reshape(-1, 2)
     smoothed = _chamfer_points(samples, corner_angle) if chamfers else np.zeros(len(samples.ring), dtype=bool)
+    smoothed |= _soft_at(samples, corner_angle, smooth_at, tol)
     is_corner, corner_kind = _corners(samples, curve_members, corner_angle, smoothed)
     for a in (*samples, is_corner, corner_kind, feature):
         a.setflags(write=False)
     return Discretisation(
         domain, spacing, h, samples.points, samples.ring, samples.index, is_corner, corner_kind, samples.turning,
         samples.is_vertex, rings=tuple(ring_members), curves=tuple(curve_members), feature_points=feature,
-        chamfers=chamfers, smoothed=np.flatnonzero(smoothed & ~is_corner),
+        chamfers=chamfers, smoothed=np.flatnonzero(smoothed & ~is_corner), smooth_at=smooth_at,
+        soft_runs=_soft_runs(samples, corner_angle),
     )
 
 
@@ -499,14 +515,71 @@ def _chamfer_points(samples: _Samples, corner_angle: float) -> np.ndarray:
     >>> np.flatnonzero(_chamfer_points(samples, 30.0)).tolist()
     [1, 3]
     """
-    at = np.flatnonzero((samples.ring >= 0) & samples.is_vertex & (np.abs(samples.turning) > STRAIGHT_TURN))
+    at, soft = _soft_vertices(samples, corner_angle)
     turning, ring = samples.turning[at], samples.ring[at]
-    soft = (turning > corner_angle) & (turning <= CONVEX_TURN + ANGLE_TOLERANCE)
     out = np.zeros(len(samples.ring), dtype=bool)
     for r in np.unique(ring[soft]):
         on = ring == r
         out[at[on]] = _anchored_runs(soft[on], turning[on] > CONVEX_TURN + ANGLE_TOLERANCE)
     return out
+
+
+def _soft_vertices(samples: _Samples, corner_angle: float) -> tuple[np.ndarray, np.ndarray]:
+    """The ring vertices that turn (points on a straight stretch aside), in ring order, and which
+    of them turn towards the domain by ``corner_angle`` to :data:`CONVEX_TURN` degrees (interior
+    angles of 135 to 150: regular with two faces, issue 12)."""
+    at = np.flatnonzero((samples.ring >= 0) & samples.is_vertex & (np.abs(samples.turning) > STRAIGHT_TURN))
+    turning = samples.turning[at]
+    return at, (turning > corner_angle) & (turning <= CONVEX_TURN + ANGLE_TOLERANCE)
+
+
+def _soft_at(samples: _Samples, corner_angle: float, points: np.ndarray, tol: float) -> np.ndarray:
+    """The mask of the 135 to 150 degree ring vertices (:func:`_soft_vertices`) within ``tol`` of
+    one of ``points``."""
+    at, soft = _soft_vertices(samples, corner_angle)
+    out = np.zeros(len(samples.ring), dtype=bool)
+    if len(points):
+        at = at[soft]
+        near = np.hypot(*(samples.points[at][:, None, :] - points[None, :, :]).transpose(2, 0, 1)) <= tol
+        out[at[near.any(axis=1)]] = True
+    return out
+
+
+def _soft_runs(samples: _Samples, corner_angle: float) -> tuple:
+    """The runs of 135 to 150 degree ring vertices (:attr:`Discretisation.soft_runs`), ring by ring,
+    each as its point indices in ring order from the run's first vertex; not a ring whose every
+    corner is such (alike corners, as :func:`_chamfer_points` leaves them: the O-grid's plan, whose
+    ring of patches has them on its sides already).
+
+    >>> ring = np.array([0] * 7 + [1] * 3)
+    >>> turning = np.array([40.0, 90.0, 40.0, 35.0, 0.0, 20.0, 40.0, 40.0, 40.0, 40.0])
+    >>> samples = _Samples(np.zeros((10, 2)), ring, np.arange(10), turning, np.ones(10, bool))
+    >>> [run.tolist() for run in _soft_runs(samples, 30.0)]  # one run wraps round; ring 1 all soft
+    [[2, 3], [6, 0]]
+    """
+    at, soft = _soft_vertices(samples, corner_angle)
+    runs = []
+    for r in np.unique(samples.ring[at][soft]):
+        on = samples.ring[at] == r
+        if not soft[on].all():
+            runs += [at[on][run] for run in _closed_runs(soft[on])]
+    return tuple(runs)
+
+
+def _closed_runs(mask: np.ndarray) -> list:
+    """The runs of consecutive true entries of a closed sequence with a false entry, as index arrays
+    in order (a run across the end continues at the start).
+
+    >>> [run.tolist() for run in _closed_runs(np.array([1, 0, 1, 1, 0, 1], bool))]
+    [[2, 3], [5, 0]]
+    """
+    n = len(mask)
+    shift = int(np.flatnonzero(~mask)[0]) + 1  # the sequence from just after a false entry
+    order = np.roll(np.arange(n), -shift)
+    rolled = mask[order]
+    starts = np.flatnonzero(rolled & ~np.concatenate([[False], rolled[:-1]]))
+    ends = np.flatnonzero(rolled & ~np.concatenate([rolled[1:], [False]])) + 1
+    return [order[a:b] for a, b in zip(starts, ends)]
 
 
 def _anchored_runs(soft: np.ndarray, sharp: np.ndarray) -> np.ndarray:

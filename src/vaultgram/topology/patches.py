@@ -22,6 +22,7 @@ from vaultgram.engine.graph import HostGraph
 from vaultgram.errors import DomainError, RewriteError
 from vaultgram.geometry.frames import NO_ORIGIN, to_plan
 from vaultgram.geometry.polygons import interior_angle, signed_area
+from vaultgram.geometry.polylines import turning_angles
 from vaultgram.geometry.text import fmt_point
 from vaultgram.topology.discretise import Discretisation
 from vaultgram.topology.statecache import by_content
@@ -58,6 +59,18 @@ class Patch:
         there at any density)."""
         return np.array([interior_angle(self.sides[k - 1][-2], self.sides[k][0], self.sides[k][1])
                          for k in range(self.n_sides)])
+
+    def side_turnings(self) -> np.ndarray:
+        """The net turning (degrees, positive to the left, i.e. bulging out of the patch) of each side
+        between its corners, from its first segment to its last: a quad patch's Coons map skews its
+        quads where a side bends far from straight (issue 12, :func:`vaultgram.meshpipeline._bent`).
+
+        >>> bent = np.array([[2.0, 0.0], [3.0, 1.0], [3.0, 2.0], [2.0, 3.0]])  # two bends of 45 degrees
+        >>> sides = (np.array([[0.0, 0.0], [2.0, 0.0]]), bent, np.array([[2.0, 3.0], [0.0, 0.0]]))
+        >>> Patch(0, (0, 1, 2), sides, ()).side_turnings().round(6).tolist()
+        [0.0, 90.0, 0.0]
+        """
+        return np.array([turning_angles(side, closed=False).sum() for side in self.sides])
 
     def polygon(self) -> np.ndarray:
         """The patch outline: the concatenated sides without repeated points."""

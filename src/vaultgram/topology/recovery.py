@@ -41,7 +41,8 @@ def triangulate_recovering(disc: Discretisation, rounds: int = MAX_ROUNDS) -> Tr
         except BoundaryRecoveryError as exc:
             if k == rounds:
                 raise
-            disc = discretise(with_midpoints(disc.domain, exc.segments), disc.spacing, chamfers=disc.chamfers)
+            disc = discretise(with_midpoints(disc.domain, exc.segments), disc.spacing, chamfers=disc.chamfers,
+                             smooth_at=disc.smooth_at)
     raise AssertionError("unreachable")  # pragma: no cover
 
 
