@@ -14,6 +14,7 @@ from typing import Iterable
 from vaultgram.grammar import ast
 from vaultgram.grammar.parser import load_files, parse_text
 
+from . import bookcache
 from .checker import CompiledRule, RuleChecker, describe
 from .errors import RuleTypeError, did_you_mean
 from .expressions import ExpressionCompiler, Functions
@@ -59,9 +60,15 @@ class Rulebook:
 
 
 def load_rulebook(paths: Iterable[str | Path], functions: Functions | None = None) -> Rulebook:
-    """Parse and check rule files (and their includes)."""
-    files = load_files([Path(p) for p in paths])
-    return _build(files, functions or Functions())
+    """Parse and check rule files (and their includes), or read the rulebook they gave last time with
+    a registry of the same signatures from the cache (:mod:`.bookcache`; the functions are always
+    ``functions``')."""
+    paths, functions = [Path(p) for p in paths], functions or Functions()
+    book = bookcache.load(paths, functions)
+    if book is None:
+        book = _build(load_files(paths), functions)
+        bookcache.store(book, paths, functions)
+    return book
 
 
 def rulebook_from_text(text: str, functions: Functions | None = None, filename: str = "<string>") -> Rulebook:

@@ -91,3 +91,50 @@ def test_the_mesh_command_imports_no_form_finding_tessellation_figures_or_scipy(
     unwanted = [m for m in loaded if m.startswith(heavy)
                 or (m.startswith("vaultgram.formfinding.") and m != "vaultgram.formfinding.supports")]
     assert unwanted == []
+
+
+def test_the_mesh_command_imports_neither_numpy_ma_nor_importlib_resources(tmp_path):
+    """Two imports of some 10 and 4 ms that nothing on the mesh path needs (issue 18): ``numpy.ma``,
+    which numpy 2.4's ``np.unique`` without ``return_*`` imports to ask whether its input is masked
+    (the path takes :func:`vaultgram.geometry.arrays.distinct`), and ``importlib.resources`` with
+    its readers (the shipped rulebook's folder is its package's)."""
+    loaded = _mesh_modules(tmp_path, "import sys")
+    assert "vaultgram.meshpipeline" in loaded
+    assert [m for m in loaded if m == "numpy.ma" or m.startswith("importlib.resources")] == []
+
+
+def _mesh_modules(tmp_path, setup: str, after: str = "' '.join(sorted(sys.modules))") -> list[str]:
+    """``vaultgram mesh`` of quad_with_hole run as the program (its arguments in ``sys.argv``) in a
+    subprocess after ``setup``: the words of ``after`` evaluated once it exits."""
+    code = (f"{setup}; import sys; from vaultgram.cli import main; "
+            f"sys.argv = ['vaultgram', 'mesh', {str(REPO / 'examples' / 'quad_with_hole.json')!r}, "
+            f"'--out', {str(tmp_path / 'out')!r}]\n"
+            "try:\n    main()\nexcept SystemExit:\n    pass\n"
+            f"print('AFTER', {after})")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert (tmp_path / "out" / "mesh.json").is_file()
+    return out.stdout.rpartition("AFTER")[2].split()
+
+
+def test_the_program_freezes_its_start_up_out_of_the_garbage_collector(tmp_path):
+    """Run as the program, ``vaultgram mesh`` imports and loads its rulebook with the collector
+    paused, then freezes what exists (``gc.freeze``: the modules, classes and the rulebook are not
+    walked again by any collection, nor at exit) and collects again."""
+    enabled, frozen = _mesh_modules(tmp_path, "import gc", "gc.isenabled(), gc.get_freeze_count() > 10000")
+    assert (enabled, frozen) == ("True", "True")
+
+
+def test_a_caller_of_the_command_line_keeps_its_objects_collectable(tmp_path):
+    """Called by other code (click's test runner here, an application), the command line pauses the
+    collector during a command's start-up but freezes nothing: the caller's objects stay collectable."""
+    import gc
+
+    from click.testing import CliRunner
+
+    from vaultgram.cli import main
+
+    before = gc.get_freeze_count()
+    result = CliRunner().invoke(main, ["mesh", str(REPO / "examples" / "quad_with_hole.json"),
+                                       "--out", str(tmp_path / "out")])
+    assert result.exit_code == 0 and (tmp_path / "out" / "mesh.json").is_file()
+    assert gc.isenabled() and gc.get_freeze_count() == before

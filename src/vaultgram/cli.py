@@ -8,6 +8,8 @@ command writes its files in a staging folder and moves them into --out only when
 
 from __future__ import annotations
 
+import contextlib
+import gc
 import json
 import sys
 import warnings
@@ -48,6 +50,7 @@ class _Group(click.Group):
         as one line naming the command, instead of click's usage block."""
         if not standalone_mode:
             return super().main(args, prog_name, complete_var, standalone_mode, **extra)
+        _PROCESS["program"] = args is None  # the program's own run; a caller's (a test's) passes arguments
         try:
             code = super().main(args, prog_name, complete_var, False, **extra)
         except click.UsageError as exc:
@@ -60,7 +63,45 @@ class _Group(click.Group):
             sys.exit(1)
         except KeyboardInterrupt:  # after the command ended (click turns one during it into Abort)
             sys.exit(130)
+        finally:
+            if _PROCESS["program"]:
+                gc.freeze()  # the process ends: no last collection over every object still alive (issue 18)
         sys.exit(code if isinstance(code, int) else 0)
+
+
+#: ``program``: whether :meth:`_Group.main` runs as the program itself (its arguments from
+#: ``sys.argv``), whose objects may be frozen out of the garbage collector (:func:`long_lived`), or is
+#: called by other code (a test's runner, an application) whose objects must stay collectable.
+_PROCESS = {"program": False}
+
+
+@contextlib.contextmanager
+def long_lived():
+    """Run a command's start-up (its imports, the rulebook) with the garbage collector paused; in the
+    program's own process, then move every object into the collector's permanent generation
+    (``gc.freeze``); restore the collector (issue 18).
+
+    Modules, classes and the checked rulebook live as long as the process, yet collections walked
+    them again and again, and once more at exit: in ``vaultgram mesh`` of a small plan the collector
+    took 8.5 percent of the instructions (160 of 1,870 million, callgrind) and freed some 700 objects.
+    What the command creates afterwards is collected as before.
+
+    >>> enabled = gc.isenabled()
+    >>> with long_lived():
+    ...     gc.isenabled()
+    False
+    >>> gc.isenabled() == enabled
+    True
+    """
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if _PROCESS["program"]:
+            gc.freeze()
+        if enabled:
+            gc.enable()
 
 
 def _usage_line(exc: click.UsageError) -> None:
@@ -394,9 +435,10 @@ def decompose_command(domain_path: str, out_dir: str, spacing: float, rules_dir:
     Writes decomposition.json, patches.json and decomposition.png (--format 3dm or dxf: the patches
     as closed polylines in result.3dm or result.dxf; --trace: trace.json and start_graph.json).
     """
-    from vaultgram.domain import load_domain
-    from vaultgram.io.outputs import parse_formats, write_decomposition, write_drawings
-    from vaultgram.meshpipeline import decompose
+    with long_lived():
+        from vaultgram.domain import load_domain
+        from vaultgram.io.outputs import parse_formats, write_decomposition, write_drawings
+        from vaultgram.meshpipeline import decompose
 
     formats = parse_formats(formats)
     domain = load_domain(domain_path, input_format, layer_names(layers), spacing)
@@ -631,13 +673,17 @@ def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities
     mesh.obj to --out (see --format for the others); `vaultgram formfind mesh.json` then gives the
     thrust network `design` gives.
     """
-    from vaultgram.domain import load_domain
-    from vaultgram.formfinding.supports import support_vertices
-    from vaultgram.io.outputs import parse_formats, write_drawings, write_mesh_files
-    from vaultgram.meshing.densities import load_densities
-    from vaultgram.meshing.quality import mesh_stats
-    from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
-    from vaultgram.meshpipeline import mesh_domain
+    with long_lived():
+        from vaultgram.domain import load_domain
+        from vaultgram.formfinding.supports import support_vertices
+        from vaultgram.io.outputs import parse_formats, write_drawings, write_mesh_files
+        from vaultgram.meshing.densities import load_densities
+        from vaultgram.meshing.quality import mesh_stats
+        from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
+        from vaultgram.meshpipeline import mesh_domain
+        from vaultgram.topology.rulebook import load_vault_rulebook
+
+        load_vault_rulebook()  # the shipped rulebook, which mesh_domain then finds loaded
 
     formats = parse_formats(formats)
     domain = load_domain(domain_path, input_format, layer_names(layers), spacing)

@@ -181,3 +181,17 @@ def test_a_plan_that_needs_no_refinement_keeps_its_triangulation(examples_dir):
     disc = discretise(load_domain(examples_dir / "fig7_curves.json"), 0.03)
     tri = triangulate_recovering(disc)
     assert tri.disc is disc and np.array_equal(tri.triangles, triangulate(disc).triangles)
+
+
+@given(st.lists(st.lists(st.integers(0, 40), min_size=3, max_size=3, unique=True), max_size=30),
+       st.sampled_from([np.int32, np.int64]))
+def test_undirected_edges_are_each_triangle_side_once_sorted(rows, dtype):
+    """The triangles' sides as (min, max) pairs, each once, in lexicographic order, in the triangles'
+    integer type (the keys ``min * n + max`` the function sorts stand for exactly these pairs)."""
+    from vaultgram.topology.triangulation import _undirected_edges
+
+    tri = np.array(rows, dtype=dtype).reshape(-1, 3)
+    edges = _undirected_edges(tri)
+    sides = sorted({tuple(sorted((int(t[i]), int(t[(i + 1) % 3])))) for t in tri for i in range(3)})
+    assert edges.dtype == dtype and edges.shape == (len(sides), 2)
+    assert [tuple(e) for e in edges.tolist()] == sides

@@ -2,7 +2,8 @@
 
 The meshes' bookkeeping reduces to sets of integer keys (an edge ``lo * n + hi``, a voussoir at a
 vertex ``group * n + vertex``). ``np.unique`` without ``return_*`` uses a hash table in numpy 2.3 and
-later, some 30 times slower than sorting on 10^5-10^6 such keys; :func:`distinct` sorts.
+later, some 30 times slower than sorting on 10^5-10^6 such keys, and imports ``numpy.ma`` the first
+time (10 ms of a command's start, to ask whether its input is masked); :func:`distinct` sorts.
 
 The choices the stages make between computed values (the largest score, the nearest edge) meet ties
 wherever a plan is symmetric: mirror edges have equal scores in exact arithmetic, and which of them

@@ -38,6 +38,7 @@ import numpy as np
 
 from vaultgram.domain.model import Domain
 from vaultgram.errors import DomainError
+from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.polylines import locate_on_polyline, subdivide_polyline, thinned_dense_runs, turning_angles
 from vaultgram.geometry.spatial import close_pairs
 from vaultgram.limits import SPACING_MAX, SPACING_RANGE
@@ -518,7 +519,7 @@ def _chamfer_points(samples: _Samples, corner_angle: float) -> np.ndarray:
     at, soft = _soft_vertices(samples, corner_angle)
     turning, ring = samples.turning[at], samples.ring[at]
     out = np.zeros(len(samples.ring), dtype=bool)
-    for r in np.unique(ring[soft]):
+    for r in distinct(ring[soft]):
         on = ring == r
         out[at[on]] = _anchored_runs(soft[on], turning[on] > CONVEX_TURN + ANGLE_TOLERANCE)
     return out

@@ -45,6 +45,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from vaultgram.geometry.arrays import distinct
 from vaultgram.geometry.polylines import arc_parameters, polyline_length, segment_lengths
 from vaultgram.topology.triangulation import Triangulation
 
@@ -243,7 +244,7 @@ class _CellGraph(NamedTuple):
 
     def cell_points(self, c: int) -> np.ndarray:
         """The points of the faces of cell ``c``, sorted."""
-        return np.unique(self.triangles[self.cell_faces(c)])
+        return distinct(self.triangles[self.cell_faces(c)])
 
 
 @dataclass

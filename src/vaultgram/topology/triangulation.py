@@ -261,9 +261,11 @@ def _edge_keys(tri: np.ndarray, n: int) -> np.ndarray:
 
 
 def _undirected_edges(tri: np.ndarray) -> np.ndarray:
-    """Unique undirected edges (E, 2) of triangles, each as (min, max) point index, sorted."""
-    e = np.concatenate([tri[:, [1, 2]], tri[:, [2, 0]], tri[:, [0, 1]]])
-    return np.unique(np.sort(e, axis=1), axis=0)
+    """Unique undirected edges (E, 2) of triangles, each as (min, max) point index, sorted (as keys
+    ``min * n + max``, :func:`~vaultgram.geometry.arrays.distinct`)."""
+    e = np.sort(np.concatenate([tri[:, [1, 2]], tri[:, [2, 0]], tri[:, [0, 1]]]), axis=1).astype(np.int64)
+    n = int(e.max()) + 1 if len(e) else 1
+    return np.stack(np.divmod(distinct(e[:, 0] * n + e[:, 1]), n), axis=1).astype(tri.dtype, copy=False)
 
 
 class _HalfEdges(NamedTuple):
