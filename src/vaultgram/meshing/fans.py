@@ -147,7 +147,7 @@ def even_fans(vertices: np.ndarray, faces, face_patch: np.ndarray, pole: np.ndar
     size = np.bincount(corners[0], minlength=len(faces))
     reach = fan_bounds(x, faces)
     rays, refused = [], []
-    for c in np.unique(corners[1][at]):
+    for c in distinct(corners[1][at]):
         if reach[c] < FAN_FLOOR:  # below it, evened or not, the fan stays as the patches give it
             continue
         turned = _even_pole(x, faces, int(c), corners, size, at[corners[1][at] == c], np.asarray(face_patch), held,

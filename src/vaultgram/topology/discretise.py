@@ -560,7 +560,7 @@ def _soft_runs(samples: _Samples, corner_angle: float) -> tuple:
     """
     at, soft = _soft_vertices(samples, corner_angle)
     runs = []
-    for r in np.unique(samples.ring[at][soft]):
+    for r in distinct(samples.ring[at][soft]):
         on = samples.ring[at] == r
         if not soft[on].all():
             runs += [at[on][run] for run in _closed_runs(soft[on])]
