@@ -55,7 +55,13 @@ def test_lobes_at_ten_thousand_faces_unfold_at_the_notches(architecture_dir):
     """The multiple-lobes plan (every boundary supported) has no compression-only reciprocal as meshed,
     and equal densities fold about 40 faces at the notches between its lobes (the grid lines along the
     boundary pull straight over the reflex corners): the densities become unequal there, and only
-    there, until nothing is folded; reciprocal at once, compression only."""
+    there, until nothing is folded; reciprocal at once, compression only. Since session 17 the
+    densities within about 2 m of the reflex corners are the plan's own (dual over primal length,
+    :func:`~vaultgram.formfinding.relaxation.notch_densities`) before the descent, which are more than
+    a factor 2 from the median on about an eighth of the edges (the meshed quads' aspect ratios near
+    the notches); before, the descent alone changed under 5% of them. All within 8 median edges of a
+    reflex corner of the meshed plan (1.9 m; the relaxation moves the vertices by up to 2.2 m, so in the
+    relaxed diagram they reach 3.8 m)."""
     from scipy.spatial import cKDTree
 
     from vaultgram.geometry.meshes import face_areas
@@ -74,9 +80,10 @@ def test_lobes_at_ten_thousand_faces_unfold_at_the_notches(architecture_dir):
     reflex = outer[np.degrees(np.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], (a * b).sum(1))) < -20]
     q = tn.q / np.median(tn.q[form.active])
     unequal = form.active & ((q > 2) | (q < 0.5))
-    assert 10 < unequal.sum() < 0.05 * form.active.sum()
-    distance, _ = cKDTree(reflex).query(form.xy[form.edges[unequal]].mean(axis=1))
-    assert distance.max() < 15 * np.median(form.edge_lengths())
+    assert 10 < unequal.sum() < 0.15 * form.active.sum()
+    meshed = np.asarray(mesh.vertices)[np.asarray(form.vertex_ids), :2]        # where the densities are set
+    distance, _ = cKDTree(reflex).query(meshed[form.edges[unequal]].mean(axis=1))
+    assert distance.max() < 8 * np.median(np.linalg.norm(meshed[form.edges[:, 1]] - meshed[form.edges[:, 0]], axis=1))
 
 
 def _reflex_corners(domain, origin) -> np.ndarray:
@@ -95,7 +102,9 @@ def test_lobes_heights_agree_between_resolutions_away_from_the_notches(architect
     (cumulative counts in :func:`vaultgram.geometry.polylines.resample_polyline`); with the pieces
     rounded one by one (largest remainders, before session 16) they drifted by up to an edge, and the
     heights by 4.88% (max), 2.71% (99th percentile) and 0.43% (median); with cumulative counts 1.59%,
-    0.99% and 0.16%."""
+    0.99% and 0.16%. At all the coarser vertices, near the notches too: within 3%, 99th percentile
+    within 1% since the relaxation starts from the plan's own densities near the reflex corners
+    (session 17: 2.59% and 0.66%; from equal densities 5.81% and 1.51%)."""
     from scipy.interpolate import LinearNDInterpolator
     from scipy.spatial import cKDTree
 
@@ -113,3 +122,7 @@ def test_lobes_heights_agree_between_resolutions_away_from_the_notches(architect
     d = np.abs(z[far] - coarse[far, 2]) / fine[:, 2].max()
     assert far.sum() > 0.75 * len(coarse)
     assert d.max() < 0.02 and np.median(d) < 0.003
+    inside = np.isfinite(z)
+    d = np.abs(z[inside] - coarse[inside, 2]) / fine[:, 2].max()
+    assert inside.sum() > 0.99 * len(coarse)
+    assert d.max() < 0.03 and np.percentile(d, 99) < 0.01

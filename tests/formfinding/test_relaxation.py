@@ -254,3 +254,54 @@ def test_form_finding_over_a_notch_is_reciprocal_at_once():
     tn = form_find(v, f, outer, zmax=0.3, relax_mode="all")
     assert_network_ok(tn)
     assert tn.summary["relax_mode"] == "all" and tn.summary["horizontal_iterations"] == 0
+
+
+def _graded_grid(xs: np.ndarray, ys: np.ndarray, drop=lambda x, y: False):
+    """A tensor-product grid on the spacings ``xs`` x ``ys``, without the faces whose centre ``drop``
+    takes (counter-clockwise quads)."""
+    v = np.array([(x, y) for y in ys for x in xs], dtype=float)
+    nx = len(xs)
+    f = [(a, a + 1, a + 1 + nx, a + nx) for i in range(len(ys) - 1) for j in range(nx - 1)
+         for a in [i * nx + j] if not drop(0.5 * (xs[j] + xs[j + 1]), 0.5 * (ys[i] + ys[i + 1]))]
+    return v, f
+
+
+def test_isotropic_densities_hold_a_graded_grid_where_it_is():
+    """The plan's own densities (dual over primal length) keep a tensor-product grid of any spacing in
+    equilibrium as meshed (they discretise the plan's Laplacian, whose solution with the outline held is
+    the plan itself), where equal densities (each vertex at its neighbours' mean) move it towards even
+    spacing in index space."""
+    from vaultgram.formfinding import relaxation
+
+    grid = _graded_grid(np.array([0, 1, 3, 6, 10.0]), np.array([0, 0.5, 2, 2.5, 4.0]))
+    form = form_diagram(*grid, update_boundaries=False)      # the corners' faces stay quads
+    eo, fo = relaxation.opening_edges(form)
+    system = relaxation._ForceDensities(form, ~form.anchors, eo, fo, 1.0)
+    assert np.abs(system.solve(np.zeros(0)) - form.xy).max() > 0.3
+    system.base = relaxation.isotropic_densities(form)
+    assert len(np.unique(system.base.round(9))) > 3
+    assert np.abs(system.solve(np.zeros(0)) - form.xy).max() < 1e-12
+
+
+def test_notch_densities_are_the_plans_own_near_a_reflex_corner_and_equal_far_from_it():
+    """On an L of graded cells (supported outline) the one reflex anchor is the L's inner corner; the
+    factors :func:`notch_densities` puts on the densities are the isotropic ones within half the reach
+    of it, 1 from the reach on, and between the two in between (``q ** w``); without a reflex corner
+    (the same grid, a rectangle) all 1."""
+    from vaultgram.formfinding import relaxation
+
+    spacing = np.cumsum(np.r_[0.0, np.tile([0.2, 0.3], 15)]).round(9)      # 7.5 m in 30 cells
+    form = form_diagram(*_graded_grid(spacing, spacing, drop=lambda x, y: x > 4.0 and y > 4.0))
+    corner = relaxation.reflex_anchors(form)
+    assert form.xy[corner].tolist() == [[4.0, 4.0]]
+    factors, q = relaxation.notch_densities(form), relaxation.isotropic_densities(form)
+    reach = relaxation._NOTCH_REACH * np.hypot(7.5, 7.5)
+    distance = np.hypot(*(form.xy[form.edges].mean(axis=1) - form.xy[corner[0]]).T)
+    near, far = distance <= 0.5 * reach, distance >= reach
+    assert near.sum() >= 4 and np.allclose(factors[near], q[near]) and not np.allclose(q[near], 1.0)
+    assert np.all(factors[far] == 1.0)
+    between = ~near & ~far
+    assert np.all((factors[between] - 1.0) * (q[between] - 1.0) >= 0)
+    assert np.all(np.abs(np.log(factors[between])) <= np.abs(np.log(q[between])) + 1e-12)
+    square = form_diagram(*_graded_grid(spacing, spacing))
+    assert len(relaxation.reflex_anchors(square)) == 0 and np.all(relaxation.notch_densities(square) == 1.0)
