@@ -15,8 +15,10 @@ meshed as three quads meeting at an inner point of valence 3 (the mesher splits 
 marked pole is a boundary point, :mod:`vaultgram.meshing.splits`), so the corner gets one face more
 (three: regular), the strip's corners are regular, and the one singular vertex added is the split's
 inner point: the index the corner gives up goes inside the plan. A reflex corner inside a patch's
-side (the corner of no patch) is first made the corner of two quads by a chord across its quad, a
-strip too (``cut_quad_at_reflex_corner``, :func:`reflex_cut`).
+side (the corner of no patch: the corners of a polygonal hole along the ring patch round it) is first
+made the corner of two quads by a chord across its quad, a strip too (``cut_quad_at_reflex_corner``,
+:func:`reflex_cut`), ending at the first of :data:`FEET` along the opposite edge that leaves no angle
+below :data:`MIN_CUT_ANGLE` (the middle where it can; :func:`reflex_point`).
 
 :func:`reflex_chord` and :func:`reflex_foot` pick, among the corner's quads and their sides, where the
 chord runs inside the quad and its strip completes (:func:`~vaultgram.topology.strips.strip_walk`)
@@ -30,6 +32,7 @@ from __future__ import annotations
 
 import math
 import weakref
+from collections.abc import Iterator
 
 from vaultgram.geometry.polylines import arc_lengths
 from vaultgram.topology.corners import boundary_angle, graph_rings, ring_place
@@ -98,21 +101,20 @@ def _edge_tangent(graph, edge: int, fraction: float = 0.5) -> float:
     return _direction(back, ahead)
 
 
-def _feet(graph, walk, fractions=FEET) -> list[tuple]:
+def _feet(graph, walk, fractions=FEET) -> Iterator[tuple]:
     """The points of the plan edge a strip enters by (``walk``, :func:`_strip_beyond`; none where it is
     None) where a chord may end (``fractions`` of its length, in that order), as ``(fraction, point,
     tangent there)``: where the strip's first chord, from there across the patch beyond, runs inside
-    it. A closed strip comes back to the middle, its only foot."""
+    it. A closed strip comes back to the middle, its only foot. Lazily: a cut stops at the first that
+    serves."""
     if walk is None:
-        return []
+        return
     edge, found = walk.edges[0], patch_sides(graph, walk.patches[0])
     to = strip_point(graph, walk.edges[1]) if len(walk.edges) > 1 else graph.get(walk.end, "pos")
-    feet = []
     for f in fractions[:1] if walk.end is None else fractions:
         at = _edge_cut(graph, edge, f)[1]
         if f == 0.5 or chord_inside(found, at, to):
-            feet.append((f, at, _edge_tangent(graph, edge, f)))
-    return feet
+            yield f, at, _edge_tangent(graph, edge, f)
 
 
 def _ring_tangent(graph, w: int) -> float:
