@@ -500,3 +500,4 @@ def _register_corner_helpers(f: Functions) -> None:
     f.register("reflex_cut_index", reflex.reflex_cut_index, ("node", "node"), "int", uses_graph=True, local=False)
     f.register("reflex_cut_at", reflex.reflex_cut_at, ("node",), "bool", uses_graph=True, local=False)
     f.register("reflex_foot", reflex.reflex_foot, ("node", "node"), "node", uses_graph=True, local=False)
+    f.register("reflex_point", reflex.reflex_point, ("node", "node"), "vec2", uses_graph=True, local=False)

@@ -15,12 +15,14 @@ meshed as three quads meeting at an inner point of valence 3 (the mesher splits 
 marked pole is a boundary point, :mod:`vaultgram.meshing.splits`), so the corner gets one face more
 (three: regular), the strip's corners are regular, and the one singular vertex added is the split's
 inner point: the index the corner gives up goes inside the plan. A reflex corner inside a patch's
-side (the corner of no patch) is first made the corner of two quads by a chord across its quad, a
-strip too (``cut_quad_at_reflex_corner``, :func:`reflex_cut`).
+side (the corner of no patch: the corners of a polygonal hole along the ring patch round it) is first
+made the corner of two quads by a chord across its quad, a strip too (``cut_quad_at_reflex_corner``,
+:func:`reflex_cut`), ending at the first of :data:`FEET` along the opposite edge that leaves no angle
+below :data:`MIN_CUT_ANGLE` (the middle where it can; :func:`reflex_point`).
 
 :func:`reflex_chord` and :func:`reflex_foot` pick, among the corner's quads and their sides, where the
 chord runs inside the quad and its strip completes (:func:`~vaultgram.topology.strips.strip_walk`)
-without ending in a triangle at a point the split would change (:func:`_strip_ends_well`), the chord
+without ending in a triangle at a point the split would change (:func:`_strip_beyond`), the chord
 whose worst angle is widest: the three patch angles at the corner after the split and the chord's two
 angles with the side it ends on. Where that worst angle is below :data:`MIN_ANGLE` the corner is left
 as it is (a sliver of a patch would cost more in the mesh's worst element than the singularity).
@@ -30,6 +32,7 @@ from __future__ import annotations
 
 import math
 import weakref
+from collections.abc import Iterator
 
 from vaultgram.geometry.polylines import arc_lengths
 from vaultgram.topology.corners import boundary_angle, graph_rings, ring_place
@@ -37,24 +40,34 @@ from vaultgram.topology.patches import half_edge_polyline
 from vaultgram.topology.statecache import per_state
 from vaultgram.topology.strips import (
     chord_inside,
+    cut_along,
     edge_halves,
     patch_across,
     patch_sides,
     side_edge,
     strip_boundary_end,
+    strip_point,
     strip_walk,
 )
 from vaultgram.topology.types import BOUNDARY, BOUNDARY_VERTEX, CURVE_POINT, FEATURE_POINT, PATCH_CORNER
 
-__all__ = ["reflex_chord", "reflex_side", "reflex_foot", "reflex_cut", "reflex_cut_index", "reflex_cut_at", "MIN_ANGLE",
-           "MAX_POLE_ANGLE", "MAX_RATIO"]
+__all__ = ["reflex_chord", "reflex_side", "reflex_foot", "reflex_cut", "reflex_cut_index", "reflex_cut_at",
+           "reflex_point", "MIN_ANGLE", "MIN_CUT_ANGLE", "MAX_POLE_ANGLE", "MAX_RATIO", "FEET"]
 
-#: The node types at which a strip may not end in a triangle (:func:`_strip_ends_well`).
+#: The node types at which a strip may not end in a triangle (:func:`_strip_beyond`).
 KEPT_ENDS = (BOUNDARY_VERTEX, FEATURE_POINT, CURVE_POINT)
 #: Degrees: no chord whose worst angle (at the corner or where it meets the side) is narrower.
 MIN_ANGLE = 30.0
 #: The lengths of the sides a chord joins in one edge group may differ by this factor at most.
 MAX_RATIO = 2.5
+#: Where along a plan edge a chord may end, as fractions of its length, in the order tried: the middle
+#: (where a strip cuts the patches beyond, §4.2) first, then points nearer either end, a quarter of the
+#: way in at most (each piece of the edge stays at least a third as long as the other).
+FEET = (0.5, 0.45, 0.55, 0.4, 0.6, 0.35, 0.65, 0.3, 0.7, 0.25, 0.75)
+#: Degrees: a cut across a quad (a corner inside a side) leaves no angle narrower at the corner or
+#: where it meets the opposite side (plan 188 of the saved random plans: a cut meeting the loop round a
+#: hexagonal hole at 32 degrees left a quad of scaled Jacobian 0.07 there).
+MIN_CUT_ANGLE = 40.0
 #: Degrees: the triangle's angle at the corner must allow the three-quad split
 #: (:data:`vaultgram.meshing.splits.MAX_SPLIT_ANGLE`).
 MAX_POLE_ANGLE = 160.0
@@ -72,12 +85,36 @@ def _ccw(start: float, end: float) -> float:
     return math.degrees(end - start) % 360.0
 
 
-def _edge_tangent(graph, edge: int) -> float:
-    """The direction (radians) of a plan edge at its strip point (the middle, where the chord ends)."""
-    before, mid, after = edge_halves(graph, edge)
+def _edge_cut(graph, edge: int, fraction: float) -> tuple:
+    """A plan edge's polyline (from its source) cut at ``fraction`` of its length
+    (:func:`~vaultgram.topology.strips.cut_along`): the piece before, the point, the piece after."""
+    if fraction == 0.5:
+        return edge_halves(graph, edge)
+    return cut_along(half_edge_polyline(graph, edge, graph.ends(edge)[0]), fraction)
+
+
+def _edge_tangent(graph, edge: int, fraction: float = 0.5) -> float:
+    """The direction (radians) of a plan edge at ``fraction`` of its length (where a chord ends)."""
+    before, mid, after = _edge_cut(graph, edge, fraction)
     ahead = after[0] if len(after) else graph.get(graph.ends(edge)[1], "pos")
     back = before[-1] if len(before) else graph.get(graph.ends(edge)[0], "pos")
     return _direction(back, ahead)
+
+
+def _feet(graph, walk, fractions=FEET) -> Iterator[tuple]:
+    """The points of the plan edge a strip enters by (``walk``, :func:`_strip_beyond`; none where it is
+    None) where a chord may end (``fractions`` of its length, in that order), as ``(fraction, point,
+    tangent there)``: where the strip's first chord, from there across the patch beyond, runs inside
+    it. A closed strip comes back to the middle, its only foot. Lazily: a cut stops at the first that
+    serves."""
+    if walk is None:
+        return
+    edge, found = walk.edges[0], patch_sides(graph, walk.patches[0])
+    to = strip_point(graph, walk.edges[1]) if len(walk.edges) > 1 else graph.get(walk.end, "pos")
+    for f in fractions[:1] if walk.end is None else fractions:
+        at = _edge_cut(graph, edge, f)[1]
+        if f == 0.5 or chord_inside(found, at, to):
+            yield f, at, _edge_tangent(graph, edge, f)
 
 
 def _ring_tangent(graph, w: int) -> float:
@@ -85,6 +122,15 @@ def _ring_tangent(graph, w: int) -> float:
     neighbours along the ring."""
     a, b = (graph.other(e, w) for e in graph.incident(w, [BOUNDARY]))
     return _direction(graph.get(a, "pos"), graph.get(b, "pos"))
+
+
+def _ahead(graph, r: int) -> float:
+    """The direction (radians) of the boundary leaving the boundary point ``r`` in ring order (towards
+    the next point along its ring, the domain on the left): the side from which the domain's interior
+    angle at ``r`` is measured counter-clockwise (:func:`~vaultgram.topology.corners.boundary_angle`)."""
+    rings, _ = graph_rings(graph)
+    ring, k = ring_place(graph, r)
+    return _direction(rings[ring][k], rings[ring][(k + 1) % len(rings[ring])])
 
 
 def _angles(graph, found, k: int, j: int, end, tangent: float, other: float) -> tuple[float, float]:
@@ -102,26 +148,30 @@ def _angles(graph, found, k: int, j: int, end, tangent: float, other: float) -> 
     return min(first, whole - first, other, meet, 180.0 - meet), first if j == 1 else whole - first
 
 
-def _targets(graph, patch: int, found, k: int, j: int) -> tuple | None:
+def _targets(graph, patch: int, found, k: int, j: int) -> list[tuple]:
     """Where a chord from corner ``k`` of a quad may end on its side from corner ``k + j``: the middle
-    of that side's plan edge where a strip may cut it and carry on (``("edge", edge, point,
-    tangent)``), or the free boundary point nearest the middle of a boundary side where the chord
-    runs inside the quad (``("point", node, point, tangent)``); None where neither."""
+    of that side's plan edge where a strip may cut it and carry on (``("edge", edge, point, tangent,
+    0.5)``), or the free boundary point nearest the middle of a boundary side (``("point", node,
+    point, tangent, None)``); only where the chord runs inside the quad. Only the middle: the other
+    feet (:data:`FEET`, which the cuts take) let chords through at multiple_lobes' notches beside
+    fan-shaped patches, 1600 faces for 1080."""
     r, y = found.corners[k], found.corners[(k + j) % 4]
-    edge = side_edge(graph, patch, y)
+    pos, edge = graph.get(r, "pos"), side_edge(graph, patch, y)
     if edge >= 0:
-        ok = _strip_ends_well(graph, patch, r, edge)
-        return ("edge", edge, edge_halves(graph, edge)[1], _edge_tangent(graph, edge)) if ok else None
+        walk = _strip_beyond(graph, patch, edge)
+        return [("edge", edge, at, tangent, f) for f, at, tangent in _feet(graph, walk, FEET[:1])
+                if chord_inside(found, pos, at)]
     w = strip_boundary_end(graph, patch, y)
-    if w == y or not chord_inside(found, graph.get(r, "pos"), graph.get(w, "pos")):
-        return None
-    return "point", w, graph.get(w, "pos"), _ring_tangent(graph, w)
+    if w == y or not chord_inside(found, pos, graph.get(w, "pos")):
+        return []
+    return [("point", w, graph.get(w, "pos"), _ring_tangent(graph, w), None)]
 
 
 def _choose(graph, r: int) -> tuple | None:
     """The chord from the reflex corner ``r`` (see the module docstring): ``(patch, kind, target,
-    side)``, ``kind`` ``"edge"`` (``target`` the plan edge cut halfway) or ``"point"`` (a boundary
-    point), ``side`` the corner where the side it ends on starts; or None."""
+    side, fraction)``, ``kind`` ``"edge"`` (``target`` the plan edge cut at ``fraction`` of its length,
+    the middle) or ``"point"`` (a boundary point), ``side`` the corner where the side it ends on starts;
+    or None."""
     patches = sorted({graph.ends(e)[0] for e in graph.incident(r, [PATCH_CORNER])})
     found = [patch_sides(graph, p) for p in patches]
     if any(f is None for f in found):
@@ -134,34 +184,30 @@ def _choose(graph, r: int) -> tuple | None:
         k = sides.corners.index(r)
         other = theta - _corner(graph, sides, k)[2]
         for j in (1, 2):
-            target = _targets(graph, p, sides, k, j)
-            if target is None:
-                continue
-            worst, pole = _angles(graph, sides, k, j, target[2], target[3], other)
-            if worst >= MIN_ANGLE and pole <= MAX_POLE_ANGLE and (best is None or worst > best[0]) \
-                    and _even_group(graph, p, sides, k, j, target[2]):
-                best = (worst, p, target[0], target[1], sides.corners[(k + j) % 4])
+            for kind, target, at, tangent, fraction in _targets(graph, p, sides, k, j):
+                worst, pole = _angles(graph, sides, k, j, at, tangent, other)
+                if worst >= MIN_ANGLE and pole <= MAX_POLE_ANGLE and _even_group(graph, p, sides, k, j, at):
+                    if best is None or worst > best[0]:
+                        best = (worst, p, kind, target, sides.corners[(k + j) % 4], fraction)
+                    break
     return None if best is None else best[1:]
 
 
-def _strip_ends_well(graph, patch: int, r: int, edge: int) -> bool:
-    """Whether the chord from ``r`` (a corner of the quad ``patch`` or a point of one of its sides) to
-    the middle of ``edge`` runs inside the quad and the strip it starts in the patch beyond completes
-    (:func:`~vaultgram.topology.strips.strip_walk`, as for Figure 8's split to a side, §4.2) without
-    ending in a triangle at a point the split would change: a boundary point gains a face, a boundary
-    singularity (rv_star_pattern's 215 degree vertex, the strip from its 256 degree corner); a point
-    feature's fan carries its load (§4.1: a random plan's worst quad went from 0.31 to 0.20 there);
-    a curve is a cut the layout keeps (§4.2)."""
-    found, beyond = patch_sides(graph, patch), patch_across(graph, patch, edge)
-    if found is None or beyond is None or not chord_inside(found, graph.get(r, "pos"), edge_halves(graph, edge)[1]):
-        return False
-    walk = strip_walk(graph, beyond[0], beyond[1], frozenset([patch]))
-    if walk is None:
-        return False
-    if walk.end is None or len(patch_sides(graph, walk.patches[-1]).corners) == 4:
-        return True
+def _strip_beyond(graph, patch: int, edge: int):
+    """The walk of the strip a chord in the quad ``patch`` to the middle of its side ``edge`` starts
+    in the patch beyond, where it completes (:func:`~vaultgram.topology.strips.strip_walk`, as for
+    Figure 8's split to a side, §4.2) without ending in a triangle at a point the split would
+    change: a boundary point gains a face, a boundary singularity (rv_star_pattern's 215 degree
+    vertex, the strip from its 256 degree corner); a point feature's fan carries its load (§4.1: a
+    random plan's worst quad went from 0.31 to 0.20 there); a curve is a cut the layout keeps
+    (§4.2). None otherwise."""
+    beyond = patch_across(graph, patch, edge)
+    walk = None if beyond is None else strip_walk(graph, beyond[0], beyond[1], frozenset([patch]))
+    if walk is None or walk.end is None or len(patch_sides(graph, walk.patches[-1]).corners) == 4:
+        return walk
     kind = graph.node_type(walk.end)
-    return not (graph.get(walk.end, "feature") or any(graph.schema.is_subtype(kind, t) for t in KEPT_ENDS))
+    kept = graph.get(walk.end, "feature") or any(graph.schema.is_subtype(kind, t) for t in KEPT_ENDS)
+    return None if kept else walk
 
 
 def _side_length(graph, side) -> float:
@@ -252,22 +298,27 @@ def _on_side(graph, r: int) -> tuple[int, int] | None:
 
 def _cut(graph, r: int) -> tuple | None:
     """The chord across the quad on whose side the reflex corner ``r`` lies (:func:`reflex_cut`):
-    ``(patch, side index, edge)``, or None."""
+    ``(patch, side index, edge, fraction)``, or None. It ends at the first of the opposite edge's
+    feet (:func:`_feet`: the middle where it can) where it runs inside the quad and leaves no angle
+    below :data:`MIN_CUT_ANGLE`, at ``r`` (the angle from the boundary leaving ``r``, measured as its
+    interior angle is, and the rest) or with the edge: a corner of a ring patch round a hole lies
+    anywhere along the hole's side, and a chord to the middle of the loop beyond may run along it."""
     at = _on_side(graph, r)
     if at is None or len(patch_sides(graph, at[0]).corners) != 4:
         return None
     patch, i = at
     found = patch_sides(graph, patch)
     edge = side_edge(graph, patch, found.corners[(i + 2) % 4])
-    if edge < 0 or not _strip_ends_well(graph, patch, r, edge):
+    if edge < 0:
         return None
-    pos, mid = graph.get(r, "pos"), edge_halves(graph, edge)[1]
-    d_chord = _direction(pos, mid)
-    ahead = _ring_tangent(graph, r)
-    first = _ccw(ahead, d_chord)  # between the boundary ahead and the chord
-    meet = _ccw(_edge_tangent(graph, edge), d_chord) % 180.0
-    worst = min(first, boundary_angle(graph, r) - first, meet, 180.0 - meet)
-    return (patch, i, edge) if worst >= MIN_ANGLE else None
+    pos, ahead, theta = graph.get(r, "pos"), _ahead(graph, r), boundary_angle(graph, r)
+    for fraction, foot, tangent in _feet(graph, _strip_beyond(graph, patch, edge)):
+        d_chord = _direction(pos, foot)
+        first = _ccw(ahead, d_chord)  # between the boundary leaving r and the chord
+        meet = _ccw(tangent, d_chord) % 180.0
+        if min(first, theta - first, meet, 180.0 - meet) >= MIN_CUT_ANGLE and chord_inside(found, pos, foot):
+            return patch, i, edge, fraction
+    return None
 
 
 def reflex_cut(graph, patch: int, r: int) -> int:
@@ -289,3 +340,23 @@ def reflex_cut_index(graph, patch: int, r: int) -> int:
 def reflex_cut_at(graph, r: int) -> bool:
     """Whether :func:`reflex_cut` has a chord for the reflex corner ``r`` in some quad."""
     return _once(graph, _cut, r) is not None
+
+
+def _foot_of(graph, patch: int, r: int) -> tuple[int, float]:
+    """The plan edge where the chord from the reflex corner ``r`` in the quad ``patch`` ends and the
+    fraction of its length there: the cut's where ``r`` lies inside a side (:func:`reflex_cut`), else
+    the chord's (:func:`reflex_chord`). Asked only where one of them matched."""
+    if not graph.degree(r, [PATCH_CORNER]):
+        cut = _once(graph, _cut, r)
+        return cut[2], cut[3]
+    choice = _once(graph, _choose, r)
+    return choice[2], choice[4]
+
+
+def reflex_point(graph, patch: int, r: int) -> tuple[float, float]:
+    """Where the chord from the reflex corner ``r`` in the quad ``patch`` meets the plan edge it cuts
+    (the new corner, a strip point: :func:`reflex_cut` or :func:`reflex_chord` chose it)."""
+    edge, fraction = _foot_of(graph, patch, r)
+    foot = _edge_cut(graph, edge, fraction)[1]
+    return float(foot[0]), float(foot[1])
+

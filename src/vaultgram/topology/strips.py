@@ -47,8 +47,9 @@ from vaultgram.topology.types import (
 )
 
 __all__ = ["SPLITTABLE", "PatchSides", "patch_sides", "side_edge", "corner_chord_angle", "strip_point",
-           "strip_piece", "side_through", "strip_boundary_end", "Walk", "strip_walk", "strip_through", "strip_start",
-           "strip_from_curve_end", "register_strip_helpers", "edge_halves", "chord_inside", "patch_across"]
+           "strip_piece", "strip_piece_to", "side_through", "strip_boundary_end", "Walk", "strip_walk",
+           "strip_through", "strip_start", "strip_from_curve_end", "register_strip_helpers", "edge_halves",
+           "cut_along", "chord_inside", "patch_across"]
 
 #: The plan edges a strip may cut in two (not a curve feature: the layout must not cross it, §4.2;
 #: not the boundary, which a strip ends at, at one of its points).
@@ -152,13 +153,20 @@ def edge_halves(graph, edge: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     of (:func:`~vaultgram.topology.patches.half_edge_key`), so every state of the search with that
     edge finds it (issue 13)."""
     key = half_edge_key(graph, edge, graph.ends(edge)[0])
-    return by_content(_HALVES, key, lambda: _cut_halfway(key_polyline(key)), HALVES)
+    return by_content(_HALVES, key, lambda: cut_along(key_polyline(key), 0.5), HALVES)
 
 
-def _cut_halfway(pts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def cut_along(pts: np.ndarray, fraction: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """An open polyline cut at ``fraction`` (0 to 1) of its length: the piece before, the point, the
+    piece after (the point is in neither; read-only arrays).
+
+    >>> [a.tolist() for a in cut_along(np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0]]), 0.25)]
+    [[[0.0, 0.0]], [1.0, 0.0], [[2.0, 0.0], [2.0, 2.0]]]
+    """
     s = arc_lengths(pts)
-    mid = point_at_length(pts, s[-1] / 2)
-    j = int(np.searchsorted(s, s[-1] / 2, side="left"))
+    at = s[-1] * fraction
+    mid = point_at_length(pts, at)
+    j = int(np.searchsorted(s, at, side="left"))
     after = j + int(bool(np.allclose(pts[j], mid)))
     halves = pts[:j], mid, pts[after:]
     for array in halves:
@@ -177,6 +185,20 @@ def strip_piece(graph, edge: int, end: int) -> tuple:
     before, mid, after = edge_halves(graph, edge)
     piece = np.vstack([before, mid[None]]) if graph.ends(edge)[0] == end else np.vstack([after[::-1], mid[None]])
     return tuple((float(x), float(y)) for x, y in piece)
+
+
+def strip_piece_to(graph, edge: int, point, end: int) -> tuple:
+    """The part of a plan edge from its end ``end`` to ``point``, a point on it (a chord's foot that is
+    not the middle: :func:`vaultgram.topology.reflex.reflex_point`), as a polyline: the edge's points
+    up to the segment ``point`` lies on (the nearest), then ``point``."""
+    pts = half_edge_polyline(graph, edge, end)
+    q = np.asarray(point, dtype=float)
+    a, b = pts[:-1], pts[1:]
+    d = b - a
+    t = np.clip(((q - a) * d).sum(axis=1) / np.maximum((d * d).sum(axis=1), 1e-300), 0.0, 1.0)
+    j = int(np.argmin(np.hypot(*(a + t[:, None] * d - q).T)))
+    head = pts[:j + 1] if not np.allclose(pts[j], q) or j == 0 else pts[:j]
+    return tuple((float(x), float(y)) for x, y in np.vstack([head, q[None]]))
 
 
 def side_through(graph, patch: int, corner: int, m: int) -> bool:
@@ -342,6 +364,7 @@ def register_strip_helpers(f) -> None:
             ("corner_chord_angle", corner_chord_angle, ("node", "node"), "float"),
             ("strip_point", strip_point, ("edge",), "vec2"),
             ("strip_piece", strip_piece, ("edge", "node"), "list"),
+            ("strip_piece_to", strip_piece_to, ("edge", "vec2", "node"), "list"),
             ("strip_boundary_end", strip_boundary_end, ("node", "node"), "node"),
             ("strip_start", strip_start, ("node", "node", "edge"), "bool"),
             ("strip_from_curve_end", strip_from_curve_end, ("node", "node", "edge"), "bool")):

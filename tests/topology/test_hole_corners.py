@@ -1,0 +1,146 @@
+"""Corners of polygonal holes (issue 12, item 2): a hole's convex corner is reflex for the domain
+(225-315 degrees: three faces), and rules/corners.vgr gives it its third patch as it does the outer
+ring's reflex corners. A corner inside a side of the ring patch round the hole is first cut across
+that patch, to the point of the loop beyond where the chord leaves it no angle below 40 degrees (the
+middle where it can, reflex.FEET); then one of its two quads is split by a chord to a side, the
+triangle's pole at the corner (vaultgram.topology.reflex)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from vaultgram.domain import domain_from_dict
+from vaultgram.geometry.polygons import regular_valence
+from vaultgram.meshing.quality import mesh_stats
+from vaultgram.pipeline import decompose, mesh_decomposition
+from vaultgram.topology import reflex, strips
+from vaultgram.topology.corners import boundary_angle, graph_rings
+from vaultgram.topology.patches import half_edge_polyline
+from vaultgram.topology.types import DIAGONAL, PATCH_CORNER
+
+SQUARE = [[0, 0], [10, 0], [10, 10], [0, 10]]
+
+
+def _polygon(n: int, radius: float, turn: float) -> list:
+    """A regular n-gon round the square's centre, its first corner ``turn`` radians from the x axis."""
+    t = turn + 2 * np.pi * np.arange(n) / n
+    return np.column_stack([5 + radius * np.cos(t), 5 + radius * np.sin(t)]).tolist()
+
+
+#: A square with a hexagonal hole (240 degrees at each of its corners, for the domain) or an
+#: octagonal one (225: on the threshold, counted as reflex), large and small, turned or not. On main
+#: 82a43be each had one to three hole corners with two faces.
+HOLES = {
+    "hexagon": (6, 1.5, 0.0),
+    "hexagon_large": (6, 3.0, 0.0),
+    "octagon_turned": (8, 1.5, 0.3),
+    "octagon_large_turned": (8, 3.0, 0.3),
+}
+
+
+def _plan(name):
+    return domain_from_dict({"name": name, "outer": SQUARE, "holes": [_polygon(*HOLES[name])]})
+
+
+@pytest.fixture(scope="module", params=sorted(HOLES))
+def meshed(request):
+    domain = _plan(request.param)
+    dec = decompose(domain)
+    return request.param, domain, dec, mesh_decomposition(dec)
+
+
+def test_every_hole_corner_has_three_faces(meshed):
+    name, domain, dec, mesh = meshed
+    assert {p.n_sides for p in dec.patches} <= {3, 4}
+    stats = mesh_stats(mesh, domain)
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
+    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.45
+    x = np.asarray(mesh.vertices)[:, :2]
+    for corner in domain.rings[1]:
+        (v,) = np.flatnonzero(np.hypot(*(x - np.asarray(corner)[:2]).T) < 1e-9)
+        assert sum(int(v) in f for f in mesh.faces) == 3, (name, corner)
+
+
+def test_every_hole_corner_is_the_corner_of_three_patches(meshed):
+    name, domain, dec, _ = meshed
+    g = dec.graph
+    corners = [n for n in graph_rings(g)[1][1] if regular_valence(boundary_angle(g, n)) == 4]
+    assert len(corners) == len(domain.rings[1])
+    assert all(g.degree(r, [PATCH_CORNER]) == 3 for r in corners), name
+
+
+def test_the_chords_at_a_hole_corner_leave_it_no_narrow_angle(meshed):
+    """Every chord from a hole corner (a diagonal of the layout) leaves at least reflex.MIN_ANGLE on
+    either side between it and the hole's sides, and runs into the domain."""
+    name, _, dec, _ = meshed
+    g = dec.graph
+    hole = set(graph_rings(g)[1][1])
+    for e in g.edges():
+        if g.edge_type(e) != DIAGONAL:
+            continue
+        for r in set(g.ends(e)) & hole:
+            pts = half_edge_polyline(g, e, r)
+            chord = math.atan2(pts[1][1] - pts[0][1], pts[1][0] - pts[0][0])
+            first = math.degrees(chord - reflex._ahead(g, r)) % 360.0
+            assert reflex.MIN_ANGLE <= first <= boundary_angle(g, r) - reflex.MIN_ANGLE, (name, r, first)
+
+
+def test_the_boundary_ahead_of_a_corner_starts_its_interior_angle():
+    """reflex._ahead is the direction to the next point of the ring (the domain on its left): the
+    interior angle turns counter-clockwise from it to the previous point, on the outer ring and on a
+    hole (whose points run clockwise), whatever the order of the corner's boundary edges."""
+    g = decompose(_plan("hexagon")).graph
+    rings, nodes = graph_rings(g)
+    for ring, ids in zip(rings, nodes):
+        for k, n in enumerate(ids):
+            back = math.atan2(*(ring[k - 1] - ring[k])[::-1])
+            assert math.degrees(back - reflex._ahead(g, n)) % 360.0 == pytest.approx(boundary_angle(g, n), abs=1e-6)
+
+
+def test_an_octagonal_hole_is_on_the_threshold_alike_in_the_layout_and_in_the_mesh():
+    """225 degrees is the tie of regular_valence (1 + round(theta / 90)); a tie goes up (reflex: three
+    faces), within 1e-9 degrees, and both the decomposition (from the plan's ring) and mesh_stats
+    (from the angles of the faces at the vertex) find the same corners there: the float error of a
+    regular octagon's corners (1e-13 degrees) is far inside that band."""
+    domain = _plan("octagon_turned")
+    dec = decompose(domain)
+    g = dec.graph
+    angles = [boundary_angle(g, n) for n in graph_rings(g)[1][1]]
+    assert sorted(round(a, 9) for a in angles if regular_valence(a) == 4) == [225.0] * 8
+    mesh = mesh_decomposition(dec)
+    x = np.asarray(mesh.vertices)[:, :2]
+    for corner in domain.rings[1]:
+        (v,) = np.flatnonzero(np.hypot(*(x - np.asarray(corner)[:2]).T) < 1e-9)
+        faces = [f for f in mesh.faces if int(v) in f]
+        angle = sum(_corner_angle(x, f, int(v)) for f in faces)
+        assert abs(angle - 225.0) < 1e-9 and regular_valence(angle) == 4 and len(faces) == 3
+
+
+def _corner_angle(x, face, v) -> float:
+    """The angle (degrees) of a face at its vertex ``v``."""
+    f = list(face)
+    i = f.index(v)
+    a, b = x[f[i - 1]] - x[v], x[f[(i + 1) % len(f)]] - x[v]
+    return math.degrees(math.acos(np.clip(a @ b / (np.hypot(*a) * np.hypot(*b)), -1.0, 1.0)))
+
+
+def test_a_piece_to_a_point_and_the_rest_make_up_the_edge():
+    """strips.strip_piece_to: the pieces of a plan edge from either end to a point on it (any point,
+    not only the middle) end at that point and together run the edge's length."""
+    dec = decompose(_plan("hexagon"))
+    g = dec.graph
+    for e in [e for e in g.edges() if g.edge_type(e) == DIAGONAL][:5]:
+        a, b = g.ends(e)
+        pts = half_edge_polyline(g, e, a)
+        length = float(np.hypot(*np.diff(pts, axis=0).T).sum())
+        for fraction in reflex.FEET:
+            point = strips.cut_along(pts, fraction)[1]
+            one, other = (np.asarray(strips.strip_piece_to(g, e, point, end)) for end in (a, b))
+            assert np.allclose(one[-1], point) and np.allclose(other[-1], point)
+            assert np.allclose(one[0], g.get(a, "pos")) and np.allclose(other[0], g.get(b, "pos"))
+            pieces = [float(np.hypot(*np.diff(p, axis=0).T).sum()) for p in (one, other)]
+            assert sum(pieces) == pytest.approx(length, rel=1e-9)
+            assert pieces[0] == pytest.approx(fraction * length, rel=1e-9)
