@@ -19,7 +19,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from vaultgram.geometry.arrays import pieces, plan_rows
+from vaultgram.geometry.arrays import distinct, pieces, plan_rows
 from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.geometry.polylines import project_to_polyline
 from vaultgram.meshing.fans import FAN_FLOOR, fan_bounds
@@ -246,7 +246,7 @@ def _neighbours(t: _Corners, verts: np.ndarray, n: int) -> np.ndarray:
     mark[verts] = True
     in_face = np.zeros(int(t.face.max()) + 1, dtype=bool)
     in_face[t.face[mark[t.u]]] = True
-    return np.unique(t.u[in_face[t.face]])
+    return distinct(t.u[in_face[t.face]])
 
 
 def _slide_index(n: int, constraints) -> np.ndarray:
@@ -269,7 +269,7 @@ def _trials(x: np.ndarray, t: _Corners, chosen: np.ndarray, slide_of: np.ndarray
     scale = np.maximum(shortest, 0.25 * mean)  # an edge collapsed to nothing still gives a step
     trial = x[chosen, None, :2] + scale[chosen, None, None] * _MOVES[None]
     on = slide_of[chosen]
-    for k in np.unique(on[on >= 0]):
+    for k in distinct(on[on >= 0]):
         rows = np.flatnonzero(on == k)
         c = constraints[int(k)]
         pts = project_to_polyline(trial[rows].reshape(-1, 2), np.asarray(c.polyline)[:, :2], c.closed)
