@@ -18,7 +18,6 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from vaultgram.errors import FormFindingError
 from vaultgram.formfinding.cholesky import Cholesky, ForceDensityMatrix
@@ -26,6 +25,7 @@ from vaultgram.formfinding.formdiagram import FormDiagram
 from vaultgram.geometry.meshes import corner_arrays, face_areas, shoelace_areas
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.polylines import polyline_length
+from vaultgram.geometry.spatial import nearest_within
 
 __all__ = ["relax_openings", "relax", "Relaxed", "opening_edges", "folded_faces", "reflex_anchors",
            "isotropic_densities", "notch_densities"]
@@ -602,8 +602,8 @@ def notch_densities(form: FormDiagram) -> np.ndarray:
         return np.ones(form.n_edges)
     xy = np.asarray(form.xy)
     reach = _NOTCH_REACH * float(np.hypot(*(xy.max(axis=0) - xy.min(axis=0))))
-    distance, _ = cKDTree(xy[corners]).query(0.5 * (xy[form.edges[:, 0]] + xy[form.edges[:, 1]]))
-    w = np.clip(2.0 * (reach - distance) / reach, 0.0, 1.0)
+    _, distance = nearest_within(xy[corners], 0.5 * (xy[form.edges[:, 0]] + xy[form.edges[:, 1]]), reach)
+    w = np.clip(2.0 * (reach - distance) / reach, 0.0, 1.0)  # 0 beyond the reach (infinite distance)
     return isotropic_densities(form) ** w
 
 
