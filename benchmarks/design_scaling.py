@@ -32,7 +32,7 @@ REPO = Path(__file__).resolve().parents[1]
 PLAN = REPO / "examples" / "quad_with_hole.json"
 #: The stages of each part, as ``timings.json`` names them (vaultgram.pipeline).
 PARTS = {
-    "mesh": ("discretise", "triangulate", "skeleton", "rules", "groups", "weld", "smooth", "untangle"),
+    "mesh": ("discretise", "triangulate", "skeleton", "rules", "groups", "weld", "smooth", "untangle", "orthogonalise"),
     "formfind": ("supports", "form", "relax", "force", "horizontal", "vertical"),
     "tessellate": ("surface", "refine", "keystones", "stagger", "sizes", "surface_smooth", "solids", "courses",
                    "metrics"),

@@ -34,6 +34,7 @@ from vaultgram.meshing.fans import FAN_FLOOR, even_fans, held_vertices, poles_to
 from vaultgram.meshing.fidelity import SAME_POINT, hold_boundary, on_points, place_on_points
 from vaultgram.meshing.layout import Layout, edge_groups, kept_points
 from vaultgram.meshing.optimise import maximise_min_quality
+from vaultgram.meshing.orthogonalise import orthogonalise
 from vaultgram.meshing.quadmesh import QuadMesh
 from vaultgram.meshing.quality import check_not_folded, face_scaled_jacobians
 from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS, laplacian_smooth
@@ -255,7 +256,8 @@ def domain_frame(domain: Domain):
 def mesh_decomposition(dec: Decomposition, target_length: float | None = None, smooth: int = DEFAULT_ITERATIONS,
                        densities: DensitySpec | None = None, allow_folds: bool = False,
                        timings: dict | None = None, max_faces: int = MAX_FACES) -> QuadMesh:
-    """Geometry of §3.2 for a decomposition: edge groups, densities, Coons patches, welding, smoothing.
+    """Geometry of §3.2 for a decomposition: edge groups, densities, Coons patches, welding, smoothing
+    (and, on a mesh below issue 12's mean scaled Jacobian, :func:`~vaultgram.meshing.orthogonalise.orthogonalise`).
 
     A smoothed mesh with inverted faces raises :class:`~vaultgram.errors.MeshFoldError` unless
     ``allow_folds``; the raw Coons patches (``smooth=0``) are returned as they are. Densities that ask
@@ -281,6 +283,9 @@ def _meshed(dec: Decomposition, target_length, smooth: int, densities, allow_fol
         if split_patterns(layout, counts) or not np.array_equal(plain, counts):
             mesh, x = _welded_and_smoothed(layout, plain, smooth, timings, split=False)
             quality = face_scaled_jacobians(x, mesh.faces)
+    if quality is not None and quality.min() > 0:  # issue 12: the mean scaled Jacobian, the worst face kept
+        with progress.timed(timings, "orthogonalise"):
+            x = orthogonalise(x, mesh.faces, mesh.fixed, mesh.constraints, still=mesh.feature)
     mesh = dataclasses.replace(mesh, vertices=x, info=_mesh_info(dec, layout, smooth), origin=dec.origin)
     if quality is not None and not allow_folds:
         check_not_folded(mesh, dec, quality)

@@ -18,6 +18,7 @@ from vaultgram.geometry.polylines import (
     polyline_length,
     project_to_polyline,
     resample_polyline,
+    straight_spans,
     turning_angles,
 )
 
@@ -173,3 +174,23 @@ def test_projection_through_the_spatial_index_matches_the_brute_force():
     _, q = polylines._closest_on_segments(pts, a, ab)
     slow = np.hypot(*(q - pts[:, None, :]).transpose(2, 0, 1)).min(axis=1)
     np.testing.assert_allclose(np.hypot(*(fast - pts).T), slow, rtol=0, atol=1e-12)
+
+
+def test_straight_spans_mark_the_points_between_straight_neighbours():
+    """A square ring meshed with a point at every corner and mid-side: the mid-side points slide,
+    the corners do not; a chain that cuts a corner with a chord keeps the points whose span holds the
+    cut corner; an open chain's ends never slide."""
+    square = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]])
+    chain = np.array([[0, 0], [1, 0], [2, 0], [2, 1], [2, 2], [1, 2], [0, 2], [0, 1.0]])
+    assert straight_spans(chain, square, closed=True).tolist() == [False, True] * 4
+    cut = np.array([[0.5, 0], [1, 0], [1.5, 0], [2, 0.5], [2, 1.5], [1, 2], [0, 2], [0, 1.0]])
+    assert straight_spans(cut, square, closed=True).tolist() == [False, True] + [False] * 6
+    line = np.array([[0.0, 0.0], [4.0, 0.0]])
+    assert straight_spans(np.array([[0, 0], [1, 0], [3, 0], [4, 0.0]]), line).tolist() == [False, True, True, False]
+
+
+def test_no_point_of_an_arc_slides():
+    """Every point of a polygonal arc is a bend: no chain point on it has a straight span."""
+    t = np.linspace(0.0, np.pi, 13)
+    arc = np.column_stack([np.cos(t), np.sin(t)])
+    assert not straight_spans(arc[::2], arc).any()

@@ -54,10 +54,13 @@ MIN_PASS = ["armadillo_vault", "armadillo_vault_plan", "british_museum_map", "hi
 LAYOUT = "skewed quads all over (median scaled Jacobian below 0.9): the patch layout, not smoothing"
 MEAN_MISSES = {
     # rv_star_pattern reaches 0.903 since its reflex corners are the corners of three patches
-    # (rules/corners.vgr, split_quad_at_reflex_corner_to_boundary: 0.887 before)
+    # (rules/corners.vgr, split_quad_at_reflex_corner_to_boundary: 0.887 before).
+    # Since the mean-quality pass (vaultgram.meshing.orthogonalise), two_holes_five_points reaches the
+    # floor (0.891 -> 0.901); the others gain but stay below: mexico_airport 0.849 -> 0.861,
+    # multiple_lobes 0.844 -> 0.859, fig7_curves 0.876 -> 0.886, square_point_loads 0.892 -> 0.900
+    # (0.8996; the pass keeps the quads' areas, which the voussoirs' areas follow).
     "mexico_airport": LAYOUT, "multiple_lobes": LAYOUT,
-    "fig7_curves": LAYOUT,
-    "two_holes_five_points": LAYOUT, "square_point_loads": LAYOUT,
+    "fig7_curves": LAYOUT, "square_point_loads": LAYOUT,
 }
 MEAN_PASS = [n for n in MIN_PASS + sorted(MIN_MISSES) if n not in MEAN_MISSES]
 

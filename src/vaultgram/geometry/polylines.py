@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from vaultgram.geometry.polygons import signed_angles
+from vaultgram.geometry.polygons import cross_z, signed_angles
 
 __all__ = [
     "segment_lengths",
@@ -28,6 +28,7 @@ __all__ = [
     "polyline_hausdorff",
     "subdivide_polyline",
     "thinned_dense_runs",
+    "straight_spans",
 ]
 
 _CHUNK = 2_000_000  # above this many points x segments, projections go through a spatial index
@@ -350,3 +351,57 @@ def _rows_of(points: np.ndarray, rows: np.ndarray) -> np.ndarray:
     want = np.ascontiguousarray(rows).view([("x", float), ("y", float)]).ravel()
     pos = np.clip(np.searchsorted(view[order], want), 0, len(order) - 1)
     return order[pos][view[order[pos]] == want]
+
+
+def straight_spans(chain: np.ndarray, poly: np.ndarray, closed: bool = False, rel: float = 1e-9) -> np.ndarray:
+    """Per point of ``chain`` (points on the polyline ``poly``, in order along it: a stretch of a mesh
+    boundary), whether ``poly`` runs straight from the chain point before it to the one after it: no
+    bend of ``poly`` lies strictly between them or at the point, and the three are collinear. Such a
+    point may slide along the line through its neighbours while the chain stays on ``poly`` (the
+    mean-quality pass of :mod:`vaultgram.meshing.orthogonalise`; issue 12, What 5: the bends a chord
+    cuts off are the boundary's distance from the plan). The ends of an open chain are False. A bend
+    is a point of ``poly`` farther than ``rel`` times the polyline's extent from the line through its
+    two neighbours; bends are placed along the chain by their nearest point on it (shapely).
+
+    >>> poly = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0]])
+    >>> chain = np.array([[0.0, 0.0], [0.5, 0.0], [1.0, 0.0], [1.5, 0.0], [2.0, 1.0], [2.0, 2.0]])
+    >>> straight_spans(chain, poly).tolist()
+    [False, True, True, False, False, False]
+    """
+    import shapely
+
+    chain, poly = np.asarray(chain, dtype=float)[:, :2], np.asarray(poly, dtype=float)[:, :2]
+    n = len(chain)
+    ok = np.ones(n, dtype=bool)
+    if not closed:
+        ok[[0, -1]] = False
+    if n < 3:
+        return ok & False
+    eps = rel * max(float(np.ptp(poly, axis=0).max()), 1e-300)
+    before, after = np.roll(chain, 1, axis=0), np.roll(chain, -1, axis=0)
+    ok &= np.abs(cross_z(after - before, chain - before)) <= eps * np.hypot(*(after - before).T)
+    bends = _bends(poly, closed, eps)
+    if len(bends):
+        line = np.vstack([chain, chain[:1]]) if closed else chain
+        cum = arc_lengths(line)
+        pos = shapely.line_locate_point(shapely.LineString(line), shapely.points(bends))
+        seg = np.clip(np.searchsorted(cum, pos, side="right") - 1, 0, len(cum) - 2)
+        at = np.where(pos - cum[seg] <= cum[seg + 1] - pos, seg, seg + 1)
+        on = np.abs(pos - cum[at]) <= eps  # a bend at a chain point: that point stays
+        ok[at[on] % n] = False
+        ok[seg[~on] % n] = False  # a bend inside segment k: points k and k + 1 stay
+        ok[(seg[~on] + 1) % n] = False
+    return ok
+
+
+def _bends(poly: np.ndarray, closed: bool, eps: float) -> np.ndarray:
+    """The points of a polyline farther than ``eps`` from the line through their two neighbours (the
+    ends of an open polyline are not bends)."""
+    if len(poly) < 3:
+        return poly[:0]
+    before, after = np.roll(poly, 1, axis=0), np.roll(poly, -1, axis=0)
+    chord = np.hypot(*(after - before).T)
+    bent = np.abs(cross_z(after - before, poly - before)) > eps * np.maximum(chord, 1e-300)
+    if not closed:
+        bent[[0, -1]] = False
+    return poly[bent]

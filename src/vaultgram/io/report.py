@@ -25,7 +25,7 @@ SECTIONS = ("parameters", "stages", "topology", "mesh", "thrust", "tessellation"
 #: The stages of the pipeline and the timings (``timings.json`` keys) each is made of.
 STAGES = {
     "topology": ("discretise", "triangulate", "skeleton", "rules"),
-    "mesh": ("groups", "weld", "smooth", "untangle"),
+    "mesh": ("groups", "weld", "smooth", "untangle", "orthogonalise"),
     "form finding": ("supports", "form", "relax", "force", "horizontal", "vertical"),
     "tessellation": ("surface", "refine", "keystones", "stagger", "sizes", "surface_smooth", "solids", "courses",
                      "metrics"),

@@ -31,7 +31,7 @@ from vaultgram.geometry.spatial import nearest_within
 from vaultgram.meshing.quadmesh import SlideConstraint
 from vaultgram.meshing.quality import face_scaled_jacobians
 
-__all__ = ["hold_boundary", "place_on_points", "on_points", "SAME_POINT"]
+__all__ = ["hold_boundary", "place_on_points", "on_points", "stretch_chain", "SAME_POINT"]
 
 #: Two points closer than this fraction of the diagonal are the same point.
 SAME_POINT = 1e-9
@@ -96,7 +96,7 @@ def place_on_points(vertices: np.ndarray, faces, constraints, points: np.ndarray
     for c in constraints:
         poly = np.asarray(c.polyline, dtype=float)[:, :2]
         on = np.flatnonzero(nearest_within(points, poly, eps)[0] >= 0)
-        for k in on[nearest_within(_chain(x, c)[0], poly[on], eps)[0] < 0]:
+        for k in on[nearest_within(stretch_chain(x, c)[0], poly[on], eps)[0] < 0]:
             around = _faces_around(faces, len(x)) if around is None else around  # once a point is bare
             _place_vertex_on(x, faces, around, c, int(k))
     return x, nearest_within(points, x, eps)[0] >= 0
@@ -169,7 +169,7 @@ def _nearest(x: np.ndarray, c: SlideConstraint, p: np.ndarray) -> np.ndarray:
 def _reach(x: np.ndarray, c: SlideConstraint, v: int, poly: np.ndarray) -> np.ndarray:
     """The points of the polyline (its vertices and :data:`_STEPS` steps along each segment) no farther
     from vertex ``v`` than its neighbours along the stretch: where it may slide without passing them."""
-    chain, ids = _chain(x, c)
+    chain, ids = stretch_chain(x, c)
     i = int(np.flatnonzero(ids == v)[0])
     near = chain[[i - 1, (i + 1) % len(chain)]]
     reach = np.hypot(*(near - x[v, :2]).T).max()
@@ -177,7 +177,7 @@ def _reach(x: np.ndarray, c: SlideConstraint, v: int, poly: np.ndarray) -> np.nd
     return points[np.hypot(*(points - x[v, :2]).T) <= reach]
 
 
-def _chain(x: np.ndarray, c: SlideConstraint) -> tuple[np.ndarray, np.ndarray]:
+def stretch_chain(x: np.ndarray, c: SlideConstraint) -> tuple[np.ndarray, np.ndarray]:
     """The mesh boundary along a stretch, in the order of its polyline: points and vertex ids (-1 for
     the fixed vertices at the polyline's ends of an open stretch)."""
     poly = np.asarray(c.polyline, dtype=float)[:, :2]
@@ -192,7 +192,7 @@ def _chain(x: np.ndarray, c: SlideConstraint) -> tuple[np.ndarray, np.ndarray]:
 def _gaps(x: np.ndarray, c: SlideConstraint) -> np.ndarray:
     """Distance from each point of the stretch's polyline to the mesh boundary along it."""
     poly = np.asarray(c.polyline, dtype=float)[:, :2]
-    return np.hypot(*(project_to_polyline(poly, _chain(x, c)[0], c.closed) - poly).T)
+    return np.hypot(*(project_to_polyline(poly, stretch_chain(x, c)[0], c.closed) - poly).T)
 
 
 def _faces_around(faces, n: int):
