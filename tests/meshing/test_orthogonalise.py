@@ -13,7 +13,7 @@ from vaultgram.domain import domain_from_dict
 from vaultgram.geometry.fidelity import boundary_distance
 from vaultgram.geometry.meshes import corner_arrays, grid_mesh
 from vaultgram.geometry.polylines import project_to_polyline
-from vaultgram.meshing.orthogonalise import MEAN_FLOOR, orthogonalise
+from vaultgram.meshing.orthogonalise import MEAN_FLOOR, MEAN_MAX_FACES, MEAN_TARGET, orthogonalise
 from vaultgram.meshing.quadmesh import SlideConstraint
 from vaultgram.meshing.quality import face_scaled_jacobians
 from vaultgram.pipeline import mesh_domain
@@ -117,9 +117,17 @@ def test_fans_and_the_rings_of_point_features_stay(unsquared):
     assert face_scaled_jacobians(x, mesh.faces).mean() > face_scaled_jacobians(mesh.vertices, mesh.faces).mean()
 
 
-def test_good_and_folded_meshes_are_left_alone():
-    """A square grid (nothing to gain) and a folded one (untangling comes first) come back as they are."""
+def test_good_folded_and_fine_meshes_are_left_alone():
+    """A square grid (its mean above the issue's floor), a folded one (untangling comes first) and a
+    sheared grid of more than MEAN_MAX_FACES faces (the steps shrink with the edges: little gain for
+    the time) come back as they are, while the same shear on a coarse grid is worked on."""
     v, f = grid_mesh(3)
     assert np.array_equal(orthogonalise(v, f), v)
     v[5, :2] = [3.5, 3.5]
     assert np.array_equal(orthogonalise(v, f), v)
+    for n in (8, int(np.sqrt(MEAN_MAX_FACES)) + 1):
+        v, f = grid_mesh(n)
+        inner = (v[:, 0] % n != 0) & (v[:, 1] % n != 0)
+        v[inner, 0] += 0.6 * (v[inner, 1] % 2 - 0.5)  # rows zigzag: parallelograms of 0.857
+        assert face_scaled_jacobians(v, f).mean() < MEAN_TARGET
+        assert np.array_equal(orthogonalise(v, f, ~inner), v) == (len(f) > MEAN_MAX_FACES)

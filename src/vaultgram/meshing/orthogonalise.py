@@ -106,8 +106,9 @@ def orthogonalise(vertices: np.ndarray, faces, fixed: np.ndarray | None = None, 
     triangle, not on a face of a vertex in ``still``;
     the sliding vertices of ``constraints`` only where their polylines run straight, along them),
     keeping every face at least as good as the smaller of its scaled Jacobian and its floor
-    (:data:`MEAN_FLOOR`, the worst face where better). A mesh with an inverted face is returned as
-    it is (untangling comes first).
+    (:data:`MEAN_FLOOR`, the worst face where better). A mesh with an inverted face (untangling
+    comes first), a mean of at least :data:`MEAN_TARGET` or more than :data:`MEAN_MAX_FACES` faces
+    is returned as it is.
 
     Example
     -------
@@ -121,7 +122,7 @@ def orthogonalise(vertices: np.ndarray, faces, fixed: np.ndarray | None = None, 
     (0.785, 0.923, True)
     """
     x = np.array(vertices, dtype=float)
-    if len(faces) == 0:
+    if len(faces) == 0 or len(faces) > MEAN_MAX_FACES:
         return x
     region = _region(x, faces, fixed, constraints, still)
     if region is None:
@@ -131,14 +132,14 @@ def orthogonalise(vertices: np.ndarray, faces, fixed: np.ndarray | None = None, 
 
 def _region(x: np.ndarray, faces, fixed, constraints, still) -> _Region | None:
     """The :class:`_Region` of :func:`orthogonalise`, or None where nothing is to move (a mean of at
-    least :data:`MEAN_TARGET`, more than :data:`MEAN_MAX_FACES` faces, or an inverted face). The
-    floors and areas are taken from :func:`_geometry`, the numbers the descent compares them with."""
+    least :data:`MEAN_TARGET`, or an inverted face). The floors and areas are taken from
+    :func:`_geometry`, the numbers the descent compares them with."""
     face, u, v, p = corner_arrays(faces)
     n, n_faces = len(x), len(faces)
     starts = np.flatnonzero(np.r_[True, face[1:] != face[:-1]])
     quad = (np.bincount(face, minlength=n_faces) == 4)[face]
     sj = np.minimum.reduceat(_corner_sj(x, u, v, p, np.where(quad, 1.0, _TRI)), starts)
-    if sj.min() <= 0 or sj.mean() >= MEAN_TARGET or n_faces > MEAN_MAX_FACES:
+    if sj.min() <= 0 or sj.mean() >= MEAN_TARGET:
         return None
     free = np.zeros(n, dtype=bool)
     free[u[quad]] = True
