@@ -64,10 +64,45 @@ class _Group(click.Group):
             sys.exit(1)
         except KeyboardInterrupt:  # after the command ended (click turns one during it into Abort)
             sys.exit(130)
+        except SystemError as exc:  # a signal inside a C extension's import: ended as the signal ends a run
+            signalled = _signal_behind(exc)
+            if signalled is None:
+                raise
+            if isinstance(signalled, SystemExit):
+                sys.exit(signalled.code)
+            click.echo("Aborted!", err=True)
+            sys.exit(1)
         finally:
             if _PROCESS["program"]:
                 gc.freeze()  # the process ends: no last collection over every object still alive (issue 18)
         sys.exit(code if isinstance(code, int) else 0)
+
+
+def _signal_behind(exc: BaseException) -> BaseException | None:
+    """The interrupt (``KeyboardInterrupt``: SIGINT) or termination (``SystemExit``: SIGTERM, which
+    the staging of an output folder raises as ``SystemExit(143)``) behind a ``SystemError``, or None.
+
+    A signal that lands while a C extension initialises (``design`` imports cvxopt's BLAS module
+    lazily) raises its exception inside the extension's init function, which Python reports as
+    ``SystemError: initialization of blas raised unreported exception`` with the signal's exception
+    as its cause: the run then ends as that signal ends it anywhere else, without a traceback.
+
+    >>> try:
+    ...     try:
+    ...         raise KeyboardInterrupt
+    ...     except KeyboardInterrupt as interrupt:
+    ...         raise SystemError("initialization of blas raised unreported exception") from interrupt
+    ... except SystemError as exc:
+    ...     type(_signal_behind(exc)).__name__, _signal_behind(SystemError("other"))
+    ('KeyboardInterrupt', None)
+    """
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        if isinstance(exc, (KeyboardInterrupt, SystemExit)):
+            return exc
+        seen.add(id(exc))
+        exc = exc.__cause__ or exc.__context__
+    return None
 
 
 #: ``program``: whether :meth:`_Group.main` runs as the program itself (its arguments from
