@@ -15,6 +15,7 @@ from vaultgram.meshing.layout import edge_groups
 from vaultgram.meshing.quality import mesh_stats
 from vaultgram.meshing.splits import split_patterns
 from vaultgram.pipeline import decompose, mesh_decomposition, mesh_domain
+from vaultgram.topology.corners import boundary_angle
 
 from paths import ARCHITECTURE
 
@@ -70,6 +71,31 @@ def test_no_rebranch_moves_where_it_would_leave_a_sliver():
         (quad,) = [p for p in dec.patches if pole in p.corners and p is not tri]
         for patch in (tri, quad):
             assert patch.corner_angles()[list(patch.corners).index(pole)] >= 30.0
+
+
+#: Draw 268 of the 700 saved random plans (spacing 0.05): corners of 142, 150 and 141 degrees, each
+#: the corner of one quad on main 0f466b5; its 141 degree corner's free neighbour comes before it
+#: along the ring.
+DRAW_268 = {"name": "draw 268", "outer": [[5.934141, 2.637454], [3.425586, 8.906739], [-2.637454, 5.934141],
+                                          [-5.22598, 2.009943], [-4.813876, -2.139548], [-3.083416, -8.017078],
+                                          [3.109803, -6.996904], [4.666743, -1.794857]],
+            "points": [[0.0, -5.667016], [2.07857, 0.0]]}
+
+
+def test_lone_corners_either_way_round():
+    """Draw 268: three boundary singularities on main 0f466b5 (its 142, 150 and 141 degree corners
+    with one face each); with move_rebranch_to_lone_corner one is left (141 degrees), which its
+    _back twin takes (the rebranch's end before the corner along the ring): none left, the corners
+    each the corner of two patches."""
+    domain = domain_from_dict(DRAW_268)
+    dec = decompose(domain, 0.05)
+    stats = mesh_stats(mesh_decomposition(dec), domain)
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
+    assert stats["inverted_faces"] == 0
+    lone = [n for n in dec.graph.nodes() if dec.graph.node_type(n) == "Corner"
+            and 135 <= boundary_angle(dec.graph, n) < 225]
+    assert len(lone) >= 2  # the 150 degree one is a smooth point (meshpipeline._soft_runs_settled)
+    assert all(sum(n in p.corners for p in dec.patches) == 2 for n in lone)
 
 
 #: Boundary singularities of the shared plans' default meshes (issue 12's acceptance asks for 0 on

@@ -362,19 +362,22 @@ def reflex_point(graph, patch: int, r: int) -> tuple[float, float]:
 
 
 
-def rebranch_to_corner(graph, patch: int, b: int, x: int) -> bool:
+def rebranch_to_corner(graph, patch: int, b: int, c: int, x: int) -> bool:
     """Whether a rebranch from the skeleton vertex ``x`` to the corner ``b`` of the quad ``patch`` (a
-    corner of 135 to 225 degrees, its one patch's only: ``rules/patching.vgr``,
-    ``move_rebranch_to_lone_corner``) runs straight inside the patch and splits its angle at ``b``
-    into two of at least :data:`MIN_ANGLE` degrees: the one from the side leaving ``b`` (the patch
-    beyond it gets that) and the triangle's, at most :data:`MAX_POLE_ANGLE` (its pole, meshed as
-    three quads). The same limits as a reflex corner's chord (:func:`_choose`), for the same reason:
-    a sliver beside ``b`` would cost more than its boundary singularity (issue 12, item 3)."""
+    corner of 135 to 225 degrees, its one patch's only; ``c`` the corner beside it along the ring
+    where the rebranch ends now: ``rules/patching.vgr``, ``move_rebranch_to_lone_corner``) runs
+    straight inside the patch and splits its angle at ``b`` into two of at least :data:`MIN_ANGLE`
+    degrees: the one on ``c``'s side (the patch beyond gets that) and the triangle's, at most
+    :data:`MAX_POLE_ANGLE` (its pole, meshed as three quads). The same limits as a reflex corner's
+    chord (:func:`_choose`), for the same reason: a sliver beside ``b`` would cost more than its
+    boundary singularity (issue 12, item 3)."""
     found = patch_sides(graph, patch)
     if found is None or len(found.corners) != 4 or b not in found.corners:
         return False
-    pos, d_out, whole = _corner(graph, found, found.corners.index(b))
+    k = found.corners.index(b)
+    pos, d_out, whole = _corner(graph, found, k)
     to = graph.get(x, "pos")
     first = _ccw(d_out, _direction(pos, to))  # between the side leaving b and the rebranch
-    return (MIN_ANGLE <= first <= whole - MIN_ANGLE and whole - first <= MAX_POLE_ANGLE
+    triangle = whole - first if c == found.corners[(k + 1) % 4] else first
+    return (MIN_ANGLE <= first <= whole - MIN_ANGLE and triangle <= MAX_POLE_ANGLE
             and chord_inside(found, pos, to))
