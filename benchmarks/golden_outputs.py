@@ -39,8 +39,10 @@ def run_design(domain: Path, options: list[str]) -> dict:
     for extra in ([], ["--relax-mode", "all"]):
         with tempfile.TemporaryDirectory() as tmp:
             out = Path(tmp) / "out"
-            cmd = [sys.executable, "-m", "vaultgram", "design", str(domain), "--out", str(out), *options, *extra]
-            proc = subprocess.run(cmd, capture_output=True, text=True)
+            # Run beside the input and name it alone: summary.json records the path as given, so a
+            # checkout elsewhere (a worktree, a clean clone) records the same bytes.
+            cmd = [sys.executable, "-m", "vaultgram", "design", domain.name, "--out", str(out), *options, *extra]
+            proc = subprocess.run(cmd, capture_output=True, text=True, cwd=domain.parent)
             files = {p.name: hashlib.sha256(p.read_bytes()).hexdigest()
                      for p in sorted(out.glob("*")) if p.suffix in KEPT and p.name not in TIMED} if out.is_dir() else {}
             if proc.returncode == 0:
@@ -88,10 +90,9 @@ def main() -> int:
     parser.add_argument("dir", type=Path)
     args, options = parser.parse_known_args()
     now = record(options)
-    args.dir.mkdir(parents=True, exist_ok=True)
-    target = args.dir / ("golden.json" if args.mode == "record" else "now.json")
-    target.write_text(json.dumps(now, indent=1, sort_keys=True))
     if args.mode == "record":
+        args.dir.mkdir(parents=True, exist_ok=True)
+        (args.dir / "golden.json").write_text(json.dumps(now, indent=1, sort_keys=True))
         return 0
     lines = differences(json.loads((args.dir / "golden.json").read_text()), now)
     print("\n".join(lines) if lines else f"identical: {len(now)} inputs")

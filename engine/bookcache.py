@@ -125,19 +125,18 @@ def store(book, paths: list[Path], functions) -> None:
 
 def _function(code, module: str, name: str, qualname: str, defaults, kwdefaults, closure):
     """A function rebuilt from its code, its module's globals, defaults and cells."""
-    fn = types.FunctionType(code, importlib.import_module(module).__dict__, name, defaults, closure)
+    globals_ = (sys.modules.get(module) or importlib.import_module(module)).__dict__
+    fn = types.FunctionType(code, globals_, name, defaults, closure)
     fn.__qualname__ = qualname
     fn.__kwdefaults__ = kwdefaults
     return fn
 
 
-def _cell():
-    """An empty cell (its contents are set after, so that a closure may hold itself)."""
-    return types.CellType()
-
-
-def _fill(cell, contents) -> None:
-    cell.cell_contents = contents
+def _cell_type() -> type:
+    """The type of cells, which pickle cannot name (``types.CellType`` is ``builtins.cell``, a name
+    builtins does not have); read once per entry (pickle's memo), then every cell is made by calling
+    it from C."""
+    return types.CellType
 
 
 def _allowed(module: str | None) -> bool:
@@ -159,6 +158,8 @@ class _Pickler(pickle.Pickler):
         return self._live.get(id(obj))
 
     def reducer_override(self, obj):
+        if obj is types.CellType:
+            return _cell_type, ()
         if isinstance(obj, (type, types.FunctionType, types.BuiltinFunctionType)):
             if not _allowed(getattr(obj, "__module__", None)):
                 raise pickle.PicklingError(f"{obj!r}: not of the engine or the grammar")
@@ -170,11 +171,11 @@ class _Pickler(pickle.Pickler):
             return NotImplemented
         if isinstance(obj, types.CodeType):
             return marshal.loads, (marshal.dumps(obj),)
-        if isinstance(obj, types.CellType):
+        if isinstance(obj, types.CellType):  # empty, filled after (a closure may hold itself), by setattr
             try:
-                return _cell, (), obj.cell_contents, None, None, _fill
+                return types.CellType, (), (None, {"cell_contents": obj.cell_contents})
             except ValueError:  # an empty cell
-                return _cell, ()
+                return types.CellType, ()
         return NotImplemented
 
 

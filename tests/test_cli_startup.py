@@ -8,6 +8,8 @@ import os
 import subprocess
 import sys
 
+import pytest
+
 from paths import REPO
 
 HEAVY = ("numpy", "scipy", "networkx", "shapely", "lark", "matplotlib")
@@ -138,3 +140,37 @@ def test_a_caller_of_the_command_line_keeps_its_objects_collectable(tmp_path):
                                        "--out", str(tmp_path / "out")])
     assert result.exit_code == 0 and (tmp_path / "out" / "mesh.json").is_file()
     assert gc.isenabled() and gc.get_freeze_count() == before
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc/self/task"), reason="threads counted in /proc (Linux)")
+def test_the_program_loads_numpy_with_one_blas_thread(tmp_path, monkeypatch):
+    """Run as the program, ``vaultgram mesh`` sets one OpenBLAS thread before numpy loads (its threads
+    spin at start-up and the mesh path multiplies no large matrices): the process has no other thread."""
+    for name in ("OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS"):
+        monkeypatch.delenv(name, raising=False)
+    env, threads = _mesh_modules(tmp_path, "import os",
+                                 "os.environ.get('OPENBLAS_NUM_THREADS'), len(os.listdir('/proc/self/task'))")
+    assert (env, threads) == ("1", "1")
+
+
+def test_a_blas_thread_count_the_user_chose_is_kept(tmp_path, monkeypatch):
+    """``OPENBLAS_NUM_THREADS`` or ``OMP_NUM_THREADS`` set by the user stays as given."""
+    monkeypatch.setenv("OMP_NUM_THREADS", "2")
+    monkeypatch.delenv("OPENBLAS_NUM_THREADS", raising=False)
+    env, omp = _mesh_modules(tmp_path, "import os",
+                             "os.environ.get('OPENBLAS_NUM_THREADS'), os.environ.get('OMP_NUM_THREADS')")
+    assert (env, omp) == ("None", "2")
+
+
+def test_a_caller_of_the_command_line_keeps_its_environment(tmp_path, monkeypatch):
+    """Called by other code, the command line leaves the caller's environment as it was."""
+    import os
+
+    from click.testing import CliRunner
+
+    from vaultgram.cli import main
+
+    monkeypatch.delenv("OPENBLAS_NUM_THREADS", raising=False)
+    result = CliRunner().invoke(main, ["mesh", str(REPO / "examples" / "quad_with_hole.json"),
+                                       "--out", str(tmp_path / "out")])
+    assert result.exit_code == 0 and "OPENBLAS_NUM_THREADS" not in os.environ

@@ -11,6 +11,7 @@ from __future__ import annotations
 import contextlib
 import gc
 import json
+import os
 import sys
 import warnings
 from pathlib import Path
@@ -63,10 +64,45 @@ class _Group(click.Group):
             sys.exit(1)
         except KeyboardInterrupt:  # after the command ended (click turns one during it into Abort)
             sys.exit(130)
+        except SystemError as exc:  # a signal inside a C extension's import: ended as the signal ends a run
+            signalled = _signal_behind(exc)
+            if signalled is None:
+                raise
+            if isinstance(signalled, SystemExit):
+                sys.exit(signalled.code)
+            click.echo("Aborted!", err=True)
+            sys.exit(1)
         finally:
             if _PROCESS["program"]:
                 gc.freeze()  # the process ends: no last collection over every object still alive (issue 18)
         sys.exit(code if isinstance(code, int) else 0)
+
+
+def _signal_behind(exc: BaseException) -> BaseException | None:
+    """The interrupt (``KeyboardInterrupt``: SIGINT) or termination (``SystemExit``: SIGTERM, which
+    the staging of an output folder raises as ``SystemExit(143)``) behind a ``SystemError``, or None.
+
+    A signal that lands while a C extension initialises (``design`` imports cvxopt's BLAS module
+    lazily) raises its exception inside the extension's init function, which Python reports as
+    ``SystemError: initialization of blas raised unreported exception`` with the signal's exception
+    as its cause: the run then ends as that signal ends it anywhere else, without a traceback.
+
+    >>> try:
+    ...     try:
+    ...         raise KeyboardInterrupt
+    ...     except KeyboardInterrupt as interrupt:
+    ...         raise SystemError("initialization of blas raised unreported exception") from interrupt
+    ... except SystemError as exc:
+    ...     type(_signal_behind(exc)).__name__, _signal_behind(SystemError("other"))
+    ('KeyboardInterrupt', None)
+    """
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        if isinstance(exc, (KeyboardInterrupt, SystemExit)):
+            return exc
+        seen.add(id(exc))
+        exc = exc.__cause__ or exc.__context__
+    return None
 
 
 #: ``program``: whether :meth:`_Group.main` runs as the program itself (its arguments from
@@ -79,7 +115,8 @@ _PROCESS = {"program": False}
 def long_lived():
     """Run a command's start-up (its imports, the rulebook) with the garbage collector paused; in the
     program's own process, then move every object into the collector's permanent generation
-    (``gc.freeze``); restore the collector (issue 18).
+    (``gc.freeze``); restore the collector (issue 18). The program's own process also gets one BLAS
+    thread before numpy loads (:func:`_one_blas_thread`).
 
     Modules, classes and the checked rulebook live as long as the process, yet collections walked
     them again and again, and once more at exit: in ``vaultgram mesh`` of a small plan the collector
@@ -93,6 +130,8 @@ def long_lived():
     >>> gc.isenabled() == enabled
     True
     """
+    if _PROCESS["program"]:
+        _one_blas_thread()
     enabled = gc.isenabled()
     gc.disable()
     try:
@@ -102,6 +141,25 @@ def long_lived():
             gc.freeze()
         if enabled:
             gc.enable()
+
+
+#: The variables by which OpenBLAS (numpy's BLAS) takes its thread count, in its order of precedence.
+BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS")
+
+
+def _one_blas_thread() -> None:
+    """Before numpy's first import, one OpenBLAS thread, unless the user chose a count (issue 18).
+
+    numpy's OpenBLAS starts a thread per core when it loads, and they spin waiting for work: on two
+    cores ``import numpy`` took 140-190 ms CPU against 90 with one thread (wall 90-160 against 90-105
+    ms, the machine loaded). The commands that call this (``mesh``, ``decompose``) multiply no large
+    matrices (dot products of vectors, 2 x 2 solves; the smoothing's product is numpy's ``bincount``
+    or scipy's sparse one), so the threads only cost; one thread also sums those dot products in one
+    order whatever the machine's cores. Only the program's own process: a caller's (a test's) is not
+    changed, nor does it matter once numpy is loaded.
+    """
+    if "numpy" not in sys.modules and not any(os.environ.get(name) for name in BLAS_THREADS):
+        os.environ["OPENBLAS_NUM_THREADS"] = "1"
 
 
 def _usage_line(exc: click.UsageError) -> None:

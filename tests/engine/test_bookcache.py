@@ -80,3 +80,47 @@ def test_a_broken_entry_is_checked_again(files, tmp_path):
 def test_no_cache_folder_means_checking(files, monkeypatch):
     monkeypatch.setenv("VAULTGRAM_CACHE_DIR", "")
     assert _grown(load_rulebook(files, _registry(1))) == 5 and bookcache.load(files, _registry(1)) is None
+
+
+def _pickled_and_back(obj):
+    """``obj`` through the cache's pickler and unpickler (no registry)."""
+    import io
+
+    buffer = io.BytesIO()
+    bookcache._Pickler(buffer, Functions()).dump(obj)
+    buffer.seek(0)
+    return bookcache._Unpickler(buffer, Functions()).load()
+
+
+def test_closures_come_back_with_their_cells_shared_and_a_closure_holding_itself():
+    """Two closures over one variable keep sharing its cell, an empty cell stays empty, and a closure
+    that calls itself (its cell holds it) comes back calling itself: cells are made empty and filled
+    after (pickle's memo closes the cycle)."""
+    def made():
+        shared = [0]
+
+        def bump():
+            shared[0] += 1
+            return shared[0]
+
+        def read():
+            return shared[0]
+
+        def count(n):
+            return 0 if n == 0 else count(n - 1) + 1
+
+        def unset():
+            return later  # noqa: F821 -- bound after, never here
+
+        if False:
+            later = None
+        return bump, read, count, unset
+
+    functions = made()
+    for f in functions:
+        f.__module__ = "vaultgram.engine.expressions"  # code an entry may hold
+    bump, read, count, unset = _pickled_and_back(functions)
+    assert (bump(), bump(), read()) == (1, 2, 2)
+    assert count(5) == 5 and count.__closure__[0].cell_contents is count
+    with pytest.raises(NameError):
+        unset()

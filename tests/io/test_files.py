@@ -167,6 +167,34 @@ def test_an_interrupt_after_the_command_ended_exits_130_without_a_traceback(monk
     assert exit_info.value.code == 130
 
 
+@pytest.mark.parametrize("signalled, code", [(KeyboardInterrupt(), 1), (SystemExit(143), 143)])
+def test_a_signal_inside_an_extensions_import_ends_the_run_as_the_signal_does(monkeypatch, capsys, signalled, code):
+    """A SIGINT or SIGTERM that lands while a C extension initialises (cvxopt's BLAS module, imported
+    by ``design`` lazily) reaches the program as a SystemError caused by the signal's exception: the run
+    ends with the signal's exit code (click's abort for an interrupt), without a traceback; any other
+    SystemError is not hidden."""
+    import click
+
+    def import_interrupted(*_args, **_kwargs):
+        try:
+            raise signalled
+        except BaseException as exc:
+            raise SystemError("initialization of blas raised unreported exception") from exc
+
+    monkeypatch.setattr(click.Group, "main", import_interrupted)
+    with pytest.raises(SystemExit) as exit_info:
+        main(["--help"])
+    assert exit_info.value.code == code
+    assert "Traceback" not in capsys.readouterr().err
+
+    def broken(*_args, **_kwargs):
+        raise SystemError("a real bug")
+
+    monkeypatch.setattr(click.Group, "main", broken)
+    with pytest.raises(SystemError, match="a real bug"):
+        main(["--help"])
+
+
 def test_freed_memory_kept_leaves_results_alone_and_gives_memory_back():
     """Inside the block large arrays are made, freed and made again; the values are those made
     outside it, also when the block raises (the allocator's settings are restored either way)."""

@@ -122,12 +122,31 @@ def _segments(poly: np.ndarray, closed: bool) -> tuple[np.ndarray, np.ndarray]:
     return a, b - a
 
 
-def _closest_on_segments(p: np.ndarray, a: np.ndarray, ab: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """For points ``p`` (k, 2) and segments ``a + t ab``: the parameters ``t`` (k, s) of the nearest
-    point of every segment, and those points (k, s, 2)."""
-    ab2 = np.maximum((ab * ab).sum(-1), 1e-300)
-    t = np.clip(((p[:, None, :] - a) * ab).sum(-1) / ab2, 0.0, 1.0)
-    return t, a + t[..., None] * ab
+def _closest_on_segments(p: np.ndarray, a: np.ndarray, ab: np.ndarray) -> tuple[np.ndarray, list[np.ndarray]]:
+    """For points ``p`` (k, d) and segments ``a + t ab`` (s, d): the parameters ``t`` (k, s) of the
+    nearest point of every segment, and those points' coordinates, a (k, s) array per axis.
+
+    Axis by axis on (k, s) arrays rather than on (k, s, d) arrays summed over their last axis: the
+    same numbers (:func:`_summed`) in a third of the time at the sizes smoothing projects every
+    iteration (25-60 points on 36-64 segments, where numpy's per-call costs dominate)."""
+    ab2 = np.maximum(_summed([ab[:, j] * ab[:, j] for j in range(ab.shape[1])]), 1e-300)
+    t = np.clip(_summed([(p[:, j, None] - a[:, j]) * ab[:, j] for j in range(ab.shape[1])]) / ab2, 0.0, 1.0)
+    return t, [a[:, j] + t * ab[:, j] for j in range(ab.shape[1])]
+
+
+def _summed(terms: list[np.ndarray]) -> np.ndarray:
+    """``0.0 + terms[0] + terms[1] + ...`` in that order: exactly numpy's sum over an array's last
+    axis of that length (up to 7; from 8 numpy sums in pairs), whose result here must not change by a
+    bit. The leading +0.0 is numpy's too: -0.0 + -0.0 sums to +0.0 there, and the sign of a zero
+    ``t`` would reach a projection onto a point at -0.0.
+
+    >>> _summed([np.array([-0.0, 1.5]), np.array([-0.0, 2.0])]).tolist()
+    [0.0, 3.5]
+    """
+    total = terms[0] + 0.0
+    for term in terms[1:]:
+        total += term
+    return total
 
 
 def locate_on_polyline(poly: np.ndarray, p: np.ndarray, closed: bool = False) -> tuple[float, int, float]:
@@ -137,8 +156,9 @@ def locate_on_polyline(poly: np.ndarray, p: np.ndarray, closed: bool = False) ->
     (1.0, 1, 0.75)
     """
     a, ab = _segments(poly, closed)
-    t, q = _closest_on_segments(np.asarray(p, dtype=float)[None, :], a, ab)
-    d = np.hypot(*(q[0] - p).T)
+    p = np.asarray(p, dtype=float)
+    t, q = _closest_on_segments(p[None, :], a, ab)
+    d = np.hypot(*(qj[0] - pj for qj, pj in zip(q, p)))
     i = int(np.argmin(d))
     return float(d[i]), i, float(t[0, i])
 
@@ -156,8 +176,9 @@ def project_to_polyline(points: np.ndarray, poly: np.ndarray, closed: bool = Fal
     if len(points) * len(a) > _CHUNK:
         return _closest_on_nearest_segments(points, a, ab)
     _, q = _closest_on_segments(points, a, ab)
-    best = np.argmin(((q - points[:, None, :]) ** 2).sum(-1), axis=1)
-    return q[np.arange(len(best)), best]
+    best = np.argmin(_summed([(qj - points[:, j, None]) ** 2 for j, qj in enumerate(q)]), axis=1)
+    rows = np.arange(len(best))
+    return np.stack([qj[rows, best] for qj in q], axis=1)
 
 
 def _closest_on_nearest_segments(p: np.ndarray, a: np.ndarray, ab: np.ndarray) -> np.ndarray:

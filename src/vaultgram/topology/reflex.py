@@ -52,7 +52,7 @@ from vaultgram.topology.strips import (
 from vaultgram.topology.types import BOUNDARY, BOUNDARY_VERTEX, CURVE_POINT, FEATURE_POINT, PATCH_CORNER
 
 __all__ = ["reflex_chord", "reflex_side", "reflex_foot", "reflex_cut", "reflex_cut_index", "reflex_cut_at",
-           "reflex_point", "MIN_ANGLE", "MIN_CUT_ANGLE", "MAX_POLE_ANGLE", "MAX_RATIO", "FEET"]
+           "reflex_point", "rebranch_to_corner", "MIN_ANGLE", "MIN_CUT_ANGLE", "MAX_POLE_ANGLE", "MAX_RATIO", "FEET"]
 
 #: The node types at which a strip may not end in a triangle (:func:`_strip_beyond`).
 KEPT_ENDS = (BOUNDARY_VERTEX, FEATURE_POINT, CURVE_POINT)
@@ -360,3 +360,24 @@ def reflex_point(graph, patch: int, r: int) -> tuple[float, float]:
     foot = _edge_cut(graph, edge, fraction)[1]
     return float(foot[0]), float(foot[1])
 
+
+
+def rebranch_to_corner(graph, patch: int, b: int, c: int, x: int) -> bool:
+    """Whether a rebranch from the skeleton vertex ``x`` to the corner ``b`` of the quad ``patch`` (a
+    corner of 135 to 225 degrees, its one patch's only; ``c`` the corner beside it along the ring
+    where the rebranch ends now: ``rules/patching.vgr``, ``move_rebranch_to_lone_corner``) runs
+    straight inside the patch and splits its angle at ``b`` into two of at least :data:`MIN_ANGLE`
+    degrees: the one on ``c``'s side (the patch beyond gets that) and the triangle's, at most
+    :data:`MAX_POLE_ANGLE` (its pole, meshed as three quads). The same limits as a reflex corner's
+    chord (:func:`_choose`), for the same reason: a sliver beside ``b`` would cost more than its
+    boundary singularity (issue 12, item 3)."""
+    found = patch_sides(graph, patch)
+    if found is None or len(found.corners) != 4 or b not in found.corners:
+        return False
+    k = found.corners.index(b)
+    pos, d_out, whole = _corner(graph, found, k)
+    to = graph.get(x, "pos")
+    first = _ccw(d_out, _direction(pos, to))  # between the side leaving b and the rebranch
+    triangle = whole - first if c == found.corners[(k + 1) % 4] else first
+    return (MIN_ANGLE <= first <= whole - MIN_ANGLE and triangle <= MAX_POLE_ANGLE
+            and chord_inside(found, pos, to))
