@@ -211,3 +211,22 @@ def test_a_chord_off_the_middle_leaves_no_angle_below_the_cut_limit(kite):
         first = math.degrees(chord - reflex._ahead(g, r)) % 360.0
         assert reflex.MIN_CUT_ANGLE <= first <= boundary_angle(g, r) - reflex.MIN_CUT_ANGLE, (r, first)
     assert off >= 1
+
+
+def test_a_hole_corner_whose_cut_qualifies_after_its_neighbours_gets_it():
+    """rules/corners.vgr marks the corners inside a side within the cuts' fixpoint: on this plan
+    (saved random plan 667, rounded: a heptagonal hole) four corners' cuts qualify only once the
+    other corners' cuts and strips are in, and main 9c67bb4, marking once before the cuts, left
+    them with two faces (4 boundary singularities)."""
+    domain = domain_from_dict({
+        "outer": [[8.44, 0.52], [3.62, 3.45], [1.01, 8.98], [-5.28, 7.96], [-9.59, 2.83], [-4.58, -2.0],
+                  [-2.23, -4.48], [1.5, -6.22], [8.04, -5.94]],
+        "holes": [[[3.51, -1.63], [2.58, -3.56], [0.5, -4.03], [-1.18, -2.7], [-1.18, -0.56], [0.5, 0.78],
+                   [2.58, 0.3]]]})
+    dec = decompose(domain, 0.02)
+    g = dec.graph
+    hole = graph_rings(g)[1][1]
+    assert all(g.degree(r, [PATCH_CORNER]) == 3 for r in hole if regular_valence(boundary_angle(g, r)) == 4)
+    stats = mesh_stats(mesh_decomposition(dec), domain)
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
+    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.4
