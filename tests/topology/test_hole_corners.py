@@ -144,3 +144,89 @@ def test_a_piece_to_a_point_and_the_rest_make_up_the_edge():
             pieces = [float(np.hypot(*np.diff(p, axis=0).T).sum()) for p in (one, other)]
             assert sum(pieces) == pytest.approx(length, rel=1e-9)
             assert pieces[0] == pytest.approx(fraction * length, rel=1e-9)
+
+
+#: A kite with a hexagonal hole off its centre (after saved random plans 611-614): main 9c67bb4 left
+#: three of the hole's corners with two faces, the corners of two patches whose chords to the
+#: middle of a side would leave an angle of 12-20 degrees; a foot off the middle (reflex.FEET) with
+#: no angle below reflex.MIN_CUT_ANGLE gives each its third patch.
+KITE = [[10, 0], [0, 10], [-9.4, 0], [0, -5.4]]
+
+
+@pytest.fixture(scope="module")
+def kite():
+    hole = [[2.3 * math.cos(-k * math.pi / 3), 4.0 + 2.3 * math.sin(-k * math.pi / 3)] for k in range(6)]
+    domain = domain_from_dict({"name": "kite", "outer": KITE, "holes": [hole]})
+    dec = decompose(domain, 0.03)
+    return domain, dec, mesh_decomposition(dec)
+
+
+def test_a_hole_corner_of_two_patches_gets_its_chord_off_the_middle(kite):
+    domain, dec, mesh = kite
+    g = dec.graph
+    stats = mesh_stats(mesh, domain)
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
+    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.45
+    hole = graph_rings(g)[1][1]
+    assert all(g.degree(r, [PATCH_CORNER]) == 3 for r in hole if regular_valence(boundary_angle(g, r)) == 4)
+    x = np.asarray(mesh.vertices)[:, :2]
+    for corner in domain.rings[1]:
+        (v,) = np.flatnonzero(np.hypot(*(x - np.asarray(corner)[:2]).T) < 1e-9)
+        assert sum(int(v) in f for f in mesh.faces) == 3, corner
+
+
+def _cut_pieces(g, m: int, chord: int) -> list:
+    """The lengths of the two plan edges at the chord's far end ``m`` that leave it in opposite
+    directions (within 10 degrees: the two pieces of the edge the chord cut), shorter first."""
+    steps = {}
+    for d in g.incident(m, [DIAGONAL]):
+        if d != chord:
+            pts = half_edge_polyline(g, d, m)
+            steps[d] = (math.atan2(pts[1][1] - pts[0][1], pts[1][0] - pts[0][0]),
+                        float(np.hypot(*np.diff(pts, axis=0).T).sum()))
+    pairs = [sorted((steps[a][1], steps[b][1])) for a in steps for b in steps
+             if a < b and abs(math.degrees(steps[a][0] - steps[b][0]) % 360.0 - 180.0) < 10.0]
+    return pairs[0] if len(pairs) == 1 else []
+
+
+def test_a_chord_off_the_middle_leaves_no_angle_below_the_cut_limit(kite):
+    """Where a hole corner's chord ends off the middle of the edge it cut (the two pieces of that
+    edge at its far end differ), the angle it makes with the hole's sides is at least
+    reflex.MIN_CUT_ANGLE either side, and the pieces are within reflex.MAX_RATIO of each other."""
+    _, dec, _ = kite
+    g = dec.graph
+    hole = set(graph_rings(g)[1][1])
+    off = 0
+    for e in g.edges():
+        if g.edge_type(e) != DIAGONAL or not set(g.ends(e)) & hole:
+            continue
+        r = (set(g.ends(e)) & hole).pop()
+        lengths = _cut_pieces(g, g.other(e, r), e)
+        if not lengths or lengths[1] <= 1.05 * lengths[0]:
+            continue
+        off += 1
+        assert lengths[1] <= reflex.MAX_RATIO * lengths[0]
+        pts = half_edge_polyline(g, e, r)
+        chord = math.atan2(pts[1][1] - pts[0][1], pts[1][0] - pts[0][0])
+        first = math.degrees(chord - reflex._ahead(g, r)) % 360.0
+        assert reflex.MIN_CUT_ANGLE <= first <= boundary_angle(g, r) - reflex.MIN_CUT_ANGLE, (r, first)
+    assert off >= 1
+
+
+def test_a_hole_corner_whose_cut_qualifies_after_its_neighbours_gets_it():
+    """rules/corners.vgr marks the corners inside a side within the cuts' fixpoint: on this plan
+    (saved random plan 667, rounded: a heptagonal hole) four corners' cuts qualify only once the
+    other corners' cuts and strips are in, and main 9c67bb4, marking once before the cuts, left
+    them with two faces (4 boundary singularities)."""
+    domain = domain_from_dict({
+        "outer": [[8.44, 0.52], [3.62, 3.45], [1.01, 8.98], [-5.28, 7.96], [-9.59, 2.83], [-4.58, -2.0],
+                  [-2.23, -4.48], [1.5, -6.22], [8.04, -5.94]],
+        "holes": [[[3.51, -1.63], [2.58, -3.56], [0.5, -4.03], [-1.18, -2.7], [-1.18, -0.56], [0.5, 0.78],
+                   [2.58, 0.3]]]})
+    dec = decompose(domain, 0.02)
+    g = dec.graph
+    hole = graph_rings(g)[1][1]
+    assert all(g.degree(r, [PATCH_CORNER]) == 3 for r in hole if regular_valence(boundary_angle(g, r)) == 4)
+    stats = mesh_stats(mesh_decomposition(dec), domain)
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
+    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.4
