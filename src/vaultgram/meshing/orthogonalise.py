@@ -32,10 +32,10 @@ from typing import NamedTuple
 
 import numpy as np
 
-from vaultgram.geometry.arrays import pieces, plan_rows
 from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.geometry.polylines import straight_spans
 from vaultgram.meshing.fidelity import stretch_chain
+from vaultgram.meshing.quality import face_scaled_jacobians
 
 __all__ = ["orthogonalise", "MEAN_FLOOR", "MEAN_STEPS"]
 
@@ -70,7 +70,8 @@ _TRI = 2.0 / np.sqrt(3.0)
 
 class _Region(NamedTuple):
     """The faces round the movable vertices: their corners (face ``face`` numbered within the region,
-    vertex ``u``, next ``v``, previous ``p``; ``quad``: in a quad; ``factor``: of :func:`_corner_sj`),
+    vertex ``u``, next ``v``, previous ``p``; ``quad``: in a quad; ``factor``: 2 / sqrt(3) in a triangle, as in
+    :func:`~vaultgram.meshing.quality.face_scaled_jacobians`),
     where each face's corners start (``starts``), the faces' floors, the ``free`` vertices, each
     vertex's number of corners in the region (at least 1), the sliding vertices and the unit ``line``
     (n, 2) each moves along (zero for the others)."""
@@ -136,9 +137,8 @@ def _region(x: np.ndarray, faces, fixed, constraints, still) -> _Region | None:
     :func:`_geometry`, the numbers the descent compares them with."""
     face, u, v, p = corner_arrays(faces)
     n, n_faces = len(x), len(faces)
-    starts = np.flatnonzero(np.r_[True, face[1:] != face[:-1]])
     quad = (np.bincount(face, minlength=n_faces) == 4)[face]
-    sj = np.minimum.reduceat(_corner_sj(x, u, v, p, np.where(quad, 1.0, _TRI)), starts)
+    sj = face_scaled_jacobians(x, faces)
     if sj.min() <= 0 or sj.mean() >= MEAN_TARGET:
         return None
     free = np.zeros(n, dtype=bool)
@@ -181,22 +181,6 @@ def _straight_slides(x: np.ndarray, constraints, n: int) -> tuple[np.ndarray, np
         sliding[ids[ok]] = True
         line[ids[ok]] = d[ok] / np.hypot(*d[ok].T)[:, None]
     return sliding, line
-
-
-def _corner_sj(x: np.ndarray, u: np.ndarray, v: np.ndarray, p: np.ndarray, factor: np.ndarray) -> np.ndarray:
-    """The scaled Jacobian ``(e1 x e2) / (|e1| |e2|)`` of each corner times its ``factor`` (2 / sqrt(3)
-    in a triangle, as :func:`~vaultgram.meshing.quality.face_scaled_jacobians`, so that the floors
-    are the faces' measured qualities), at most 1, a cache-sized piece at a time; -1 where a side has
-    no length."""
-    xy = np.ascontiguousarray(x[:, :2])
-    out = np.empty(len(u))
-    for part in pieces(len(u)):
-        at = plan_rows(xy, u[part])
-        e1, e2 = plan_rows(xy, v[part]) - at, plan_rows(xy, p[part]) - at
-        norm = np.hypot(e1[:, 0], e1[:, 1]) * np.hypot(e2[:, 0], e2[:, 1])
-        cross = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
-        out[part] = np.minimum(np.where(norm > 0, cross / np.where(norm > 0, norm, 1.0), -1.0) * factor[part], 1.0)
-    return out
 
 
 class _Geometry(NamedTuple):
