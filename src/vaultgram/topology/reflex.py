@@ -394,7 +394,6 @@ def reflex_point(graph, patch: int, r: int) -> tuple[float, float]:
     return float(foot[0]), float(foot[1])
 
 
-
 def rebranch_to_corner(graph, patch: int, b: int, c: int, x: int) -> bool:
     """Whether a rebranch from the skeleton vertex ``x`` to the corner ``b`` of the quad ``patch`` (a
     corner of 135 to 225 degrees, its one patch's only; ``c`` the corner beside it along the ring
