@@ -36,12 +36,12 @@ from vaultgram.topology.patches import (
 )
 from vaultgram.topology.statecache import by_content, per_state
 from vaultgram.topology.strips import register_strip_helpers
-from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE, DUAL, PATCH_CORNER, PLAN_EDGES
+from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE, CURVE_POINT, DUAL, PATCH_CORNER, PLAN_EDGES
 
 __all__ = ["vault_functions", "distance", "midpoint", "lerp", "move_end", "move_branch_end", "angle_between",
-           "curve_side",
+           "curve_side", "curve_turn",
            "curve_neighbours", "patch_corner", "patch_in_plan", "patch_chains", "patch_side_starts", "patch_angle",
-           "diagonal_path",
+           "diagonal_path", "bend_first",
            "path_clear", "plan_area", "domain_area", "plan_euler", "hole_count", "holes_enclosed",
            "curve_crossings", "plan_crossings"]
 
@@ -142,6 +142,25 @@ def curve_side(graph, p: int) -> int:
     back = turn.index(next(e for e in curve if e != ahead))
     left, right = back - 1, len(turn) - back - 1
     return 1 if right == 0 else -1 if left == 0 else 0
+
+
+def curve_turn(graph, x: int) -> int:
+    """Which way its curve turns at the inner curve point ``x`` (§4.2), travelling from the curve's
+    first point towards its last: +1 left (counter-clockwise), -1 right, 0 straight on (to rounding)
+    or ``x`` not an inner point of a curve. A bend's reflex side is the one it does not turn
+    towards: a T-junction arriving from side ``s`` (:func:`curve_side`) sees the bend ``x`` as
+    reflex when ``curve_turn(x) == -s``.
+    """
+    curve = list(graph.incident(x, [CURVE]))
+    ahead = [e for e in curve if graph.ends(e)[0] == x]
+    behind = [e for e in curve if graph.ends(e)[1] == x]
+    if len(curve) != 2 or len(ahead) != 1 or len(behind) != 1:
+        return 0
+    a, o, b = (np.asarray(graph.get(n, "pos"), dtype=float)
+               for n in (graph.ends(behind[0])[0], x, graph.ends(ahead[0])[1]))
+    cross = float((o[0] - a[0]) * (b[1] - o[1]) - (o[1] - a[1]) * (b[0] - o[0]))
+    tol = 1e-9 * math.dist(a, o) * math.dist(o, b)  # the discretisation's rounding along a straight piece
+    return 1 if cross > tol else -1 if cross < -tol else 0
 
 
 def curve_neighbours(graph, p: int, q: int) -> bool:
@@ -247,6 +266,24 @@ def patch_angle(graph, patch: int, x: int) -> float:
         return math.nan
     outline = found[1]
     return interior_angle(outline[-2], outline[0], outline[1])
+
+
+def bend_first(graph, patch: int) -> bool:
+    """Whether a Patch node of 5 or more sides turns by more than 180 degrees at a bend of a curve
+    (a curve point marked corner, not an extremity: §4.2) from which a diagonal to a corner two or
+    more places away runs inside it (:func:`diagonal_path`). ``spread_curve_bend`` splits such a
+    patch at the bend before ``spread_t_junction`` spreads any T-junction of it: a diagonal from the
+    T-junction may go round the bend, which then stays a reflex corner of a part."""
+    corners = sorted((graph.get_edge(e, "index"), graph.ends(e)[1]) for e in graph.incident(patch, [PATCH_CORNER]))
+    n = len(corners)
+    if n < 5:
+        return False
+    for i, y in corners:
+        if graph.node_type(y) != CURVE_POINT or not graph.get(y, "corner") or not patch_angle(graph, patch, y) > 180:
+            continue
+        if any(len(diagonal_path(graph, patch, y, o)) >= 2 for j, o in corners if 2 <= (j - i) % n <= n - 2):
+            return True
+    return False
 
 
 def diagonal_path(graph, patch: int, x: int, o: int) -> tuple:
@@ -461,8 +498,10 @@ def vault_functions() -> Functions:
                local=False)
     f.register("interior_angle", interior_angle, ("vec2", "vec2", "vec2"), "float")
     f.register("curve_side", curve_side, ("node",), "int", uses_graph=True, local=False)
+    f.register("curve_turn", curve_turn, ("node",), "int", uses_graph=True, local=False)
     f.register("curve_neighbours", curve_neighbours, ("node", "node"), "bool", uses_graph=True, local=False)
     f.register("diagonal_path", diagonal_path, ("node", "node", "node"), "list", uses_graph=True, local=False)
+    f.register("bend_first", bend_first, ("node",), "bool", uses_graph=True, local=False)
     f.register("path_clear", path_clear, ("list",), "bool", uses_graph=True, local=False)
     f.register("path_crosses_only", path_crosses_only, ("list", "edge"), "bool", uses_graph=True, local=False)
     f.register("patch_angle", patch_angle, ("node", "node"), "float", uses_graph=True, local=False)
