@@ -198,17 +198,17 @@ def test_an_unknown_relax_mode_is_named():
 
 
 def test_a_rise_without_vertical_equilibrium_gives_way_to_the_next(monkeypatch):
-    """rv_quad_pattern: vertical equilibrium does not converge for a thousand times the shorter side
+    """multiple_lobes: vertical equilibrium does not converge for a thousand times the shorter side
     (the self-weight grows with the height faster than the scale can follow), put first in RISES here
     (the plan's meshes converge at every rise of RISES), so the vault gets the next rise (its
-    summary's zmax); an explicit zmax is never replaced. (Until session 19 multiple_lobes: twenty
-    times did not converge on main 72f01a2, 1000 did not after session 15; since its left notch is
-    the corner of three patches, session 19, it converges up to 10,000 times.)"""
+    summary's zmax); an explicit zmax is never replaced. (Twenty times did not converge on main
+    72f01a2; since rules/corners.vgr cuts the quad across the notch between the left lobes, session
+    15, 20, 40, 100 and 300 times converge, 1000 does not.)"""
     import vaultgram.pipeline
 
     rises = (1000.0, *RISES)
     monkeypatch.setattr(vaultgram.pipeline, "RISES", rises)
-    domain = load_domain(shared_plan("rv_quad_pattern"))
+    domain = load_domain(shared_plan("multiple_lobes"))
     mesh = mesh_domain(domain)
     first, second = (default_rise(mesh.vertices, rise) for rise in rises[:2])
     with pytest.raises(VerticalEquilibriumError):

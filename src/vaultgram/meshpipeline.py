@@ -367,14 +367,13 @@ def _evened_again(x: np.ndarray, mesh: QuadMesh, held: np.ndarray, rays: tuple, 
 
 def _held_to_the_plan(x: np.ndarray, mesh: QuadMesh, disc) -> tuple[np.ndarray, QuadMesh]:
     """The smoothed boundary put back on the plan (§3.2, issue 12 What 5; :mod:`vaultgram.meshing.fidelity`):
-    a vertex on each sharp ring vertex the sliding left bare (the better candidate even where it folds a
-    face), the faces optimised again with those fixed (where one was placed: that untangles them), and
-    the bends that chords cut off put back; the mesh with its labels of the ring points following the
-    vertices (``fixed`` the vertices on sharp ring vertices too,
+    a vertex on each sharp ring vertex the sliding left bare, the faces optimised again with those
+    fixed (where one was placed), and the bends that chords cut off put back; the mesh with its labels
+    of the ring points following the vertices (``fixed`` the vertices on sharp ring vertices too,
     ``turning`` the turning of the ring point a boundary vertex sits on)."""
     tol, eps = CHORD_TOLERANCE * disc.domain.diagonal, SAME_POINT * disc.domain.diagonal
     sharp = disc.points[kept_points(disc) & (disc.ring >= 0)]
-    placed, on_sharp = place_on_points(x, mesh.faces, mesh.constraints, sharp, eps, regardless=True)
+    placed, on_sharp = place_on_points(x, mesh.faces, mesh.constraints, sharp, eps)
     if not np.array_equal(placed, x):
         placed = hold_boundary(placed, mesh.faces, mesh.constraints, tol)
         placed = maximise_min_quality(placed, mesh.faces, mesh.fixed | on_sharp, mesh.constraints,

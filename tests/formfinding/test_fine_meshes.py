@@ -59,12 +59,11 @@ def test_lobes_at_ten_thousand_faces_unfold_at_the_notches(architecture_dir):
     densities within about 2 m of the reflex corners are the plan's own (dual over primal length,
     :func:`~vaultgram.formfinding.relaxation.notch_densities`) before the descent, which are more than
     a factor 2 from the median on about an eighth of the edges (the meshed quads' aspect ratios near
-    the notches); before, the descent alone changed under 5% of them. All within the reach of the notch
-    densities of a reflex corner of the meshed plan (a 10th of the diagonal, 4.0 m, since session 19:
-    the farthest 3.3 m, 15 median edges, 22% of the edges; with a 20th, 1.9 m, 8 median edges and 13%)."""
+    the notches); before, the descent alone changed under 5% of them. All within 8 median edges of a
+    reflex corner of the meshed plan (1.9 m; the relaxation moves the vertices by up to 2.2 m, so in the
+    relaxed diagram they reach 3.8 m)."""
     from scipy.spatial import cKDTree
 
-    from vaultgram.formfinding.relaxation import _NOTCH_REACH
     from vaultgram.geometry.meshes import face_areas
 
     domain = load_domain(architecture_dir / "multiple_lobes.json")
@@ -81,10 +80,10 @@ def test_lobes_at_ten_thousand_faces_unfold_at_the_notches(architecture_dir):
     reflex = outer[np.degrees(np.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], (a * b).sum(1))) < -20]
     q = tn.q / np.median(tn.q[form.active])
     unequal = form.active & ((q > 2) | (q < 0.5))
-    assert 10 < unequal.sum() < 0.25 * form.active.sum()
+    assert 10 < unequal.sum() < 0.15 * form.active.sum()
     meshed = np.asarray(mesh.vertices)[np.asarray(form.vertex_ids), :2]        # where the densities are set
     distance, _ = cKDTree(reflex).query(meshed[form.edges[unequal]].mean(axis=1))
-    assert distance.max() < _NOTCH_REACH * np.hypot(*(meshed.max(axis=0) - meshed.min(axis=0)))
+    assert distance.max() < 8 * np.median(np.linalg.norm(meshed[form.edges[:, 1]] - meshed[form.edges[:, 0]], axis=1))
 
 
 def _reflex_corners(domain, origin) -> np.ndarray:

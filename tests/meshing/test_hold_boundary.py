@@ -120,26 +120,3 @@ def test_every_bend_left_bare_gets_a_vertex_without_folding_a_face(shift, depth)
     assert np.allclose(project_to_polyline(y[c.vertices], poly), y[c.vertices])
     hit = [np.any(np.all(y[c.vertices] == b, axis=1)) for b in bends]
     assert on[c.vertices].sum() == sum(hit)
-
-
-def test_a_bend_whose_candidates_all_fold_gets_one_regardless_and_the_optimisation_untangles():
-    """The bend at (2.5, -0.5) between vertices slid to x = 1.6 and 2.9, the row above pulled down to
-    them: moving either onto the bend folds a face, so by default the bend stays bare (a sharp ring
-    vertex that is no mesh vertex); ``regardless`` (the mesh pipeline, which optimises afterwards)
-    moves the better one, vertex 3, and :func:`maximise_min_quality`, with it fixed there, unfolds
-    the faces (multiple_lobes' sharp vertex beside its upper notch since session 19)."""
-    from vaultgram.meshing.optimise import maximise_min_quality
-
-    poly = np.array([[0.0, 0.0], [2.5, -0.5], [6.0, 0.0]])
-    x, faces, c = _grid_on(poly, np.array([-0.3, -0.4, -0.1, -0.1, 0.3]))
-    x[N + 2:2 * N + 1] += [[0.1, 0.5], [-0.3, -0.7], [0.5, -0.8], [0.2, -0.1], [-0.1, 0.7]]
-    assert face_scaled_jacobians(x, faces).min() > 0
-    y, on = place_on_points(x, faces, [c], poly[1:2], 1e-9)
-    assert np.array_equal(y, x) and not on.any()
-    y, on = place_on_points(x, faces, [c], poly[1:2], 1e-9, regardless=True)
-    assert np.flatnonzero(on).tolist() == [3] and y[3].tolist() == [2.5, -0.5]
-    assert face_scaled_jacobians(y, faces).min() < 0
-    rim = np.zeros(len(x), dtype=bool)
-    rim[[v for f in faces for v in f if x[v, 0] in (0.0, N) or x[v, 1] == N]] = True
-    z = maximise_min_quality(y, faces, rim | on, [c])
-    assert z[3].tolist() == [2.5, -0.5] and face_scaled_jacobians(z, faces).min() > 0.3

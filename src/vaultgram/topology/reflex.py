@@ -249,27 +249,21 @@ def _even_group(graph, patch: int, found, k: int, j: int, end, pieces: tuple = (
     ``pieces`` of the edge it cuts off the middle, :func:`_pieces`, are within :data:`MAX_RATIO` of
     each other: the feet a quarter of the way in, 1 : 3, are refused): the triangle's two
     sides at the corner (its pole) are one group (Figure 3, §3.2), and the side along the quad's
-    side from the corner is in one group with the side opposite it in the quad and with the opposite
-    side of the patch beyond it. Even: these lengths, the chord's with them, differ by no more than
-    :data:`MAX_RATIO`, or no more than the group's lengths without the chord already do (the chord
-    lies between them: the counts the group has anyway serve it). Else the count the longest needs
-    over-refines the shortest: multiple_lobes' notch corners sit at fan-shaped patches (a side of 0.7
-    opposite one of 4.7), and chords of 5.7 beside them doubled the mesh (2338 faces for 1110) with
-    slivers of 0.05 x 0.17 that made the tessellation refine to 7150 voussoirs from 974; its left
-    notch's chord of 10.2 joins a lobe of 26.2 whose quad's opposite side is shorter still."""
-    i = k if j == 1 else k - 1
-    group = [_side_length(graph, found.sides[i]), _side_length(graph, found.sides[(i + 2) % 4])]
-    side = found.sides[i]
+    side from the corner is in one group with the opposite side of the patch beyond it. Where these
+    lengths differ by more than :data:`MAX_RATIO`, the count the longest needs over-refines the
+    shortest: multiple_lobes' notch corners sit at fan-shaped patches (a side of 0.7 opposite one of
+    4.7), and chords of 5.7 beside them doubled the mesh (2338 faces for 1110) with slivers of
+    0.05 x 0.17 that made the tessellation refine to 7150 voussoirs from 974."""
+    side = found.sides[k] if j == 1 else found.sides[k - 1]
+    lengths = [math.dist(graph.get(found.corners[k], "pos"), end), _side_length(graph, side)]
     if pieces and max(pieces) > MAX_RATIO * min(pieces):
         return False
     if len(side) == 1:
         beyond = patch_across(graph, patch, side[0][0])
         sides = patch_sides(graph, beyond[0]) if beyond else None
         if sides is not None and len(sides.corners) == 4:
-            group.append(_side_length(graph, sides.sides[(beyond[1] + 2) % 4]))
-    chord = math.dist(graph.get(found.corners[k], "pos"), end)
-    with_chord = max(group + [chord]) / min(group + [chord])
-    return with_chord <= max(MAX_RATIO, max(group) / min(group))
+            lengths.append(_side_length(graph, sides.sides[(beyond[1] + 2) % 4]))
+    return max(lengths) <= MAX_RATIO * min(lengths)
 
 
 def _corner(graph, found, k: int) -> tuple[tuple, float, float]:
