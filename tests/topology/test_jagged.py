@@ -23,6 +23,7 @@ PLANS = jagged_plans()
 
 
 def _domain(name: str):
+    """The jagged plan ``name`` as a domain."""
     return domain_from_dict(PLANS[name], name)
 
 
@@ -86,3 +87,20 @@ def test_other_angle_counts_the_rest_beside_two_patches_only():
     assert _other_angle(300.0, [190.0, 110.0], 0) == pytest.approx(110.0)
     assert _other_angle(300.0, [190.0, 110.0], 1) == pytest.approx(190.0)
     assert _other_angle(342.0, [136.0, 196.0, 10.0], 1) == float("inf")
+
+
+def test_fold_at_a_plain_corner_names_the_corner_not_a_feature():
+    """Saved random plan 642 (a hole's 300 degree corner left the corner of two patches, one turning
+    by 196 degrees) still folds: the error names the corner's angle and the layout, not a feature or
+    curve to move (main advised moving "the feature or curve there" where there is none)."""
+    from vaultgram.errors import MeshFoldError
+
+    domain = domain_from_dict({
+        "outer": [[9.47084251771326, 9.470842517713261e-09], [-9.470842721412436e-09, 9.47084251771326],
+                  [-9.78412900810179, -9.784128619434026e-09], [9.470841561568737e-09, -9.47084251771326]],
+        "holes": [[[2.697527427539362, 3.2844947809168623], [0.9012362862303192, 2.247405606939146],
+                   [0.9012362862303184, 4.321583954894578]]],
+        "curves": [[[-5.746083091077161, 0.16638200309940565], [-2.753095985915797, -0.03862577318675223]]]})
+    with pytest.raises(MeshFoldError, match=r"leaves this 300 degree corner of the plan too few patches") as err:
+        mesh_domain(domain, 0.02)
+    assert "move the feature or curve" not in str(err.value)
