@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import sys
 import time
 from pathlib import Path
@@ -38,6 +37,7 @@ from vaultgram.errors import VaultgramError
 from vaultgram.io.meshfiles import mesh_from_json
 from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import mesh_domain
+from vaultgram.testing.jagged import jagged_plans
 from vaultgram.testing.orthogonal import RECTILINEAR_PLANS
 from vaultgram.testing.smooth import SMOOTH_PLANS
 
@@ -50,23 +50,11 @@ MESHERS = {"frontal": {"Mesh.Algorithm": 8, "Mesh.RecombinationAlgorithm": 1},
 # ---------------------------------------------------------------------------------------------
 
 
-def jagged_plans(count: int = 4, seed: int = 7) -> dict:
-    """Star-shaped outlines of 50-110 vertices with radius noise: short edges and many shallow
-    corners, like the geographic outlines of the issue."""
-    rng = np.random.default_rng(seed)
-    plans = {}
-    for k in range(count):
-        n = int(rng.integers(50, 111))
-        t = np.sort(rng.uniform(0, 2 * math.pi, n))
-        r = 20 * (1 + 0.25 * np.sin(3 * t + k)) * rng.uniform(0.93, 1.07, n)
-        plans[f"jagged_{k}"] = {"outer": np.column_stack([r * np.cos(t), r * np.sin(t)]).round(3).tolist()}
-    return plans
-
-
 def plans(kinds: list[str]) -> dict:
     """The plans by name: ``shared`` (every file of the shared architecture data), ``examples``,
-    ``rectilinear`` (:data:`vaultgram.testing.orthogonal.RECTILINEAR_PLANS`), ``jagged`` (generated)
-    and ``smooth`` (:data:`vaultgram.testing.smooth.SMOOTH_PLANS`: discs, ovals, an apse, a lens)."""
+    ``rectilinear`` (:data:`vaultgram.testing.orthogonal.RECTILINEAR_PLANS`), ``jagged``
+    (:func:`vaultgram.testing.jagged.jagged_plans`) and ``smooth``
+    (:data:`vaultgram.testing.smooth.SMOOTH_PLANS`: discs, ovals, an apse, a lens)."""
     out = {}
     if "shared" in kinds and ARCHITECTURE.is_dir():
         out.update({p.stem: load_domain(p) for p in sorted(ARCHITECTURE.glob("*.json"))})

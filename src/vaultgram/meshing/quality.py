@@ -30,7 +30,9 @@ from vaultgram.geometry.polylines import polyline_hausdorff, turning_angles
 from vaultgram.geometry.spatial import nearest_within
 from vaultgram.geometry.text import fmt_point
 from vaultgram.meshing.quadmesh import QuadMesh
+from vaultgram.topology.corners import boundary_angle
 from vaultgram.topology.decomposition import Decomposition
+from vaultgram.topology.types import BOUNDARY_VERTEX
 
 __all__ = [
     "mesh_stats",
@@ -131,7 +133,7 @@ def check_not_folded(mesh: QuadMesh, decomposition: Decomposition, face_sj: np.n
     k = int(np.argmax(angles))
     if angles[k] > 180:
         why = (f"the patch turns by {angles[k]:.0f} degrees at its corner {fmt_point(patch.sides[k][0])}, which no "
-               "quad mesh of it can do at any density: move the feature or curve there")
+               f"quad mesh of it can do at any density: {_turn_advice(decomposition, patch.corners[k])}")
     else:
         why = "features, curves or boundaries this close together need a smaller --target-length or more room"
     raise MeshFoldError(
@@ -139,6 +141,19 @@ def check_not_folded(mesh: QuadMesh, decomposition: Decomposition, face_sj: np.n
         f"{corners}; {why} (vaultgram mesh --allow-folds writes the mesh anyway)",
         places=[mesh.vertices[list(mesh.faces[k]), :2] for k in bad.tolist()],
     )
+
+
+def _turn_advice(decomposition: Decomposition, node: int) -> str:
+    """What the fold error advises where a patch turns past straight at its corner ``node``: at a
+    plain corner of the plan (no point or curve feature there), that the layout left that corner too
+    few patches, with its angle (issue 12: a reflex corner or spike no chord qualified for, e.g. a
+    hole's 300 degree corner of two patches on saved random plan 642); elsewhere, to move the feature
+    or curve there (the designer's features fix the layout round them)."""
+    g = decomposition.graph
+    if g.schema.is_subtype(g.node_type(node), BOUNDARY_VERTEX) and not g.get(node, "feature"):
+        return (f"the layout leaves this {boundary_angle(g, node):.0f} degree corner of the plan too few patches: "
+                "soften or move the corner")
+    return "move the feature or curve there"
 
 
 def mesh_stats(mesh: QuadMesh, domain: Domain | None = None) -> dict:

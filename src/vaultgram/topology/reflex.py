@@ -27,6 +27,12 @@ without ending in a triangle at a point the split would change (:func:`_strip_be
 whose worst angle is widest: the three patch angles at the corner after the split and the chord's two
 angles with the side it ends on. Where that worst angle is below :data:`MIN_ANGLE` the corner is left
 as it is (a sliver of a patch would cost more in the mesh's worst element than the singularity).
+
+A spike (:data:`SPIKE`: 315-360 degrees, regular valence 5, the noise of a geographic outline) asks for
+four faces: it gets a chord while it is the corner of two patches or of three (the rules'
+``patches`` parameter), the second beside the first's triangle, whose angle is then not counted
+(:func:`_other_angle`). A spike whose quad turns past straight gets that quad's chord even at a
+narrower angle (:data:`PAST_STRAIGHT`, :data:`FOLD_MIN_ANGLE`): the mesh would fold there.
 """
 
 from __future__ import annotations
@@ -53,7 +59,8 @@ from vaultgram.topology.strips import (
 from vaultgram.topology.types import BOUNDARY, BOUNDARY_VERTEX, CURVE_POINT, FEATURE_POINT, PATCH_CORNER
 
 __all__ = ["reflex_chord", "reflex_side", "reflex_foot", "reflex_cut", "reflex_cut_index", "reflex_cut_at",
-           "reflex_point", "rebranch_to_corner", "MIN_ANGLE", "MIN_CUT_ANGLE", "MAX_POLE_ANGLE", "MAX_RATIO", "FEET"]
+           "reflex_point", "rebranch_to_corner", "MIN_ANGLE", "MIN_CUT_ANGLE", "MAX_POLE_ANGLE", "MAX_RATIO", "FEET",
+           "SPIKE", "PAST_STRAIGHT", "FOLD_MIN_ANGLE"]
 
 #: The node types at which a strip may not end in a triangle (:func:`_strip_beyond`).
 KEPT_ENDS = (BOUNDARY_VERTEX, FEATURE_POINT, CURVE_POINT)
@@ -69,6 +76,17 @@ FEET = (0.5, 0.45, 0.55, 0.4, 0.6, 0.35, 0.65, 0.3, 0.7, 0.25, 0.75)
 #: where it meets the opposite side (plan 188 of the saved random plans: a cut meeting the loop round a
 #: hexagonal hole at 32 degrees left a quad of scaled Jacobian 0.07 there).
 MIN_CUT_ANGLE = 40.0
+#: Degrees: a corner this wide or wider is a spike (regular valence 5: four faces, two chords).
+SPIKE = 315.0
+#: Degrees: a quad wider than this at a corner turns past straight there, and its mesh folds at any
+#: density (:data:`vaultgram.meshpipeline.LAYOUT_TURN_LIMIT`, the same limit): where no chord of a
+#: spike qualifies, such a quad's chords do down to :data:`FOLD_MIN_ANGLE` (jagged outlines: a quad of
+#: 197 degrees at a 334 degree spike folded the mesh). Not at corners of 225-315 degrees: on the 700
+#: saved random plans that made one fold a mesh (642) but lowered two plans' worst scaled Jacobian (443
+#: and 444, a quad of 184 and 195 degrees that smoothing had meshed: 0.27 -> 0.21, 0.38 -> 0.29).
+PAST_STRAIGHT = 181.0
+#: Degrees: the worst angle a chord that undoes a quad turning past straight may leave.
+FOLD_MIN_ANGLE = 10.0
 #: Degrees: the triangle's angle at the corner must allow the three-quad split
 #: (:data:`vaultgram.meshing.splits.MAX_SPLIT_ANGLE`).
 MAX_POLE_ANGLE = 160.0
@@ -175,39 +193,74 @@ def _choose(graph, r: int) -> tuple | None:
     The widest worst angle wins, at the middle or off it (a foot off the middle only where the middle
     of that side does not qualify): the middle first whenever it qualifies somewhere was tried and left
     more corners singular on the saved random plans (217 for 212) with more plans under 0.3 (309 for
-    307), since a corner's middle chord can leave its neighbours along a hole none."""
+    307), since a corner's middle chord can leave its neighbours along a hole none. Where none
+    qualifies at a spike (:data:`SPIKE`) and a quad turns past straight there (wider than
+    :data:`PAST_STRAIGHT`: its mesh folds at any density), that quad's chords down to
+    :data:`FOLD_MIN_ANGLE`: a narrow angle costs less than a fold."""
     patches = sorted({graph.ends(e)[0] for e in graph.incident(r, [PATCH_CORNER])})
     found = [patch_sides(graph, p) for p in patches]
     if any(f is None for f in found):
         return None
+    angles = [_corner(graph, sides, sides.corners.index(r))[2] for sides in found]
+    quads = [i for i, sides in enumerate(found) if len(sides.corners) == 4]
+    at = (r, patches, found, angles)
+    best = _widest_chord(graph, at, quads, None)
+    turned = [i for i in quads if angles[i] > PAST_STRAIGHT] if boundary_angle(graph, r) >= SPIKE else []
+    if best is None and turned:
+        best = _widest_chord(graph, at, turned, FOLD_MIN_ANGLE)
+    return None if best is None else best[1:]
+
+
+def _widest_chord(graph, at: tuple, quads: list, least: float | None) -> tuple | None:
+    """Of the chords from the reflex corner in the quads ``quads`` (indices into ``at``: the corner,
+    its patches, their sides and their angles there), the one whose worst angle is widest, as
+    ``(worst, patch, kind, target, side, fraction)`` (:func:`_choose`); ``least`` is passed on to
+    :func:`_chord_worst`. None where none qualifies."""
+    r, patches, found, angles = at
     theta = boundary_angle(graph, r)
     best = None
-    for p, sides in zip(patches, found):
-        if len(sides.corners) != 4:
-            continue
+    for i in quads:
+        p, sides = patches[i], found[i]
         k = sides.corners.index(r)
-        other = theta - _corner(graph, sides, k)[2]
+        other = _other_angle(theta, angles, i)
         for j in (1, 2):
-            for kind, target, at, tangent, fraction in _targets(graph, p, sides, k, j):
-                worst = _chord_worst(graph, p, sides, k, j, (kind, target, at, tangent, fraction), other)
+            for kind, target, point, tangent, fraction in _targets(graph, p, sides, k, j):
+                worst = _chord_worst(graph, p, sides, k, j, (kind, target, point, tangent, fraction), other, least)
                 if worst is not None:
                     if best is None or worst > best[0]:
                         best = (worst, p, kind, target, sides.corners[(k + j) % 4], fraction)
                     break
-    return None if best is None else best[1:]
+    return best
 
 
-def _chord_worst(graph, patch: int, found, k: int, j: int, target: tuple, other: float) -> float | None:
+def _other_angle(theta: float, angles: list, i: int) -> float:
+    """The angle (degrees) at a reflex corner of interior angle ``theta`` that a chord in its ``i``-th
+    patch (``angles``: its patches' angles at the corner) counts besides its own parts: beside two
+    patches the other's, the rest of ``theta``; beside more (a spike of 315 to 360 degrees, regular
+    valence 5, after its first chord) none (infinite): the others keep their angles whatever the
+    chord does, and a narrow one among them (a sliver the skeleton left) must not bar the chord that
+    splits the widest patch (jagged outlines: a quad of 196 degrees at a 342 degree spike beside a
+    triangle of 10).
+
+    >>> _other_angle(270.0, [180.0, 90.0], 0), _other_angle(330.0, [150.0, 100.0, 80.0], 0)
+    (90.0, inf)
+    """
+    return theta - angles[i] if len(angles) == 2 else math.inf
+
+
+def _chord_worst(graph, patch: int, found, k: int, j: int, target: tuple, other: float,
+                 least: float | None = None) -> float | None:
     """The worst angle of the chord from corner ``k`` of the quad ``patch`` to ``target`` (one of
     :func:`_targets`' ``(kind, target, point, tangent, fraction)``) where the chord qualifies, None
     otherwise: its worst angle (:func:`_angles`) reaches :data:`MIN_ANGLE` at the middle of an edge or
     on the boundary and :data:`MIN_CUT_ANGLE` at a foot off the middle (as for a cut: a foot off the
     middle is taken only where it leaves no narrow angle), the triangle's pole angle allows its split,
     and the sides the chord puts in one edge group, with the edge's two pieces at a foot off the
-    middle, are even (:func:`_even_group`)."""
+    middle, are even (:func:`_even_group`). ``least``, where given, replaces both angle limits."""
     kind, edge, at, tangent, fraction = target
     worst, pole = _angles(graph, found, k, j, at, tangent, other)
-    least = MIN_ANGLE if fraction in (0.5, None) else MIN_CUT_ANGLE
+    if least is None:
+        least = MIN_ANGLE if fraction in (0.5, None) else MIN_CUT_ANGLE
     if worst < least or pole > MAX_POLE_ANGLE:
         return None
     return worst if _even_group(graph, patch, found, k, j, at, _pieces(graph, kind, edge, fraction)) else None
