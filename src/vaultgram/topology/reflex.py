@@ -47,8 +47,7 @@ from vaultgram.topology.patches import half_edge_polyline
 from vaultgram.topology.statecache import per_state
 from vaultgram.topology.strips import (
     chord_inside,
-    cut_along,
-    edge_halves,
+    edge_cut,
     patch_across,
     patch_sides,
     side_edge,
@@ -104,17 +103,9 @@ def _ccw(start: float, end: float) -> float:
     return math.degrees(end - start) % 360.0
 
 
-def _edge_cut(graph, edge: int, fraction: float) -> tuple:
-    """A plan edge's polyline (from its source) cut at ``fraction`` of its length
-    (:func:`~vaultgram.topology.strips.cut_along`): the piece before, the point, the piece after."""
-    if fraction == 0.5:
-        return edge_halves(graph, edge)
-    return cut_along(half_edge_polyline(graph, edge, graph.ends(edge)[0]), fraction)
-
-
 def _edge_tangent(graph, edge: int, fraction: float = 0.5) -> float:
     """The direction (radians) of a plan edge at ``fraction`` of its length (where a chord ends)."""
-    before, mid, after = _edge_cut(graph, edge, fraction)
+    before, mid, after = edge_cut(graph, edge, fraction)
     ahead = after[0] if len(after) else graph.get(graph.ends(edge)[1], "pos")
     back = before[-1] if len(before) else graph.get(graph.ends(edge)[0], "pos")
     return _direction(back, ahead)
@@ -131,7 +122,7 @@ def _feet(graph, walk, fractions=FEET) -> Iterator[tuple]:
     edge, found = walk.edges[0], patch_sides(graph, walk.patches[0])
     to = strip_point(graph, walk.edges[1]) if len(walk.edges) > 1 else graph.get(walk.end, "pos")
     for f in fractions[:1] if walk.end is None else fractions:
-        at = _edge_cut(graph, edge, f)[1]
+        at = edge_cut(graph, edge, f)[1]
         if f == 0.5 or chord_inside(found, at, to):
             yield f, at, _edge_tangent(graph, edge, f)
 
@@ -443,7 +434,7 @@ def reflex_point(graph, patch: int, r: int) -> tuple[float, float]:
     """Where the chord from the reflex corner ``r`` in the quad ``patch`` meets the plan edge it cuts
     (the new corner, a strip point: :func:`reflex_cut` or :func:`reflex_chord` chose it)."""
     edge, fraction = _foot_of(graph, patch, r)
-    foot = _edge_cut(graph, edge, fraction)[1]
+    foot = edge_cut(graph, edge, fraction)[1]
     return float(foot[0]), float(foot[1])
 
 

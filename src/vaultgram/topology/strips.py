@@ -142,18 +142,25 @@ def corner_chord_angle(graph, patch: int, x: int) -> float:
     return interior_angle(graph.get(before, "pos"), graph.get(x, "pos"), graph.get(after, "pos"))
 
 
-#: The edges cut halfway kept (the most recently asked) by :func:`edge_halves`.
-HALVES = 1024
-_HALVES: OrderedDict = OrderedDict()
+#: The edges cut kept (the most recently asked) by :func:`edge_cut`.
+CUTS = 1024
+_CUTS: OrderedDict = OrderedDict()
+
+
+def edge_cut(graph, edge: int, fraction: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """An edge's polyline (from its source) cut at ``fraction`` of its length (:func:`cut_along`): the
+    piece before, the point, the piece after (read-only arrays). Kept by what the edge's points are
+    made of (:func:`~vaultgram.topology.patches.half_edge_key`) and the fraction, so every state of
+    the search with that edge finds it (issue 13), and the reflex corners' chords, which try the
+    same feet of an edge in every state the rules pass through (:mod:`vaultgram.topology.reflex`),
+    cut it once."""
+    key = (half_edge_key(graph, edge, graph.ends(edge)[0]), fraction)
+    return by_content(_CUTS, key, lambda: cut_along(key_polyline(key[0]), fraction), CUTS)
 
 
 def edge_halves(graph, edge: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """An edge's polyline (from its source) cut at half its length: the piece before, the point, the
-    piece after (the point is in neither; read-only arrays). Kept by what the edge's points are made
-    of (:func:`~vaultgram.topology.patches.half_edge_key`), so every state of the search with that
-    edge finds it (issue 13)."""
-    key = half_edge_key(graph, edge, graph.ends(edge)[0])
-    return by_content(_HALVES, key, lambda: cut_along(key_polyline(key), 0.5), HALVES)
+    """An edge's polyline (from its source) cut at half its length (:func:`edge_cut`)."""
+    return edge_cut(graph, edge, 0.5)
 
 
 def cut_along(pts: np.ndarray, fraction: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
