@@ -19,7 +19,7 @@ import shapely
 from vaultgram.engine.expressions import Functions
 from vaultgram.errors import RuleError
 from vaultgram.geometry.polygons import interior_angle, regular_valence, signed_area
-from vaultgram.geometry.polylines import arc_lengths, point_at_length
+from vaultgram.geometry.polylines import arc_lengths, point_at_length, turning_angles
 from vaultgram.topology import corners, reflex
 from vaultgram.topology.lone_branch import register_lone_branch_helpers
 from vaultgram.topology.ogrid import register_o_grid_helpers
@@ -144,6 +144,10 @@ def curve_side(graph, p: int) -> int:
     return 1 if right == 0 else -1 if left == 0 else 0
 
 
+#: Degrees: a turn this small is straight on (the discretisation's rounding along a straight piece).
+_STRAIGHT_TURN = math.degrees(1e-9)
+
+
 def curve_turn(graph, x: int) -> int:
     """Which way its curve turns at the inner curve point ``x`` (§4.2), travelling from the curve's
     first point towards its last: +1 left (counter-clockwise), -1 right, 0 straight on (to rounding)
@@ -156,11 +160,10 @@ def curve_turn(graph, x: int) -> int:
     behind = [e for e in curve if graph.ends(e)[1] == x]
     if len(curve) != 2 or len(ahead) != 1 or len(behind) != 1:
         return 0
-    a, o, b = (np.asarray(graph.get(n, "pos"), dtype=float)
-               for n in (graph.ends(behind[0])[0], x, graph.ends(ahead[0])[1]))
-    cross = float((o[0] - a[0]) * (b[1] - o[1]) - (o[1] - a[1]) * (b[0] - o[0]))
-    tol = 1e-9 * math.dist(a, o) * math.dist(o, b)  # the discretisation's rounding along a straight piece
-    return 1 if cross > tol else -1 if cross < -tol else 0
+    pts = np.array([graph.get(n, "pos") for n in (graph.ends(behind[0])[0], x, graph.ends(ahead[0])[1])], dtype=float)
+    turn = float(turning_angles(pts, closed=False)[1])
+    return 0 if abs(turn) <= _STRAIGHT_TURN else 1 if turn > 0 else -1
+
 
 
 def curve_neighbours(graph, p: int, q: int) -> bool:
