@@ -7,13 +7,17 @@ singularities of a plan of many small patches the quads keep the skew of the lay
 the quads on the boundary and round the singular vertices carry 95% of the shortfall from 1). The
 max-min optimisation (:mod:`vaultgram.meshing.optimise`) lifts only the worst corners.
 
-:func:`orthogonalise` descends the sum over the quads' corners of ``1 - sj`` (``sj`` the corner's
-scaled Jacobian, the sine of its angle: the mean the issue measures, corner by corner), all movable
-vertices at once, by gradient steps scaled by each vertex's shortest edge squared (the sum is
-scale-free, so its gradient at a vertex is about its reciprocal) with an adaptive rate: a step is
-taken where the sum falls, halved otherwise. The sum also weighs each quad's area against its own
-before the pass (:data:`AREA_WEIGHT`): the voussoirs' areas follow the quads', and the angles alone
-spread them. No face may end below the smaller of its scaled Jacobian and a floor
+:func:`orthogonalise` descends the sum over the quads of ``1 - sj`` at a soft minimum of their
+corners (``sj`` the corner's scaled Jacobian, the sine of its angle; the issue's mean counts each
+face's worst corner, :data:`SOFT_WORST`), all movable vertices at once, by gradient steps scaled by
+each vertex's shortest edge squared (the sum is scale-free, so its gradient at a vertex is about its
+reciprocal) with an adaptive rate: a step is taken where the sum falls, halved otherwise. The sum
+also holds the quads' sizes relative to their neighbours' (:data:`GRADE_WEIGHT`): the jump in log
+area across each side shared by two quads may shrink but not grow past what it was before the pass.
+The voussoirs' areas follow the quads', and the angles alone spread them; a term on each quad's own
+area (session 18) held them too, but also the grading the angles need (the four plans below the
+issue's mean gained 0.008-0.015 under it, 0.014-0.028 under this one). No face may end below the
+smaller of its scaled Jacobian and a floor
 (:data:`MEAN_FLOOR`, or the mesh's worst face where that is better): the vertices of a face a step
 takes below it go back, until none does, so the worst face and the orientation of every face are
 kept. Triangles (the fans round poles, evened by
@@ -32,6 +36,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from vaultgram.geometry.arrays import lookup
 from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.geometry.polylines import straight_spans
 from vaultgram.meshing.fidelity import stretch_chain
@@ -52,14 +57,24 @@ MEAN_TARGET = 0.9
 #: between resolutions (the heights of the lobes' vaults at the two then differ by 3.05% of zmax
 #: next to the notches, 2.59% without). The default density gives the shared plans 500 to 1,500.
 MEAN_MAX_FACES = 5000
-#: The weight of the quads' areas' relative change, squared, in the descended sum: without it the
-#: voussoir areas of square_point_loads spread (coefficient of variation 0.351 -> 0.429) and two of
-#: its voussoirs came out concave; at 4, 0.401; at 16, 0.360 (its mean 0.892 -> 0.926, 0.908, 0.900).
-AREA_WEIGHT = 16.0
+#: The weight of the size term: per pair of quads that share a side, the growth of the jump of their
+#: sizes (``|log A - log A'|`` above its value before the pass), squared. The angles alone spread the
+#: quads' sizes and the voussoirs' with them (square_point_loads: voussoir area CV 0.360 -> 0.419 and
+#: concave voussoirs); the term lets the sizes grade, and even out, but not jump where they did not.
+#: square_point_loads' voussoirs are the touchstone (their CV at rhythm 4, bound 0.328: 0.341 at 4,
+#: 0.330 at 4.5, 0.324 at 5, 0.298 at 5.5); at 8 the means fall (fig7_curves 0.900 -> 0.893,
+#: multiple_lobes 0.874 -> 0.861).
+GRADE_WEIGHT = 5.5
+#: The sharpness of the soft minimum of a quad's corners (:func:`_soft_worst`): the issue's mean is
+#: over the faces' worst corners, so the descent weighs each corner by how near it is to its face's
+#: worst (at 0, an even weight: mexico_airport 0.874 and its min 0.503; at 10, 0.889 and 0.585).
+SOFT_WORST = 10.0
 #: At most this many steps; the descent stops sooner once a step gains less than :data:`MEAN_STALL`
-#: of the sum.
-MEAN_STEPS = 100
-MEAN_STALL = 1e-4
+#: of the sum (1e-4 stopped the descent early: fig7_curves 0.896 where 1e-5 reaches 0.899 at 100 steps,
+#: 0.901 at 120). Longer descents (200-400 steps) spread square_point_loads' voussoirs (area CV at
+#: rhythm 4 0.338-0.356, concave voussoirs).
+MEAN_STEPS = 120
+MEAN_STALL = 1e-5
 #: No vertex moves by more than this fraction of its shortest edge in one step.
 _STEP_CAP = 0.25
 #: A step whose faces still go below their floors after this many rounds of reverting is not taken.
@@ -84,11 +99,12 @@ class _Region(NamedTuple):
     factor: np.ndarray
     starts: np.ndarray
     floor: np.ndarray
-    area: np.ndarray
     free: np.ndarray
     corners: np.ndarray
     sliding: np.ndarray
     line: np.ndarray
+    pairs: np.ndarray
+    jump: np.ndarray
 
 
 class _State(NamedTuple):
@@ -120,7 +136,7 @@ def orthogonalise(vertices: np.ndarray, faces, fixed: np.ndarray | None = None, 
     >>> v[inner, 0] += 1.2 * (v[inner, 1] - 1.5)  # the inner vertices of a 3 x 3 grid sheared
     >>> before, after = face_scaled_jacobians(v, f), face_scaled_jacobians(orthogonalise(v, f, ~inner), f)
     >>> round(float(before.mean()), 3), round(float(after.mean()), 3), bool(after.min() >= before.min())
-    (0.785, 0.923, True)
+    (0.785, 1.0, True)
     """
     x = np.array(vertices, dtype=float)
     if len(faces) == 0 or len(faces) > MEAN_MAX_FACES:
@@ -161,10 +177,29 @@ def _region(x: np.ndarray, faces, fixed, constraints, still) -> _Region | None:
     renumber = np.cumsum(work) - 1
     f = renumber[face[keep]]
     region = _Region(f, u[keep], v[keep], p[keep], quad[keep], np.where(quad[keep], 1.0, _TRI),
-                     np.flatnonzero(np.r_[True, f[1:] != f[:-1]]), None, None, free,
-                     np.maximum(np.bincount(u[keep], minlength=n), 1), sliding & free, line)
-    at = _geometry(x, region._replace(area=np.ones(int(work.sum()))))
-    return region._replace(floor=np.minimum(at.face_sj, max(MEAN_FLOOR, float(sj.min()))), area=at.area)
+                     np.flatnonzero(np.r_[True, f[1:] != f[:-1]]), None, free,
+                     np.maximum(np.bincount(u[keep], minlength=n), 1), sliding & free, line,
+                     _side_pairs(u[keep], v[keep], f, quad[keep], n), None)
+    at = _geometry(x, region)
+    return region._replace(floor=np.minimum(at.face_sj, max(MEAN_FLOOR, float(sj.min()))),
+                           jump=np.abs(_jumps(at.area, region.pairs)))
+
+
+def _side_pairs(u: np.ndarray, v: np.ndarray, face: np.ndarray, quad: np.ndarray, n: int) -> np.ndarray:
+    """The pairs (m, 2) of quads (``face``'s numbers) that share a side, found as a halfedge ``u -> v``
+    with ``u < v`` and its twin ``v -> u`` (sorted keys, :func:`~vaultgram.geometry.arrays.lookup`):
+    the neighbours whose sizes :func:`_size_term` compares.
+
+    >>> from vaultgram.geometry.meshes import corner_arrays, grid_mesh
+    >>> face, u, v, _ = corner_arrays(grid_mesh(2)[1])  # faces 0 1 / 2 3
+    >>> sorted(map(sorted, _side_pairs(u, v, face, np.ones(len(u), dtype=bool), 9).tolist()))
+    [[0, 1], [0, 2], [1, 3], [2, 3]]
+    """
+    up, down = quad & (u < v), quad & (u > v)
+    key_up, key_down = u[up] * n + v[up], v[down] * n + u[down]
+    order = np.argsort(key_down, kind="stable")
+    pos, found = lookup(key_down[order], key_up)
+    return np.column_stack([face[up][found], face[down][order][pos[found]]])
 
 
 def _straight_slides(x: np.ndarray, constraints, n: int) -> tuple[np.ndarray, np.ndarray]:
@@ -211,22 +246,62 @@ def _geometry(x: np.ndarray, r: _Region) -> _Geometry:
 
 
 def _state(n: int, r: _Region, g: _Geometry) -> _State:
-    """The :class:`_State` of the region given its corners' :class:`_Geometry`: ``d sj / d e1 =
-    J e2 / (|e1| |e2|) - sj e1 / |e1|^2`` and ``d sj / d e2 = -J e1 / (|e1| |e2|) - sj e2 / |e2|^2``
-    (``J`` the quarter turn clockwise), summed with the sign of ``-sj`` over the quads' corners."""
-    w = np.where(r.quad, -1.0, 0.0) / g.norm  # d (1 - sj) / d sj, over |e1| |e2|
+    """The :class:`_State` of the region given its corners' :class:`_Geometry`: the angle term
+    (:func:`_soft_worst`) through ``d sj / d e1 = J e2 / (|e1| |e2|) - sj e1 / |e1|^2`` and
+    ``d sj / d e2 = -J e1 / (|e1| |e2|) - sj e2 / |e2|^2`` (``J`` the quarter turn clockwise), and the
+    size term (:func:`_size_term`) through the shoelace formula, ``d A / d u = J (v - p) / 2``."""
+    angle, by_sj = _soft_worst(r, g)
+    w = np.where(r.quad, by_sj, 0.0) / g.norm  # d angle / d sj, over |e1| |e2|
     a1, a2 = w * g.sj * g.norm / g.l1, w * g.sj * g.norm / g.l2
     g1x, g1y = w * g.e2[:, 1] - a1 * g.e1[:, 0], -w * g.e2[:, 0] - a1 * g.e1[:, 1]
     g2x, g2y = -w * g.e1[:, 1] - a2 * g.e2[:, 0], w * g.e1[:, 0] - a2 * g.e2[:, 1]
-    ratio = np.where(r.quad[r.starts], g.area / r.area - 1.0, 0.0)
-    da = (AREA_WEIGHT * ratio / r.area)[r.face]  # d/dA of the weighted (A / A0 - 1)^2, over 2
+    size, by_area = _size_term(r, g.area)
+    da = 0.5 * by_area[r.face]
     ax, ay = da * (g.e1[:, 1] - g.e2[:, 1]), da * (g.e2[:, 0] - g.e1[:, 0])
     grad = np.column_stack([np.bincount(r.v, g1x, n) + np.bincount(r.p, g2x, n) - np.bincount(r.u, g1x + g2x - ax, n),
                             np.bincount(r.v, g1y, n) + np.bincount(r.p, g2y, n) - np.bincount(r.u, g1y + g2y - ay, n)])
     shortest = np.full(n, np.inf)
     np.minimum.at(shortest, r.u, np.minimum(g.l1, g.l2))
-    total = float(np.where(r.quad, 1.0 - g.sj, 0.0).sum()) + AREA_WEIGHT * float((ratio * ratio).sum())
-    return _State(total, grad, g.face_sj, np.sqrt(shortest))
+    return _State(angle + size, grad, g.face_sj, np.sqrt(shortest))
+
+
+def _soft_worst(r: _Region, g: _Geometry) -> tuple[float, np.ndarray]:
+    """The angle term, four times the sum over the quads of ``1 - m``, ``m`` the soft minimum
+    ``-log(sum exp(-k sj)) / k`` of the quad's corners (``k`` :data:`SOFT_WORST`; a little below the
+    worst corner, the number the issue's mean counts), and its derivative by each corner's ``sj``
+    (minus four times the corner's share of ``exp(-k sj)`` in its face: the worst corner weighs most).
+
+    >>> from vaultgram.geometry.meshes import corner_arrays
+    >>> x = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.5, 1.0]])  # corners' sj 0.894, 1, 1, 0.894
+    >>> face, u, v, p = corner_arrays([(0, 1, 2, 3)])
+    >>> r = _Region(face, u, v, p, np.ones(4, dtype=bool), np.ones(4), np.array([0]), *[None] * 7)
+    >>> angle, by_sj = _soft_worst(r, _geometry(x, r))
+    >>> round(angle, 3), np.round(by_sj, 2).tolist()
+    (0.819, [-1.48, -0.52, -0.52, -1.48])
+    """
+    low = np.minimum.reduceat(g.sj, r.starts)
+    e = np.exp(-SOFT_WORST * (g.sj - low[r.face]))
+    total = np.add.reduceat(e, r.starts)
+    soft = low - np.log(total) / SOFT_WORST
+    return float(4.0 * np.where(r.quad[r.starts], 1.0 - soft, 0.0).sum()), -4.0 * e / total[r.face]
+
+
+def _jumps(area: np.ndarray, pairs: np.ndarray) -> np.ndarray:
+    """Per pair of quads that share a side (:func:`_side_pairs`), the log of the ratio of their areas."""
+    log = np.log(np.maximum(area, 1e-300))
+    return log[pairs[:, 0]] - log[pairs[:, 1]]
+
+
+def _size_term(r: _Region, area: np.ndarray) -> tuple[float, np.ndarray]:
+    """The size term, :data:`GRADE_WEIGHT` times the sum over the pairs of quads that share a side of
+    the growth of their jump (:func:`_jumps`, in absolute value) above its value before the pass
+    (zero where it is no larger), squared; and its derivative by each face's area. Graded sizes, and
+    sizes the angles even out, cost nothing: only a new step in size between neighbours, which the
+    voussoirs built of those quads would show, does."""
+    jump = _jumps(area, r.pairs)
+    grown = np.sign(jump) * np.maximum(np.abs(jump) - r.jump, 0.0)
+    by_log = np.bincount(r.pairs[:, 0], grown, len(area)) - np.bincount(r.pairs[:, 1], grown, len(area))
+    return GRADE_WEIGHT * float((grown * grown).sum()), 2.0 * GRADE_WEIGHT * by_log / area
 
 
 def _descend(x: np.ndarray, r: _Region, steps: int) -> np.ndarray:
