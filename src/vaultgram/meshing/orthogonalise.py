@@ -16,7 +16,7 @@ also holds the quads' sizes relative to their neighbours' (:data:`GRADE_WEIGHT`)
 area across each side shared by two quads may shrink but not grow past what it was before the pass.
 The voussoirs' areas follow the quads', and the angles alone spread them; a term on each quad's own
 area (session 18) held them too, but also the grading the angles need (the four plans below the
-issue's mean gained 0.008-0.015 under it, 0.014-0.028 under this one). No face may end below the
+issue's mean gained 0.008-0.015 under it, 0.010-0.041 under this one). No face may end below the
 smaller of its scaled Jacobian and a floor
 (:data:`MEAN_FLOOR`, or the mesh's worst face where that is better): the vertices of a face a step
 takes below it go back, until none does, so the worst face and the orientation of every face are
@@ -61,13 +61,13 @@ MEAN_MAX_FACES = 5000
 #: sizes (``|log A - log A'|`` above its value before the pass), squared. The angles alone spread the
 #: quads' sizes and the voussoirs' with them (square_point_loads: voussoir area CV 0.360 -> 0.419 and
 #: concave voussoirs); the term lets the sizes grade, and even out, but not jump where they did not.
-#: square_point_loads' voussoirs are the touchstone (their CV at rhythm 4, bound 0.328: 0.341 at 4,
-#: 0.330 at 4.5, 0.324 at 5, 0.298 at 5.5); at 8 the means fall (fig7_curves 0.900 -> 0.893,
-#: multiple_lobes 0.874 -> 0.861).
+#: square_point_loads' voussoirs are the touchstone (their area CV at rhythm 4, bound 0.328: 0.330 at
+#: 4.5, 0.324 at 5, 0.298 at 5.5); heavier weights hold the angles back (fig7_curves 0.902 at 4.5,
+#: 0.899 at 6, at 100 steps).
 GRADE_WEIGHT = 5.5
 #: The sharpness of the soft minimum of a quad's corners (:func:`_soft_worst`): the issue's mean is
 #: over the faces' worst corners, so the descent weighs each corner by how near it is to its face's
-#: worst (at 0, an even weight: mexico_airport 0.874 and its min 0.503; at 10, 0.889 and 0.585).
+#: worst (at 0.5, nearly even weights: mexico_airport 0.880, fig7_curves 0.891; at 10, 0.890, 0.901).
 SOFT_WORST = 10.0
 #: At most this many steps; the descent stops sooner once a step gains less than :data:`MEAN_STALL`
 #: of the sum (1e-4 stopped the descent early: fig7_curves 0.896 where 1e-5 reaches 0.899 at 100 steps,
