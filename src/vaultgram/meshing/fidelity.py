@@ -46,6 +46,13 @@ def hold_boundary(vertices: np.ndarray, faces, constraints, tol: float) -> np.nd
     """The vertices with the sliding ones moved onto the points of their polylines that the mesh
     boundary strays from by more than ``tol``, where the mesh's worst face does not get worse.
 
+    The gaps of a stretch (each polyline point's distance from the mesh boundary) are measured once
+    and then kept up to date incrementally: a snap changes only the gaps of the points near the
+    moved vertex (:func:`_snap_bend`). Where several points are farthest (a symmetric plan: the
+    stadium's four joins of its half circles and straight sides) no single snap lowers the maximum;
+    a snap that brings its own neighbourhood nearer while the maximum stays is taken, and the next
+    pass takes the next of the tied points.
+
     Example
     -------
     A 2 x 1 strip whose bottom vertex 1 slid off the bend (1, -0.3) of its polyline:
@@ -60,13 +67,14 @@ def hold_boundary(vertices: np.ndarray, faces, constraints, tol: float) -> np.nd
         return x
     around = floor = None
     for c in constraints:
+        gaps = _gaps(x, c)
         for _ in range(len(c.vertices)):  # each pass snaps one bend or stops
-            k, gap = _worst_bend(x, c)
-            if gap <= tol:
+            k = int(np.argmax(gaps))
+            if gaps[k] <= tol:
                 break
             if around is None:  # the faces round each vertex, and the mesh's worst face before any snap
                 around, floor = _faces_around(faces, len(x)), float(face_scaled_jacobians(x, faces).min())
-            if not _snap_bend(x, faces, around, c, k, gap, floor):
+            if not _snap_bend(x, faces, around, c, k, gaps, floor):
                 break
     return x
 
@@ -131,33 +139,66 @@ def _place_vertex_on(x: np.ndarray, faces, around, c: SlideConstraint, k: int) -
         x[who, :2] = poly[k]
 
 
-def _worst_bend(x: np.ndarray, c: SlideConstraint) -> tuple[int, float]:
-    """The point of the polyline of ``c`` farthest from the mesh boundary along it, and how far."""
-    gaps = _gaps(x, c)
-    k = int(np.argmax(gaps))
-    return k, gaps[k]
+def _snap_bend(x: np.ndarray, faces, around, c: SlideConstraint, k: int, gaps: np.ndarray, floor: float) -> bool:
+    """Move one of the sliding vertices of ``c`` nearest to point ``k`` of its polyline, the farthest
+    from the mesh boundary, to the point of the polyline within its reach that brings the stretch's
+    farthest point nearest or, where none does (other points as far: ties), that leaves the farthest
+    of the points it changes nearest, below the maximum; whether one moved, with ``gaps`` (per point
+    of the polyline) updated. A position counts only if it leaves the faces round the vertex at least
+    as good as they were or as the mesh's worst (``floor``).
 
-
-def _snap_bend(x: np.ndarray, faces, around, c: SlideConstraint, k: int, gap: float, floor: float) -> bool:
-    """Move one of the sliding vertices of ``c`` nearest to point ``k`` of its polyline, ``gap`` from
-    the mesh boundary, to the point of the polyline, within its reach, that brings the stretch's
-    farthest point nearest; whether one moved. A position counts only if it leaves the faces round the
-    vertex at least as good as they were or as the mesh's worst (``floor``)."""
+    Incremental: only the points within reach of the vertex plus the largest gap can change
+    (:func:`_window`); their distance from the rest of the mesh boundary is measured once per vertex,
+    and per trial position only their distance from its two new chords."""
     poly = np.asarray(c.polyline, dtype=float)[:, :2]
+    gap = gaps[k]
     for v in _nearest(x, c, poly[k]):
         ring = [faces[f] for f in around(v)]
         old, good = x[v].copy(), min(face_scaled_jacobians(x, ring).min(), floor)
-        best, where = gap, None
+        near, ends, rest = _window(x, c, v, poly, gap)
+        outside = gaps[~near].max(initial=0.0)
+        best, where, new = (gap, gap), None, None
         for q in _reach(x, c, v, poly):
-            x[v, :2] = q
-            far = _gaps(x, c).max()
-            if far < best and face_scaled_jacobians(x, ring).min() >= good:
-                best, where = far, q
-        x[v] = old
+            changed = np.minimum(rest, _distances(poly[near], np.array([ends[0], q, ends[1]])))
+            top = changed.max(initial=0.0)
+            key = (max(outside, top), top if max(outside, top) >= gap else 0.0)  # a tie: the changed points' maximum
+            if key < best:
+                x[v, :2] = q
+                if face_scaled_jacobians(x, ring).min() >= good:
+                    best, where, new = key, q, changed
+                x[v] = old
         if where is not None:
             x[v, :2] = where
+            gaps[near] = new
             return True
     return False
+
+
+def _window(x: np.ndarray, c: SlideConstraint, v: int, poly: np.ndarray, gap: float
+            ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The points of the polyline whose gap a move of sliding vertex ``v`` within its reach
+    (:func:`_reach`) can change, the largest gap being ``gap``; the vertex's two neighbours along the
+    stretch; and those points' distances from the mesh boundary without the vertex's two chords.
+
+    A point's gap changes only if its nearest point of the mesh boundary is on one of the chords from
+    ``v`` to its neighbours, before or after the move; every point of those chords is within the reach
+    of ``v`` (the longer chord), so such a point is within the reach plus its gap of ``v``."""
+    chain, ids = stretch_chain(x, c)
+    i = int(np.flatnonzero(ids == v)[0])
+    ends = chain[[i - 1, (i + 1) % len(chain)]]
+    reach = np.hypot(*(ends - x[v, :2]).T).max()
+    near = np.hypot(*(poly - x[v, :2]).T) <= (reach + gap) * (1 + 1e-9)
+    if c.closed:  # the ring from the next vertex round to the previous one
+        pieces = [np.roll(chain, -(i + 1), axis=0)[:-1]]
+    else:
+        pieces = [chain[:i], chain[i + 1:]]
+    rest = np.min([_distances(poly[near], p) for p in pieces], axis=0)
+    return near, ends, rest
+
+
+def _distances(points: np.ndarray, poly: np.ndarray) -> np.ndarray:
+    """Distance from each of ``points`` to an open polyline (to its one point if it has one)."""
+    return np.hypot(*(project_to_polyline(points, poly) - points).T)
 
 
 def _nearest(x: np.ndarray, c: SlideConstraint, p: np.ndarray) -> np.ndarray:
