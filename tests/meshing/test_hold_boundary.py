@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 from vaultgram.geometry.meshes import grid_mesh
 from vaultgram.geometry.polylines import chord_deviation, project_to_polyline
-from vaultgram.meshing.fidelity import hold_boundary, place_on_points
+from vaultgram.meshing.fidelity import _faces_around, _gaps, _snap_bend, hold_boundary, place_on_points
 from vaultgram.meshing.quadmesh import SlideConstraint
 from vaultgram.meshing.quality import face_scaled_jacobians
 
@@ -120,3 +120,50 @@ def test_every_bend_left_bare_gets_a_vertex_without_folding_a_face(shift, depth)
     assert np.allclose(project_to_polyline(y[c.vertices], poly), y[c.vertices])
     hit = [np.any(np.all(y[c.vertices] == b, axis=1)) for b in bends]
     assert on[c.vertices].sum() == sum(hit)
+
+
+TWIN = np.array([[-3.0, -3.0], [-1.0, -3.3], [3.0, -3.0], [3.0, 3.0], [1.0, 3.3], [-3.0, 3.0]])  # p -> -p
+
+
+def _twin_grid():
+    """A 6 x 6 grid about the origin whose boundary slides on the closed polyline :data:`TWIN`, a square
+    with a bend on its bottom side and the same bend turned by 180 degrees on its top; the vertices at
+    x = -1 and x = 1 over the bends slid away by 0.4, point-symmetrically too: the two bends are the
+    stretch's farthest points, tied to the last bit (-p is exact, so are the distances)."""
+    x, faces = grid_mesh(N, origin=(-3.0, -3.0))
+    x = x[:, :2].copy()
+    ring = np.r_[0:N + 1, (N + 1) * np.arange(2, N + 2) - 1, (N + 1) * N + np.arange(N - 1, -1, -1),
+                 (N + 1) * np.arange(N - 1, 0, -1)]  # counter-clockwise from (-3, -3)
+    bottom, top = ring[:N + 1], ring[2 * N:3 * N + 1]
+    x[bottom[2], 0] += 0.4
+    x[bottom] = project_to_polyline(x[bottom], TWIN[:3])
+    x[top] = -x[bottom]
+    return x, faces, SlideConstraint(ring, TWIN, closed=True)
+
+
+def test_tied_farthest_points_are_snapped_one_after_the_other():
+    """Neither snap alone brings the stretch's farthest point nearer (its mirror image stays as far):
+    the first is taken because it brings the points it changes nearer while the maximum stays, then
+    the second (before, neither was, and the boundary stayed 0.06 off the bends)."""
+    x, faces, c = _twin_grid()
+    gaps = _gaps(x, c)
+    assert gaps[1] == gaps[4] == gaps.max() > 0.05
+    y = hold_boundary(x, faces, [c], tol=0.01)
+    assert y[2].tolist() == [-1.0, -3.3] and y[N * (N + 1) + 4].tolist() == [1.0, 3.3]
+    assert _gaps(y, c).max() == 0.0
+    assert face_scaled_jacobians(y, faces).min() >= face_scaled_jacobians(x, faces).min()
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.floats(-0.45, 0.45), min_size=N - 1, max_size=N - 1), st.floats(0.02, 0.3))
+def test_a_snap_updates_the_gaps_it_changes_and_only_those(shift, depth):
+    """The gaps kept up to date snap by snap (:func:`_snap_bend` measures only the points near the
+    moved vertex) are the gaps measured afresh over the whole stretch."""
+    poly = _bent_bottom(depth)
+    x, faces, c = _grid_on(poly, np.asarray(shift))
+    gaps = _gaps(x, c)
+    floor = face_scaled_jacobians(x, faces).min()
+    if _snap_bend(x, faces, _faces_around(faces, len(x)), c, int(np.argmax(gaps)), gaps, floor):
+        assert np.allclose(gaps, _gaps(x, c), rtol=0, atol=1e-12)
+    else:
+        assert np.array_equal(gaps, _gaps(x, c))
