@@ -41,6 +41,7 @@ import math
 import weakref
 from collections.abc import Iterator
 
+from vaultgram.geometry.polygons import regular_valence
 from vaultgram.geometry.polylines import arc_lengths
 from vaultgram.topology.corners import boundary_angle, graph_rings, ring_place
 from vaultgram.topology.patches import half_edge_polyline
@@ -59,7 +60,7 @@ from vaultgram.topology.types import BOUNDARY, BOUNDARY_VERTEX, CURVE_POINT, FEA
 
 __all__ = ["reflex_chord", "reflex_side", "reflex_foot", "reflex_cut", "reflex_cut_index", "reflex_cut_at",
            "reflex_point", "rebranch_to_corner", "MIN_ANGLE", "MIN_CUT_ANGLE", "MAX_POLE_ANGLE", "MAX_RATIO", "FEET",
-           "SPIKE", "PAST_STRAIGHT", "FOLD_MIN_ANGLE"]
+           "SPIKE", "PAST_STRAIGHT", "FOLD_MIN_ANGLE", "MAX_POLE_RATIO"]
 
 #: The node types at which a strip may not end in a triangle (:func:`_strip_beyond`).
 KEPT_ENDS = (BOUNDARY_VERTEX, FEATURE_POINT, CURVE_POINT)
@@ -86,6 +87,13 @@ SPIKE = 315.0
 PAST_STRAIGHT = 181.0
 #: Degrees: the worst angle a chord that undoes a quad turning past straight may leave.
 FOLD_MIN_ANGLE = 10.0
+#: The triangle a rebranch moved to a lone corner cuts off has its two sides at the corner (its pole:
+#: the rebranch and the patch's other side there) in one edge group: their lengths may differ by this
+#: factor at most (:func:`rebranch_to_corner`). A corner's quad between two rebranches has them at
+#: 3.0-4.1 on the saved random plans and the shared plans; multiple_lobes' 136 degree corner at 7.5
+#: (a 0.65 jog against a 4.9 rebranch) had its triangle's split raise the jog's group and the lobes'
+#: with it: 2356 faces for 1080, min scaled Jacobian 0.395 -> 0.336.
+MAX_POLE_RATIO = 5.0
 #: Degrees: the triangle's angle at the corner must allow the three-quad split
 #: (:data:`vaultgram.meshing.splits.MAX_SPLIT_ANGLE`).
 MAX_POLE_ANGLE = 160.0
@@ -438,22 +446,40 @@ def reflex_point(graph, patch: int, r: int) -> tuple[float, float]:
     return float(foot[0]), float(foot[1])
 
 
+def _smooth_boundary_side(graph, side) -> bool:
+    """Whether a patch side (its half-edges ``(edge, start)``) runs along the boundary and every point
+    inside it is a free smooth point (no feature, regular valence 3 by its angle: 135-225 degrees), so
+    that the side may become part of the patch beyond's boundary side unchanged (two faces at each
+    point, as now)."""
+    if any(graph.edge_type(e) != BOUNDARY for e, _ in side):
+        return False
+    inner = [u for _, u in side[1:]]
+    return all(not graph.get(u, "feature") and regular_valence(boundary_angle(graph, u)) == 3 for u in inner)
+
+
 def rebranch_to_corner(graph, patch: int, b: int, c: int, x: int) -> bool:
     """Whether a rebranch from the skeleton vertex ``x`` to the corner ``b`` of the quad ``patch`` (a
-    corner of 135 to 225 degrees, its one patch's only; ``c`` the corner beside it along the ring
-    where the rebranch ends now: ``rules/patching.vgr``, ``move_rebranch_to_lone_corner``) runs
+    corner of 135 to 225 degrees, its one patch's only; ``c`` the patch's corner next to it along the
+    ring where the rebranch ends now: ``rules/patching.vgr``, ``move_rebranch_to_lone_corner``) runs
     straight inside the patch and splits its angle at ``b`` into two of at least :data:`MIN_ANGLE`
     degrees: the one on ``c``'s side (the patch beyond gets that) and the triangle's, at most
     :data:`MAX_POLE_ANGLE` (its pole, meshed as three quads). The same limits as a reflex corner's
     chord (:func:`_choose`), for the same reason: a sliver beside ``b`` would cost more than its
-    boundary singularity (issue 12, item 3)."""
+    boundary singularity (issue 12, item 3). The patch's side from ``b`` to ``c`` must be a run of
+    free smooth boundary points (:func:`_smooth_boundary_side`: it joins the patch beyond's side, and
+    each point keeps its two faces) and the triangle's sides at ``b`` within :data:`MAX_POLE_RATIO`."""
     found = patch_sides(graph, patch)
     if found is None or len(found.corners) != 4 or b not in found.corners:
         return False
     k = found.corners.index(b)
+    forward = c == found.corners[(k + 1) % 4]
+    to_c, to_a = (found.sides[k], found.sides[k - 1]) if forward else (found.sides[k - 1], found.sides[k])
     pos, d_out, whole = _corner(graph, found, k)
     to = graph.get(x, "pos")
+    pole_sides = math.dist(pos, to), _side_length(graph, to_a)
+    if not _smooth_boundary_side(graph, to_c) or max(pole_sides) > MAX_POLE_RATIO * min(pole_sides):
+        return False
     first = _ccw(d_out, _direction(pos, to))  # between the side leaving b and the rebranch
-    triangle = whole - first if c == found.corners[(k + 1) % 4] else first
+    triangle = whole - first if forward else first
     return (MIN_ANGLE <= first <= whole - MIN_ANGLE and triangle <= MAX_POLE_ANGLE
             and chord_inside(found, pos, to))
