@@ -230,3 +230,60 @@ def test_a_hole_corner_whose_cut_qualifies_after_its_neighbours_gets_it():
     stats = mesh_stats(mesh_decomposition(dec), domain)
     assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
     assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.4
+
+
+#: Draw 393 of the 700 saved random plans, as saved (spacing 0.03): a heptagon with a hexagonal hole
+#: (240 degrees at each corner, for the domain) and a boundary point feature on its lower side. On
+#: main e95b500 two hole corners kept two faces: their cuts across the ring patch round the hole
+#: would end their strips in a triangle of the point's fan (96 degrees there), which
+#: reflex._strip_beyond refused whatever the split left.
+DRAW_393 = {
+    "outer": [[8.03516225820164, 3.1533089287242664], [1.4739097723996062, 4.777822724089388],
+              [-3.536659687670014, 5.187639389609454], [-4.986008512293039, 0.3737902023078613],
+              [-3.8186227984361816, -4.115265285094772], [0.919665126582205, -6.102739929769283],
+              [8.269244269075084, -4.774559406803398]],
+    "holes": [[[4.338229240760919, 1.3711991378516e-10], [3.5382292407609195, -1.385640645917982],
+               [1.9382292407609194, -1.3856406459179822], [1.1382292407609191, 1.3711971784167214e-10],
+               [1.9382292407609185, 1.3856406461922213], [3.538229240760918, 1.3856406461922224]]],
+    "points": [[3.1007008130642437, -5.708593671525656]],
+}
+
+
+def test_hole_corner_cut_may_halve_a_fan_triangle_at_a_boundary_point():
+    """Draw 393: a cut whose strip is one triangle of a boundary point's fan ends at the point where a
+    foot of the cut (reflex.FEET) splits the triangle's angle there into two of at least 40 degrees
+    (reflex._halves_fan): every hole corner the corner of three patches, no boundary singularity
+    (main: 2); min scaled Jacobian 0.508 -> 0.388 (the price, above 0.3). The point keeps its fan,
+    each triangle a strip ended in at least 40 degrees wide there."""
+    domain = domain_from_dict(DRAW_393)
+    dec = decompose(domain, 0.03)
+    g = dec.graph
+    points = [n for n in g.nodes() if g.node_type(n) != "Patch"]
+
+    def node(at):
+        (n,) = [n for n in points if np.allclose(g.get(n, "pos"), at, atol=1e-9)]
+        return n
+
+    for corner in DRAW_393["holes"][0]:
+        assert sum(node(corner) in p.corners for p in dec.patches) == 3
+    f = node(DRAW_393["points"][0])
+    ends = {g.other(e, f) for e in g.incident(f, [DIAGONAL]) if g.node_type(g.other(e, f)) == "StripPoint"}
+    halves = [p for p in dec.patches if f in p.corners and ends & set(p.corners)]
+    assert len(halves) == 2
+    for p in halves:
+        assert p.n_sides == 3 and p.corner_angles()[list(p.corners).index(f)] >= reflex.MIN_CUT_ANGLE
+    stats = mesh_stats(mesh_decomposition(dec), domain)
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
+    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.38
+
+
+def test_a_fan_triangle_is_halved_only_by_a_chord_that_leaves_40_degrees_each_side():
+    """reflex._halves_fan on a triangle with a 90 degree corner at the origin (the feature), its sides
+    along x and y: the chord from (0.5, 0.5) leaves 45 and 45 degrees, from (0.52, 0.48) 42.7 and
+    47.3, from (0.55, 0.45) 39.3 (refused), from points near either end under 40 on one side; a
+    chord outside the corner's angle is refused."""
+    fan = ((0.0, 0.0), 0.0, 90.0)
+    assert reflex._halves_fan(fan, (0.5, 0.5)) and reflex._halves_fan(fan, (0.52, 0.48))
+    assert not reflex._halves_fan(fan, (0.55, 0.45))
+    assert not reflex._halves_fan(fan, (0.9, 0.1)) and not reflex._halves_fan(fan, (0.1, 0.9))
+    assert not reflex._halves_fan(fan, (-0.5, 0.5))

@@ -118,3 +118,65 @@ def test_shared_plan_boundary_singularities(name):
     stats = mesh_stats(mesh_domain(domain), domain)
     assert stats["boundary_singular"] == SHARED_BOUNDARY_SINGULAR[name], stats["boundary_singular_angles"]
     assert stats["inverted_faces"] == 0
+
+
+#: Draw 34 of the 700 saved random plans (rounded; spacing 0.05): an octagon whose 148 degree corner
+#: (the first) was the corner of one quad between two rebranches that end two boundary points away
+#: on either side, not at its ring neighbours (main e95b500: its one boundary singularity).
+OCTAGON_34 = [[6.635, 2.253], [2.672, 5.42], [-2.201, 6.483], [-5.282, 2.604], [-4.735, -1.608],
+              [-2.605, -5.284], [2.253, -6.635], [8.938, -4.407]]
+
+
+def test_a_lone_corner_two_points_from_the_rebranch_gets_a_second_patch():
+    """The rebranch moves to the lone corner from the next patch corner along the ring, over the free
+    smooth point between (reflex._smooth_boundary_side): the corner of a quad and of a triangle with
+    it as the marked pole, no boundary singularity (main: 1, the 148 degree corner with one face),
+    min scaled Jacobian 0.534 -> 0.718."""
+    domain = domain_from_dict({"name": "octagon 34", "outer": OCTAGON_34})
+    dec = decompose(domain, 0.05)
+    (b,) = [n for n in dec.graph.nodes() if dec.graph.node_type(n) != "Patch"
+            and np.allclose(dec.graph.get(n, "pos"), OCTAGON_34[0], atol=1e-9)]
+    at_b = [p for p in dec.patches if b in p.corners]
+    assert sorted(p.n_sides for p in at_b) == [3, 4]
+    (tri,) = [p for p in at_b if p.n_sides == 3]
+    assert dec.marked_pole(tri) == b
+    stats = mesh_stats(mesh_decomposition(dec), domain)
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
+    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.7
+
+
+def test_smooth_boundary_side_is_a_boundary_run_of_smooth_free_points():
+    """reflex._smooth_boundary_side on every side of every patch of the octagon's decomposition
+    before the patching rules' changes matter: true exactly where every half-edge is a boundary
+    segment and every point inside the side has an angle of 135 to 225 degrees (no feature)."""
+    from vaultgram.geometry.polygons import regular_valence
+    from vaultgram.topology.reflex import _smooth_boundary_side
+    from vaultgram.topology.strips import patch_sides
+
+    domain = domain_from_dict({"name": "octagon 34", "outer": OCTAGON_34})
+    g = decompose(domain, 0.05).graph
+    results = []
+    for p in (n for n in g.nodes() if g.node_type(n) == "Patch"):
+        for side in patch_sides(g, p).sides:
+            on_boundary = all(g.edge_type(e) == "Boundary" for e, _ in side)
+            smooth = all(regular_valence(boundary_angle(g, u)) == 3 for _, u in side[1:]) if on_boundary else False
+            assert _smooth_boundary_side(g, side) == smooth
+            results.append(smooth)
+    assert any(results) and not all(results)
+
+
+def test_no_rebranch_moves_to_a_corner_beside_a_short_jog():
+    """multiple_lobes' 136 degree corner: the next rebranch along the ring (1.5 away) would make a
+    triangle whose sides at the corner, a 0.65 jog and a 4.9 long rebranch, are one edge group
+    (ratio 7.5 > reflex.MAX_POLE_RATIO): its split raised the jog's group and the lobes' with it
+    (2356 faces for 1080, min scaled Jacobian 0.336). The corner keeps its one quad."""
+    path = ARCHITECTURE / "multiple_lobes.json"
+    if not path.is_file():
+        pytest.skip(f"{path} not found")
+    domain = load_domain(path)
+    dec = decompose(domain)
+    jog = [n for n in dec.graph.nodes() if dec.graph.node_type(n) == "Corner"
+           and 135 <= boundary_angle(dec.graph, n) < 137]
+    assert jog and all(sum(n in p.corners for p in dec.patches) == 1 for n in jog)
+    stats = mesh_stats(mesh_decomposition(dec), domain)
+    assert stats["faces"] < 1300 and stats["min_scaled_jacobian"] > 0.39

@@ -41,6 +41,7 @@ import math
 import weakref
 from collections.abc import Iterator
 
+from vaultgram.geometry.polygons import regular_valence
 from vaultgram.geometry.polylines import arc_lengths
 from vaultgram.topology.corners import boundary_angle, graph_rings, ring_place
 from vaultgram.topology.patches import half_edge_polyline
@@ -59,7 +60,7 @@ from vaultgram.topology.types import BOUNDARY, BOUNDARY_VERTEX, CURVE_POINT, FEA
 
 __all__ = ["reflex_chord", "reflex_side", "reflex_foot", "reflex_cut", "reflex_cut_index", "reflex_cut_at",
            "reflex_point", "rebranch_to_corner", "MIN_ANGLE", "MIN_CUT_ANGLE", "MAX_POLE_ANGLE", "MAX_RATIO", "FEET",
-           "SPIKE", "PAST_STRAIGHT", "FOLD_MIN_ANGLE"]
+           "SPIKE", "PAST_STRAIGHT", "FOLD_MIN_ANGLE", "MAX_POLE_RATIO"]
 
 #: The node types at which a strip may not end in a triangle (:func:`_strip_beyond`).
 KEPT_ENDS = (BOUNDARY_VERTEX, FEATURE_POINT, CURVE_POINT)
@@ -86,6 +87,13 @@ SPIKE = 315.0
 PAST_STRAIGHT = 181.0
 #: Degrees: the worst angle a chord that undoes a quad turning past straight may leave.
 FOLD_MIN_ANGLE = 10.0
+#: The triangle a rebranch moved to a lone corner cuts off has its two sides at the corner (its pole:
+#: the rebranch and the patch's other side there) in one edge group: their lengths may differ by this
+#: factor at most (:func:`rebranch_to_corner`). A corner's quad between two rebranches has them at
+#: 3.0-4.1 on the saved random plans and the shared plans; multiple_lobes' 136 degree corner at 7.5
+#: (a 0.65 jog against a 4.9 rebranch) had its triangle's split raise the jog's group and the lobes'
+#: with it: 2356 faces for 1080, min scaled Jacobian 0.395 -> 0.336.
+MAX_POLE_RATIO = 5.0
 #: Degrees: the triangle's angle at the corner must allow the three-quad split
 #: (:data:`vaultgram.meshing.splits.MAX_SPLIT_ANGLE`).
 MAX_POLE_ANGLE = 160.0
@@ -115,16 +123,46 @@ def _feet(graph, walk, fractions=FEET) -> Iterator[tuple]:
     """The points of the plan edge a strip enters by (``walk``, :func:`_strip_beyond`; none where it is
     None) where a chord may end (``fractions`` of its length, in that order), as ``(fraction, point,
     tangent there)``: where the strip's first chord, from there across the patch beyond, runs inside
-    it. A closed strip comes back to the middle, its only foot. Lazily: a cut stops at the first that
-    serves."""
+    it, and, where the strip is one triangle of a feature's fan (:func:`_fan_end`), the chord from
+    there to the feature halves its angle (:func:`_halves_fan`). A closed strip comes back to the
+    middle, its only foot. Lazily: a cut stops at the first that serves."""
     if walk is None:
         return
     edge, found = walk.edges[0], patch_sides(graph, walk.patches[0])
     to = strip_point(graph, walk.edges[1]) if len(walk.edges) > 1 else graph.get(walk.end, "pos")
+    fan = _fan_end(graph, walk)
     for f in fractions[:1] if walk.end is None else fractions:
         at = edge_cut(graph, edge, f)[1]
-        if f == 0.5 or chord_inside(found, at, to):
+        if (f == 0.5 or chord_inside(found, at, to)) and (fan is None or _halves_fan(fan, at)):
             yield f, at, _edge_tangent(graph, edge, f)
+
+
+def _fan_end(graph, walk) -> tuple | None:
+    """Where the strip ``walk`` is one triangle of a point feature's fan, entered by the side opposite
+    the feature (:func:`_strip_beyond`): the feature's position, the direction (radians) of the
+    triangle's side leaving it and the triangle's angle there (degrees); None otherwise."""
+    if walk.end is None or len(walk.patches) != 1 or not _feature(graph, walk.end):
+        return None
+    found = patch_sides(graph, walk.patches[0])
+    return _corner(graph, found, found.corners.index(walk.end)) if len(found.corners) == 3 else None
+
+
+def _halves_fan(fan: tuple, at) -> bool:
+    """Whether the chord from the point ``at`` to the feature of ``fan`` (:func:`_fan_end`) splits the
+    triangle's angle there into two of at least :data:`MIN_CUT_ANGLE` degrees: the fan gains a
+    triangle no narrower than a cut may leave (§4.1: the feature stays the pole of both).
+
+    >>> _halves_fan(((0.0, 0.0), 0.0, 90.0), (1.0, 1.0)), _halves_fan(((0.0, 0.0), 0.0, 90.0), (1.0, 0.2))
+    (True, False)
+    """
+    pos, d_out, whole = fan
+    first = _ccw(d_out, _direction(pos, at))
+    return MIN_CUT_ANGLE <= first <= whole - MIN_CUT_ANGLE
+
+
+def _feature(graph, n: int) -> bool:
+    """Whether the point ``n`` is a point feature (a boundary point feature or an inner one)."""
+    return bool(graph.get(n, "feature")) or graph.schema.is_subtype(graph.node_type(n), FEATURE_POINT)
 
 
 def _ring_tangent(graph, w: int) -> float:
@@ -257,20 +295,29 @@ def _chord_worst(graph, patch: int, found, k: int, j: int, target: tuple, other:
     return worst if _even_group(graph, patch, found, k, j, at, _pieces(graph, kind, edge, fraction)) else None
 
 
-def _strip_beyond(graph, patch: int, edge: int):
+def _strip_beyond(graph, patch: int, edge: int, fans: bool = False):
     """The walk of the strip a chord in the quad ``patch`` to the middle of its side ``edge`` starts
     in the patch beyond, where it completes (:func:`~vaultgram.topology.strips.strip_walk`, as for
     Figure 8's split to a side, §4.2) without ending in a triangle at a point the split would
     change: a boundary point gains a face, a boundary singularity (rv_star_pattern's 215 degree
     vertex, the strip from its 256 degree corner); a point feature's fan carries its load (§4.1: a
     random plan's worst quad went from 0.31 to 0.20 there); a curve is a cut the layout keeps
-    (§4.2). None otherwise."""
+    (§4.2). None otherwise. With ``fans`` (a cut, :func:`_cut`), a strip that is one triangle of a
+    point feature's fan (:func:`_fan_end`) may end at the feature, which stays the pole of both
+    halves, where the chord's foot halves the triangle's angle there (:func:`_feet`,
+    :func:`_halves_fan`): 58 of the 204 boundary singular vertices of the 700 saved random plans
+    were hole corners whose cut was refused only by such an end. Not for the chords of a corner of
+    two patches (there it changed the chosen chord at corners already regular: plans 12, 395 and
+    444 fell under 0.3, 444 from 0.381 to 0.076), nor a strip of several patches into a fan (from the
+    middle at 20-30 degrees, plans 23 and 24 took a wedge of slivers, min SJ 0.455 -> 0.048)."""
     beyond = patch_across(graph, patch, edge)
     walk = None if beyond is None else strip_walk(graph, beyond[0], beyond[1], frozenset([patch]))
     if walk is None or walk.end is None or len(patch_sides(graph, walk.patches[-1]).corners) == 4:
         return walk
+    if fans and _fan_end(graph, walk) is not None:
+        return walk
     kind = graph.node_type(walk.end)
-    kept = graph.get(walk.end, "feature") or any(graph.schema.is_subtype(kind, t) for t in KEPT_ENDS)
+    kept = _feature(graph, walk.end) or any(graph.schema.is_subtype(kind, t) for t in KEPT_ENDS)
     return None if kept else walk
 
 
@@ -389,7 +436,7 @@ def _cut(graph, r: int) -> tuple | None:
     if edge < 0:
         return None
     pos, ahead, theta = graph.get(r, "pos"), _ahead(graph, r), boundary_angle(graph, r)
-    for fraction, foot, tangent in _feet(graph, _strip_beyond(graph, patch, edge)):
+    for fraction, foot, tangent in _feet(graph, _strip_beyond(graph, patch, edge, fans=True)):
         d_chord = _direction(pos, foot)
         first = _ccw(ahead, d_chord)  # between the boundary leaving r and the chord
         meet = _ccw(tangent, d_chord) % 180.0
@@ -438,22 +485,40 @@ def reflex_point(graph, patch: int, r: int) -> tuple[float, float]:
     return float(foot[0]), float(foot[1])
 
 
+def _smooth_boundary_side(graph, side) -> bool:
+    """Whether a patch side (its half-edges ``(edge, start)``) runs along the boundary and every point
+    inside it is a free smooth point (no feature, regular valence 3 by its angle: 135-225 degrees), so
+    that the side may become part of the patch beyond's boundary side unchanged (two faces at each
+    point, as now)."""
+    if any(graph.edge_type(e) != BOUNDARY for e, _ in side):
+        return False
+    inner = [u for _, u in side[1:]]
+    return all(not graph.get(u, "feature") and regular_valence(boundary_angle(graph, u)) == 3 for u in inner)
+
+
 def rebranch_to_corner(graph, patch: int, b: int, c: int, x: int) -> bool:
     """Whether a rebranch from the skeleton vertex ``x`` to the corner ``b`` of the quad ``patch`` (a
-    corner of 135 to 225 degrees, its one patch's only; ``c`` the corner beside it along the ring
-    where the rebranch ends now: ``rules/patching.vgr``, ``move_rebranch_to_lone_corner``) runs
+    corner of 135 to 225 degrees, its one patch's only; ``c`` the patch's corner next to it along the
+    ring where the rebranch ends now: ``rules/patching.vgr``, ``move_rebranch_to_lone_corner``) runs
     straight inside the patch and splits its angle at ``b`` into two of at least :data:`MIN_ANGLE`
     degrees: the one on ``c``'s side (the patch beyond gets that) and the triangle's, at most
     :data:`MAX_POLE_ANGLE` (its pole, meshed as three quads). The same limits as a reflex corner's
     chord (:func:`_choose`), for the same reason: a sliver beside ``b`` would cost more than its
-    boundary singularity (issue 12, item 3)."""
+    boundary singularity (issue 12, item 3). The patch's side from ``b`` to ``c`` must be a run of
+    free smooth boundary points (:func:`_smooth_boundary_side`: it joins the patch beyond's side, and
+    each point keeps its two faces) and the triangle's sides at ``b`` within :data:`MAX_POLE_RATIO`."""
     found = patch_sides(graph, patch)
     if found is None or len(found.corners) != 4 or b not in found.corners:
         return False
     k = found.corners.index(b)
+    forward = c == found.corners[(k + 1) % 4]
+    to_c, to_a = (found.sides[k], found.sides[k - 1]) if forward else (found.sides[k - 1], found.sides[k])
     pos, d_out, whole = _corner(graph, found, k)
     to = graph.get(x, "pos")
+    pole_sides = math.dist(pos, to), _side_length(graph, to_a)
+    if not _smooth_boundary_side(graph, to_c) or max(pole_sides) > MAX_POLE_RATIO * min(pole_sides):
+        return False
     first = _ccw(d_out, _direction(pos, to))  # between the side leaving b and the rebranch
-    triangle = whole - first if c == found.corners[(k + 1) % 4] else first
+    triangle = whole - first if forward else first
     return (MIN_ANGLE <= first <= whole - MIN_ANGLE and triangle <= MAX_POLE_ANGLE
             and chord_inside(found, pos, to))
