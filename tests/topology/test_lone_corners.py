@@ -35,6 +35,18 @@ def foot(turns=(47.0, 18.0, 39.0, 22.0, 37.0), step: float = 0.35, length: float
     return pts + [[0.0, float(p[1])]]
 
 
+def assert_corner_of_a_quad_and_its_marked_triangle(dec, pos) -> int:
+    """The plan point at ``pos`` is the corner of two patches, a quad and a triangle with it as the
+    marked pole (a lone corner given its second patch); returns its node."""
+    (b,) = [n for n in dec.graph.nodes() if dec.graph.node_type(n) != "Patch"
+            and np.allclose(dec.graph.get(n, "pos"), pos, atol=1e-9)]
+    at_b = [p for p in dec.patches if b in p.corners]
+    assert sorted(p.n_sides for p in at_b) == [3, 4]
+    (tri,) = [p for p in at_b if p.n_sides == 3]
+    assert dec.marked_pole(tri) == b
+    return b
+
+
 def test_a_lone_143_degree_corner_gets_a_second_patch():
     """The foot's last corner (143 degrees) was the corner of one quad only (valence 2, regular 3)
     on main 0f466b5, the plan's one boundary singularity; the rebranch ending at its neighbour moves
@@ -43,12 +55,7 @@ def test_a_lone_143_degree_corner_gets_a_second_patch():
     outer = foot()
     domain = domain_from_dict({"name": "foot", "outer": outer})
     dec = decompose(domain)
-    (b,) = [n for n in dec.graph.nodes() if dec.graph.node_type(n) != "Patch"
-            and np.allclose(dec.graph.get(n, "pos"), outer[6], atol=1e-9)]
-    at_b = [p for p in dec.patches if b in p.corners]
-    assert sorted(p.n_sides for p in at_b) == [3, 4]
-    (tri,) = [p for p in at_b if p.n_sides == 3]
-    assert dec.marked_pole(tri) == b
+    b = assert_corner_of_a_quad_and_its_marked_triangle(dec, outer[6])
     layout = edge_groups(dec)
     (k,) = [i for i, p in enumerate(layout.patterns) if p.pole is not None and p.corners[p.pole] == b]
     assert k in split_patterns(layout, group_counts(layout))
@@ -134,12 +141,7 @@ def test_a_lone_corner_two_points_from_the_rebranch_gets_a_second_patch():
     min scaled Jacobian 0.534 -> 0.718."""
     domain = domain_from_dict({"name": "octagon 34", "outer": OCTAGON_34})
     dec = decompose(domain, 0.05)
-    (b,) = [n for n in dec.graph.nodes() if dec.graph.node_type(n) != "Patch"
-            and np.allclose(dec.graph.get(n, "pos"), OCTAGON_34[0], atol=1e-9)]
-    at_b = [p for p in dec.patches if b in p.corners]
-    assert sorted(p.n_sides for p in at_b) == [3, 4]
-    (tri,) = [p for p in at_b if p.n_sides == 3]
-    assert dec.marked_pole(tri) == b
+    assert_corner_of_a_quad_and_its_marked_triangle(dec, OCTAGON_34[0])
     stats = mesh_stats(mesh_decomposition(dec), domain)
     assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
     assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.7
