@@ -118,7 +118,8 @@ def test_round_plans_keep_radial_corners():
     """rv_pillow_pattern's 24 points lie on a circle at uneven angles (their spreads differ by 3%, the
     area's by 0.1%: round, ogrid.ROUND): radial corners, its worst face 0.818 (0.807 with links at 45
     degrees); a teardrop's first foot is its tip (where the corner at 45 degrees would fall)."""
-    from vaultgram.topology.ogrid import ROUND, elongation
+    from vaultgram.geometry.polygons import elongation
+    from vaultgram.topology.ogrid import ROUND
 
     path = ARCHITECTURE / "rv_pillow_pattern.json"
     if not path.exists():

@@ -33,18 +33,18 @@ import weakref
 import numpy as np
 import shapely
 
-from vaultgram.geometry.polygons import regular_valence
+from vaultgram.geometry.polygons import elongation, regular_valence
 from vaultgram.topology.corners import boundary_angle, graph_rings, ray_hit
 from vaultgram.topology.statecache import per_state
 from vaultgram.topology.types import BRANCH, CORNER, CURVE_POINT, FEATURE_POINT, SKELETON_VERTEX
 
 __all__ = ["featureless_plan", "lone_skeleton", "o_grid_plan", "o_grid_centre", "o_grid_foot", "o_grid_corner",
-           "o_grid_clear", "elongation", "principal_axes", "register_o_grid_helpers", "ROUND"]
+           "o_grid_clear", "principal_axes", "register_o_grid_helpers", "ROUND"]
 
-#: Outlines less elongated than this (:func:`elongation`) are round: the O-grid's corners radial
-#: (:func:`o_grid_corner`). rv_pillow_pattern (1.001) has its feet 43 rather than 45 degrees off its
-#: axes (its 24 points): the 45 degree links made its central quad 6.5 x 5.8 and its worst face
-#: 0.818 -> 0.807. The cut disc (1.05) gains 0.791 -> 0.812.
+#: Outlines less elongated than this (:func:`~vaultgram.geometry.polygons.elongation`) are round:
+#: the O-grid's corners radial (:func:`o_grid_corner`). rv_pillow_pattern (1.001) has its feet 43
+#: rather than 45 degrees off its axes (its 24 points): the 45 degree links made its central quad
+#: 6.5 x 5.8 and its worst face 0.818 -> 0.807. The cut disc (1.05) gains 0.791 -> 0.812.
 ROUND = 1.02
 
 #: The rule helpers' answers, per state of the rule graph (the rule asks for the same feet at
@@ -72,32 +72,6 @@ def principal_axes(ring: np.ndarray) -> np.ndarray:
     c, s = math.cos(angle), math.sin(angle)
     major, minor = (sxx + syy + gap) / 2, max((sxx + syy - gap) / 2, 0.0)
     return np.array([[c, s], [-s, c]]) * np.sqrt([[major], [minor]])
-
-
-def elongation(ring: np.ndarray) -> float:
-    """How elongated the area inside a ring is: the square root of the ratio of its principal second
-    moments of area (1 for a disc or a regular polygon, 2 for an ellipse of axes 2:1). Of the area, not
-    of the ring's points (:func:`principal_axes`), so that it does not depend on how the outline is
-    sampled: rv_pillow_pattern, a 24-gon on a circle with uneven angles, gives 1.001 (its points'
-    spreads differ by 3%).
-
-    >>> t = np.linspace(0, 2 * np.pi, 400, endpoint=False)
-    >>> round(elongation(np.column_stack([2 * np.cos(t), np.sin(t)])), 3)
-    2.0
-    >>> elongation(np.array([[0, 0], [1, 0], [1, 1], [0, 1]]))
-    1.0
-    """
-    p = np.asarray(ring, dtype=float)[:, :2]
-    p = p - p.mean(axis=0)
-    (x, y), (x1, y1) = p.T, np.roll(p, -1, axis=0).T
-    cross = x * y1 - x1 * y
-    area = cross.sum() / 2
-    cx, cy = ((x + x1) * cross).sum() / (6 * area), ((y + y1) * cross).sum() / (6 * area)
-    x, y, x1, y1 = x - cx, y - cy, x1 - cx, y1 - cy
-    ixx, iyy = ((x * x + x * x1 + x1 * x1) * cross).sum(), ((y * y + y * y1 + y1 * y1) * cross).sum()
-    ixy = ((x * y1 + 2 * x * y + 2 * x1 * y1 + x1 * y) * cross).sum() / 2
-    low, high = np.linalg.eigvalsh([[ixx, ixy], [ixy, iyy]])
-    return float(math.sqrt(high / low))
 
 
 def o_grid_plan(graph) -> bool:
