@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 from vaultgram.geometry.meshes import grid_mesh
 from vaultgram.geometry.polylines import chord_deviation, project_to_polyline
-from vaultgram.meshing.fidelity import _faces_around, _gaps, _snap_bend, hold_boundary, place_on_points
+from vaultgram.meshing.fidelity import _balance, _faces_around, _gaps, _snap_bend, hold_boundary, place_on_points
 from vaultgram.meshing.quadmesh import SlideConstraint
 from vaultgram.meshing.quality import face_scaled_jacobians
 
@@ -167,3 +167,40 @@ def test_a_snap_updates_the_gaps_it_changes_and_only_those(shift, depth):
         assert np.allclose(gaps, _gaps(x, c), rtol=0, atol=1e-12)
     else:
         assert np.array_equal(gaps, _gaps(x, c))
+
+
+def _grid_on_arc(radius: float, points: int, shift=None):
+    """The grid with its bottom row on a circular arc from (0, 0) to (6, 0) bulging down, drawn as a
+    polyline of ``points`` points: vertices sliding on its chords sit inside the circle."""
+    t = np.linspace(-1, 1, points) * np.arcsin(3 / radius)
+    arc = np.column_stack([3 + radius * np.sin(t), radius * np.cos(t[0]) - radius * np.cos(t)])
+    return _grid_on(arc, np.zeros(N - 1) if shift is None else np.asarray(shift))
+
+
+def test_chords_all_near_the_tolerance_are_balanced_along_the_arc():
+    """An arc of radius 6 drawn with 9 points, its five vertices evenly spaced: with a tolerance 10%
+    under the farthest gap, the sweeps spread the vertices along the arc until every point is within
+    it (the stadium's half circles: four points 0.25% beyond, no single snap bringing them nearer),
+    keeping the gaps up to date, the vertices on the arc and the worst face."""
+    x, faces, c = _grid_on_arc(6.0, 9)
+    gaps = _gaps(x, c)
+    tol, floor = 0.9 * gaps.max(), face_scaled_jacobians(x, faces).min()
+    y = x.copy()
+    _balance(y, faces, _faces_around(faces, len(x)), c, gaps, tol, floor)
+    assert gaps.max() <= tol and np.allclose(gaps, _gaps(y, c), rtol=0, atol=1e-12)
+    assert np.allclose(project_to_polyline(y[c.vertices], c.polyline), y[c.vertices])
+    assert face_scaled_jacobians(y, faces).min() >= floor
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.floats(3.5, 20.0), st.integers(4, 16), st.lists(st.floats(-0.3, 0.3), min_size=N - 1, max_size=N - 1),
+       st.floats(0.5, 1.0))
+def test_balancing_never_lets_the_boundary_stray_farther_nor_lowers_the_worst_face(radius, points, shift, share):
+    x, faces, c = _grid_on_arc(radius, points, shift)
+    gaps = _gaps(x, c)
+    before, floor = gaps.max(), face_scaled_jacobians(x, faces).min()
+    y = x.copy()
+    _balance(y, faces, _faces_around(faces, len(x)), c, gaps, share * before, floor)
+    assert gaps.max() <= before + 1e-12 and np.allclose(gaps, _gaps(y, c), rtol=0, atol=1e-12)
+    assert face_scaled_jacobians(y, faces).min() >= min(floor, face_scaled_jacobians(x, faces).min()) - 1e-12
+    assert np.allclose(project_to_polyline(y[c.vertices], c.polyline), y[c.vertices])

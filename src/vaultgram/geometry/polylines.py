@@ -13,6 +13,7 @@ import numpy as np
 from vaultgram.geometry.polygons import cross_z, signed_angles
 
 __all__ = [
+    "segment_distances",
     "segment_lengths",
     "arc_lengths",
     "polyline_length",
@@ -132,6 +133,19 @@ def _closest_on_segments(p: np.ndarray, a: np.ndarray, ab: np.ndarray) -> tuple[
     ab2 = np.maximum(_summed([ab[:, j] * ab[:, j] for j in range(ab.shape[1])]), 1e-300)
     t = np.clip(_summed([(p[:, j, None] - a[:, j]) * ab[:, j] for j in range(ab.shape[1])]) / ab2, 0.0, 1.0)
     return t, [a[:, j] + t * ab[:, j] for j in range(ab.shape[1])]
+
+
+def segment_distances(points: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Distance from each of ``points`` (k, 2) to each segment from ``a[j]`` to ``b[j]`` (s, 2), a
+    (k, s) array: many candidate chords measured at once.
+
+    >>> segment_distances(np.array([[1.0, 1.0], [3.0, 0.0]]), np.array([[0.0, 0.0]] * 2),
+    ...                   np.array([[2.0, 0.0], [0.0, 2.0]])).tolist()
+    [[1.0, 1.0], [1.0, 3.0]]
+    """
+    p, a = np.asarray(points, dtype=float)[:, :2], np.asarray(a, dtype=float)[:, :2]
+    _, q = _closest_on_segments(p, a, np.asarray(b, dtype=float)[:, :2] - a)
+    return np.hypot(q[0] - p[:, 0, None], q[1] - p[:, 1, None])
 
 
 def _summed(terms: list[np.ndarray]) -> np.ndarray:

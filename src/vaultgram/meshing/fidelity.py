@@ -15,7 +15,9 @@ shape optimisation then let the boundary vertices slide along their polylines (Â
 * a vertex that slides away from a gentler bend leaves its chord cutting across the bend.
   :func:`hold_boundary` puts such bends back: for the ring point that lies farthest from the mesh
   boundary, beyond the tolerance, the nearer sliding vertex of its stretch moves onto it (or as near
-  as its faces allow), if that does not lower the worst scaled Jacobian of the mesh.
+  as its faces allow), if that does not lower the worst scaled Jacobian of the mesh. Where no single
+  snap helps (every chord of an arc near the tolerance), sweeps along the stretch spread its vertices
+  so that the slack of its straighter parts reaches the farthest point.
 
 Both are few (the sides were within the tolerance before smoothing), so the loops run over those
 points, not over vertices; the distances are vectorised per stretch.
@@ -26,8 +28,8 @@ from __future__ import annotations
 import numpy as np
 
 from vaultgram.geometry.meshes import corner_arrays
-from vaultgram.geometry.polylines import densified, project_to_polyline
-from vaultgram.geometry.spatial import nearest_within
+from vaultgram.geometry.polylines import densified, project_to_polyline, segment_distances
+from vaultgram.geometry.spatial import nearest_within, pairs_within
 from vaultgram.meshing.quadmesh import SlideConstraint
 from vaultgram.meshing.quality import face_scaled_jacobians
 
@@ -43,6 +45,8 @@ _CANDIDATES = 2
 #: ellipse's gap was 0.5% over the tolerance).
 _STEPS = 8
 _FINE_STEPS = 64
+#: At most this many sweeps of :func:`_balance` along a stretch.
+_SWEEPS = 64
 
 
 def hold_boundary(vertices: np.ndarray, faces, constraints, tol: float) -> np.ndarray:
@@ -78,6 +82,7 @@ def hold_boundary(vertices: np.ndarray, faces, constraints, tol: float) -> np.nd
             if around is None:  # the faces round each vertex, and the mesh's worst face before any snap
                 around, floor = _faces_around(faces, len(x)), float(face_scaled_jacobians(x, faces).min())
             if not _snap_bend(x, faces, around, c, k, gaps, floor):
+                _balance(x, faces, around, c, gaps, tol, floor)
                 break
     return x
 
@@ -168,6 +173,58 @@ def _snap_bend(x: np.ndarray, faces, around, c: SlideConstraint, k: int, gaps: n
                 gaps[window[0]] = new
                 return True
     return False
+
+
+def _balance(x: np.ndarray, faces, around, c: SlideConstraint, gaps: np.ndarray, tol: float, floor: float) -> None:
+    """Where no single snap lowers the farthest gap (each chord of an arc near the tolerance: a
+    shorter chord on one side is a longer one on the other), sweeps along the stretch move each
+    sliding vertex whose chords stray by more than half the tolerance to the position within its
+    reach that leaves the farthest point of its window (:func:`_window`) nearest: the slack of the
+    straight or finer parts at the ends of a run spreads along it, until the stretch is within
+    ``tol`` or a sweep moves nothing (at most :data:`_SWEEPS`). Only lowers a window's farthest gap,
+    so the stretch's never grows; a position counts as in :func:`_snap_bend` (the faces round the
+    vertex no worse than they were or than the mesh's worst, ``floor``); ``gaps`` kept up to date.
+
+    On the stadium the half circles' ten chords each came within 0.93 of the tolerance of the ring,
+    and their vertices sliding on the ring's own chords (24 points a half circle) put four points
+    0.25% beyond it."""
+    poly = np.asarray(c.polyline, dtype=float)[:, :2]
+    for _ in range(_SWEEPS):
+        moved = False
+        for v in _hot_vertices(x, c, poly[gaps > tol / 2]):
+            near, ends, rest = _window(x, c, v, poly, gaps.max())
+            now = gaps[near].max(initial=0.0)
+            q = _reach(x, c, v, poly, _FINE_STEPS)
+            changed = np.minimum(rest[:, None], _chord_distances(poly[near], ends, q))
+            top = changed.max(axis=0, initial=0.0)
+            ring = [faces[f] for f in around(v)]
+            good = min(face_scaled_jacobians(x, ring).min(), floor)
+            lower = np.flatnonzero(top < now * (1 - 1e-9))
+            for i in lower[np.argsort(top[lower], kind="stable")]:
+                old = x[v].copy()
+                x[v, :2] = q[i]
+                if face_scaled_jacobians(x, ring).min() >= good:
+                    gaps[near], moved = changed[:, i], True
+                    break
+                x[v] = old
+        if gaps.max() <= tol or not moved:
+            return
+
+
+def _hot_vertices(x: np.ndarray, c: SlideConstraint, points: np.ndarray) -> np.ndarray:
+    """The sliding vertices of ``c`` within a chord's length (the stretch's longest) of any of
+    ``points``, in the stretch's order: those whose move can change the gaps there."""
+    verts = np.asarray(c.vertices, dtype=np.int64)
+    chain = stretch_chain(x, c)[0]
+    reach = np.hypot(*np.diff(np.vstack([chain, chain[:1]]) if c.closed else chain, axis=0).T).max(initial=0.0)
+    return verts[np.unique(pairs_within(points, x[verts, :2], reach)[0])]
+
+
+def _chord_distances(points: np.ndarray, ends: np.ndarray, positions: np.ndarray) -> np.ndarray:
+    """Distance from each of ``points`` to the two chords from ``ends[0]`` to a position and on to
+    ``ends[1]``, for each of ``positions``: a (points, positions) array."""
+    first = segment_distances(points, np.repeat(ends[:1], len(positions), 0), positions)
+    return np.minimum(first, segment_distances(points, positions, np.repeat(ends[1:], len(positions), 0)))
 
 
 def _best_position(x: np.ndarray, ring, good: float, v: int, positions: np.ndarray, poly: np.ndarray,
