@@ -55,7 +55,7 @@ from vaultgram.limits import MAX_FACES
 from vaultgram.meshing.densities import DensitySpec
 from vaultgram.meshing.quadmesh import QuadMesh
 from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS
-from vaultgram.meshpipeline import decompose, domain_frame, mesh_decomposition, mesh_domain
+from vaultgram.meshpipeline import decompose, domain_frame, mesh_decomposition, mesh_domain, mesh_or_advise
 from vaultgram.tessellation.courses import support_zones, voussoir_courses, voussoir_names
 from vaultgram.tessellation.keystones import CutMesh, cut_keystones, load_tessellation_rulebook, pinwheel
 from vaultgram.tessellation.mending import join_small_pairs, mend_meeting_points
@@ -422,7 +422,7 @@ def design(domain: Domain, spacing: float = 0.02, rules_dir: str | Path | None =
     done("domain", domain)
     dec = decompose(domain, spacing, rules_dir, timings=timings, trace=trace)
     done("decomposition", dec)
-    mesh = mesh_decomposition(dec, target_length, smooth, densities, allow_folds, timings, max_faces)
+    mesh = mesh_or_advise(dec, rules_dir, target_length, smooth, densities, allow_folds, timings, max_faces)
     done("mesh", mesh)
     spec = domain.supports if supports is None else supports
     spec = {"vertices": spec} if isinstance(spec, list) else spec

@@ -15,7 +15,7 @@ from vaultgram.io.meshfiles import mesh_from_json
 from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import mesh_domain
 
-from folding import FOLDING
+from folding import FOLDING, FOLDING_AT_COARSE_SPACING
 
 
 def test_stats_without_labels_use_mesh_topology():
@@ -48,6 +48,8 @@ def test_a_folded_mesh_is_an_error_naming_where(tmp_path):
     with pytest.raises(MeshFoldError, match=r"the mesh folds: \d+ inverted face\(s\), the worst near \(-0\.") as info:
         mesh_domain(domain)
     assert "patch with corners" in str(info.value)
+    # neither a finer mesh nor a finer spacing unfolds it: the advice is to move the features
+    assert "neither --target-length 0.26 nor --spacing 0.01 unfolds it: move the features" in str(info.value)
     folded = mesh_domain(domain, allow_folds=True)
     assert mesh_stats(folded, domain)["inverted_faces"] > 0
     path = tmp_path / "folding.json"
@@ -58,3 +60,17 @@ def test_a_folded_mesh_is_an_error_naming_where(tmp_path):
     assert not out.exists() or not any(out.iterdir())
     result = CliRunner().invoke(main, ["mesh", str(path), "--out", str(out), "--allow-folds"])
     assert result.exit_code == 0 and "warning:" in result.output and (out / "mesh.json").is_file()
+
+
+def test_a_fold_that_a_finer_spacing_unfolds_says_which():
+    """Issue 12's Acceptance: a random plan that folds gets a clear error naming the narrow place and
+    the spacing it needs. At spacing 0.05 the patches round the boundary point (4.33, -1.43) fold;
+    half the target length does not unfold them, half the spacing does, and the error says so; meshed
+    at that spacing the plan has no inverted face."""
+    from vaultgram.errors import MeshFoldError
+
+    domain = domain_from_dict(FOLDING_AT_COARSE_SPACING)
+    with pytest.raises(MeshFoldError, match=r"this close together: mesh with --spacing 0\.025 or less \(") as info:
+        mesh_domain(domain, 0.05)
+    assert "the worst near (4.2" in str(info.value)
+    assert mesh_stats(mesh_domain(domain, 0.025))["inverted_faces"] == 0

@@ -117,9 +117,12 @@ def _corner_jacobians(xy: np.ndarray, u: np.ndarray, v: np.ndarray, w: np.ndarra
     return np.where(tri, np.minimum(sj * 2.0 / math.sqrt(3.0), 1.0), sj)
 
 
-def check_not_folded(mesh: QuadMesh, decomposition: Decomposition, face_sj: np.ndarray | None = None) -> None:
+def check_not_folded(mesh: QuadMesh, decomposition: Decomposition, face_sj: np.ndarray | None = None,
+                     remedy=None) -> None:
     """Raise :class:`MeshFoldError` naming where the mesh folds, if any face is inverted; ``face_sj``:
-    the faces' :func:`face_scaled_jacobians`, if the caller has them already."""
+    the faces' :func:`face_scaled_jacobians`, if the caller has them already; ``remedy``, if given,
+    a function saying what finer mesh unfolds it, asked only where the fold is not the layout's (a
+    patch turning past straight, which no density meshes)."""
     if face_sj is None:
         face_sj = face_scaled_jacobians(mesh.vertices, mesh.faces)
     bad = np.flatnonzero(face_sj <= 0)
@@ -135,7 +138,8 @@ def check_not_folded(mesh: QuadMesh, decomposition: Decomposition, face_sj: np.n
         why = (f"the patch turns by {angles[k]:.0f} degrees at its corner {fmt_point(patch.sides[k][0])}, which no "
                f"quad mesh of it can do at any density: {_turn_advice(decomposition, patch.corners[k])}")
     else:
-        why = "features, curves or boundaries this close together need a smaller --target-length or more room"
+        why = (f"features, curves or boundaries this close together: {remedy()}" if remedy is not None else
+               "features, curves or boundaries this close together need a smaller --target-length or more room")
     raise MeshFoldError(
         f"the mesh folds: {len(bad)} inverted face(s), the worst near {fmt_point(where)} in the patch with corners "
         f"{corners}; {why} (vaultgram mesh --allow-folds writes the mesh anyway)",
