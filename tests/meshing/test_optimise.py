@@ -51,7 +51,7 @@ MIN_PASS = ["armadillo_vault", "armadillo_vault_plan", "british_museum_map", "hi
             # (vaultgram.meshing.fans.poles_to_retry, vaultgram.meshpipeline._evened_again): the fan at the
             # curve end (1, 1) was 0.196
             "fig7_curves"]
-LAYOUT = "skewed quads all over (median scaled Jacobian below 0.9): the patch layout, not smoothing"
+LAYOUT = "the patch layout, not smoothing: a third of the faces at interior singular vertices of valence 6 or 8"
 MEAN_MISSES = {
     # rv_star_pattern reaches 0.903 since its reflex corners are the corners of three patches
     # (rules/corners.vgr, split_quad_at_reflex_corner_to_boundary: 0.887 before).
@@ -61,7 +61,12 @@ MEAN_MISSES = {
     # (0.876 -> 0.886 -> 0.9005) and square_point_loads (0.892 -> 0.8996 -> 0.914) reach it too; the
     # others gain but stay below: mexico_airport 0.849 -> 0.861 -> 0.889, multiple_lobes 0.844 ->
     # 0.859 -> 0.874 (without a size term the pass reaches 0.891 and 0.897: short whatever the weights).
-    "mexico_airport": LAYOUT, "multiple_lobes": LAYOUT,
+    # Since the pass descends along conjugate directions (the rows of multiple_lobes' long curved
+    # patches bend in far fewer steps) multiple_lobes reaches it (0.874 -> 0.902). mexico_airport's
+    # pass ends at 0.8915 however long it runs (0.903 without the size term): its 232 faces at the 40
+    # valence-6 and 2 valence-8 vertices between its 21 holes cannot have a corner over 60 / 45
+    # degrees on average there (benchmarks/README.md, session 21).
+    "mexico_airport": LAYOUT,
 }
 MEAN_PASS = [n for n in MIN_PASS + sorted(MIN_MISSES) if n not in MEAN_MISSES]
 

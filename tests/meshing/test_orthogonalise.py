@@ -14,7 +14,7 @@ from vaultgram.geometry.fidelity import boundary_distance
 from vaultgram.geometry.meshes import corner_arrays, face_areas, grid_mesh
 from vaultgram.geometry.polylines import project_to_polyline
 from vaultgram.meshing import orthogonalise as ortho
-from vaultgram.meshing.orthogonalise import MEAN_FLOOR, MEAN_MAX_FACES, MEAN_TARGET, orthogonalise
+from vaultgram.meshing.orthogonalise import MEAN_AIM, MEAN_FLOOR, MEAN_MAX_FACES, MEAN_TARGET, orthogonalise
 from vaultgram.meshing.quadmesh import SlideConstraint
 from vaultgram.meshing.quality import face_scaled_jacobians
 from vaultgram.pipeline import mesh_domain
@@ -44,10 +44,12 @@ def unsquared():
     return make
 
 
-def test_a_sheared_grid_becomes_square():
-    """A 4 x 4 grid whose inner vertices are sheared (x + 0.6 (y - 2)) inside its fixed square outline:
-    the mean rises (0.857 -> 1.000 when written; 0.901 while each quad's own area was held: the shear
-    made them unequal), the worst face does not fall, the outline does not move."""
+def test_a_sheared_grid_becomes_square(monkeypatch):
+    """A 4 x 4 grid whose inner vertices are sheared (x + 0.6 (y - 2)) inside its fixed square outline,
+    the descent run on past the issue's mean (aim 1): the mean rises (0.857 -> 1.000 when written;
+    0.901 while each quad's own area was held: the shear made them unequal), the worst face does not
+    fall, the outline does not move."""
+    monkeypatch.setattr(ortho, "MEAN_AIM", 1.0)
     v, f = grid_mesh(4)
     inner = (v[:, 0] % 4 != 0) & (v[:, 1] % 4 != 0)
     v[inner, 0] += 0.6 * (v[inner, 1] - 2)
@@ -87,14 +89,14 @@ def test_no_face_falls_below_its_floor_and_the_sliding_side_stays_straight(grid)
 
 
 def test_a_curved_plan_gains_mean_and_keeps_its_boundary(unsquared):
-    """The wavy strip meshed without the pass, then passed: the mean scaled Jacobian rises (0.874 ->
-    0.892 when written; 0.885 while each quad's own area was held), the worst face does not fall, the
-    fixed vertices stay, the sliding ones stay on their polylines and the boundary is no farther from
-    the plan."""
+    """The wavy strip meshed without the pass, then passed: the mean scaled Jacobian reaches the
+    issue's floor (0.874 -> 0.902 when written; 0.893 down the scaled gradient alone, 0.885 while each
+    quad's own area was held), the worst face does not fall, the fixed vertices stay, the sliding
+    ones stay on their polylines and the boundary is no farther from the plan."""
     domain, mesh = unsquared(_wavy_strip())
     x = orthogonalise(mesh.vertices, mesh.faces, mesh.fixed, mesh.constraints, still=mesh.feature)
     before, after = face_scaled_jacobians(mesh.vertices, mesh.faces), face_scaled_jacobians(x, mesh.faces)
-    assert after.mean() > before.mean() + 0.015
+    assert before.mean() < 0.88 and after.mean() >= MEAN_TARGET
     assert after.min() >= before.min()
     assert np.array_equal(x[mesh.fixed], mesh.vertices[mesh.fixed])
     for c in mesh.constraints:
@@ -157,17 +159,51 @@ def _size_jumps(x: np.ndarray, faces) -> np.ndarray:
 
 
 def test_sizes_may_even_out_and_grade_but_not_jump(monkeypatch):
-    """The graded, waved grid: the pass squares it (mean 0.873 -> 0.994 when written) and the jumps in
-    size between neighbouring quads even out (the largest, in log area, 1.03 -> 0.35) but none grows
-    by more than 0.15 (0.12); without the size term one grows by 0.54 (the voussoirs would follow)."""
+    """The graded, waved grid, the descent run on past the issue's mean (aim 1): the pass squares it
+    (mean 0.873 -> 0.999 when written) and the jumps in size between neighbouring quads even out (the
+    largest, in log area, 1.03 -> 0.32) but none grows by more than 0.1 (0.076); without the size term
+    one grows by 0.19 (the voussoirs would follow; 0.54 where the descent went down the scaled
+    gradient alone and stopped far from the square grid)."""
+    monkeypatch.setattr(ortho, "MEAN_AIM", 1.0)
     v, f, inner = _graded_wave()
     before, jumps = face_scaled_jacobians(v, f), _size_jumps(v, f)
     x = orthogonalise(v, f, ~inner)
     after = face_scaled_jacobians(x, f)
     assert before.mean() < 0.89 and after.mean() > 0.99 and after.min() >= before.min()
-    assert (_size_jumps(x, f) - jumps).max() < 0.15 and _size_jumps(x, f).max() < 0.5 * jumps.max()
+    assert (_size_jumps(x, f) - jumps).max() < 0.1 and _size_jumps(x, f).max() < 0.5 * jumps.max()
     monkeypatch.setattr(ortho, "GRADE_WEIGHT", 0.0)
-    assert (_size_jumps(orthogonalise(v, f, ~inner), f) - jumps).max() > 0.4
+    assert (_size_jumps(orthogonalise(v, f, ~inner), f) - jumps).max() > 0.15
+
+
+def test_the_descent_stops_at_the_aim(monkeypatch):
+    """The sheared 4 x 4 grid at the default aim: the mean passes the aim and stops short of the
+    square grid the descent reaches when run on (0.909 against 1.000 when written): beyond the issue's
+    mean the angles gain only what the evenness of the voussoirs' sizes pays for."""
+    v, f = grid_mesh(4)
+    inner = (v[:, 0] % 4 != 0) & (v[:, 1] % 4 != 0)
+    v[inner, 0] += 0.6 * (v[inner, 1] - 2)
+    stopped = face_scaled_jacobians(orthogonalise(v, f, fixed=~inner), f).mean()
+    monkeypatch.setattr(ortho, "MEAN_AIM", 1.0)
+    assert ortho.MEAN_TARGET < MEAN_AIM <= stopped < face_scaled_jacobians(orthogonalise(v, f, ~inner), f).mean() - 0.05
+
+
+def test_conjugate_directions_bend_the_rows_of_a_long_patch_sooner(unsquared, monkeypatch):
+    """The wavy strip (long curved patches, as multiple_lobes'), the descent run on (aim 1) for 60
+    steps: along the conjugate directions the mean reaches 0.904 when written, down the scaled gradient
+    alone (every direction a restart) 0.888; the sum falls further too."""
+    _, mesh = unsquared(_wavy_strip())
+    monkeypatch.setattr(ortho, "MEAN_AIM", 1.0)
+
+    def passed():
+        x = orthogonalise(mesh.vertices, mesh.faces, mesh.fixed, mesh.constraints, still=mesh.feature, steps=60)
+        region = ortho._region(mesh.vertices, mesh.faces, mesh.fixed, mesh.constraints, mesh.feature)
+        total = ortho._state(len(x), region, ortho._geometry(x, region)).total
+        return face_scaled_jacobians(x, mesh.faces).mean(), total
+
+    conjugate = passed()
+    monkeypatch.setattr(ortho, "_direction", lambda grad, down, *_: down)
+    steepest = passed()
+    assert conjugate[0] > MEAN_TARGET > steepest[0] and conjugate[1] < steepest[1]
 
 
 def test_the_descent_follows_the_derivative_of_its_sum():
