@@ -30,7 +30,7 @@ from vaultgram.errors import VaultgramError
 from vaultgram.geometry.text import plan_frame
 from vaultgram.limits import MAX_FACES
 from vaultgram.meshing.densities import CHORD_TOLERANCE, DensitySpec, group_counts
-from vaultgram.meshing.fans import FAN_FLOOR, even_fans, held_vertices, poles_to_retry, poles_to_widen
+from vaultgram.meshing.fans import FAN_FLOOR, even_fans, held_vertices, point_loads, poles_to_retry, poles_to_widen
 from vaultgram.meshing.fidelity import SAME_POINT, hold_boundary, on_points, place_on_points
 from vaultgram.meshing.layout import Layout, edge_groups, kept_points
 from vaultgram.meshing.optimise import maximise_min_quality
@@ -337,7 +337,8 @@ def _smoothed(mesh: QuadMesh, layout: Layout, smooth: int, timings: dict | None,
         x, rays, refused = mesh.vertices, (), ()
         if smooth > 0:  # the fans round poles evened, their spokes sliding on rays (§3.2, issue 12)
             held = held_vertices(mesh.fixed, mesh.boundary, mesh.constraints)
-            x, rays, refused = even_fans(x, mesh.faces, mesh.face_patch, mesh.pole, held, regardless, wide)
+            x, rays, refused = even_fans(x, mesh.faces, mesh.face_patch, mesh.pole, held, regardless, wide,
+                                         radial=point_loads(mesh.feature, mesh.boundary, mesh.curve_labels()[1]))
         x = laplacian_smooth(x, mesh.faces, smooth, mesh.fixed, mesh.constraints + rays)
         if smooth > 0 and regardless:
             x, rays = _evened_again(x, mesh, held, rays, regardless, wide)
@@ -360,7 +361,8 @@ def _evened_again(x: np.ndarray, mesh: QuadMesh, held: np.ndarray, rays: tuple, 
     22 and 26; evened again 16.5 each, the mesh's worst face 0.293 -> 0.314, its mean unchanged)."""
     only = np.zeros(len(x), dtype=bool)
     only[list(poles)] = True
-    x, again, _ = even_fans(x, mesh.faces, mesh.face_patch, only, held, frozenset(poles), wide)
+    x, again, _ = even_fans(x, mesh.faces, mesh.face_patch, only, held, frozenset(poles), wide,
+                            point_loads(mesh.feature, mesh.boundary, mesh.curve_labels()[1]))
     turned = {int(r.vertices[0]) for r in again}
     return x, tuple(r for r in rays if int(r.vertices[0]) not in turned) + again
 
