@@ -58,8 +58,8 @@ def worst_corner(x: np.ndarray, face) -> int:
     """The vertex of ``face`` whose corner has the least scaled Jacobian (quads: sine of the angle;
     triangles: scaled so that 60 degrees is 1, the same order).
 
-    >>> worst_corner(np.array([[0, 0], [1, 0], [1.2, 1], [0, 1.0]]), (0, 1, 2, 3))
-    2
+    >>> worst_corner(np.array([[0, 0], [2, 0], [2.5, 1], [0, 1.5]]), (0, 1, 2, 3))  # 116.6 degrees at 1
+    1
     """
     p = np.asarray(x, dtype=float)[list(face), :2]
     e1, e2 = np.roll(p, -1, axis=0) - p, np.roll(p, 1, axis=0) - p

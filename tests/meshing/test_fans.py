@@ -263,3 +263,32 @@ def test_a_retried_pole_under_the_floor_is_picked_when_its_patch_holds_the_worst
     v, f = _wheel(np.cumsum(np.r_[0.0, np.tile([6.0, 18.0], 15)[:-1]]))
     assert poles_to_retry(v, f, np.zeros(len(f), int), even_fans(v, f, np.zeros(len(f), int),
                           np.arange(len(v)) == 0, np.zeros(len(v), bool))[2]) == frozenset({0})
+
+
+#: Saved random plan 290 of /work/plans700.json (issue 12, session 21): two boundary point features,
+#: each the pole of a fan under the floor.
+TWO_FEATURES_PLAN = {
+    "outer": [[8.61461956141792, 4.273897930330174], [-3.4062666953059413, 6.865791411757477],
+              [-4.479063189393307, -2.2221595229465083], [3.4062666953059404, -6.865791411757478]],
+    "points": [[5.609397997236954, 4.921871300686999], [-3.9008577488412457, 2.6759760534437227]],
+}
+
+
+def test_the_retry_goes_on_while_the_worst_face_moves_to_another_refused_pole(monkeypatch):
+    """TWO_FEATURES_PLAN: the first retry evens one boundary feature's fan and the worst face moves to
+    the other's (0.275); retried again with both evened, the worst face is 0.321, over the floor: the
+    fan bound of one of them.
+    Each retry is kept only where it is better, so the worst face never gets worse."""
+    domain = domain_from_dict(TWO_FEATURES_PLAN)
+    asked = []
+    retry = meshpipeline.poles_to_retry
+    monkeypatch.setattr(meshpipeline, "poles_to_retry", lambda *args: asked.append(retry(*args)) or asked[-1])
+    again = mesh_domain(domain, 0.04)
+    rounds = [set(a) for a in asked if a]
+    monkeypatch.setattr(meshpipeline, "MAX_RETRIES", 1)
+    once = mesh_domain(domain, 0.04)
+    worst = [face_scaled_jacobians(m.vertices, m.faces).min() for m in (again, once)]
+    assert worst[0] > 0.32 > FAN_FLOOR > worst[1] > 0.27
+    assert len(rounds) >= 2 and rounds[0] != rounds[1]
+    features = np.flatnonzero(again.feature & again.boundary)
+    assert len(features) == 2 and worst[0] > fan_bounds(again.vertices, again.faces)[features].min() - 1e-3
