@@ -11,7 +11,8 @@ triangle corner, and these must fit in the vertex's angle. :func:`fan_bounds` is
 (another pattern, or a finer split of its angle) can.
 
 Coons interpolation shares a pole's angle among its triangles unequally; :func:`even_fans` spreads
-them evenly before smoothing, where that lets the pole reach the floor :data:`FAN_FLOOR`.
+them evenly before smoothing, where that lets the pole reach the floor :data:`FAN_FLOOR`, and on a
+retry (:func:`poles_to_retry`) where it does not but the pole's fans hold the mesh's worst face.
 """
 
 from __future__ import annotations
@@ -31,7 +32,7 @@ __all__ = ["FAN_FLOOR", "fan_bounds", "even_fans", "poles_to_retry", "poles_to_w
 
 #: The worst scaled Jacobian a mesh should keep (issue 12's floor): a fan whose triangles would be
 #: thinner is split (:mod:`vaultgram.meshing.splits`), evened where that reaches it
-#: (:func:`even_fans`), and left alone by the optimiser where nothing can
+#: (:func:`even_fans`; below it only on a retry), and left alone by the optimiser where nothing can
 #: (:mod:`vaultgram.meshing.optimise`).
 FAN_FLOOR = 0.3
 _BISECTIONS = 50
