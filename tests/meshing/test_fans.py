@@ -13,7 +13,15 @@ from hypothesis import strategies as st
 from vaultgram import meshpipeline
 from vaultgram.domain import domain_from_dict, load_domain
 from vaultgram.geometry.meshes import corner_arrays
-from vaultgram.meshing.fans import FAN_FLOOR, even_fans, fan_bounds, poles_to_widen, sector_needs
+from vaultgram.meshing.fans import (
+    FAN_FLOOR,
+    even_fans,
+    fan_bounds,
+    point_loads,
+    poles_to_retry,
+    poles_to_widen,
+    sector_needs,
+)
 from vaultgram.meshing.quadmesh import slide
 from vaultgram.meshing.quality import face_scaled_jacobians
 from vaultgram.meshing.smoothing import laplacian_smooth
@@ -44,9 +52,9 @@ def test_a_closed_fan_gets_equal_corners_and_keeps_its_radii(gaps, radius):
     """Evened, or left as it was where that would make a corner worse; never worse."""
     turns = np.cumsum([0.0] + gaps[:-1])
     v, f = _wheel(360.0 * turns / sum(gaps), radius * (1 + 0.1 * np.arange(len(gaps)) % 3))
-    if fan_bounds(v, f)[0] < FAN_FLOOR:  # too many triangles for the floor: left as they are
-        assert np.array_equal(even_fans(v, f, np.zeros(len(f), int), np.arange(len(v)) == 0,
-                                        np.zeros(len(v), bool))[0], v)
+    if fan_bounds(v, f)[0] < FAN_FLOOR:  # too many triangles for the floor: left for a retry
+        x, rays, refused = even_fans(v, f, np.zeros(len(f), int), np.arange(len(v)) == 0, np.zeros(len(v), bool))
+        assert np.array_equal(x, v) and not rays and refused == (0,)
         return
     x, rays, _ = even_fans(v, f, np.zeros(len(f), int), np.arange(len(v)) == 0, np.zeros(len(v), bool))
     assert min(face_scaled_jacobians(x, f)) >= min(face_scaled_jacobians(v, f)) - 1e-12
@@ -196,3 +204,91 @@ def test_a_fan_hemmed_in_by_quads_is_evened_with_their_corners(monkeypatch):
     assert worst[1] < 0.15 < FAN_FLOOR <= worst[0]
     assert math.isclose(worst[0], fan_bounds(wide.vertices, wide.faces)[pole], rel_tol=0.02)
     assert poles_to_widen(narrow.vertices, narrow.faces, narrow.pole) == {pole}
+
+
+def test_a_fan_under_the_floor_is_left_for_a_retry_and_a_point_load_keeps_its_own():
+    """30 uneven triangles round a pole (bound 0.23, under the floor): even_fans leaves them and returns
+    the pole with the refused ones; asked to even it regardless, it does (12 degrees each, the bound);
+    a point load (``radial``) keeps its fan either way and is not returned."""
+    v, f = _wheel(np.cumsum(np.r_[0.0, np.tile([6.0, 18.0], 15)[:-1]]))
+    args = (v, f, np.zeros(len(f), int), np.arange(len(v)) == 0, np.zeros(len(v), bool))
+    assert fan_bounds(v, f)[0] < FAN_FLOOR
+    x, rays, refused = even_fans(*args)
+    assert np.array_equal(x, v) and not rays and refused == (0,)
+    x, rays, refused = even_fans(*args, regardless=frozenset({0}))
+    assert refused == () and len(rays) == 30 and np.allclose(_pole_corners(x, f, 0), 12.0)
+    assert math.isclose(face_scaled_jacobians(x, f).min(), fan_bounds(v, f)[0], rel_tol=1e-6)
+    radial = np.arange(len(v)) == 0
+    for regardless in (frozenset(), frozenset({0})):
+        x, rays, refused = even_fans(*args, regardless=regardless, radial=radial)
+        assert np.array_equal(x, v) and not rays and refused == ()
+
+
+def test_point_loads_are_the_inner_point_features_only():
+    """Inner point features (point loads) are kept radial; boundary features and curve free ends are not."""
+    feature = np.array([1, 1, 0, 0, 1], bool)
+    boundary = np.array([0, 1, 1, 0, 0], bool)
+    extremity = np.array([0, 0, 0, 1, 1], bool)
+    assert point_loads(feature, boundary, extremity).tolist() == [True, False, False, False, False]
+
+
+#: Saved random plan 440 of /work/plans700.json (issue 12, session 21): a curve's free end at
+#: (0.18, 0) is the pole of 2 fans whose bound (0.256) is under the floor.
+CURVE_END_PLAN = {
+    "outer": [[5.0922685745358125, 2.3127491704198566], [-2.0864455970848375, 4.593987745149604],
+              [-5.956373102069076, -2.705198429518638], [3.7216678933235343, -8.19446081763802]],
+    "points": [[3.29759003163065, 2.8830588141022933]],
+    "curves": [[[0.17975977425780343, 0.0], [-1.7276037109793336, 1.3048105450834269]]],
+}
+
+
+def test_a_curve_end_fan_under_the_floor_is_evened_on_a_retry(monkeypatch):
+    """The worst face of CURVE_END_PLAN is a triangle of the fan at the curve's free end, whose fan
+    bound is under the floor: smoothed again with that fan evened (poles_to_retry picks it up), the
+    worst face goes from 0.141 to 0.196 and the end's narrowest corner widens."""
+    domain = domain_from_dict(CURVE_END_PLAN)
+    retried = mesh_domain(domain, 0.04)
+    monkeypatch.setattr(meshpipeline, "poles_to_retry", lambda *args: frozenset())
+    kept = mesh_domain(domain, 0.04)
+    end = int(np.argmin(np.hypot(*(retried.vertices[:, :2] - [0.17975977425780343, 0.0]).T)))
+    assert retried.curve_labels()[1][end] and fan_bounds(retried.vertices, retried.faces)[end] < FAN_FLOOR
+    worst = [face_scaled_jacobians(m.vertices, m.faces).min() for m in (retried, kept)]
+    assert worst[0] > 0.19 and worst[1] < 0.15
+    narrowest = [_pole_corners(m.vertices, m.faces, end).min() for m in (retried, kept)]
+    assert narrowest[0] > narrowest[1] + 2
+
+
+def test_a_retried_pole_under_the_floor_is_picked_when_its_patch_holds_the_worst_face():
+    """poles_to_retry takes a pole under the floor like a refused one: the worst face (0) is its fan's."""
+    v, f = _wheel(np.cumsum(np.r_[0.0, np.tile([6.0, 18.0], 15)[:-1]]))
+    assert poles_to_retry(v, f, np.zeros(len(f), int), even_fans(v, f, np.zeros(len(f), int),
+                          np.arange(len(v)) == 0, np.zeros(len(v), bool))[2]) == frozenset({0})
+
+
+#: Saved random plan 290 of /work/plans700.json (issue 12, session 21): two boundary point features,
+#: each the pole of a fan under the floor.
+TWO_FEATURES_PLAN = {
+    "outer": [[8.61461956141792, 4.273897930330174], [-3.4062666953059413, 6.865791411757477],
+              [-4.479063189393307, -2.2221595229465083], [3.4062666953059404, -6.865791411757478]],
+    "points": [[5.609397997236954, 4.921871300686999], [-3.9008577488412457, 2.6759760534437227]],
+}
+
+
+def test_the_retry_goes_on_while_the_worst_face_moves_to_another_refused_pole(monkeypatch):
+    """TWO_FEATURES_PLAN: the first retry evens one boundary feature's fan and the worst face moves to
+    the other's (0.275); retried again with both evened, the worst face is 0.321, over the floor: the
+    fan bound of one of them.
+    Each retry is kept only where it is better, so the worst face never gets worse."""
+    domain = domain_from_dict(TWO_FEATURES_PLAN)
+    asked = []
+    retry = meshpipeline.poles_to_retry
+    monkeypatch.setattr(meshpipeline, "poles_to_retry", lambda *args: asked.append(retry(*args)) or asked[-1])
+    again = mesh_domain(domain, 0.04)
+    rounds = [set(a) for a in asked if a]
+    monkeypatch.setattr(meshpipeline, "MAX_RETRIES", 1)
+    once = mesh_domain(domain, 0.04)
+    worst = [face_scaled_jacobians(m.vertices, m.faces).min() for m in (again, once)]
+    assert worst[0] > 0.32 > FAN_FLOOR > worst[1] > 0.27
+    assert len(rounds) >= 2 and rounds[0] != rounds[1]
+    features = np.flatnonzero(again.feature & again.boundary)
+    assert len(features) == 2 and worst[0] > fan_bounds(again.vertices, again.faces)[features].min() - 1e-3

@@ -11,7 +11,8 @@ triangle corner, and these must fit in the vertex's angle. :func:`fan_bounds` is
 (another pattern, or a finer split of its angle) can.
 
 Coons interpolation shares a pole's angle among its triangles unequally; :func:`even_fans` spreads
-them evenly before smoothing, where that lets the pole reach the floor :data:`FAN_FLOOR`.
+them evenly before smoothing, where that lets the pole reach the floor :data:`FAN_FLOOR`, and on a
+retry (:func:`poles_to_retry`) where it does not but the pole's fans hold the mesh's worst face.
 """
 
 from __future__ import annotations
@@ -26,11 +27,12 @@ from vaultgram.geometry.polygons import signed_angles
 from vaultgram.meshing.quadmesh import SlideConstraint
 from vaultgram.meshing.quality import face_scaled_jacobians
 
-__all__ = ["FAN_FLOOR", "fan_bounds", "even_fans", "poles_to_retry", "poles_to_widen", "held_vertices", "sector_needs"]
+__all__ = ["FAN_FLOOR", "fan_bounds", "even_fans", "poles_to_retry", "poles_to_widen", "held_vertices", "sector_needs",
+           "point_loads"]
 
 #: The worst scaled Jacobian a mesh should keep (issue 12's floor): a fan whose triangles would be
 #: thinner is split (:mod:`vaultgram.meshing.splits`), evened where that reaches it
-#: (:func:`even_fans`), and left alone by the optimiser where nothing can
+#: (:func:`even_fans`; below it only on a retry), and left alone by the optimiser where nothing can
 #: (:mod:`vaultgram.meshing.optimise`).
 FAN_FLOOR = 0.3
 _BISECTIONS = 50
@@ -92,10 +94,10 @@ RAY_SPAN = (0.05, 4.0)
 
 
 def even_fans(vertices: np.ndarray, faces, face_patch: np.ndarray, pole: np.ndarray, held: np.ndarray,
-              regardless: frozenset = frozenset(), wide: bool = False) -> tuple[np.ndarray, tuple, tuple]:
+              regardless: frozenset = frozenset(), wide: bool = False, radial=None) -> tuple[np.ndarray, tuple, tuple]:
     """The poles' fans made even: the vertices round each pole between two of its triangles turned to
     equal angles about it, the rays from the pole along which smoothing then lets them slide, and the
-    poles whose evening the check below refused.
+    poles left for a retry: those whose evening the check below refused, and those under the floor.
 
     Coons interpolation (§3.2) spaces a fan's spokes by the arc length of the side opposite the pole,
     and a patch's share of its pole's angle comes from the decomposition, so the triangles round a pole
@@ -120,12 +122,17 @@ def even_fans(vertices: np.ndarray, faces, face_patch: np.ndarray, pole: np.ndar
     only the fan's own corners count: the quads behind the spokes may fold before smoothing, which
     turns them with the spokes (the inner point feature (7.09, 5.56) of ``two_holes_five_points``,
     20 triangles whose patches share 62 to 112 degrees: 0.302 after smoothing, 0.251 left as it was).
-    Below the floor evening gains little and turns the patches round a point load away from
-    its radial force flow: ``square_point_loads`` (39 triangles round each load, bound 0.185) went
-    from 0.093 to 0.185, but its voussoir joints from 8.2 to 11.0 degrees off the force flow
-    (median; the tessellation's floor is 10). The check only foresees smoothing: the poles in
-    ``regardless`` are evened without it, for a caller that has smoothed the mesh and found a
-    refused pole's patches holding its worst face (:func:`poles_to_retry`).
+    A pole under the floor is not evened at first but returned with the refused ones: the caller
+    smooths again with it evened (``regardless``) where its patches hold the mesh's worst face
+    (:func:`poles_to_retry`) and keeps the better mesh: of the 305 saved random plans under 0.3 (most
+    of them with a fan under the floor as their worst face), 52 better, none worse, 57 -> 45 under 0.1
+    (benchmarks/README.md, session 21). Except round a point load (an inner point feature, ``radial``,
+    a mask of the vertices): below the floor evening turns the patches round it away from its radial
+    force flow:
+    ``square_point_loads`` (39 triangles round each load, bound 0.185) went from 0.093 to 0.185, but
+    its voussoir joints from 8.2 to 11.0 degrees off the force flow (median; the tessellation's
+    floor is 10), so its fans stay as the patches give them. The check only foresees smoothing: the
+    poles in ``regardless`` are evened without it.
 
     Example
     -------
@@ -146,9 +153,11 @@ def even_fans(vertices: np.ndarray, faces, face_patch: np.ndarray, pole: np.ndar
         return x, (), ()
     size = np.bincount(corners[0], minlength=len(faces))
     reach = fan_bounds(x, faces)
+    kept = np.zeros(len(x), dtype=bool) if radial is None else np.asarray(radial, dtype=bool)
     rays, refused = [], []
     for c in distinct(corners[1][at]):
-        if reach[c] < FAN_FLOOR:  # below it, evened or not, the fan stays as the patches give it
+        if reach[c] < FAN_FLOOR and (kept[c] or int(c) not in regardless):  # below it: only on a retry
+            refused += [] if kept[c] else [int(c)]
             continue
         turned = _even_pole(x, faces, int(c), corners, size, at[corners[1][at] == c], np.asarray(face_patch), held,
                             check=int(c) not in regardless, wide=wide)
@@ -325,3 +334,15 @@ def held_vertices(fixed: np.ndarray, boundary: np.ndarray, constraints) -> np.nd
     for c in constraints:
         held[np.asarray(c.vertices, dtype=np.int64)] = True
     return held
+
+
+def point_loads(feature: np.ndarray, boundary: np.ndarray, extremity: np.ndarray) -> np.ndarray:
+    """The inner point features (§4.1: point loads, columns) among the mesh's vertices: point features
+    neither on the boundary nor a curve's free end, whose fans :func:`even_fans` keeps radial below
+    the floor (its ``radial``).
+
+    >>> f, b, e = np.array([1, 1, 1, 0], bool), np.array([0, 1, 0, 0], bool), np.array([0, 0, 1, 0], bool)
+    >>> point_loads(f, b, e).tolist()
+    [True, False, False, False]
+    """
+    return np.asarray(feature, dtype=bool) & ~np.asarray(boundary, dtype=bool) & ~np.asarray(extremity, dtype=bool)
