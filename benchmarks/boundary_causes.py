@@ -129,6 +129,7 @@ def _graph_points(graph):
 
 def plan_rows(domain, spacing: float) -> tuple[dict, list]:
     """Mesh one plan; its stats and one row per boundary singular vertex."""
+    from vaultgram.geometry.polygons import regular_valence
     from vaultgram.meshing.quality import mesh_stats
     from vaultgram.meshpipeline import decompose, mesh_decomposition
     from vaultgram.topology.corners import boundary_angle
@@ -151,7 +152,7 @@ def plan_rows(domain, spacing: float) -> tuple[dict, list]:
         row = {"angle": round(theta, 1), "plan_angle": round(plan_angle, 1), "class": angle_class(theta),
                "faces": faces, "regular": regular, "ring": "hole" if rings[int(d.argmin())] else "outer",
                "corner": bool(corner), "patches": graph.degree(n, [PATCH_CORNER]) if corner else -1}
-        if corner and faces < regular and plan_angle >= 225:
+        if corner and faces < regular and regular_valence(plan_angle) >= 4:  # the rules' tie: 225 is reflex
             row["why"] = why_reflex(graph, n)
         rows.append(row)
     return stats, rows

@@ -287,3 +287,61 @@ def test_a_fan_triangle_is_halved_only_by_a_chord_that_leaves_40_degrees_each_si
     assert not reflex._halves_fan(fan, (0.55, 0.45))
     assert not reflex._halves_fan(fan, (0.9, 0.1)) and not reflex._halves_fan(fan, (0.1, 0.9))
     assert not reflex._halves_fan(fan, (-0.5, 0.5))
+
+
+#: Saved random plan 692 (a pentagonal hole, two boundary point features): the hole corner at
+#: (2.228, 0.441), of 252 degrees, lies inside the side of the ring patch round the hole, and its
+#: cut's strip is one triangle of the fan round the point (5.303, 4.011), entered by the side opposite
+#: it; no foot of the cut halves that triangle into two of 40 degrees (main b896a89: two faces there,
+#: one boundary singularity, min scaled Jacobian 0.313).
+DRAW_692 = {
+    "outer": [[7.400428236074304, 2.714206298051831], [2.0141741660276264, 6.044178526359868],
+              [-5.07927519368349, 7.82189635734143], [-5.476359437798768, 0.5343656697996886],
+              [-5.5122564129030485, -5.679369395100806], [1.0777015680113702, -8.431403164972354],
+              [7.709088126958824, -4.68487402034968]],
+    "holes": [[[3.2974910279202465, -1.0305694963267333], [2.2279924733640777, -2.502607970787897],
+               [0.497507461173313, -1.9403393062912766], [0.49750746117331257, -0.1207996863621903],
+               [2.2279924733640772, 0.44146897813443053]]],
+    "points": [[5.30311533972089, 4.010839098529555], [-0.849881867598766, -7.626424631815148]],
+}
+
+
+def test_hole_corner_cut_may_halve_a_fan_triangle_into_two_of_36_degrees():
+    """Draw 692: where no foot of the cut halves the fan triangle into two of reflex.MIN_CUT_ANGLE
+    degrees, a foot that halves it into two of reflex.MIN_FAN_HALF (36: a fan of five round a point
+    of a straight boundary) serves: every hole corner the corner of three patches, the point's two
+    new triangles at least 36 degrees wide there and one under 40 (the fallback's), no boundary
+    singularity (main: 1), min scaled Jacobian at least 0.315 (main 0.313)."""
+    domain = domain_from_dict(DRAW_692)
+    dec = decompose(domain)
+    g = dec.graph
+    points = [n for n in g.nodes() if g.node_type(n) != "Patch"]
+
+    def node(at):
+        (n,) = [n for n in points if np.allclose(g.get(n, "pos"), at, atol=1e-9)]
+        return n
+
+    for corner in DRAW_692["holes"][0]:
+        assert sum(node(corner) in p.corners for p in dec.patches) == 3, corner
+    f = node(DRAW_692["points"][0])
+    ends = {g.other(e, f) for e in g.incident(f, [DIAGONAL]) if g.node_type(g.other(e, f)) == "StripPoint"}
+    halves = [p.corner_angles()[list(p.corners).index(f)] for p in dec.patches
+              if f in p.corners and ends & set(p.corners)]
+    assert len(halves) == 2 and min(halves) >= reflex.MIN_FAN_HALF and min(halves) < reflex.MIN_CUT_ANGLE, halves
+    stats = mesh_stats(mesh_decomposition(dec), domain)
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
+    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.315
+
+
+def test_the_fan_fallback_halves_at_36_degrees():
+    """reflex._halves_fan with the fallback's limit (reflex.MIN_FAN_HALF) on a triangle of 80 degrees
+    at the origin: a chord at 37 degrees from one side passes at 36 and fails at 40; one at 35 fails
+    both; the halves are measured on either side (43 + 37)."""
+    fan = ((0.0, 0.0), 0.0, 80.0)
+    at37 = (math.cos(math.radians(37.0)), math.sin(math.radians(37.0)))
+    at43 = (math.cos(math.radians(43.0)), math.sin(math.radians(43.0)))
+    at35 = (math.cos(math.radians(35.0)), math.sin(math.radians(35.0)))
+    assert reflex._halves_fan(fan, at37, reflex.MIN_FAN_HALF) and not reflex._halves_fan(fan, at37)
+    assert reflex._halves_fan(fan, at43, reflex.MIN_FAN_HALF) and not reflex._halves_fan(fan, at43)
+    assert not reflex._halves_fan(fan, at35, reflex.MIN_FAN_HALF)
+    assert reflex.MIN_FAN_HALF < reflex.MIN_CUT_ANGLE

@@ -60,7 +60,7 @@ from vaultgram.topology.types import BOUNDARY, BOUNDARY_VERTEX, CURVE_POINT, FEA
 
 __all__ = ["reflex_chord", "reflex_side", "reflex_foot", "reflex_cut", "reflex_cut_index", "reflex_cut_at",
            "reflex_point", "rebranch_to_corner", "MIN_ANGLE", "MIN_CUT_ANGLE", "MAX_POLE_ANGLE", "MAX_RATIO", "FEET",
-           "SPIKE", "PAST_STRAIGHT", "FOLD_MIN_ANGLE", "MAX_POLE_RATIO"]
+           "SPIKE", "PAST_STRAIGHT", "FOLD_MIN_ANGLE", "MAX_POLE_RATIO", "MIN_FAN_HALF"]
 
 #: The node types at which a strip may not end in a triangle (:func:`_strip_beyond`).
 KEPT_ENDS = (BOUNDARY_VERTEX, FEATURE_POINT, CURVE_POINT)
@@ -76,6 +76,12 @@ FEET = (0.5, 0.45, 0.55, 0.4, 0.6, 0.35, 0.65, 0.3, 0.7, 0.25, 0.75)
 #: where it meets the opposite side (plan 188 of the saved random plans: a cut meeting the loop round a
 #: hexagonal hole at 32 degrees left a quad of scaled Jacobian 0.07 there).
 MIN_CUT_ANGLE = 40.0
+#: Degrees: where no foot of a hole corner's cut halves a point feature's fan triangle into two of
+#: :data:`MIN_CUT_ANGLE` (:func:`_halves_fan`), the halves may be this narrow: a fan of five triangles
+#: round a point of a straight boundary has 180 / 5 degrees each. The 42 hole corners of the 700 saved
+#: random plans whose cut's strip is one fan triangle mostly had no foot leaving 40 either side, but
+#: their best at 36-40 (plans 4, 231, 579, 692: 37-38).
+MIN_FAN_HALF = 36.0
 #: Degrees: a corner this wide or wider is a spike (regular valence 5: four faces, two chords).
 SPIKE = 315.0
 #: Degrees: a quad wider than this at a corner turns past straight there, and its mesh folds at any
@@ -119,13 +125,14 @@ def _edge_tangent(graph, edge: int, fraction: float = 0.5) -> float:
     return _direction(back, ahead)
 
 
-def _feet(graph, walk, fractions=FEET) -> Iterator[tuple]:
+def _feet(graph, walk, fractions=FEET, half: float = MIN_CUT_ANGLE) -> Iterator[tuple]:
     """The points of the plan edge a strip enters by (``walk``, :func:`_strip_beyond`; none where it is
     None) where a chord may end (``fractions`` of its length, in that order), as ``(fraction, point,
     tangent there)``: where the strip's first chord, from there across the patch beyond, runs inside
     it, and, where the strip is one triangle of a feature's fan (:func:`_fan_end`), the chord from
-    there to the feature halves its angle (:func:`_halves_fan`). A closed strip comes back to the
-    middle, its only foot. Lazily: a cut stops at the first that serves."""
+    there to the feature halves its angle into two of at least ``half`` degrees (:func:`_halves_fan`).
+    A closed strip comes back to the middle, its only foot. Lazily: a cut stops at the first that
+    serves."""
     if walk is None:
         return
     edge, found = walk.edges[0], patch_sides(graph, walk.patches[0])
@@ -133,7 +140,7 @@ def _feet(graph, walk, fractions=FEET) -> Iterator[tuple]:
     fan = _fan_end(graph, walk)
     for f in fractions[:1] if walk.end is None else fractions:
         at = edge_cut(graph, edge, f)[1]
-        if (f == 0.5 or chord_inside(found, at, to)) and (fan is None or _halves_fan(fan, at)):
+        if (f == 0.5 or chord_inside(found, at, to)) and (fan is None or _halves_fan(fan, at, half)):
             yield f, at, _edge_tangent(graph, edge, f)
 
 
@@ -147,17 +154,21 @@ def _fan_end(graph, walk) -> tuple | None:
     return _corner(graph, found, found.corners.index(walk.end)) if len(found.corners) == 3 else None
 
 
-def _halves_fan(fan: tuple, at) -> bool:
+def _halves_fan(fan: tuple, at, least: float = MIN_CUT_ANGLE) -> bool:
     """Whether the chord from the point ``at`` to the feature of ``fan`` (:func:`_fan_end`) splits the
-    triangle's angle there into two of at least :data:`MIN_CUT_ANGLE` degrees: the fan gains a
-    triangle no narrower than a cut may leave (§4.1: the feature stays the pole of both).
+    triangle's angle there into two of at least ``least`` degrees (:data:`MIN_CUT_ANGLE` unless given,
+    :data:`MIN_FAN_HALF` where no foot leaves that): the fan gains a triangle no narrower than a cut may
+    leave, or than a fan of five round a point of a straight boundary has (§4.1: the feature stays the
+    pole of both).
 
     >>> _halves_fan(((0.0, 0.0), 0.0, 90.0), (1.0, 1.0)), _halves_fan(((0.0, 0.0), 0.0, 90.0), (1.0, 0.2))
     (True, False)
+    >>> _halves_fan(((0.0, 0.0), 0.0, 80.0), (1.0, 0.75)), _halves_fan(((0.0, 0.0), 0.0, 80.0), (1.0, 0.75), 36.0)
+    (False, True)
     """
     pos, d_out, whole = fan
     first = _ccw(d_out, _direction(pos, at))
-    return MIN_CUT_ANGLE <= first <= whole - MIN_CUT_ANGLE
+    return least <= first <= whole - least
 
 
 def _feature(graph, n: int) -> bool:
@@ -424,9 +435,10 @@ def _cut(graph, r: int) -> tuple | None:
     """The chord across the quad on whose side the reflex corner ``r`` lies (:func:`reflex_cut`):
     ``(patch, side index, edge, fraction)``, or None. It ends at the first of the opposite edge's
     feet (:func:`_feet`: the middle where it can) where it runs inside the quad and leaves no angle
-    below :data:`MIN_CUT_ANGLE`, at ``r`` (the angle from the boundary leaving ``r``, measured as its
-    interior angle is, and the rest) or with the edge: a corner of a ring patch round a hole lies
-    anywhere along the hole's side, and a chord to the middle of the loop beyond may run along it."""
+    below :data:`MIN_CUT_ANGLE` (:func:`_cut_foot`): a corner of a ring patch round a hole lies
+    anywhere along the hole's side, and a chord to the middle of the loop beyond may run along it.
+    Where the strip is one triangle of a point feature's fan and no foot halves it into two of
+    :data:`MIN_CUT_ANGLE` degrees, the feet that halve it into two of :data:`MIN_FAN_HALF`."""
     at = _on_side(graph, r)
     if at is None or len(patch_sides(graph, at[0]).corners) != 4:
         return None
@@ -435,13 +447,27 @@ def _cut(graph, r: int) -> tuple | None:
     edge = side_edge(graph, patch, found.corners[(i + 2) % 4])
     if edge < 0:
         return None
+    walk = _strip_beyond(graph, patch, edge, fans=True)
+    halves = (MIN_CUT_ANGLE, MIN_FAN_HALF) if walk is not None and _fan_end(graph, walk) else (MIN_CUT_ANGLE,)
+    for half in halves:
+        fraction = _cut_foot(graph, r, found, _feet(graph, walk, half=half))
+        if fraction is not None:
+            return patch, i, edge, fraction
+    return None
+
+
+def _cut_foot(graph, r: int, found, feet) -> float | None:
+    """The fraction of the first of ``feet`` (:func:`_feet`) where the cut from the reflex corner ``r``
+    across the quad ``found`` runs inside it and leaves no angle below :data:`MIN_CUT_ANGLE` at ``r``
+    (from the boundary leaving ``r``, measured as its interior angle is, and the rest) or with the
+    edge it meets; None where none does."""
     pos, ahead, theta = graph.get(r, "pos"), _ahead(graph, r), boundary_angle(graph, r)
-    for fraction, foot, tangent in _feet(graph, _strip_beyond(graph, patch, edge, fans=True)):
+    for fraction, foot, tangent in feet:
         d_chord = _direction(pos, foot)
         first = _ccw(ahead, d_chord)  # between the boundary leaving r and the chord
         meet = _ccw(tangent, d_chord) % 180.0
         if min(first, theta - first, meet, 180.0 - meet) >= MIN_CUT_ANGLE and chord_inside(found, pos, foot):
-            return patch, i, edge, fraction
+            return fraction
     return None
 
 
