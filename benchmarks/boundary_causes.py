@@ -38,8 +38,9 @@ def angle_class(theta: float) -> str:
 
 def _chord_refusal(graph, r: int) -> str:
     """Why no chord of the corner ``r`` of two or more patches qualified (``reflex._widest_chord``'s
-    tests in order, the most advanced refusal over all candidates): ``ratio`` (a candidate passed the
-    angles, the edge group was uneven), ``pole`` (the triangle's angle too wide for its split),
+    tests in order over every candidate, those into a feature's fan too, the most advanced refusal):
+    ``ratio`` (a candidate passed the angles, the edge group was uneven: beyond ``reflex.MAX_RATIO``,
+    or ``HOLE_MAX_RATIO`` at a hole corner), ``pole`` (the triangle's angle too wide for its split),
     ``angle W`` (the widest worst angle W, in 5 degree bins), ``no candidate`` (no target: every
     strip refused or the chord leaves the quad) or ``not quads`` (a patch not found or no quad)."""
     from vaultgram.topology import reflex
@@ -60,7 +61,8 @@ def _chord_refusal(graph, r: int) -> str:
         k = sides.corners.index(r)
         other = reflex._other_angle(theta, angles, i)
         for j in (1, 2):
-            for kind, target, point, tangent, fraction in reflex._targets(graph, p, sides, k, j):
+            candidates = reflex._targets(graph, p, sides, k, j) + reflex._targets(graph, p, sides, k, j, fans=True)
+            for kind, target, point, tangent, fraction in candidates:
                 targets += 1
                 worst, pole_angle = reflex._angles(graph, sides, k, j, point, tangent, other)
                 least = reflex.MIN_ANGLE if fraction in (0.5, None) else reflex.MIN_CUT_ANGLE
