@@ -61,7 +61,8 @@ def _chord_refusal(graph, r: int) -> str:
         k = sides.corners.index(r)
         other = reflex._other_angle(theta, angles, i)
         for j in (1, 2):
-            candidates = reflex._targets(graph, p, sides, k, j) + reflex._targets(graph, p, sides, k, j, fans=True)
+            candidates = reflex._targets(graph, p, sides, k, j) + reflex._targets(graph, p, sides, k, j,
+                                                                                  fans=reflex.MIN_FAN_HALF)
             for kind, target, point, tangent, fraction in candidates:
                 targets += 1
                 worst, pole_angle = reflex._angles(graph, sides, k, j, point, tangent, other)

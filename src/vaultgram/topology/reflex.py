@@ -214,25 +214,25 @@ def _angles(graph, found, k: int, j: int, end, tangent: float, other: float) -> 
     return min(first, whole - first, other, meet, 180.0 - meet), first if j == 1 else whole - first
 
 
-def _targets(graph, patch: int, found, k: int, j: int, fans: bool = False) -> list[tuple]:
+def _targets(graph, patch: int, found, k: int, j: int, fans: float | None = None) -> list[tuple]:
     """Where a chord from corner ``k`` of a quad may end on its side from corner ``k + j``: the feet
     of that side's plan edge where a strip may cut it and carry on (``("edge", edge, point, tangent,
     fraction)``, :func:`_feet`: the middle first), or the free boundary point nearest the middle of a
     boundary side (``("point", node, point, tangent, None)``); only where the chord runs inside the
     quad. A foot off the middle must pass the stricter tests of :func:`_chord_worst` (without them
     chords got through at multiple_lobes' notches beside fan-shaped patches, 1600 faces for 1080).
-    With ``fans``, only the feet of a strip that is one triangle of a point feature's fan, which may
-    end at the feature where the foot halves it (:func:`_strip_beyond`, :func:`_feet`): the others
-    were asked without."""
+    With ``fans`` (degrees), only the feet of a strip that is one triangle of a point feature's fan,
+    which may end at the feature where the foot halves it into two of ``fans`` (:func:`_strip_beyond`,
+    :func:`_feet`): the others were asked without."""
     r, y = found.corners[k], found.corners[(k + j) % 4]
     pos, edge = graph.get(r, "pos"), side_edge(graph, patch, y)
     if edge >= 0:
-        walk = _strip_beyond(graph, patch, edge, fans)
-        if fans and (walk is None or _fan_end(graph, walk) is None):
+        walk = _strip_beyond(graph, patch, edge, fans is not None)
+        if fans is not None and (walk is None or _fan_end(graph, walk) is None):
             return []  # asked without fans already
-        return [("edge", edge, at, tangent, f) for f, at, tangent in _feet(graph, walk)
+        return [("edge", edge, at, tangent, f) for f, at, tangent in _feet(graph, walk, half=fans or MIN_CUT_ANGLE)
                 if chord_inside(found, pos, at)]
-    if fans:
+    if fans is not None:
         return []
     w = strip_boundary_end(graph, patch, y)
     if w == y or not chord_inside(found, pos, graph.get(w, "pos")):
@@ -253,9 +253,10 @@ def _choose(graph, r: int) -> tuple | None:
     :data:`FOLD_MIN_ANGLE`: a narrow angle costs less than a fold. Where none qualifies at a hole
     corner, the chords whose edge group is within :data:`HOLE_MAX_RATIO` rather than
     :data:`MAX_RATIO`; where still none does, the chords whose strip is one triangle of a point
-    feature's fan, halved at the feature into two of :data:`MIN_CUT_ANGLE` as a cut's may be (never
-    before: asked first, such chords took the place of the chosen ones at corners already regular,
-    and plans 12, 395 and 444 fell under 0.3, 444 from 0.381 to 0.076)."""
+    feature's fan, halved at the feature into two of :data:`MIN_CUT_ANGLE`, then of
+    :data:`MIN_FAN_HALF`, as a cut's may be (never before: asked first, such chords took the place of
+    the chosen ones at corners already regular, and plans 12, 395 and 444 fell under 0.3, 444 from
+    0.381 to 0.076)."""
     patches = sorted({graph.ends(e)[0] for e in graph.incident(r, [PATCH_CORNER])})
     found = [patch_sides(graph, p) for p in patches]
     if any(f is None for f in found):
@@ -266,8 +267,9 @@ def _choose(graph, r: int) -> tuple | None:
     best = _widest_chord(graph, at, quads, None)
     if best is None and ring_place(graph, r)[0] > 0:
         best = _widest_chord(graph, at, quads, None, HOLE_MAX_RATIO)
-    if best is None:
-        best = _widest_chord(graph, at, quads, None, fans=True)
+    for half in (MIN_CUT_ANGLE, MIN_FAN_HALF):
+        if best is None:
+            best = _widest_chord(graph, at, quads, None, fans=half)
     turned = [i for i in quads if angles[i] > PAST_STRAIGHT] if boundary_angle(graph, r) >= SPIKE else []
     if best is None and turned:
         best = _widest_chord(graph, at, turned, FOLD_MIN_ANGLE)
@@ -275,7 +277,7 @@ def _choose(graph, r: int) -> tuple | None:
 
 
 def _widest_chord(graph, at: tuple, quads: list, least: float | None, ratio: float = MAX_RATIO,
-                  fans: bool = False) -> tuple | None:
+                  fans: float | None = None) -> tuple | None:
     """Of the chords from the reflex corner in the quads ``quads`` (indices into ``at``: the corner,
     its patches, their sides and their angles there), the one whose worst angle is widest, as
     ``(worst, patch, kind, target, side, fraction)`` (:func:`_choose`); ``least`` and ``ratio`` are
