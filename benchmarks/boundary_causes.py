@@ -38,8 +38,9 @@ def angle_class(theta: float) -> str:
 
 def _chord_refusal(graph, r: int) -> str:
     """Why no chord of the corner ``r`` of two or more patches qualified (``reflex._widest_chord``'s
-    tests in order, the most advanced refusal over all candidates): ``ratio`` (a candidate passed the
-    angles, the edge group was uneven), ``pole`` (the triangle's angle too wide for its split),
+    tests in order over every candidate, those into a feature's fan too, the most advanced refusal):
+    ``ratio`` (a candidate passed the angles, the edge group was uneven: beyond ``reflex.MAX_RATIO``,
+    or ``HOLE_MAX_RATIO`` at a hole corner), ``pole`` (the triangle's angle too wide for its split),
     ``angle W`` (the widest worst angle W, in 5 degree bins), ``no candidate`` (no target: every
     strip refused or the chord leaves the quad) or ``not quads`` (a patch not found or no quad)."""
     from vaultgram.topology import reflex
@@ -60,7 +61,9 @@ def _chord_refusal(graph, r: int) -> str:
         k = sides.corners.index(r)
         other = reflex._other_angle(theta, angles, i)
         for j in (1, 2):
-            for kind, target, point, tangent, fraction in reflex._targets(graph, p, sides, k, j):
+            candidates = reflex._targets(graph, p, sides, k, j) + reflex._targets(graph, p, sides, k, j,
+                                                                                  fans=reflex.MIN_FAN_HALF)
+            for kind, target, point, tangent, fraction in candidates:
                 targets += 1
                 worst, pole_angle = reflex._angles(graph, sides, k, j, point, tangent, other)
                 least = reflex.MIN_ANGLE if fraction in (0.5, None) else reflex.MIN_CUT_ANGLE
@@ -129,6 +132,7 @@ def _graph_points(graph):
 
 def plan_rows(domain, spacing: float) -> tuple[dict, list]:
     """Mesh one plan; its stats and one row per boundary singular vertex."""
+    from vaultgram.geometry.polygons import regular_valence
     from vaultgram.meshing.quality import mesh_stats
     from vaultgram.meshpipeline import decompose, mesh_decomposition
     from vaultgram.topology.corners import boundary_angle
@@ -151,7 +155,7 @@ def plan_rows(domain, spacing: float) -> tuple[dict, list]:
         row = {"angle": round(theta, 1), "plan_angle": round(plan_angle, 1), "class": angle_class(theta),
                "faces": faces, "regular": regular, "ring": "hole" if rings[int(d.argmin())] else "outer",
                "corner": bool(corner), "patches": graph.degree(n, [PATCH_CORNER]) if corner else -1}
-        if corner and faces < regular and plan_angle >= 225:
+        if corner and faces < regular and regular_valence(plan_angle) >= 4:  # the rules' tie: 225 is reflex
             row["why"] = why_reflex(graph, n)
         rows.append(row)
     return stats, rows

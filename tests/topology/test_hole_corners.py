@@ -287,3 +287,131 @@ def test_a_fan_triangle_is_halved_only_by_a_chord_that_leaves_40_degrees_each_si
     assert not reflex._halves_fan(fan, (0.55, 0.45))
     assert not reflex._halves_fan(fan, (0.9, 0.1)) and not reflex._halves_fan(fan, (0.1, 0.9))
     assert not reflex._halves_fan(fan, (-0.5, 0.5))
+
+
+#: Saved random plan 692 (a pentagonal hole, two boundary point features): the hole corner at
+#: (2.228, 0.441), of 252 degrees, lies inside the side of the ring patch round the hole, and its
+#: cut's strip is one triangle of the fan round the point (5.303, 4.011), entered by the side opposite
+#: it; no foot of the cut halves that triangle into two of 40 degrees (main b896a89: two faces there,
+#: one boundary singularity, min scaled Jacobian 0.313).
+DRAW_692 = {
+    "outer": [[7.400428236074304, 2.714206298051831], [2.0141741660276264, 6.044178526359868],
+              [-5.07927519368349, 7.82189635734143], [-5.476359437798768, 0.5343656697996886],
+              [-5.5122564129030485, -5.679369395100806], [1.0777015680113702, -8.431403164972354],
+              [7.709088126958824, -4.68487402034968]],
+    "holes": [[[3.2974910279202465, -1.0305694963267333], [2.2279924733640777, -2.502607970787897],
+               [0.497507461173313, -1.9403393062912766], [0.49750746117331257, -0.1207996863621903],
+               [2.2279924733640772, 0.44146897813443053]]],
+    "points": [[5.30311533972089, 4.010839098529555], [-0.849881867598766, -7.626424631815148]],
+}
+
+
+def test_hole_corner_cut_may_halve_a_fan_triangle_into_two_of_36_degrees():
+    """Draw 692: where no foot of the cut halves the fan triangle into two of reflex.MIN_CUT_ANGLE
+    degrees, a foot that halves it into two of reflex.MIN_FAN_HALF (36: a fan of five round a point
+    of a straight boundary) serves: every hole corner the corner of three patches, the point's two
+    new triangles at least 36 degrees wide there and one under 40 (the fallback's), no boundary
+    singularity (main: 1), min scaled Jacobian at least 0.315 (main 0.313)."""
+    domain = domain_from_dict(DRAW_692)
+    dec = decompose(domain)
+    g = dec.graph
+    points = [n for n in g.nodes() if g.node_type(n) != "Patch"]
+
+    def node(at):
+        (n,) = [n for n in points if np.allclose(g.get(n, "pos"), at, atol=1e-9)]
+        return n
+
+    for corner in DRAW_692["holes"][0]:
+        assert sum(node(corner) in p.corners for p in dec.patches) == 3, corner
+    f = node(DRAW_692["points"][0])
+    ends = {g.other(e, f) for e in g.incident(f, [DIAGONAL]) if g.node_type(g.other(e, f)) == "StripPoint"}
+    halves = [p.corner_angles()[list(p.corners).index(f)] for p in dec.patches
+              if f in p.corners and ends & set(p.corners)]
+    assert len(halves) == 2 and min(halves) >= reflex.MIN_FAN_HALF and min(halves) < reflex.MIN_CUT_ANGLE, halves
+    stats = mesh_stats(mesh_decomposition(dec), domain)
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
+    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.315
+
+
+def test_the_fan_fallback_halves_at_36_degrees():
+    """reflex._halves_fan with the fallback's limit (reflex.MIN_FAN_HALF) on a triangle of 80 degrees
+    at the origin: a chord at 37 degrees from one side passes at 36 and fails at 40; one at 35 fails
+    both; the halves are measured on either side (43 + 37)."""
+    fan = ((0.0, 0.0), 0.0, 80.0)
+    at37 = (math.cos(math.radians(37.0)), math.sin(math.radians(37.0)))
+    at43 = (math.cos(math.radians(43.0)), math.sin(math.radians(43.0)))
+    at35 = (math.cos(math.radians(35.0)), math.sin(math.radians(35.0)))
+    assert reflex._halves_fan(fan, at37, reflex.MIN_FAN_HALF) and not reflex._halves_fan(fan, at37)
+    assert reflex._halves_fan(fan, at43, reflex.MIN_FAN_HALF) and not reflex._halves_fan(fan, at43)
+    assert not reflex._halves_fan(fan, at35, reflex.MIN_FAN_HALF)
+    assert reflex.MIN_FAN_HALF < reflex.MIN_CUT_ANGLE
+
+
+#: Saved random plan 370 (a triangular hole, 300 degrees at each corner for the domain; two boundary
+#: point features), spacing 0.03: the corner (3.125, -1.468) is the corner of two patches and every
+#: chord of its quads puts sides of 2.5 to 3.5 times each other's length in one edge group (main
+#: b896a89: two faces there; two boundary singular vertices, min scaled Jacobian 0.434).
+DRAW_370 = {
+    "outer": [[8.34653975033428, 1.4007411330524784], [5.276361267224277, 6.18367356602464],
+              [0.0412965418821059, 4.999829456654354], [-5.72794818993789, 6.94194565906326],
+              [-4.91669974341025, 0.9088804284115588], [-7.554312517485341, -4.278685174896721],
+              [-2.2174890132902645, -5.9394023622920145], [1.6712363316982302, -4.712427094779487],
+              [5.464106568489905, -3.2151667691503123]],
+    "holes": [[[5.667103547283111, 0.0], [3.1252697109177676, -1.4675284496608307],
+               [3.1252697109177663, 1.46752844966083]]],
+    "points": [[-4.905419359823531, -5.102969956105023], [6.63225935725817, 4.071363488188767]],
+}
+
+
+def _patches_at(dec, at) -> int:
+    g = dec.graph
+    (n,) = [n for n in g.nodes() if g.node_type(n) != "Patch" and np.allclose(g.get(n, "pos"), at, atol=1e-9)]
+    return sum(n in p.corners for p in dec.patches)
+
+
+def test_a_hole_corner_takes_a_chord_within_the_hole_ratio_where_none_is_within_2_5(monkeypatch):
+    """Draw 370: no chord of the corner (3.125, -1.468) keeps its edge group within reflex.MAX_RATIO
+    (with the fallback off it stays the corner of two patches); one within reflex.HOLE_MAX_RATIO
+    gives it its third: every hole corner the corner of three patches, no boundary singularity
+    (main: 2), min scaled Jacobian at least 0.31 (main 0.434: the price)."""
+    domain = domain_from_dict(DRAW_370)
+    dec = decompose(domain, 0.03)
+    for corner in DRAW_370["holes"][0]:
+        assert _patches_at(dec, corner) == 3, corner
+    stats = mesh_stats(mesh_decomposition(dec), domain)
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
+    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.31
+    monkeypatch.setattr(reflex, "HOLE_MAX_RATIO", reflex.MAX_RATIO)
+    assert _patches_at(decompose(domain, 0.03), DRAW_370["holes"][0][1]) == 2
+
+
+#: Saved random plan 444 (a quadrilateral outline, a triangular hole, three boundary point features),
+#: spacing 0.03: a hole corner of two patches whose only chords that keep their angles and groups
+#: even run into a point feature's fan triangle (main b896a89: one hole corner with two faces, min
+#: scaled Jacobian 0.381).
+DRAW_444 = {
+    "outer": [[6.959835379658183, 0.766335953498055], [-0.7524452615027317, 6.833680617956496],
+              [-7.58581882294759, -0.8352619542895761], [0.9302985217330317, -8.448937487072639]],
+    "holes": [[[2.298747197744627, -1.355477127955644], [-1.149373598872313, -3.3462505980807817],
+               [-1.1493735988723146, 0.6352963421694928]]],
+    "points": [[-5.342679251054365, 1.6821635023606314], [2.1854798021067934, 4.522379358490561],
+               [5.3296550778237455, -1.7251584336854213]],
+}
+
+
+def test_a_hole_corner_chord_may_end_its_strip_in_a_fan_where_no_other_chord_qualifies(monkeypatch):
+    """Draw 444: where no chord of a corner of two patches qualifies, one whose strip is one triangle
+    of a point feature's fan, halved there into two of reflex.MIN_CUT_ANGLE, serves (as a cut's may):
+    every hole corner the corner of three patches, no boundary singularity (main: 1), min scaled
+    Jacobian at least 0.38 (main 0.381). Without that fallback a hole corner keeps two patches."""
+    domain = domain_from_dict(DRAW_444)
+    dec = decompose(domain, 0.03)
+    for corner in DRAW_444["holes"][0]:
+        assert _patches_at(dec, corner) == 3, corner
+    stats = mesh_stats(mesh_decomposition(dec), domain)
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
+    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.38
+    widest = reflex._widest_chord
+    monkeypatch.setattr(reflex, "_widest_chord", lambda *a, fans=None, **k: None if fans else widest(*a, **k))
+    before = decompose(domain, 0.03)
+    assert min(_patches_at(before, corner) for corner in DRAW_444["holes"][0]) == 2

@@ -60,7 +60,8 @@ from vaultgram.topology.types import BOUNDARY, BOUNDARY_VERTEX, CURVE_POINT, FEA
 
 __all__ = ["reflex_chord", "reflex_side", "reflex_foot", "reflex_cut", "reflex_cut_index", "reflex_cut_at",
            "reflex_point", "rebranch_to_corner", "MIN_ANGLE", "MIN_CUT_ANGLE", "MAX_POLE_ANGLE", "MAX_RATIO", "FEET",
-           "SPIKE", "PAST_STRAIGHT", "FOLD_MIN_ANGLE", "MAX_POLE_RATIO"]
+           "SPIKE", "PAST_STRAIGHT", "FOLD_MIN_ANGLE", "MAX_POLE_RATIO", "MIN_FAN_HALF",
+           "HOLE_MAX_RATIO"]
 
 #: The node types at which a strip may not end in a triangle (:func:`_strip_beyond`).
 KEPT_ENDS = (BOUNDARY_VERTEX, FEATURE_POINT, CURVE_POINT)
@@ -76,6 +77,12 @@ FEET = (0.5, 0.45, 0.55, 0.4, 0.6, 0.35, 0.65, 0.3, 0.7, 0.25, 0.75)
 #: where it meets the opposite side (plan 188 of the saved random plans: a cut meeting the loop round a
 #: hexagonal hole at 32 degrees left a quad of scaled Jacobian 0.07 there).
 MIN_CUT_ANGLE = 40.0
+#: Degrees: where no foot of a hole corner's cut halves a point feature's fan triangle into two of
+#: :data:`MIN_CUT_ANGLE` (:func:`_halves_fan`), the halves may be this narrow: a fan of five triangles
+#: round a point of a straight boundary has 180 / 5 degrees each. The 42 hole corners of the 700 saved
+#: random plans whose cut's strip is one fan triangle mostly had no foot leaving 40 either side, but
+#: their best at 36-40 (plans 4, 231, 579, 692: 37-38).
+MIN_FAN_HALF = 36.0
 #: Degrees: a corner this wide or wider is a spike (regular valence 5: four faces, two chords).
 SPIKE = 315.0
 #: Degrees: a quad wider than this at a corner turns past straight there, and its mesh folds at any
@@ -94,6 +101,12 @@ FOLD_MIN_ANGLE = 10.0
 #: (a 0.65 jog against a 4.9 rebranch) had its triangle's split raise the jog's group and the lobes'
 #: with it: 2356 faces for 1080, min scaled Jacobian 0.395 -> 0.336.
 MAX_POLE_RATIO = 5.0
+#: Where no chord of a hole corner keeps its edge group within :data:`MAX_RATIO`, one within this
+#: (:func:`_choose`): on the 700 saved random plans the 7 hole corners refused only by the ratio
+#: (plans 314, 370, 395, 613, 614) were at 2.5-3.5, and 5 of them take such a chord. Not on the outer
+#: ring: there it folded a jagged outline (jagged_1: chords at its 299 and 240 degree corners beside a
+#: narrow 320 degree spike) and lowered jagged_2's min scaled Jacobian from 0.198 to 0.077.
+HOLE_MAX_RATIO = 3.5
 #: Degrees: the triangle's angle at the corner must allow the three-quad split
 #: (:data:`vaultgram.meshing.splits.MAX_SPLIT_ANGLE`).
 MAX_POLE_ANGLE = 160.0
@@ -119,13 +132,14 @@ def _edge_tangent(graph, edge: int, fraction: float = 0.5) -> float:
     return _direction(back, ahead)
 
 
-def _feet(graph, walk, fractions=FEET) -> Iterator[tuple]:
+def _feet(graph, walk, fractions=FEET, half: float = MIN_CUT_ANGLE) -> Iterator[tuple]:
     """The points of the plan edge a strip enters by (``walk``, :func:`_strip_beyond`; none where it is
     None) where a chord may end (``fractions`` of its length, in that order), as ``(fraction, point,
     tangent there)``: where the strip's first chord, from there across the patch beyond, runs inside
     it, and, where the strip is one triangle of a feature's fan (:func:`_fan_end`), the chord from
-    there to the feature halves its angle (:func:`_halves_fan`). A closed strip comes back to the
-    middle, its only foot. Lazily: a cut stops at the first that serves."""
+    there to the feature halves its angle into two of at least ``half`` degrees (:func:`_halves_fan`).
+    A closed strip comes back to the middle, its only foot. Lazily: a cut stops at the first that
+    serves."""
     if walk is None:
         return
     edge, found = walk.edges[0], patch_sides(graph, walk.patches[0])
@@ -133,7 +147,7 @@ def _feet(graph, walk, fractions=FEET) -> Iterator[tuple]:
     fan = _fan_end(graph, walk)
     for f in fractions[:1] if walk.end is None else fractions:
         at = edge_cut(graph, edge, f)[1]
-        if (f == 0.5 or chord_inside(found, at, to)) and (fan is None or _halves_fan(fan, at)):
+        if (f == 0.5 or chord_inside(found, at, to)) and (fan is None or _halves_fan(fan, at, half)):
             yield f, at, _edge_tangent(graph, edge, f)
 
 
@@ -147,17 +161,21 @@ def _fan_end(graph, walk) -> tuple | None:
     return _corner(graph, found, found.corners.index(walk.end)) if len(found.corners) == 3 else None
 
 
-def _halves_fan(fan: tuple, at) -> bool:
+def _halves_fan(fan: tuple, at, least: float = MIN_CUT_ANGLE) -> bool:
     """Whether the chord from the point ``at`` to the feature of ``fan`` (:func:`_fan_end`) splits the
-    triangle's angle there into two of at least :data:`MIN_CUT_ANGLE` degrees: the fan gains a
-    triangle no narrower than a cut may leave (§4.1: the feature stays the pole of both).
+    triangle's angle there into two of at least ``least`` degrees (:data:`MIN_CUT_ANGLE` unless given,
+    :data:`MIN_FAN_HALF` where no foot leaves that): the fan gains a triangle no narrower than a cut may
+    leave, or than a fan of five round a point of a straight boundary has (§4.1: the feature stays the
+    pole of both).
 
     >>> _halves_fan(((0.0, 0.0), 0.0, 90.0), (1.0, 1.0)), _halves_fan(((0.0, 0.0), 0.0, 90.0), (1.0, 0.2))
     (True, False)
+    >>> _halves_fan(((0.0, 0.0), 0.0, 80.0), (1.0, 0.75)), _halves_fan(((0.0, 0.0), 0.0, 80.0), (1.0, 0.75), 36.0)
+    (False, True)
     """
     pos, d_out, whole = fan
     first = _ccw(d_out, _direction(pos, at))
-    return MIN_CUT_ANGLE <= first <= whole - MIN_CUT_ANGLE
+    return least <= first <= whole - least
 
 
 def _feature(graph, n: int) -> bool:
@@ -196,19 +214,26 @@ def _angles(graph, found, k: int, j: int, end, tangent: float, other: float) -> 
     return min(first, whole - first, other, meet, 180.0 - meet), first if j == 1 else whole - first
 
 
-def _targets(graph, patch: int, found, k: int, j: int) -> list[tuple]:
+def _targets(graph, patch: int, found, k: int, j: int, fans: float | None = None) -> list[tuple]:
     """Where a chord from corner ``k`` of a quad may end on its side from corner ``k + j``: the feet
     of that side's plan edge where a strip may cut it and carry on (``("edge", edge, point, tangent,
     fraction)``, :func:`_feet`: the middle first), or the free boundary point nearest the middle of a
     boundary side (``("point", node, point, tangent, None)``); only where the chord runs inside the
     quad. A foot off the middle must pass the stricter tests of :func:`_chord_worst` (without them
-    chords got through at multiple_lobes' notches beside fan-shaped patches, 1600 faces for 1080)."""
+    chords got through at multiple_lobes' notches beside fan-shaped patches, 1600 faces for 1080).
+    With ``fans`` (degrees), only the feet of a strip that is one triangle of a point feature's fan,
+    which may end at the feature where the foot halves it into two of ``fans`` (:func:`_strip_beyond`,
+    :func:`_feet`): the others were asked without."""
     r, y = found.corners[k], found.corners[(k + j) % 4]
     pos, edge = graph.get(r, "pos"), side_edge(graph, patch, y)
     if edge >= 0:
-        walk = _strip_beyond(graph, patch, edge)
-        return [("edge", edge, at, tangent, f) for f, at, tangent in _feet(graph, walk)
+        walk = _strip_beyond(graph, patch, edge, fans is not None)
+        if fans is not None and (walk is None or _fan_end(graph, walk) is None):
+            return []  # asked without fans already
+        return [("edge", edge, at, tangent, f) for f, at, tangent in _feet(graph, walk, half=fans or MIN_CUT_ANGLE)
                 if chord_inside(found, pos, at)]
+    if fans is not None:
+        return []
     w = strip_boundary_end(graph, patch, y)
     if w == y or not chord_inside(found, pos, graph.get(w, "pos")):
         return []
@@ -225,7 +250,13 @@ def _choose(graph, r: int) -> tuple | None:
     307), since a corner's middle chord can leave its neighbours along a hole none. Where none
     qualifies at a spike (:data:`SPIKE`) and a quad turns past straight there (wider than
     :data:`PAST_STRAIGHT`: its mesh folds at any density), that quad's chords down to
-    :data:`FOLD_MIN_ANGLE`: a narrow angle costs less than a fold."""
+    :data:`FOLD_MIN_ANGLE`: a narrow angle costs less than a fold. Where none qualifies at a hole
+    corner, the chords whose edge group is within :data:`HOLE_MAX_RATIO` rather than
+    :data:`MAX_RATIO`; where still none does, the chords whose strip is one triangle of a point
+    feature's fan, halved at the feature into two of :data:`MIN_CUT_ANGLE`, then of
+    :data:`MIN_FAN_HALF`, as a cut's may be (never before: asked first, such chords took the place of
+    the chosen ones at corners already regular, and plans 12, 395 and 444 fell under 0.3, 444 from
+    0.381 to 0.076)."""
     patches = sorted({graph.ends(e)[0] for e in graph.incident(r, [PATCH_CORNER])})
     found = [patch_sides(graph, p) for p in patches]
     if any(f is None for f in found):
@@ -234,17 +265,23 @@ def _choose(graph, r: int) -> tuple | None:
     quads = [i for i, sides in enumerate(found) if len(sides.corners) == 4]
     at = (r, patches, found, angles)
     best = _widest_chord(graph, at, quads, None)
+    if best is None and ring_place(graph, r)[0] > 0:
+        best = _widest_chord(graph, at, quads, None, HOLE_MAX_RATIO)
+    for half in (MIN_CUT_ANGLE, MIN_FAN_HALF):
+        if best is None:
+            best = _widest_chord(graph, at, quads, None, fans=half)
     turned = [i for i in quads if angles[i] > PAST_STRAIGHT] if boundary_angle(graph, r) >= SPIKE else []
     if best is None and turned:
         best = _widest_chord(graph, at, turned, FOLD_MIN_ANGLE)
     return None if best is None else best[1:]
 
 
-def _widest_chord(graph, at: tuple, quads: list, least: float | None) -> tuple | None:
+def _widest_chord(graph, at: tuple, quads: list, least: float | None, ratio: float = MAX_RATIO,
+                  fans: float | None = None) -> tuple | None:
     """Of the chords from the reflex corner in the quads ``quads`` (indices into ``at``: the corner,
     its patches, their sides and their angles there), the one whose worst angle is widest, as
-    ``(worst, patch, kind, target, side, fraction)`` (:func:`_choose`); ``least`` is passed on to
-    :func:`_chord_worst`. None where none qualifies."""
+    ``(worst, patch, kind, target, side, fraction)`` (:func:`_choose`); ``least`` and ``ratio`` are
+    passed on to :func:`_chord_worst`, ``fans`` to :func:`_targets`. None where none qualifies."""
     r, patches, found, angles = at
     theta = boundary_angle(graph, r)
     best = None
@@ -253,8 +290,9 @@ def _widest_chord(graph, at: tuple, quads: list, least: float | None) -> tuple |
         k = sides.corners.index(r)
         other = _other_angle(theta, angles, i)
         for j in (1, 2):
-            for kind, target, point, tangent, fraction in _targets(graph, p, sides, k, j):
-                worst = _chord_worst(graph, p, sides, k, j, (kind, target, point, tangent, fraction), other, least)
+            for kind, target, point, tangent, fraction in _targets(graph, p, sides, k, j, fans):
+                candidate = (kind, target, point, tangent, fraction)
+                worst = _chord_worst(graph, p, sides, k, j, candidate, other, least, ratio)
                 if worst is not None:
                     if best is None or worst > best[0]:
                         best = (worst, p, kind, target, sides.corners[(k + j) % 4], fraction)
@@ -278,21 +316,22 @@ def _other_angle(theta: float, angles: list, i: int) -> float:
 
 
 def _chord_worst(graph, patch: int, found, k: int, j: int, target: tuple, other: float,
-                 least: float | None = None) -> float | None:
+                 least: float | None = None, ratio: float = MAX_RATIO) -> float | None:
     """The worst angle of the chord from corner ``k`` of the quad ``patch`` to ``target`` (one of
     :func:`_targets`' ``(kind, target, point, tangent, fraction)``) where the chord qualifies, None
     otherwise: its worst angle (:func:`_angles`) reaches :data:`MIN_ANGLE` at the middle of an edge or
     on the boundary and :data:`MIN_CUT_ANGLE` at a foot off the middle (as for a cut: a foot off the
     middle is taken only where it leaves no narrow angle), the triangle's pole angle allows its split,
     and the sides the chord puts in one edge group, with the edge's two pieces at a foot off the
-    middle, are even (:func:`_even_group`). ``least``, where given, replaces both angle limits."""
+    middle, are even (:func:`_even_group`, within ``ratio``). ``least``, where given, replaces both
+    angle limits."""
     kind, edge, at, tangent, fraction = target
     worst, pole = _angles(graph, found, k, j, at, tangent, other)
     if least is None:
         least = MIN_ANGLE if fraction in (0.5, None) else MIN_CUT_ANGLE
     if worst < least or pole > MAX_POLE_ANGLE:
         return None
-    return worst if _even_group(graph, patch, found, k, j, at, _pieces(graph, kind, edge, fraction)) else None
+    return worst if _even_group(graph, patch, found, k, j, at, _pieces(graph, kind, edge, fraction), ratio) else None
 
 
 def _strip_beyond(graph, patch: int, edge: int, fans: bool = False):
@@ -306,9 +345,10 @@ def _strip_beyond(graph, patch: int, edge: int, fans: bool = False):
     point feature's fan (:func:`_fan_end`) may end at the feature, which stays the pole of both
     halves, where the chord's foot halves the triangle's angle there (:func:`_feet`,
     :func:`_halves_fan`): 58 of the 204 boundary singular vertices of the 700 saved random plans
-    were hole corners whose cut was refused only by such an end. Not for the chords of a corner of
-    two patches (there it changed the chosen chord at corners already regular: plans 12, 395 and
-    444 fell under 0.3, 444 from 0.381 to 0.076), nor a strip of several patches into a fan (from the
+    were hole corners whose cut was refused only by such an end. For the chords of a corner of two
+    patches only where no other chord qualifies (:func:`_choose`: asked first, it changed the chosen
+    chord at corners already regular: plans 12, 395 and 444 fell under 0.3, 444 from 0.381 to
+    0.076). Not for a strip of several patches into a fan (from the
     middle at 20-30 degrees, plans 23 and 24 took a wedge of slivers, min SJ 0.455 -> 0.048)."""
     beyond = patch_across(graph, patch, edge)
     walk = None if beyond is None else strip_walk(graph, beyond[0], beyond[1], frozenset([patch]))
@@ -335,10 +375,12 @@ def _pieces(graph, kind: str, target: int, fraction: float | None) -> tuple:
     return fraction * length, (1.0 - fraction) * length
 
 
-def _even_group(graph, patch: int, found, k: int, j: int, end, pieces: tuple = ()) -> bool:
-    """Whether the chord from corner ``k`` to ``end`` leaves its edge group even (and the two
-    ``pieces`` of the edge it cuts off the middle, :func:`_pieces`, are within :data:`MAX_RATIO` of
-    each other: the feet a quarter of the way in, 1 : 3, are refused): the triangle's two
+def _even_group(graph, patch: int, found, k: int, j: int, end, pieces: tuple = (),
+                ratio: float = MAX_RATIO) -> bool:
+    """Whether the chord from corner ``k`` to ``end`` leaves its edge group even, its lengths within
+    ``ratio`` (:data:`MAX_RATIO` unless given; and the two ``pieces`` of the edge it cuts off the
+    middle, :func:`_pieces`, too: at :data:`MAX_RATIO` the feet a quarter of the way in, 1 : 3, are
+    refused): the triangle's two
     sides at the corner (its pole) are one group (Figure 3, §3.2), and the side along the quad's
     side from the corner is in one group with the opposite side of the patch beyond it. Where these
     lengths differ by more than :data:`MAX_RATIO`, the count the longest needs over-refines the
@@ -347,14 +389,14 @@ def _even_group(graph, patch: int, found, k: int, j: int, end, pieces: tuple = (
     0.05 x 0.17 that made the tessellation refine to 7150 voussoirs from 974."""
     side = found.sides[k] if j == 1 else found.sides[k - 1]
     lengths = [math.dist(graph.get(found.corners[k], "pos"), end), _side_length(graph, side)]
-    if pieces and max(pieces) > MAX_RATIO * min(pieces):
+    if pieces and max(pieces) > ratio * min(pieces):
         return False
     if len(side) == 1:
         beyond = patch_across(graph, patch, side[0][0])
         sides = patch_sides(graph, beyond[0]) if beyond else None
         if sides is not None and len(sides.corners) == 4:
             lengths.append(_side_length(graph, sides.sides[(beyond[1] + 2) % 4]))
-    return max(lengths) <= MAX_RATIO * min(lengths)
+    return max(lengths) <= ratio * min(lengths)
 
 
 def _corner(graph, found, k: int) -> tuple[tuple, float, float]:
@@ -424,9 +466,10 @@ def _cut(graph, r: int) -> tuple | None:
     """The chord across the quad on whose side the reflex corner ``r`` lies (:func:`reflex_cut`):
     ``(patch, side index, edge, fraction)``, or None. It ends at the first of the opposite edge's
     feet (:func:`_feet`: the middle where it can) where it runs inside the quad and leaves no angle
-    below :data:`MIN_CUT_ANGLE`, at ``r`` (the angle from the boundary leaving ``r``, measured as its
-    interior angle is, and the rest) or with the edge: a corner of a ring patch round a hole lies
-    anywhere along the hole's side, and a chord to the middle of the loop beyond may run along it."""
+    below :data:`MIN_CUT_ANGLE` (:func:`_cut_foot`): a corner of a ring patch round a hole lies
+    anywhere along the hole's side, and a chord to the middle of the loop beyond may run along it.
+    Where the strip is one triangle of a point feature's fan and no foot halves it into two of
+    :data:`MIN_CUT_ANGLE` degrees, the feet that halve it into two of :data:`MIN_FAN_HALF`."""
     at = _on_side(graph, r)
     if at is None or len(patch_sides(graph, at[0]).corners) != 4:
         return None
@@ -435,13 +478,27 @@ def _cut(graph, r: int) -> tuple | None:
     edge = side_edge(graph, patch, found.corners[(i + 2) % 4])
     if edge < 0:
         return None
+    walk = _strip_beyond(graph, patch, edge, fans=True)
+    halves = (MIN_CUT_ANGLE, MIN_FAN_HALF) if walk is not None and _fan_end(graph, walk) else (MIN_CUT_ANGLE,)
+    for half in halves:
+        fraction = _cut_foot(graph, r, found, _feet(graph, walk, half=half))
+        if fraction is not None:
+            return patch, i, edge, fraction
+    return None
+
+
+def _cut_foot(graph, r: int, found, feet) -> float | None:
+    """The fraction of the first of ``feet`` (:func:`_feet`) where the cut from the reflex corner ``r``
+    across the quad ``found`` runs inside it and leaves no angle below :data:`MIN_CUT_ANGLE` at ``r``
+    (from the boundary leaving ``r``, measured as its interior angle is, and the rest) or with the
+    edge it meets; None where none does."""
     pos, ahead, theta = graph.get(r, "pos"), _ahead(graph, r), boundary_angle(graph, r)
-    for fraction, foot, tangent in _feet(graph, _strip_beyond(graph, patch, edge, fans=True)):
+    for fraction, foot, tangent in feet:
         d_chord = _direction(pos, foot)
         first = _ccw(ahead, d_chord)  # between the boundary leaving r and the chord
         meet = _ccw(tangent, d_chord) % 180.0
         if min(first, theta - first, meet, 180.0 - meet) >= MIN_CUT_ANGLE and chord_inside(found, pos, foot):
-            return patch, i, edge, fraction
+            return fraction
     return None
 
 
