@@ -249,6 +249,24 @@ DRAW_393 = {
 }
 
 
+def _fan_halves_of_hole_corner_cuts(dec, plan: dict) -> tuple[int, list]:
+    """Checks that every corner of the plan's first hole is the corner of three patches; returns the
+    node of its first point feature and the patches at it between two of its diagonals that end at a
+    strip point (the fan triangle a hole corner's cut halved)."""
+    g = dec.graph
+    points = [n for n in g.nodes() if g.node_type(n) != "Patch"]
+
+    def node(at):
+        (n,) = [n for n in points if np.allclose(g.get(n, "pos"), at, atol=1e-9)]
+        return n
+
+    for corner in plan["holes"][0]:
+        assert sum(node(corner) in p.corners for p in dec.patches) == 3, corner
+    f = node(plan["points"][0])
+    ends = {g.other(e, f) for e in g.incident(f, [DIAGONAL]) if g.node_type(g.other(e, f)) == "StripPoint"}
+    return f, [p for p in dec.patches if f in p.corners and ends & set(p.corners)]
+
+
 def test_hole_corner_cut_may_halve_a_fan_triangle_at_a_boundary_point():
     """Draw 393: a cut whose strip is one triangle of a boundary point's fan ends at the point where a
     foot of the cut (reflex.FEET) splits the triangle's angle there into two of at least 40 degrees
@@ -257,18 +275,7 @@ def test_hole_corner_cut_may_halve_a_fan_triangle_at_a_boundary_point():
     each triangle a strip ended in at least 40 degrees wide there."""
     domain = domain_from_dict(DRAW_393)
     dec = decompose(domain, 0.03)
-    g = dec.graph
-    points = [n for n in g.nodes() if g.node_type(n) != "Patch"]
-
-    def node(at):
-        (n,) = [n for n in points if np.allclose(g.get(n, "pos"), at, atol=1e-9)]
-        return n
-
-    for corner in DRAW_393["holes"][0]:
-        assert sum(node(corner) in p.corners for p in dec.patches) == 3
-    f = node(DRAW_393["points"][0])
-    ends = {g.other(e, f) for e in g.incident(f, [DIAGONAL]) if g.node_type(g.other(e, f)) == "StripPoint"}
-    halves = [p for p in dec.patches if f in p.corners and ends & set(p.corners)]
+    f, halves = _fan_halves_of_hole_corner_cuts(dec, DRAW_393)
     assert len(halves) == 2
     for p in halves:
         assert p.n_sides == 3 and p.corner_angles()[list(p.corners).index(f)] >= reflex.MIN_CUT_ANGLE
@@ -314,19 +321,8 @@ def test_hole_corner_cut_may_halve_a_fan_triangle_into_two_of_36_degrees():
     singularity (main: 1), min scaled Jacobian at least 0.315 (main 0.313)."""
     domain = domain_from_dict(DRAW_692)
     dec = decompose(domain)
-    g = dec.graph
-    points = [n for n in g.nodes() if g.node_type(n) != "Patch"]
-
-    def node(at):
-        (n,) = [n for n in points if np.allclose(g.get(n, "pos"), at, atol=1e-9)]
-        return n
-
-    for corner in DRAW_692["holes"][0]:
-        assert sum(node(corner) in p.corners for p in dec.patches) == 3, corner
-    f = node(DRAW_692["points"][0])
-    ends = {g.other(e, f) for e in g.incident(f, [DIAGONAL]) if g.node_type(g.other(e, f)) == "StripPoint"}
-    halves = [p.corner_angles()[list(p.corners).index(f)] for p in dec.patches
-              if f in p.corners and ends & set(p.corners)]
+    f, patches = _fan_halves_of_hole_corner_cuts(dec, DRAW_692)
+    halves = [p.corner_angles()[list(p.corners).index(f)] for p in patches]
     assert len(halves) == 2 and min(halves) >= reflex.MIN_FAN_HALF and min(halves) < reflex.MIN_CUT_ANGLE, halves
     stats = mesh_stats(mesh_decomposition(dec), domain)
     assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
@@ -369,18 +365,26 @@ def _patches_at(dec, at) -> int:
     return sum(n in p.corners for p in dec.patches)
 
 
+def _meshed_with_hole_corners_of_three(plan: dict, min_sj: float):
+    """The plan's domain, after checking that at spacing 0.03 every corner of its first hole is the
+    corner of three patches and the mesh has no boundary singularity, no fold, and a worst scaled
+    Jacobian of at least ``min_sj``."""
+    domain = domain_from_dict(plan)
+    dec = decompose(domain, 0.03)
+    for corner in plan["holes"][0]:
+        assert _patches_at(dec, corner) == 3, corner
+    stats = mesh_stats(mesh_decomposition(dec), domain)
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
+    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= min_sj
+    return domain
+
+
 def test_a_hole_corner_takes_a_chord_within_the_hole_ratio_where_none_is_within_2_5(monkeypatch):
     """Draw 370: no chord of the corner (3.125, -1.468) keeps its edge group within reflex.MAX_RATIO
     (with the fallback off it stays the corner of two patches); one within reflex.HOLE_MAX_RATIO
     gives it its third: every hole corner the corner of three patches, no boundary singularity
     (main: 2), min scaled Jacobian at least 0.31 (main 0.434: the price)."""
-    domain = domain_from_dict(DRAW_370)
-    dec = decompose(domain, 0.03)
-    for corner in DRAW_370["holes"][0]:
-        assert _patches_at(dec, corner) == 3, corner
-    stats = mesh_stats(mesh_decomposition(dec), domain)
-    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
-    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.31
+    domain = _meshed_with_hole_corners_of_three(DRAW_370, 0.31)
     monkeypatch.setattr(reflex, "HOLE_MAX_RATIO", reflex.MAX_RATIO)
     assert _patches_at(decompose(domain, 0.03), DRAW_370["holes"][0][1]) == 2
 
@@ -404,13 +408,7 @@ def test_a_hole_corner_chord_may_end_its_strip_in_a_fan_where_no_other_chord_qua
     of a point feature's fan, halved there into two of reflex.MIN_CUT_ANGLE, serves (as a cut's may):
     every hole corner the corner of three patches, no boundary singularity (main: 1), min scaled
     Jacobian at least 0.38 (main 0.381). Without that fallback a hole corner keeps two patches."""
-    domain = domain_from_dict(DRAW_444)
-    dec = decompose(domain, 0.03)
-    for corner in DRAW_444["holes"][0]:
-        assert _patches_at(dec, corner) == 3, corner
-    stats = mesh_stats(mesh_decomposition(dec), domain)
-    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
-    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.38
+    domain = _meshed_with_hole_corners_of_three(DRAW_444, 0.38)
     widest = reflex._widest_chord
     monkeypatch.setattr(reflex, "_widest_chord", lambda *a, fans=None, **k: None if fans else widest(*a, **k))
     before = decompose(domain, 0.03)
