@@ -498,16 +498,9 @@ def test_quad_turning_past_straight_at_the_outer_side_of_a_bend_is_split():
     degrees there and the mesh folded; split_quad_at_reflex_corner took only quads turning by more
     than 200 degrees (a margin kept for the boundary's notches). At a curve bend it now takes any
     quad turning past straight."""
-    from vaultgram.pipeline import decompose
-
-    bend = [3.9469078182732535, 3.661938000546727]
-    domain = domain_from_dict({"outer": [[0, 0], [10, 0], [10, 10], [0, 10]],
-                               "curves": [[[5.847508406511214, 5.476515666162406], bend,
-                                           [4.208429348835783, 6.020799170082529]]]})
-    dec = decompose(domain, 0.02)
-    assert rule_applied_at(dec, "split_quad_at_reflex_corner", "r", bend)
-    mesh = mesh_domain(domain, 0.02)
-    assert_v_curve_meshed(domain, mesh, mesh_stats(mesh, domain), 40.0)
+    _assert_v_split_at_its_bend([[5.847508406511214, 5.476515666162406], [3.9469078182732535, 3.661938000546727],
+                                 [4.208429348835783, 6.020799170082529]], 0.02, "split_quad_at_reflex_corner", "r",
+                                40.0)
 
 
 def test_triangle_turning_past_straight_at_the_outer_side_of_a_bend_is_split():
@@ -515,16 +508,21 @@ def test_triangle_turning_past_straight_at_the_outer_side_of_a_bend_is_split():
     test_a_curve_bent_back_sharply_closes_its_wedge_with_a_triangle, at spacing 0.01: below the bend
     a triangle turned by 200 degrees there, and the mesh folded. split_triangle_under_curve_tip
     splits it from the bend to the middle of its opposite side, as it splits one under a free end."""
+    _assert_v_split_at_its_bend([[7.6286765066738305, 5.674078747487684], [6.500311742970861, 1.9],
+                                 [7.947862223124142, 7.088512315223267]], 0.01, "split_triangle_under_curve_tip", "x",
+                                1.0)
+
+
+def _assert_v_split_at_its_bend(curve: list, spacing: float, rule: str, role: str, angle: float) -> None:
+    """A V-shaped curve (its middle point the bend) in the 10 x 10 square at ``spacing``: ``rule``
+    applied with its node ``role`` at the bend, and the mesh as assert_v_curve_meshed asks (``angle``
+    the V's)."""
     from vaultgram.pipeline import decompose
 
-    bend = [6.500311742970861, 1.9]
-    domain = domain_from_dict({"outer": [[0, 0], [10, 0], [10, 10], [0, 10]],
-                               "curves": [[[7.6286765066738305, 5.674078747487684], bend,
-                                           [7.947862223124142, 7.088512315223267]]]})
-    dec = decompose(domain, 0.01)
-    assert rule_applied_at(dec, "split_triangle_under_curve_tip", "x", bend)
-    mesh = mesh_domain(domain, 0.01)
-    assert_v_curve_meshed(domain, mesh, mesh_stats(mesh, domain), 1.0)
+    domain = domain_from_dict({"outer": [[0, 0], [10, 0], [10, 10], [0, 10]], "curves": [curve]})
+    assert rule_applied_at(decompose(domain, spacing), rule, role, curve[1])
+    mesh = mesh_domain(domain, spacing)
+    assert_v_curve_meshed(domain, mesh, mesh_stats(mesh, domain), angle)
 
 
 @pytest.mark.parametrize("curve", [[[3, 2], [2.3, 4], [3, 6]], [[4, 2], [3, 4], [4, 6]]])
