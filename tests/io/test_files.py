@@ -97,9 +97,17 @@ def _contents(folder) -> dict:
             if p.is_file() and p.name not in _TIMED}
 
 
+#: ``python -m vaultgram``, once the interpreter has started: a signal sent before then is Python's to
+#: report (with a traceback), not the program's.
+_STARTED = "import runpy, sys; print(flush=True); runpy.run_module('vaultgram', run_name='__main__', alter_sys=True)"
+
+
 def _design(out):
-    return subprocess.Popen([sys.executable, "-m", "vaultgram", *_DESIGN, "--out", str(out)],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    """A ``design`` run in a process of its own, returned once the interpreter has started."""
+    proc = subprocess.Popen([sys.executable, "-c", _STARTED, *_DESIGN, "--out", str(out)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc.stdout.readline()
+    return proc
 
 
 def _wait_for_stage(proc, parent, deadline):

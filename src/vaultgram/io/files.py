@@ -23,6 +23,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Iterable, Iterator, Sequence
 
 from vaultgram.errors import VaultgramError
+from vaultgram.interrupts import deferred
 
 if TYPE_CHECKING:  # numpy is imported where it is used: `vaultgram --help` does not need it
     import numpy as np
@@ -100,18 +101,19 @@ def output_folder(path: str | Path) -> Iterator[Path]:
 def _terminate_unwinds() -> Iterator[None]:
     """SIGTERM raises SystemExit(143) in the block (as SIGINT raises KeyboardInterrupt), so that the
     staging folder is removed on the way out rather than left behind by the default handler, which
-    ends the process at once. The handler is set only in the main thread (elsewhere it cannot be)."""
+    ends the process at once; never inside the import system (:func:`vaultgram.interrupts.deferred`).
+    The handler is set only in the main thread (elsewhere it cannot be)."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-    previous = signal.signal(signal.SIGTERM, _raise_exit)
+    previous = signal.signal(signal.SIGTERM, deferred(_raise_exit))
     try:
         yield
     finally:
         signal.signal(signal.SIGTERM, previous)
 
 
-def _raise_exit(signum, frame) -> None:
+def _raise_exit(signum) -> None:
     raise SystemExit(128 + signum)
 
 
