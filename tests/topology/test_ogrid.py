@@ -105,19 +105,20 @@ def test_the_stadiums_ring_is_as_thick_at_its_ends_as_at_its_sides():
 @pytest.mark.parametrize("name", ["disc", "octagon", "ellipse", "egg", "stadium", "cut_disc", "teardrop"])
 def test_the_o_grids_links_lie_inside_the_plan(name):
     """o_grid_clear tests the links the rule draws (o_grid_corner): the central quad's sides and the
-    four links from its corners to the feet lie inside the plan."""
+    four links from its corners to the feet (five with a sharp corner, o_grid_tip_foot) lie inside the
+    plan."""
     domain = domain_from_dict({"name": name, **SMOOTH_PLANS[name]})
     dec = decompose(domain, 0.03)
     quad = _diagonals(dec, True)
     plan = shapely.Polygon(domain.rings[0]).buffer(1e-9 * domain.diagonal)
-    assert len(quad) == 8 and len(_links(dec)) == 4
+    assert len(quad) == 8 and len(_links(dec)) == (5 if name == "teardrop" else 4)
     assert plan.contains(shapely.MultiLineString([list(map(tuple, s)) for s in quad + _links(dec)]))
 
 
 def test_round_plans_keep_radial_corners():
     """rv_pillow_pattern's 24 points lie on a circle at uneven angles (their spreads differ by 3%, the
     area's by 0.1%: round, ogrid.ROUND): radial corners, its worst face 0.818 (0.807 with links at 45
-    degrees); a teardrop's first foot is its tip (where the corner at 45 degrees would fall)."""
+    degrees); a teardrop's first ray goes through its tip (where the corner at 45 degrees would fall)."""
     from vaultgram.geometry.polygons import elongation
     from vaultgram.topology.ogrid import ROUND
 
@@ -209,15 +210,15 @@ def test_boundary_point_features_of_an_o_grid_are_patch_corners(points):
 
 
 def test_explore_offers_the_pole_beside_the_o_grid():
-    """The O-grid is a choice point (choose { o_grid, leave }): the first variant, what decompose
-    does, is the O-grid (five quads, no pole); the variant that takes its second option keeps the
+    """The O-grid is a choice point (choose { o_grid, o_grid_round_tip, leave }): the first variant,
+    what decompose does, is the O-grid (five quads, no pole); the variant that takes its last option keeps the
     singularity's three-sided patches round one pole (a dome's crown)."""
     from vaultgram.exploration.explore import ExploreOptions, explore
 
     found = explore(domain_from_dict({"name": "disc", **SMOOTH_PLANS["disc"]}),
                     ExploreOptions(spacing=0.05, limit=6, smooth=5))
     rows = found.rows()
-    assert "choose { o_grid, leave } once" in found.choice_steps
+    assert "choose { o_grid, o_grid_round_tip, leave } once" in found.choice_steps
     assert rows[0]["answers"] == [] and rows[0]["metrics"]["patches_by_sides"] == {"3": 0, "4": 5}
     assert rows[0]["metrics"]["poles"] == 0
     # the disc's first choice point with two options is the O-grid's: its second option, then firsts
@@ -225,22 +226,34 @@ def test_explore_offers_the_pole_beside_the_o_grid():
     assert [(r["metrics"]["patches_by_sides"], r["metrics"]["poles"]) for r in poles] == [({"3": 3, "4": 0}, 1)]
 
 
-def test_a_teardrop_is_an_o_grid_with_its_tip_as_a_foot():
+def test_a_teardrops_tip_is_the_corner_of_one_quad():
     """A smooth outline with one sharp corner (a teardrop's tip, 47 degrees) whose skeleton is one
-    singularity: main gave three triangles round a pole (min scaled Jacobian 0.025, mean 0.08). The
-    O-grid's first ray goes through the tip: the tip is the corner of two quads (its one boundary
-    singularity, as before), every other vertex of the boundary regular, no triangle."""
+    singularity: before session 19 three triangles round a pole (min scaled Jacobian 0.025); until
+    session 22 an O-grid whose first foot was the tip, the corner of two quads of 23 degrees each (a
+    boundary singularity, min 0.397). Now the central quad's corner towards the tip links to a ring
+    point on either side of it (o_grid_tip_foot), splitting the angle outside the central quad in
+    three: six four-sided patches, the tip the corner of one (one face, regular below 135 degrees),
+    that corner of the central quad regular (four links), the other three its only singular
+    vertices; no boundary singularity, min 0.71."""
     domain = domain_from_dict({"name": "teardrop", **SMOOTH_PLANS["teardrop"]})
     dec = decompose(domain, 0.03)
-    assert sorted(p.n_sides for p in dec.patches) == [4] * 5 and len(o_grid_corners(dec)) == 4
+    assert sorted(p.n_sides for p in dec.patches) == [4] * 6 and len(o_grid_corners(dec)) == 4
     g = dec.graph
     (tip,) = [n for n in g.nodes() if g.node_type(n) == "Corner" and np.allclose(g.get(n, "pos"), (-9, 0))]
-    assert g.degree(tip, ["Diagonal"]) == 1  # a foot, and still a Corner (sharp: not softened)
+    assert g.degree(tip, ["Diagonal"]) == 0 and g.get(tip, "corner")
+    (corner,) = [a for a in o_grid_corners(dec) if g.degree(a, ["Diagonal"]) == 4]
+    spokes = [np.asarray(g.get(g.other(e, corner), "pos"), dtype=float)[:2] - np.asarray(g.get(corner, "pos"))[:2]
+              for e in g.incident(corner, ["Diagonal"])]
+    angles = np.sort(np.degrees(np.arctan2([s[1] for s in spokes], [s[0] for s in spokes])) % 360)
+    gaps = np.diff(np.append(angles, angles[0] + 360))       # the central quad's angle and three others
+    outside = np.delete(gaps, np.argmin(gaps))
+    assert np.ptp(outside) < 10 and np.all(outside > 90)      # the rest split in three
     mesh = mesh_decomposition(dec)
     stats = mesh_stats(mesh, domain)
-    assert stats["triangles"] == 0 and stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] > 0.35
-    (v,) = stats["boundary_singular_vertices"]
-    assert np.allclose(mesh.vertices[v, :2], (-9, 0)) and stats["boundary_singular_valences"] == [3]
+    assert stats["triangles"] == 0 and stats["inverted_faces"] == 0 and stats["boundary_singular"] == 0
+    assert stats["interior_singular"] == 3 and stats["min_scaled_jacobian"] > 0.65  # 0.71
+    (v,) = np.flatnonzero(np.all(np.isclose(mesh.vertices[:, :2], (-9, 0)), axis=1))
+    assert sum(v in f for f in mesh.faces) == 1
 
 
 @pytest.mark.parametrize("name", ["ellipse", "egg", "stadium"])

@@ -4,7 +4,7 @@
 A plan without corners sharper than 135 degrees (a disc, an oval, a regular polygon of 8 sides or
 more, a stadium, a disc cut by a wall at such corners) has a skeleton of one singularity without a
 branch (or of one branch between its two corners), made an O-grid, as is a teardrop (one sharp
-corner, a foot of the O-grid); a plan with two sharp corners and a smooth
+corner, the corner of a sixth patch of the O-grid); a plan with two sharp corners and a smooth
 outline between them (a half disc, a lens, a D-shaped apse) has a skeleton of one branch from corner
 to corner. :data:`SMOOTH_PLANS` names one of each kind; :func:`oval`, :func:`apse` and :func:`lens`
 draw them.

@@ -22,7 +22,9 @@ is 0.81, 0.80 at 0.5). Every patch is four-sided, the central quad's four corner
 singular vertices (valence 3) and none is on the boundary: the plan's corners lie on the patches'
 sides (rule ``soften_o_grid_corner``), with two faces each. ``rules/topology.vgr`` draws it (rule
 ``o_grid``) with :func:`o_grid_plan`, which recognises such a plan, :func:`o_grid_centre`,
-:func:`o_grid_foot`, which picks the four boundary points, and :func:`o_grid_clear`.
+:func:`o_grid_foot`, which picks the four boundary points, and :func:`o_grid_clear`. A plan with one
+corner sharper than 135 degrees (a teardrop's tip) gets a sixth patch with the tip as its corner
+(rule ``o_grid_round_tip``, :func:`o_grid_tip_foot`).
 """
 
 from __future__ import annotations
@@ -39,7 +41,7 @@ from vaultgram.topology.statecache import per_state
 from vaultgram.topology.types import BRANCH, CORNER, CURVE_POINT, FEATURE_POINT, SKELETON_VERTEX
 
 __all__ = ["featureless_plan", "lone_skeleton", "o_grid_plan", "o_grid_centre", "o_grid_foot", "o_grid_corner",
-           "o_grid_clear", "principal_axes", "register_o_grid_helpers", "ROUND"]
+           "o_grid_clear", "has_sharp_corner", "o_grid_tip_foot", "principal_axes", "register_o_grid_helpers", "ROUND"]
 
 #: Outlines less elongated than this (:func:`~vaultgram.geometry.polygons.elongation`) are round:
 #: the O-grid's corners radial (:func:`o_grid_corner`). rv_pillow_pattern (1.001) has its feet 43
@@ -80,7 +82,8 @@ def o_grid_plan(graph) -> bool:
     the plans whose skeleton can shrink to one singularity without a branch or to one branch. Their
     corners of 135 degrees or more are regular as the side points of an O-grid's patches (valence 3
     from 135 to 225 degrees, :func:`~vaultgram.geometry.polygons.regular_valence`: a regular
-    octagon's); a sharp one (the tip of a teardrop) is one of its feet (:func:`sharp_corner`). A
+    octagon's); a sharp one (the tip of a teardrop, :func:`sharp_corner`) is the corner of a sixth patch
+    (:func:`o_grid_tip_foot`). A
     branch with a sharp corner at an end is cut in three instead (``cut_lone_branch``)."""
     memo = per_state(_ANSWERS, graph, lambda g: {})
     if "plan" not in memo:
@@ -139,8 +142,9 @@ def o_grid_foot(graph, k: int) -> int:
     along ``sigma_1 cos(t) e_1 + sigma_2 sin(t) e_2`` with ``t`` = 45 + 90 ``k`` degrees and the
     outline's principal axes (:func:`principal_axes`): on an ellipse, the points of parameter 45, 135,
     225 and 315 degrees, so that the central quad is a rectangle of the ellipse's proportions. With a
-    sharp corner (:func:`sharp_corner`) the rays turn so that the first goes through it: the corner
-    is a foot, the corner of two patches (a boundary singularity, but no fan of thin triangles)."""
+    sharp corner (:func:`sharp_corner`) the rays turn so that the first goes through it: the central
+    quad's corner 0 lies on the way to the tip, and links to :func:`o_grid_tip_foot` on either side of
+    it rather than to the tip."""
     memo = per_state(_ANSWERS, graph, lambda g: {})
     if ("foot", k) not in memo:
         rings, nodes = graph_rings(graph)
@@ -165,8 +169,8 @@ def o_grid_corner(graph, k: int, inner: float) -> tuple[float, float]:
     along the major axis, so that the link to the foot is at 45 degrees to the axes. Radial (the
     fraction ``inner`` of the way to the foot) where that is farther in (``|a| <= |b|``: a disc, a
     regular polygon, whose feet have ``a = b``, keep their corners), on a round plan (:data:`ROUND`) and on
-    a plan with a sharp corner (:func:`sharp_corner`: the teardrop's first foot is its tip, ``b = 0``,
-    where the corner would fall on the tip).
+    a plan with a sharp corner (:func:`sharp_corner`: the teardrop's first ray goes through its tip,
+    ``b = 0``, where the corner would fall on the tip).
 
     On the stadium (20 x 4 between half circles) the radial corners left the central quad 12 x 2.4,
     the end patches 8.3 round the half circle and 2.4 wide inside, the side patches 20 long at the
@@ -189,10 +193,40 @@ def o_grid_corner(graph, k: int, inner: float) -> tuple[float, float]:
     return memo[("corner", k, inner)]
 
 
+def has_sharp_corner(graph) -> bool:
+    """Whether the O-grid plan has a corner sharper than 135 degrees (:func:`sharp_corner`)."""
+    return sharp_corner(graph) is not None
+
+
+def o_grid_tip_foot(graph, side: int, inner: float) -> int:
+    """With a sharp corner (:func:`sharp_corner`, the tip of a teardrop), the ring point on side
+    ``side`` (0 or 1) of the tip that the central quad's corner towards the tip (corner 0,
+    :func:`o_grid_corner` with ``inner``) links to instead of the tip itself. The two links split the
+    angle round that corner outside the central quad into three equal parts, symmetrically about the
+    direction to the tip (45 degrees off it where the quad's angle there is 90): the ring point nearest
+    to where the ray meets the ring. The tip is then the corner of one patch, a quad with the tip's
+    angle and a third of the rest at the quad's corner, which has four links (regular); as a foot the
+    tip was the corner of two patches, each with half its angle (issue 12: one face below 135 degrees).
+    """
+    memo = per_state(_ANSWERS, graph, lambda g: {})
+    if ("tip foot", side, inner) not in memo:
+        rings, nodes = graph_rings(graph)
+        corner = np.asarray(o_grid_corner(graph, 0, inner))
+        to_tip = np.asarray(graph.get(sharp_corner(graph), "pos"), dtype=float)[:2] - corner
+        sides = [np.asarray(o_grid_corner(graph, k, inner)) - corner for k in (1, 3)]
+        quad = math.acos(np.clip(np.dot(*sides) / (np.hypot(*sides[0]) * np.hypot(*sides[1])), -1.0, 1.0))
+        turn = (2 * math.pi - quad) / 6 * (1 if side == 0 else -1)
+        c, s = math.cos(turn), math.sin(turn)
+        hit = ray_hit(rings[:1], corner, np.array([c * to_tip[0] - s * to_tip[1], s * to_tip[0] + c * to_tip[1]]))
+        memo[("tip foot", side, inner)] = nodes[0][int(np.argmin(np.hypot(*(rings[0] - hit).T)))]
+    return memo[("tip foot", side, inner)]
+
+
 def o_grid_clear(graph, inner: float) -> bool:
-    """Whether the O-grid's eight links lie inside the plan: the central quad's four sides and the
-    links from its corners (:func:`o_grid_corner`, with the fraction ``inner``) to the feet
-    (:func:`o_grid_foot`). A plan that bends round its centroid (a bean) fails it."""
+    """Whether the O-grid's links lie inside the plan: the central quad's four sides and the links
+    from its corners (:func:`o_grid_corner`, with the fraction ``inner``) to the feet
+    (:func:`o_grid_foot`; with a sharp corner, from corner 0 to :func:`o_grid_tip_foot` on either side
+    too). A plan that bends round its centroid (a bean) fails it."""
     memo = per_state(_ANSWERS, graph, lambda g: {})
     if ("clear", inner) not in memo:
         rings, nodes = graph_rings(graph)
@@ -200,6 +234,8 @@ def o_grid_clear(graph, inner: float) -> bool:
         feet = ring[[nodes[0].index(o_grid_foot(graph, k)) for k in range(4)]]
         quad = np.array([o_grid_corner(graph, k, inner) for k in range(4)])
         links = [[quad[k], quad[(k + 1) % 4]] for k in range(4)] + [[quad[k], feet[k]] for k in range(4)]
+        if has_sharp_corner(graph):
+            links += [[quad[0], ring[nodes[0].index(o_grid_tip_foot(graph, side, inner))]] for side in (0, 1)]
         plan = shapely.Polygon(ring).buffer(1e-9 * np.ptp(ring, axis=0).max())  # the feet lie on its outline
         memo[("clear", inner)] = bool(plan.contains(shapely.MultiLineString(links)))
     return memo[("clear", inner)]
@@ -216,3 +252,6 @@ def register_o_grid_helpers(f) -> None:
     f.register("o_grid_foot", o_grid_foot, ("int",), "node", uses_graph=True, local=False)
     f.register("o_grid_corner", o_grid_corner, ("int", "number"), "vec2", uses_graph=True, local=False)
     f.register("o_grid_clear", o_grid_clear, ("number",), "bool", uses_graph=True, local=False)
+    f.register("has_sharp_corner", has_sharp_corner, (), "bool", uses_graph=True, local=False)
+    f.register("sharp_corner", sharp_corner, (), "node", uses_graph=True, local=False)
+    f.register("o_grid_tip_foot", o_grid_tip_foot, ("int", "number"), "node", uses_graph=True, local=False)
