@@ -51,23 +51,16 @@ MIN_PASS = ["armadillo_vault", "armadillo_vault_plan", "british_museum_map", "hi
             # (vaultgram.meshing.fans.poles_to_retry, vaultgram.meshpipeline._evened_again): the fan at the
             # curve end (1, 1) was 0.196
             "fig7_curves"]
-LAYOUT = "the patch layout, not smoothing: a third of the faces at interior singular vertices of valence 6 or 8"
-MEAN_MISSES = {
-    # rv_star_pattern reaches 0.903 since its reflex corners are the corners of three patches
-    # (rules/corners.vgr, split_quad_at_reflex_corner_to_boundary: 0.887 before).
-    # Since the mean-quality pass (vaultgram.meshing.orthogonalise), two_holes_five_points reaches the
-    # floor (0.891 -> 0.901); since its size term holds the jumps in size between neighbouring quads
-    # (not each quad's own area) and its angle term weighs each quad's worst corner, fig7_curves
-    # (0.876 -> 0.886 -> 0.9005) and square_point_loads (0.892 -> 0.8996 -> 0.914) reach it too; the
-    # others gain but stay below: mexico_airport 0.849 -> 0.861 -> 0.889, multiple_lobes 0.844 ->
-    # 0.859 -> 0.874 (without a size term the pass reaches 0.891 and 0.897: short whatever the weights).
-    # Since the pass descends along conjugate directions (the rows of multiple_lobes' long curved
-    # patches bend in far fewer steps) multiple_lobes reaches it (0.874 -> 0.902). mexico_airport's
-    # pass ends at 0.8915 however long it runs (0.903 without the size term): its 232 faces at the 40
-    # valence-6 and 2 valence-8 vertices between its 21 holes cannot have a corner over 60 / 45
-    # degrees on average there (benchmarks/README.md, session 21).
-    "mexico_airport": LAYOUT,
-}
+# Since the mean-quality pass (vaultgram.meshing.orthogonalise), two_holes_five_points reaches the mean
+# floor (0.891 -> 0.901); since its size term holds the jumps in size between neighbouring quads (not each
+# quad's own area) and its angle term weighs each quad's worst corner, fig7_curves (0.876 -> 0.886 ->
+# 0.9005) and square_point_loads (0.892 -> 0.8996 -> 0.914) reach it too; since the pass descends along
+# conjugate directions, multiple_lobes (0.874 -> 0.902). mexico_airport's pass ended at 0.8915 however long
+# it ran (its 232 faces at the 40 valence-6 and 2 valence-8 vertices between its 21 holes cannot have a
+# corner over 60 / 45 degrees on average there) until a group with a side on a hole the target length
+# cannot resolve took its count from its longest side (vaultgram.meshing.densities.group_length: 0.849 ->
+# 0.877 before the pass, 0.904 after; benchmarks/README.md, session 22).
+MEAN_MISSES: dict = {}
 MEAN_PASS = [n for n in MIN_PASS + sorted(MIN_MISSES) if n not in MEAN_MISSES]
 
 
