@@ -6,7 +6,8 @@ Run:  python benchmarks/formfinding_scaling.py [n ...] [--quick] [--peer-max-n N
 
 ``1000`` among the sizes is the 10^6-face grid (floor: under 15 s and 4 GB; growth exponent from
 n = 100 to the largest at most 1.1); ``--plans`` form-finds shared plans at several resolutions and
-compares their heights (acceptance: within 2% of zmax).
+compares their heights (acceptance: within 2% of zmax), also within 0.5 m of the outline's reflex
+corners and beyond 1.5 m.
 
 Prints, per grid: vertices, time to build the form diagram, force diagram, horizontal and vertical
 equilibrium (self-weight, zmax = n/4, loads and scale iterated to 1e-12), iterations and the final max
@@ -209,6 +210,22 @@ def run_meshes(face_counts) -> None:
     print("min q = smallest force density / median (all q > 0: compression only)")
 
 
+def _by_corner_distance(domain, mesh, points: np.ndarray, d: np.ndarray) -> str:
+    """The largest ``d`` at ``points`` within 0.5 m of a reflex corner of the plan's outline (turning
+    inwards by more than 20 degrees, where a membrane's slope is unbounded) and beyond 1.5 m of every one."""
+    outer = np.asarray(domain.outer, dtype=float) - np.asarray(mesh.origin)[:2]
+    a, b = outer - np.roll(outer, 1, axis=0), np.roll(outer, -1, axis=0) - outer
+    corners = outer[np.degrees(np.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], (a * b).sum(axis=1))) < -20]
+    if not len(corners):
+        return ""
+    from scipy.spatial import cKDTree
+
+    r = cKDTree(corners).query(points[:, :2])[0]
+    near, far = d[r < 0.5], d[r > 1.5]
+    return (f"; {len(corners)} reflex corners: within 0.5 m {near.max(initial=0.0):.2%}, "
+            f"beyond 1.5 m {far.max(initial=0.0):.2%}")
+
+
 def run_plans(plans, face_counts) -> None:
     """Shared plans at several resolutions with the defaults of ``vaultgram design`` (supports of the
     plan, default rise, automatic relaxation): convergence, time, peak memory, and how far the heights
@@ -249,7 +266,8 @@ def run_plans(plans, face_counts) -> None:
                 d = np.abs(z[ok] - previous[ok, 2]) / s["zmax"]
                 dz, p99 = f"{d.max():.2%}", f"{np.percentile(d, 99):.2%}"
                 where = (f"  (99th percentile {p99}, median {np.median(d):.2%}; largest at "
-                         f"{fmt_point(previous[ok[np.argmax(d)], :2])})")
+                         f"{fmt_point(previous[ok[np.argmax(d)], :2])}"
+                         f"{_by_corner_distance(domain, mesh, previous[ok], d)})")
             previous = xyz
             peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
             compression = str(bool(np.all(tn.q[tn.form.active] > 0)))

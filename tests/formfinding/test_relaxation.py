@@ -305,3 +305,76 @@ def test_notch_densities_are_the_plans_own_near_a_reflex_corner_and_equal_far_fr
     assert np.all(np.abs(np.log(factors[between])) <= np.abs(np.log(q[between])) + 1e-12)
     square = form_diagram(*_graded_grid(spacing, spacing))
     assert len(relaxation.reflex_anchors(square)) == 0 and np.all(relaxation.notch_densities(square) == 1.0)
+
+
+def _ell(n: int = 80, notch: int | None = None):
+    """An L of 10 m in cells of ``10 / n`` m, its outline supported, the inner corner at (5, 5) (with
+    ``notch``, only a strip of that many cells is cut from the right half's top, the corner at its foot)."""
+    cut = n // 2 if notch is None else notch
+    v, f, _ = remove_faces(*grid_mesh(n), drop=[k for k in range(n * n) if k % n >= n - cut and k >= n * n // 2])
+    return form_diagram(v * 10.0 / n, f)
+
+
+def test_graded_plan_grades_the_rows_at_a_reflex_corner():
+    """:func:`graded_plan` on an L: within the reach of its inner corner (270 degrees, so ``k = 1.5``)
+    every free vertex moves along its ray from the corner and every anchor along the outline, from
+    ``r`` to ``rho (r / rho) ** 1.5``; nothing else moves and nothing folds. The plan's own densities
+    of the graded plan, solved with the anchors where it has them, pull the first rows towards the
+    corner (from 0.125 m to about 0.1, the graded plan has 0.074: the quads it shears are no exact
+    discretisation) and keep every free vertex in equilibrium. A kink of the outline caps the reach
+    at half the way to it, and stays; a plan without a reflex corner is given back as it is."""
+    from vaultgram.formfinding import relaxation
+
+    form = _ell()
+    corner = form.xy[relaxation.reflex_anchors(form)[0]]
+    assert corner.tolist() == [5.0, 5.0]
+    graded = relaxation.graded_plan(form)
+    rho = 0.5 * relaxation._NOTCH_REACH * np.hypot(10.0, 10.0)
+    r0, r1 = (np.hypot(*(xy - corner).T) for xy in (form.xy, graded.xy))
+    inside = (r0 > 0) & (r0 < rho)
+    assert inside.sum() == 17 and form.anchors[inside].sum() == 4               # rows at 0.125 and 0.25 m
+    assert np.allclose(r1[inside], rho * (r0[inside] / rho) ** 1.5)
+    d0, d1 = form.xy[inside] - corner, graded.xy[inside] - corner
+    assert np.allclose(d0[:, 0] * d1[:, 1] - d0[:, 1] * d1[:, 0], 0.0) and np.all((d0 * d1).sum(axis=1) > 0)
+    assert np.all(graded.xy[~inside] == form.xy[~inside])
+    assert not relaxation.folded_faces(graded.xy, graded.loaded_faces).any()
+
+    eo, fo = relaxation.opening_edges(form)
+    system = relaxation._ForceDensities(form, ~form.anchors, eo, fo, 1.0).at(graded.xy)
+    system.base = system.base * relaxation.notch_densities(graded)
+    xy = system.solve(np.zeros(0))
+    assert not relaxation.folded_faces(xy, form.loaded_faces).any()
+    first = np.flatnonzero(np.isclose(r0, 0.125) & ~form.anchors)
+    assert len(first) == 2 and np.all(np.hypot(*(xy[first] - corner).T) < 0.85 * 0.125)
+    residual = form.C.T @ (system.base[:, None] * (form.C @ xy))
+    assert np.abs(residual[form.free]).max() < 1e-9 * np.abs(residual[form.anchors]).max()
+
+    strip = _ell(notch=4)            # the corner (9.5, 5); the form diagram drops the bare corner (10, 5),
+    graded = relaxation.graded_plan(strip)                  # so the outline kinks at (9.875, 5): rho 0.1875
+    moved = np.any(graded.xy != strip.xy, axis=1)
+    assert np.hypot(*(strip.xy[moved] - [9.5, 5.0]).T).max() < 0.1875
+    at = np.flatnonzero((strip.xy == [9.625, 5.0]).all(axis=1))      # on the outline, 0.125 m from the corner
+    assert np.allclose(graded.xy[at], [[9.5 + 0.1875 * (0.125 / 0.1875) ** 1.5, 5.0]])
+    square = form_diagram(*grid_mesh(8))
+    assert relaxation.graded_plan(square) is square
+
+
+def test_relaxing_a_notch_grades_it_and_keeps_the_anchors_on_the_outline():
+    """Mode ``"all"`` over a notch that equal densities fold (a 270 degree corner at (0.5, 0.5)): nothing
+    folded, compression, every free vertex in equilibrium with the densities returned; the anchors
+    within the corner's reach moved along the notch's sides towards it, by the graded plan, the
+    others where they were."""
+    from vaultgram.formfinding import relaxation
+
+    v, f, outer = notched_grid(80)
+    form = form_diagram(v, f, supports=outer)
+    relaxed = relaxation.relax(form, mode="all")
+    xy, q = relaxed.form.xy, relaxed.q
+    assert not relaxation.folded_faces(xy, form.loaded_faces).any() and np.all(q > 0)
+    residual = form.C.T @ (q[:, None] * (form.C @ xy))
+    assert np.abs(residual[form.free]).max() < 1e-9 * np.abs(residual[form.anchors]).max()
+    moved = np.flatnonzero(form.anchors & np.any(xy != form.xy, axis=1))
+    graded = relaxation.graded_plan(form).xy
+    assert len(moved) >= 2 and np.array_equal(xy[form.anchors], graded[form.anchors])
+    assert np.allclose(xy[moved, 0], 0.5 * (1 - 2 * np.abs(xy[moved, 1] - 0.5)))     # on the notch's sides
+    assert np.all(np.hypot(*(xy[moved] - 0.5).T) < np.hypot(*(form.xy[moved] - 0.5).T))

@@ -15,6 +15,7 @@ that no edge collapsed.
 
 from __future__ import annotations
 
+import copy
 from typing import NamedTuple
 
 import numpy as np
@@ -25,10 +26,10 @@ from vaultgram.formfinding.formdiagram import FormDiagram
 from vaultgram.geometry.meshes import corner_arrays, face_areas, shoelace_areas
 from vaultgram.geometry.polygons import signed_area
 from vaultgram.geometry.polylines import polyline_length
-from vaultgram.geometry.spatial import nearest_within
+from vaultgram.geometry.spatial import nearest_within, pairs_within
 
 __all__ = ["relax_openings", "relax", "Relaxed", "opening_edges", "folded_faces", "reflex_anchors",
-           "isotropic_densities", "notch_densities"]
+           "isotropic_densities", "notch_densities", "graded_plan"]
 
 RELAX_MODES = ("boundary", "all")
 #: At most this many Newton steps of the sag search (:func:`_sag_search`), each one factorisation.
@@ -215,13 +216,21 @@ class _ForceDensities:
         self.base = np.full(form.n_edges, float(q_interior))
         self.interior = np.ones(form.n_edges, dtype=bool)
         self.interior[eo] = False
-        self.mv, st = np.flatnonzero(moving), np.flatnonzero(~moving)
+        self.mv, self.st = np.flatnonzero(moving), np.flatnonzero(~moving)
         self.Cm = form.C[:, self.mv].tocsr()
         self.K = ForceDensityMatrix(form.C, self.mv)
-        self.CmT, self.Cs = self.Cm.T.tocsr(), form.C[:, st].tocsc()
+        self.CmT, self.Cs = self.Cm.T.tocsr(), form.C[:, self.st].tocsc()
         self.xy0 = np.asarray(form.xy)
-        self.xs = self.xy0[st]
+        self.xs = self.xy0[self.st]
         self._factor: Cholesky | None = None
+
+    def at(self, xy: np.ndarray) -> _ForceDensities:
+        """The same system with the stationary vertices at ``xy`` (and the sags measured from there);
+        the densities are copied, the factorisation's symbolic part is shared."""
+        out = copy.copy(self)
+        out.base, out.xy0 = self.base.copy(), np.asarray(xy)
+        out.xs = out.xy0[self.st]
+        return out
 
     def densities(self, logq: np.ndarray) -> np.ndarray:
         """Force density per form edge for the opening force densities ``exp(logq)``."""
@@ -491,24 +500,29 @@ def _unfolded(system: _ForceDensities, form: FormDiagram, arches: list[_Arch], s
     vertex at a convex combination of its neighbours, which folds the diagram where the supported
     boundary has reflex corners (Tutte's embedding needs a convex one): the edge lines along the
     boundary pull straight across a notch and drag the first rows of faces over its corner. There the
-    interior densities become the plan's own near the reflex corners (:func:`notch_densities`), so that
-    the result is a discretisation of one problem at every resolution, and are then made unequal
-    where faces still fold (:func:`_unfolding_rounds`); should that leave a fold (a notch spanned by a
-    cell or two, whose isotropic densities are no discretisation of anything), the rounds start again
-    from equal densities. Unchanged if nothing is folded. Returns ``log q_b`` and the positions."""
+    interior densities become those of the plan graded towards its reflex corners (:func:`graded_plan`,
+    :func:`notch_densities`), whose equilibrium is near that graded plan, so that the result is a
+    discretisation of one problem at every resolution, its rows graded to the corners' singularity, and
+    are then made unequal where faces still fold (:func:`_unfolding_rounds`); should that leave a fold
+    (a notch spanned by a cell or two, whose isotropic densities are no discretisation of anything), the
+    rounds start again from equal densities and the plan as meshed. Unchanged if nothing is folded.
+    Returns ``log q_b`` and the positions (the anchors near a reflex corner moved along the outline)."""
     if not folded_faces(xy, form.loaded_faces).any():
         return logq, xy
-    folds, equal, factors = _Folds(form), system.base.copy(), notch_densities(form)
+    equal, graded = system.base.copy(), graded_plan(form)
+    factors = notch_densities(graded)
     if np.any(factors != 1.0):
-        system.base = equal * factors
-        start, near = system.solve(logq), logq
-        if arches:
-            near, start = _sag_search(system, arches, sag, start=logq)
-        out = _unfolding_rounds(system, folds, form, arches, sag, near, start)
+        notch = system.at(graded.xy)
+        notch.base = equal * factors
+        bent = [_arch(graded, k, ~form.anchors) for k in np.flatnonzero(~form.loaded)]
+        start, near = notch.solve(logq), logq
+        if bent:
+            near, start = _sag_search(notch, bent, sag, start=logq)
+        out = _unfolding_rounds(notch, _Folds(graded), graded, bent, sag, near, start)
         if not folded_faces(out[1], form.loaded_faces).any():
+            system.base = notch.base
             return out
-        system.base = equal
-    return _unfolding_rounds(system, folds, form, arches, sag, logq, xy)
+    return _unfolding_rounds(system, _Folds(form), form, arches, sag, logq, xy)
 
 
 def _unfolding_rounds(system: _ForceDensities, folds: _Folds, form: FormDiagram, arches: list[_Arch], sag: float,
@@ -544,12 +558,18 @@ def reflex_anchors(form: FormDiagram) -> np.ndarray:
     >>> form.xy[reflex_anchors(form)].tolist()                          # the L's inner corner
     [[2.0, 2.0]]
     """
+    total = _loaded_angles(form)
+    return np.flatnonzero(form.anchors & (total > _REFLEX) & (total < 355.0))
+
+
+def _loaded_angles(form: FormDiagram) -> np.ndarray:
+    """Per vertex, the sum of the corner angles of the loaded faces round it, in degrees (360 inside
+    the loaded region, 180 on a straight stretch of its boundary)."""
     face, u, v, p = corner_arrays(form.loaded_faces)
     xy = np.asarray(form.xy)
     a, b = xy[v] - xy[u], xy[p] - xy[u]
     angle = np.mod(np.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], np.einsum("ij,ij->i", a, b)), 2 * np.pi)
-    total = np.degrees(np.bincount(u, angle, form.n_vertices))
-    return np.flatnonzero(form.anchors & (total > _REFLEX) & (total < 355.0))
+    return np.degrees(np.bincount(u, angle, form.n_vertices))
 
 
 def isotropic_densities(form: FormDiagram) -> np.ndarray:
@@ -589,7 +609,8 @@ def notch_densities(form: FormDiagram) -> np.ndarray:
     face by face until the first moment nothing is folded, so which rows next to a notch are pinched,
     and how the steep heights there sit, depends on the mesh (issue 18: multiple_lobes' heights
     differed by 7.06% of zmax between 8,159 and 82,399 faces, 12.59% between 16,298 and 82,399);
-    started from these, 3.49% and 3.36%.
+    started from these, 3.49% and 3.36%; from these of the :func:`graded_plan` (as :func:`_unfolded`
+    does since session 22), 2.37% and 2.52%.
 
     >>> from vaultgram.formfinding.formdiagram import form_diagram
     >>> from vaultgram.geometry.meshes import grid_mesh, remove_faces
@@ -605,6 +626,117 @@ def notch_densities(form: FormDiagram) -> np.ndarray:
     _, distance = nearest_within(xy[corners], 0.5 * (xy[form.edges[:, 0]] + xy[form.edges[:, 1]]), reach)
     w = np.clip(2.0 * (reach - distance) / reach, 0.0, 1.0)  # 0 beyond the reach (infinite distance)
     return isotropic_densities(form) ** w
+
+
+def graded_plan(form: FormDiagram) -> FormDiagram:
+    """The plan graded towards its reflex corners of the supported boundary (§5; issue 18): within a
+    reach ``rho`` of each such corner ``c`` of angle ``alpha``, every free vertex moves towards ``c`` along
+    its ray, ``r -> rho (r / rho) ** k`` with ``k = alpha / pi``, and every anchor on the two stretches of
+    outline from ``c`` along the outline, its arc length from ``c`` mapped alike (it stays on the outline
+    as meshed); the rest stays. A membrane's heights at a re-entrant corner grow like
+    ``r ** (pi / alpha)`` (unbounded slope), on rows of even spacing with an error that shrinks like
+    ``h ** (pi / alpha)``; on these rows they grow linearly with the row's index, as a smooth surface
+    does. ``rho``: half of :data:`_NOTCH_REACH` of the plan's diagonal (where :func:`notch_densities` are
+    the plan's own), at most half the way along the outline to a kink (a turn of more than
+    :data:`_KINK` degrees) or to a free vertex, and half the distance to any other anchor, so that no
+    kink moves and the reaches do not overlap. The plan as given where it has no such corner, or where
+    the graded one would fold a face.
+
+    >>> from vaultgram.formfinding.formdiagram import form_diagram
+    >>> from vaultgram.geometry.meshes import grid_mesh, remove_faces
+    >>> v, f, _ = remove_faces(*grid_mesh(40), drop=[k for k in range(1600) if k % 40 >= 20 and k >= 800])
+    >>> form = form_diagram(v / 4.0, f)             # an L of 10 m in cells of 0.25 m, its inner corner at (5, 5)
+    >>> rho = 0.5 * 0.05 * np.hypot(10.0, 10.0)     # 0.354 m: the first row moves, k = 270 / 180
+    >>> graded = graded_plan(form).xy
+    >>> at = [int(np.flatnonzero((form.xy == p).all(axis=1))[0]) for p in ([4.75, 5.0], [5.25, 5.0])]
+    >>> form.anchors[at].tolist()                   # a free vertex and an anchor on the outline
+    [False, True]
+    >>> graded[at].round(4).tolist(), round(float(rho * (0.25 / rho) ** 1.5), 4)
+    ([[4.7898, 5.0], [5.2102, 5.0]], 0.2102)
+    """
+    corners = reflex_anchors(form)
+    if not len(corners):
+        return form
+    xy, angles = np.asarray(form.xy), _loaded_angles(form)
+    k = angles[corners] / 180.0
+    reach = _NOTCH_REACH * float(np.hypot(*np.ptp(xy, axis=0)))
+    chains = [_outline_chain(form, corners, step, np.abs(angles - 180.0), reach) for step in _outline_neighbours(form)]
+    rho = _grading_reach(form, corners, chains, 0.5 * reach)
+    graded = xy.copy()
+    index, r = nearest_within(xy[corners], xy, float(rho.max()))
+    inside = np.flatnonzero((index >= 0) & (r < rho[np.maximum(index, 0)]) & (r > 0) & ~form.anchors)
+    i = index[inside]
+    graded[inside] = xy[corners[i]] + (xy[inside] - xy[corners[i]]) * ((r[inside] / rho[i]) ** (k[i] - 1))[:, None]
+    for chain, arc in chains:
+        for j, c in enumerate(corners):
+            on = np.flatnonzero(arc[j] < rho[j])
+            s = rho[j] * (arc[j, on] / rho[j]) ** k[j]
+            path = xy[np.r_[c, chain[j]]]
+            length = np.r_[0.0, arc[j]]
+            graded[chain[j, on]] = np.column_stack([np.interp(s, length, path[:, d]) for d in range(2)])
+    return form if folded_faces(graded, form.loaded_faces).any() else form.with_xy(graded)
+
+
+#: :func:`graded_plan`: a turn of the outline by more than this many degrees is a kink, which stays.
+_KINK = 20.0
+
+
+def _outline_chain(form: FormDiagram, corners: np.ndarray, step: np.ndarray, turn: np.ndarray,
+                   reach: float) -> tuple[np.ndarray, np.ndarray]:
+    """From each corner, the vertices met going along the outline by ``step`` (next or previous,
+    :func:`_outline_neighbours`) up to the first that is no straight anchor (a free vertex, or a kink:
+    ``turn``, the vertex's loaded angles' difference to 180 degrees, over :data:`_KINK`; it is the
+    chain's last), at most ``reach`` along it; per corner, their indices and arc lengths from it,
+    ``(corners, m)``, the arc infinite past the end."""
+    xy = np.asarray(form.xy)
+    at, arc = corners.copy(), np.zeros(len(corners))
+    open_ = np.ones(len(corners), dtype=bool)
+    vertices, lengths = [], []
+    while open_.any():
+        nxt = np.where(open_, step[at], at)
+        open_ &= nxt >= 0
+        nxt = np.where(open_, nxt, at)
+        arc = np.where(open_, arc + np.hypot(*(xy[nxt] - xy[at]).T), np.inf)
+        vertices.append(nxt)
+        lengths.append(arc.copy())
+        at = nxt
+        open_ &= form.anchors[at] & (turn[at] <= _KINK) & (arc < reach) & ~np.isin(at, corners)
+    return np.column_stack(vertices), np.column_stack(lengths)
+
+
+def _grading_reach(form: FormDiagram, corners: np.ndarray, chains: list, reach: float) -> np.ndarray:
+    """Per reflex anchor in ``corners``, the reach of :func:`graded_plan`: ``reach``, at most half the arc
+    length along either of its outline ``chains`` to the chain's last vertex (a kink, a free vertex, or
+    as far as the chain looked), and half the distance to the nearest anchor on neither chain."""
+    xy = np.asarray(form.xy)
+    rho = np.full(len(corners), float(reach))
+    on_chain = np.zeros((len(corners), form.n_vertices), dtype=bool)
+    for chain, arc in chains:
+        finite = np.isfinite(arc)
+        last = np.where(finite, arc, -np.inf).max(axis=1)
+        rho = np.minimum(rho, 0.5 * last)
+        rows = np.repeat(np.arange(len(corners)), finite.sum(axis=1))
+        on_chain[rows, chain[finite]] = True
+    on_chain[np.arange(len(corners)), corners] = True
+    anchors = np.flatnonzero(form.anchors)
+    at, j = pairs_within(xy[anchors], xy[corners], reach)
+    off = ~on_chain[at, anchors[j]]
+    np.minimum.at(rho, at[off], 0.5 * np.hypot(*(xy[anchors[j[off]]] - xy[corners[at[off]]]).T))
+    return rho
+
+
+def _outline_neighbours(form: FormDiagram) -> tuple[np.ndarray, np.ndarray]:
+    """Per vertex, its next and previous vertex along the outline of the loaded faces (-1 inside): the
+    halfedges of loaded faces without a twin among them, the faces on their left."""
+    _, u, v, _ = corner_arrays(form.loaded_faces)
+    n = form.n_vertices
+    keys = np.sort(u * n + v)
+    twin = v * n + u
+    at = np.minimum(np.searchsorted(keys, twin), len(keys) - 1)
+    lone = keys[at] != twin
+    nxt, prv = np.full(n, -1), np.full(n, -1)
+    nxt[u[lone]], prv[v[lone]] = v[lone], u[lone]
+    return nxt, prv
 
 
 def _unfold(system: _ForceDensities, folds: _Folds, xy: np.ndarray, logq: np.ndarray) -> np.ndarray:
