@@ -413,3 +413,53 @@ def test_a_hole_corner_chord_may_end_its_strip_in_a_fan_where_no_other_chord_qua
     monkeypatch.setattr(reflex, "_widest_chord", lambda *a, fans=None, **k: None if fans else widest(*a, **k))
     before = decompose(domain, 0.03)
     assert min(_patches_at(before, corner) for corner in DRAW_444["holes"][0]) == 2
+
+
+#: Saved random plan 327 (a square hole turned 45 degrees, a short curve; spacing 0.04): the cut of the
+#: hole corner (-2.36, 0) across the ring patch round the hole runs into a triangle at the curve's free
+#: end (-4.81, 0), entered by its side opposite the end; main 16e0c9d refused it as ending at a curve
+#: point, and the corner kept two faces (1 boundary singular vertex, min scaled Jacobian 0.333).
+DRAW_327 = {
+    "outer": [[4.802844561159085, 1.3902100997132039], [1.4201154538014296, 5.757109232612236],
+              [-5.572318031358127, 5.35424124697615], [-7.8861613012236225, -2.2826932975492054],
+              [-2.0356905299713612, -8.252633765422098], [3.7092630727584637, -3.564098321073103]],
+    "holes": [[[2.359602870662142, 1e-12], [1.4448074993541144e-16, -2.359602870661142],
+               [-2.359602870662142, 9.997110319897184e-13], [-4.3345527062764827e-16, 2.3596028706631422]]],
+    "curves": [[[-4.810303393063872, -1.8691550780566365e-17], [-5.959329644822651, -1.6550479825741375]]],
+}
+
+
+def test_a_hole_corner_cut_may_halve_a_triangle_at_a_curve_free_end(monkeypatch):
+    """Draw 327: a curve's free end is the pole of the triangles round it (§4.2) as a point feature is
+    (reflex._pole), so the cut's strip may end there where its foot halves the triangle into two of
+    40 degrees: every hole corner the corner of three patches, the end the corner of a diagonal from a
+    strip point, no boundary singularity (main: 1), min scaled Jacobian at least 0.34 (main 0.333).
+    With curve ends treated as main did, a hole corner stays inside a side (the corner of none)."""
+    domain = domain_from_dict(DRAW_327)
+    dec = decompose(domain, 0.04)
+    for corner in DRAW_327["holes"][0]:
+        assert _patches_at(dec, corner) == 3, corner
+    g = dec.graph
+    (end,) = [n for n in g.nodes() if g.node_type(n) == "CurveExtremity"
+              and np.allclose(g.get(n, "pos"), DRAW_327["curves"][0][0], atol=1e-9)]
+    assert any(g.node_type(g.other(e, end)) == "StripPoint" for e in g.incident(end, [DIAGONAL]))
+    stats = mesh_stats(mesh_decomposition(dec), domain)
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
+    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.34
+    monkeypatch.setattr(reflex, "_pole", reflex._feature)
+    assert min(_patches_at(decompose(domain, 0.04), c) for c in DRAW_327["holes"][0]) == 0
+
+
+def test_the_poles_a_strip_may_end_at_are_point_features_and_curve_free_ends():
+    """reflex._pole on every point of draw 327's and draw 393's decompositions: a curve's free end or a
+    point feature, nothing else (not a curve's inner point, not a plain boundary point)."""
+    kinds = set()
+    for plan, spacing in ((DRAW_327, 0.04), (DRAW_393, 0.03)):
+        g = decompose(domain_from_dict(plan), spacing).graph
+        for n in (n for n in g.nodes() if g.schema.is_subtype(g.node_type(n), "Point")):
+            kind = g.node_type(n)
+            want = kind == "CurveExtremity" or kind == "FeaturePoint" or bool(g.get(n, "feature"))
+            assert reflex._pole(g, n) == want, (kind, g.get(n, "pos"))
+            kinds.add((kind, want))
+    assert {("CurveExtremity", True), ("CurvePoint", False), ("BoundaryVertex", True),
+            ("BoundaryVertex", False)} <= kinds

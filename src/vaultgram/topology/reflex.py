@@ -56,7 +56,14 @@ from vaultgram.topology.strips import (
     strip_point,
     strip_walk,
 )
-from vaultgram.topology.types import BOUNDARY, BOUNDARY_VERTEX, CURVE_POINT, FEATURE_POINT, PATCH_CORNER
+from vaultgram.topology.types import (
+    BOUNDARY,
+    BOUNDARY_VERTEX,
+    CURVE_EXTREMITY,
+    CURVE_POINT,
+    FEATURE_POINT,
+    PATCH_CORNER,
+)
 
 __all__ = ["reflex_chord", "reflex_side", "reflex_foot", "reflex_cut", "reflex_cut_index", "reflex_cut_at",
            "reflex_point", "rebranch_to_corner", "MIN_ANGLE", "MIN_CUT_ANGLE", "MAX_POLE_ANGLE", "MAX_RATIO", "FEET",
@@ -152,10 +159,10 @@ def _feet(graph, walk, fractions=FEET, half: float = MIN_CUT_ANGLE) -> Iterator[
 
 
 def _fan_end(graph, walk) -> tuple | None:
-    """Where the strip ``walk`` is one triangle of a point feature's fan, entered by the side opposite
-    the feature (:func:`_strip_beyond`): the feature's position, the direction (radians) of the
+    """Where the strip ``walk`` is one triangle of a pole's fan, entered by the side opposite the pole
+    (:func:`_strip_beyond`, :func:`_pole`): the pole's position, the direction (radians) of the
     triangle's side leaving it and the triangle's angle there (degrees); None otherwise."""
-    if walk.end is None or len(walk.patches) != 1 or not _feature(graph, walk.end):
+    if walk.end is None or len(walk.patches) != 1 or not _pole(graph, walk.end):
         return None
     found = patch_sides(graph, walk.patches[0])
     return _corner(graph, found, found.corners.index(walk.end)) if len(found.corners) == 3 else None
@@ -181,6 +188,14 @@ def _halves_fan(fan: tuple, at, least: float = MIN_CUT_ANGLE) -> bool:
 def _feature(graph, n: int) -> bool:
     """Whether the point ``n`` is a point feature (a boundary point feature or an inner one)."""
     return bool(graph.get(n, "feature")) or graph.schema.is_subtype(graph.node_type(n), FEATURE_POINT)
+
+
+def _pole(graph, n: int) -> bool:
+    """Whether the point ``n`` is a pole of the triangles round it whatever the layout: a point feature
+    (§4.1) or a curve's free end (§4.2, Figure 8), so that halving one of its triangles keeps it one.
+    A hole corner's cut whose strip is such a triangle at a curve's free end was refused as ending at
+    a curve point (10 of the 137 boundary singular vertices of the 700 saved random plans, s21)."""
+    return _feature(graph, n) or graph.node_type(n) == CURVE_EXTREMITY
 
 
 def _ring_tangent(graph, w: int) -> float:
