@@ -36,6 +36,7 @@ from vaultgram.errors import (
     FormFindingError,
     HorizontalEquilibriumError,
     TessellationError,
+    VaultgramError,
     VerticalEquilibriumError,
 )
 from vaultgram.formfinding.forcediagram import force_diagram
@@ -190,9 +191,24 @@ def thrust_of_mesh(mesh: QuadMesh, supports=None, domain: Domain | None = None, 
 
     Without ``zmax`` the vault gets the rises of :data:`RISES` in turn, the first whose vertical
     equilibrium converges (a steep vault on a narrow plan may not); the summary's ``zmax`` says which.
+    Where the openings admit no compression-only vault, the error says which holes to support as well
+    (:func:`_support_hint`).
     """
     if isinstance(supports, list):
         supports = {"vertices": supports}
+    try:
+        return _thrust(mesh, supports, domain, point_load, timings, zmax, options)
+    except HorizontalEquilibriumError as exc:
+        hint = _support_hint(mesh, supports, domain, point_load, zmax, options)
+        raise HorizontalEquilibriumError(f"{exc}{hint}", exc.edges, exc.angles, exc.result, exc.places) from None
+    except FormFindingError as exc:
+        raise FormFindingError(f"{exc}{_support_hint(mesh, supports, domain, point_load, zmax, options)}",
+                               exc.places) from None
+
+
+def _thrust(mesh: QuadMesh, supports, domain: Domain | None, point_load: float, timings: dict | None,
+            zmax: float | None, options: dict) -> ThrustNetwork:
+    """:func:`thrust_of_mesh` without the hint: form finding at ``zmax`` or at each of :data:`RISES`."""
     anchors = support_vertices(mesh.vertices, mesh.faces, supports, domain, mesh.origin)
     loads = {int(v): point_load for v in np.flatnonzero(mesh.feature)} if point_load else None
     heights = [zmax] if zmax is not None else [default_rise(mesh.vertices, rise) for rise in RISES]
@@ -204,25 +220,40 @@ def thrust_of_mesh(mesh: QuadMesh, supports=None, domain: Domain | None = None, 
         except VerticalEquilibriumError:
             if k == len(heights) - 1:
                 raise
-        except HorizontalEquilibriumError as exc:
-            raise HorizontalEquilibriumError(f"{exc}{_support_hint(domain, supports)}", exc.edges, exc.angles,
-                                             exc.result, exc.places) from None
-        except FormFindingError as exc:
-            raise FormFindingError(f"{exc}{_support_hint(domain, supports)}", exc.places) from None
 
 
-def _support_hint(domain: Domain | None, supports) -> str:
-    """Which supports to try when the openings admit no compression-only vault: the largest holes the
-    support specification leaves open, as a ``--supports`` file's content."""
+def _support_hint(mesh: QuadMesh, supports, domain: Domain | None, point_load: float, zmax: float | None,
+                  options: dict) -> str:
+    """Which holes to support as well when the openings admit no compression-only vault, as a
+    ``--supports`` file's content: the largest holes the specification leaves open, 3 of them, then
+    twice as many until every hole is held, tried in turn; the first set with which form finding
+    succeeds is named (at most four more form findings, only on a run that failed). Where none does,
+    the three largest, to try with other options. Empty where the supports are not given by rings.
+
+    A plan whose holes are columns (mexico_airport's 21) needs them all: the designer is told so at
+    once rather than three holes at a time.
+    """
     if domain is None or not domain.holes or (supports is not None and "rings" not in supports):
         return ""
-    held = set(supports["rings"]) if supports is not None else {"outer"}
-    open_holes = [k for k in range(len(domain.holes)) if k not in held]
+    held = sorted(supports["rings"] if supports is not None else ["outer"], key=str)
+    open_holes = sorted((k for k in range(len(domain.holes)) if k not in held),
+                        key=lambda k: -abs(signed_area(domain.holes[k])))
     if not open_holes:
         return ""
-    largest = sorted(open_holes, key=lambda k: -abs(signed_area(domain.holes[k])))[:3]
-    rings = json.dumps({"rings": sorted(held, key=str) + largest})
-    return (f"; {len(open_holes)} of the {len(domain.holes)} holes are open: try supporting the largest, "
+    head = f"; {len(open_holes)} of the {len(domain.holes)} holes are open"
+    count = 3
+    while True:
+        trial = {"rings": held + open_holes[:count]}
+        try:
+            _thrust(mesh, trial, domain, point_load, None, zmax, options)
+            what = "all of them" if count >= len(open_holes) else f"the {count} largest"
+            return f"{head}: it form-finds with {what} supported, --supports with {json.dumps(trial)}"
+        except VaultgramError:
+            if count >= len(open_holes):
+                break
+            count *= 2
+    rings = json.dumps({"rings": held + open_holes[:3]})
+    return (f"{head}, and supporting them all does not help: try other options, or supporting the largest, "
             f"--supports with {rings}")
 
 
