@@ -191,14 +191,28 @@ def split_counts(layout: Layout, counts: np.ndarray, free: np.ndarray) -> np.nda
     """``counts`` raised where ``free`` (groups whose count comes from a length) so that the thin fans
     can be split: the opposite side's count even, the pole sides' count above half of it. Raised
     only for the fans that then split (:func:`split_patterns`), so that a fan that stays keeps its
-    counts. Only raises, so it settles; a group that is not free is never changed (its fan stays)."""
+    counts. Only raises, so it settles; a group that is not free is never changed (its fan stays).
+
+    A fan that stays below the floor gets no more triangles, unless its count is also the count of a
+    boundary pole's fan that splits (:func:`_boundary_pole`: a lone 135-165 degree corner or a reflex
+    corner given a patch of its own), which would otherwise stay a boundary singularity: the kept fan
+    then takes one triangle more (session 22, 700 saved plans: boundary singular vertices 96 -> 90,
+    one more plan with a face under 0.3)."""
     wanted = split_patterns(layout, _raised(layout, counts, free))
     side_count = np.asarray(counts)[layout.group_of]
     free = np.array(free, dtype=bool)
-    for k, pat in enumerate(layout.patterns):  # a fan that stays below the floor gets no more triangles
-        if pat.pole is not None and k not in wanted and _fan_of(layout, pat, side_count) < FAN_FLOOR:
-            free[layout.group_of[pat.sides[(pat.pole + 1) % 3][0]]] = False
+    needed = {_opposite_group(layout, p) for k, p in enumerate(layout.patterns)
+              if k in wanted and _boundary_pole(layout, p)}
+    for k, pat in enumerate(layout.patterns):
+        if (pat.pole is not None and k not in wanted and _fan_of(layout, pat, side_count) < FAN_FLOOR
+                and _opposite_group(layout, pat) not in needed):
+            free[_opposite_group(layout, pat)] = False
     return _raised(layout, counts, free, wanted)
+
+
+def _opposite_group(layout: Layout, pat: PatchPattern) -> int:
+    """The edge group of a triangle's side opposite its pole (the count of its fan)."""
+    return int(layout.group_of[pat.sides[(pat.pole + 1) % 3][0]])
 
 
 def _raised(layout: Layout, counts: np.ndarray, free: np.ndarray, only=None) -> np.ndarray:
