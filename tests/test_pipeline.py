@@ -321,6 +321,40 @@ def test_a_plan_without_a_compression_only_vault_is_one_line_naming_edges_and_su
 
 
 
+def test_the_supports_hint_tries_more_holes_until_one_set_form_finds(monkeypatch):
+    """_support_hint form-finds again with the 3, 6, 12... largest open holes held (here: five holes,
+    form finding succeeding only once four are held: 3, then all 5), and names the first set that
+    succeeds; where none does, it says so and names the three largest."""
+    from vaultgram import pipeline
+    from vaultgram.domain import domain_from_dict
+
+    holes = [[[x, 4.0], [x + w, 4.0], [x + w, 4.0 + w], [x, 4.0 + w]]
+             for x, w in ((1, 0.5), (3, 1.5), (6, 1.0), (8, 0.8), (11, 1.2))]
+    domain = domain_from_dict({"name": "five holes", "outer": [[0, 0], [14, 0], [14, 10], [0, 10]], "holes": holes})
+    tried = []
+
+    def thrust(mesh, supports, *args):
+        rings = (supports or {"rings": ["outer"]})["rings"]
+        tried.append(rings)
+        if len(rings) < 5:
+            raise FormFindingError("relaxing the openings collapsed 3 edges")
+        return "network"
+
+    monkeypatch.setattr(pipeline, "_thrust", thrust)
+    with pytest.raises(FormFindingError) as failed:
+        thrust_of_mesh(None, None, domain)
+    by_area = [1, 4, 2, 3, 0]                                        # the holes, largest first
+    assert tried == [["outer"], ["outer", *by_area[:3]], ["outer", *by_area]]
+    assert str(failed.value).endswith(f"5 of the 5 holes are open: it form-finds with all of them supported, "
+                                      f"--supports with {json.dumps({'rings': ['outer', *by_area]})}")
+    monkeypatch.setattr(pipeline, "_thrust", lambda *args: thrust(None, {"rings": []}))
+    with pytest.raises(FormFindingError) as failed:
+        thrust_of_mesh(None, {"rings": ["outer", 4]}, domain)
+    assert str(failed.value).endswith(f"4 of the 5 holes are open, and supporting them all does not help: try "
+                                      f"other options, or supporting the largest, --supports with "
+                                      f"{json.dumps({'rings': [4, 'outer', 1, 2, 3]})}")
+
+
 def test_the_tessellation_leaves_the_garbage_collector_as_it_found_it():
     """It pauses the cyclic collector while it runs (a large heap of small objects) and restores it."""
     import gc
