@@ -126,6 +126,50 @@ def test_a_refused_fan_is_evened_regardless_when_asked():
     assert refused == () and len(rays) == 8 and np.allclose(_pole_corners(x, f, 0), 45.0)
 
 
+def test_an_evened_pole_is_left_for_a_retry_too():
+    """A wheel evened with the check (60 degrees each) is still named for a retry, since smoothing may
+    move the spokes that stay beside its runs; evened regardless (a retry), it is not named again."""
+    v, f = _wheel([0.0, 20.0, 100.0, 180.0, 200.0, 300.0])
+    args = (v, f, np.zeros(len(f), int), np.arange(len(v)) == 0, np.zeros(len(v), bool))
+    x, rays, retry = even_fans(*args)
+    assert retry == (0,) and len(rays) == 6 and np.allclose(_pole_corners(x, f, 0), 60.0)
+    x, rays, retry = even_fans(*args, regardless=frozenset({0}))
+    assert retry == () and len(rays) == 6 and np.allclose(_pole_corners(x, f, 0), 60.0)
+
+
+#: Saved random plan 111 of the 700 (benchmarks/reliability.py): a nonagon with one curve. Its free end
+#: (2.226, 0.032) is the pole of 19 triangles and 2 quads (fan bound 0.335); evened before smoothing only,
+#: its triangles end at 9.4 to 65.8 degrees and the worst face is 0.188 (main b9815fe).
+PLAN_111 = {
+    "outer": [[8.57868920324436, 8.578689203530318e-05], [3.923015836011938, 3.2918679933107984],
+              [1.4847560545620664, 8.420962442877787], [-2.5000433011451877, 4.330102018705688],
+              [-5.490420080339046, 1.9982873054890722], [-7.654993026080488, -2.786276296155286],
+              [-2.873704000911246, -4.9775162856432615], [0.8682901286788858, -4.924030082405956],
+              [4.135146890315254, -3.469729764568848]],
+    "holes": [], "points": [],
+    "curves": [[[2.2258678382096715, 0.032445969327540965], [0.1710217078395857, 1.7701132162981161]]],
+}
+
+
+def test_an_evened_curve_end_fan_that_holds_the_worst_face_is_evened_again_on_a_retry(monkeypatch):
+    """PLAN_111: the curve end's fan is evened at first (its bound is over the floor), smoothing undoes
+    it, and its patch holds the worst face: poles_to_retry picks the end, the retry evens the fan again
+    after smoothing, and the mesh keeps it: the end's triangles within 1 degree of each other but the
+    two beside the quads, the worst face 0.266 (0.188 when the evened pole was not retried)."""
+    asked = []
+    retry = meshpipeline.poles_to_retry
+    monkeypatch.setattr(meshpipeline, "poles_to_retry", lambda *args: asked.append(retry(*args)) or asked[-1])
+    mesh = mesh_domain(domain_from_dict(PLAN_111), 0.02)
+    end = int(np.argmin(np.hypot(*(mesh.vertices[:, :2] - PLAN_111["curves"][0][0]).T)))
+    assert mesh.curve_labels()[1][end] and fan_bounds(mesh.vertices, mesh.faces)[end] >= FAN_FLOOR
+    assert asked[0] == {end}
+    face_of, u, _, _ = corner_arrays(mesh.faces)
+    tri = np.array([len(mesh.faces[f]) == 3 for f in face_of[u == end]])
+    corners = np.sort(_pole_corners(mesh.vertices, mesh.faces, end)[tri])
+    assert len(corners) == 19 and np.ptp(corners[:17]) < 1.0
+    assert face_scaled_jacobians(mesh.vertices, mesh.faces).min() > 0.26
+
+
 @pytest.mark.skipif(not (EXAMPLES / "fig7_curves.json").exists(), reason="examples not present")
 def test_a_refused_pole_that_bounds_the_mesh_is_smoothed_again_evened(monkeypatch):
     """fig7's curve end (1, 1): the check refuses to even its fan (its spokes' quads get worse before
@@ -192,7 +236,8 @@ PLAN_243 = {  # draw 243 of benchmarks/reliability.py's saved random plans: a po
 def test_a_fan_hemmed_in_by_quads_is_evened_with_their_corners(monkeypatch):
     """Round the point feature on the outline at (-5.24, -4.89), 9 triangles and a quad share 180
     degrees. Evened between the quad's sides, which stay, the quad keeps 99 degrees, eight triangles
-    get 6 each and the mesh's worst face is 0.120. With the quad's corner in the share (the wide
+    get 6 each and the mesh's worst face is 0.120 (0.180 where the retry evens them again after
+    smoothing). With the quad's corner in the share (the wide
     evening that :func:`poles_to_widen` asks for: 17.7 degrees per triangle, 20.6 for the quad), the
     mesh reaches the pole's fan bound, 0.351, over the floor."""
     domain = domain_from_dict(PLAN_243)
@@ -201,7 +246,7 @@ def test_a_fan_hemmed_in_by_quads_is_evened_with_their_corners(monkeypatch):
     narrow = mesh_domain(domain, 0.03)
     worst = [face_scaled_jacobians(m.vertices, m.faces).min() for m in (wide, narrow)]
     pole = int(np.argmin(np.hypot(*(wide.vertices[:, :2] - [-5.2388711678764, -4.8941442302069555]).T)))
-    assert worst[1] < 0.15 < FAN_FLOOR <= worst[0]
+    assert worst[1] < 0.19 < FAN_FLOOR <= worst[0]
     assert math.isclose(worst[0], fan_bounds(wide.vertices, wide.faces)[pole], rel_tol=0.02)
     assert poles_to_widen(narrow.vertices, narrow.faces, narrow.pole) == {pole}
 
@@ -295,6 +340,6 @@ def test_the_retry_goes_on_while_the_worst_face_moves_to_another_refused_pole(mo
     once = mesh_domain(domain, 0.04)
     worst = [face_scaled_jacobians(m.vertices, m.faces).min() for m in (again, once)]
     assert worst[0] > 0.32 > FAN_FLOOR > worst[1] > 0.27
-    assert len(rounds) >= 2 and rounds[0] != rounds[1]
+    assert any(a != b for a, b in zip(rounds, rounds[1:]))
     features = np.flatnonzero(again.feature & again.boundary)
     assert len(features) == 2 and worst[0] > fan_bounds(again.vertices, again.faces)[features].min() - 1e-3

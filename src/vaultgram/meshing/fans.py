@@ -97,7 +97,8 @@ def even_fans(vertices: np.ndarray, faces, face_patch: np.ndarray, pole: np.ndar
               regardless: frozenset = frozenset(), wide: bool = False, radial=None) -> tuple[np.ndarray, tuple, tuple]:
     """The poles' fans made even: the vertices round each pole between two of its triangles turned to
     equal angles about it, the rays from the pole along which smoothing then lets them slide, and the
-    poles left for a retry: those whose evening the check below refused, and those under the floor.
+    poles left for a retry: those whose evening the check below refused, those under the floor, and
+    those evened here with the check (not in ``regardless``), whose evening smoothing may undo.
 
     Coons interpolation (§3.2) spaces a fan's spokes by the arc length of the side opposite the pole,
     and a patch's share of its pole's angle comes from the decomposition, so the triangles round a pole
@@ -132,7 +133,12 @@ def even_fans(vertices: np.ndarray, faces, face_patch: np.ndarray, pole: np.ndar
     ``square_point_loads`` (39 triangles round each load, bound 0.185) went from 0.093 to 0.185, but
     its voussoir joints from 8.2 to 11.0 degrees off the force flow (median; the tessellation's
     floor is 10), so its fans stay as the patches give them. The check only foresees smoothing: the
-    poles in ``regardless`` are evened without it.
+    poles in ``regardless`` are evened without it. An evened pole is left for a retry too: smoothing
+    moves the spokes that stay (a quad's side beside the fan), so a run evened between them may end in
+    a thin triangle after it, and only a retry evens it again after smoothing (the caller's
+    ``_evened_again``). Saved random plan 111 of 700: round its curve's free end (bound 0.335), 19
+    triangles and 2 quads, the triangles smoothed to 9.4 to 65.8 degrees (worst face 0.188); retried,
+    17 of them 13.3 each (0.266; benchmarks/README.md, session 22, s22-curveloss).
 
     Example
     -------
@@ -144,7 +150,7 @@ def even_fans(vertices: np.ndarray, faces, face_patch: np.ndarray, pole: np.ndar
     >>> f = [(0, 1 + k, 1 + (k + 1) % 6) for k in range(6)]
     >>> x, rays, refused = even_fans(v, f, np.zeros(6, int), np.arange(7) == 0, np.zeros(7, bool))
     >>> np.round(np.degrees(np.arctan2(x[1:, 1], x[1:, 0])) % 360, 6).tolist(), len(rays), refused
-    ([343.333333, 43.333333, 103.333333, 163.333333, 223.333333, 283.333333], 6, ())
+    ([343.333333, 43.333333, 103.333333, 163.333333, 223.333333, 283.333333], 6, (0,))
     """
     x = np.array(vertices, dtype=float)
     corners = corner_arrays(faces)
@@ -162,7 +168,7 @@ def even_fans(vertices: np.ndarray, faces, face_patch: np.ndarray, pole: np.ndar
         turned = _even_pole(x, faces, int(c), corners, size, at[corners[1][at] == c], np.asarray(face_patch), held,
                             check=int(c) not in regardless, wide=wide)
         rays += turned or []
-        refused += [int(c)] if turned is None else []
+        refused += [] if int(c) in regardless else [int(c)]  # refused, or evened before smoothing only
     return x, tuple(rays), tuple(refused)
 
 
