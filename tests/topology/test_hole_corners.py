@@ -381,11 +381,12 @@ def _meshed_with_hole_corners_of_three(plan: dict, min_sj: float):
 
 def test_a_hole_corner_takes_a_chord_within_the_hole_ratio_where_none_is_within_2_5(monkeypatch):
     """Draw 370: no chord of the corner (3.125, -1.468) keeps its edge group within reflex.MAX_RATIO
-    (with the fallback off it stays the corner of two patches); one within reflex.HOLE_MAX_RATIO
-    gives it its third: every hole corner the corner of three patches, no boundary singularity
-    (main: 2), min scaled Jacobian at least 0.31 (main 0.434: the price)."""
+    (with the fallback off, and the later reflex._hole_chord, it stays the corner of two patches);
+    one within reflex.HOLE_MAX_RATIO gives it its third: every hole corner the corner of three
+    patches, no boundary singularity (main: 2), min scaled Jacobian at least 0.31 (main 0.434: the price)."""
     domain = _meshed_with_hole_corners_of_three(DRAW_370, 0.31)
     monkeypatch.setattr(reflex, "HOLE_MAX_RATIO", reflex.MAX_RATIO)
+    monkeypatch.setattr(reflex, "_hole_chord", lambda *a: None)  # the last fallback would take it
     assert _patches_at(decompose(domain, 0.03), DRAW_370["holes"][0][1]) == 2
 
 
@@ -407,10 +408,12 @@ def test_a_hole_corner_chord_may_end_its_strip_in_a_fan_where_no_other_chord_qua
     """Draw 444: where no chord of a corner of two patches qualifies, one whose strip is one triangle
     of a point feature's fan, halved there into two of reflex.MIN_CUT_ANGLE, serves (as a cut's may):
     every hole corner the corner of three patches, no boundary singularity (main: 1), min scaled
-    Jacobian at least 0.38 (main 0.381). Without that fallback a hole corner keeps two patches."""
+    Jacobian at least 0.38 (main 0.381). Without that fallback (and the later
+    reflex._hole_chord) a hole corner keeps two patches."""
     domain = _meshed_with_hole_corners_of_three(DRAW_444, 0.38)
     widest = reflex._widest_chord
     monkeypatch.setattr(reflex, "_widest_chord", lambda *a, fans=None, **k: None if fans else widest(*a, **k))
+    monkeypatch.setattr(reflex, "_hole_chord", lambda *a: None)  # the last fallback would take it
     before = decompose(domain, 0.03)
     assert min(_patches_at(before, corner) for corner in DRAW_444["holes"][0]) == 2
 
@@ -463,3 +466,93 @@ def test_the_poles_a_strip_may_end_at_are_point_features_and_curve_free_ends():
             kinds.add((kind, want))
     assert {("CurveExtremity", True), ("CurvePoint", False), ("BoundaryVertex", True),
             ("BoundaryVertex", False)} <= kinds
+
+
+#: Saved random plan 574 (an octagonal outline, a small hexagonal hole; spacing 0.02): the hole corner
+#: (-0.55, -0.953) is the corner of two patches whose every chord, at the middle and off it, leaves an angle
+#: below the limits (its best 35-40 degrees off the middle, under reflex.MIN_CUT_ANGLE); main d952b9c:
+#: one boundary singular vertex there, min scaled Jacobian 0.521.
+DRAW_574 = {
+    "outer": [[5.819058700493197, 1.139532050651254], [3.3482192079242497, 4.97889828533252],
+              [-1.9217737226240186, 9.813602078698311], [-5.500863349087632, 3.6992312897494086],
+              [-9.813602078698313, -1.921773722624016], [-4.383875465495886, -6.518948934589162],
+              [1.827709725502728, -9.333261117214192], [4.280501448833082, -2.878559944225359]],
+    "holes": [[[1.1, 0.0], [0.5500000000000002, -0.9526279441628825], [-0.5499999999999998, -0.9526279441628827],
+               [-1.1, -1.3471114790620887e-16], [-0.5500000000000005, 0.9526279441628823],
+               [0.5499999999999993, 0.952627944162883]]],
+}
+#: Saved random plan 6 (a pentagonal outline and hole, two boundary point features; spacing 0.03): the
+#: hole corner (-1.541, -1.120) of two patches has its best chord at 25-30 degrees; main d952b9c: one
+#: boundary singular vertex there, min scaled Jacobian 0.499.
+DRAW_6 = {
+    "outer": [[5.577103365049325, 0.6216674256469805], [1.7502144017246641, 8.496545676575519],
+              [-8.334249043973813, 4.74213869415742], [-4.380184622824928, -3.994107074283413],
+              [3.520849454218947, -7.775958500512084]],
+    "holes": [[[1.9046708681786817, 0.0], [0.5885756669580979, -1.8114496405788827],
+               [-1.5409111010474386, -1.1195374467865304], [-1.540911101047439, 1.11953744678653],
+               [0.5885756669580975, 1.811449640578883]]],
+    "points": [[-5.457473279736174, -1.6139085069581993], [4.206267424495739, -4.976749858459063]],
+}
+
+
+def _hole_chord_angles(dec) -> list:
+    """The angles (degrees) every chord from a hole corner (a diagonal of the layout) makes with the
+    hole's sides there, the narrower of its two sides each."""
+    g = dec.graph
+    hole = set(graph_rings(g)[1][1])
+    angles = []
+    for e in (e for e in g.edges() if g.edge_type(e) == DIAGONAL):
+        for r in set(g.ends(e)) & hole:
+            pts = half_edge_polyline(g, e, r)
+            first = math.degrees(math.atan2(pts[1][1] - pts[0][1], pts[1][0] - pts[0][0]) - reflex._ahead(g, r)) % 360
+            angles.append(min(first, boundary_angle(g, r) - first))
+    return angles
+
+
+@pytest.mark.parametrize("plan, spacing, min_sj", [(DRAW_574, 0.02, 0.52), (DRAW_6, 0.03, 0.49)])
+def test_a_hole_corner_takes_its_widest_chord_down_to_the_hole_limit_where_none_other_qualifies(
+        monkeypatch, plan, spacing, min_sj):
+    """Draws 574 and 6: no chord of a hole corner of two patches qualifies at reflex.MIN_ANGLE (the
+    middle) or reflex.MIN_CUT_ANGLE (off it), within either ratio or into a fan; the widest over every
+    foot down to reflex.HOLE_MIN_ANGLE gives it its third patch: every hole corner the corner of three,
+    every hole chord at least HOLE_MIN_ANGLE from the hole's sides, no boundary singularity (main: 1
+    each), min scaled Jacobian at least 0.52 and 0.49 (main 0.521 and 0.499). Without that fallback a
+    hole corner keeps two patches."""
+    domain = domain_from_dict(plan)
+    dec = decompose(domain, spacing)
+    for corner in plan["holes"][0]:
+        assert _patches_at(dec, corner) == 3, corner
+    angles = _hole_chord_angles(dec)
+    assert min(angles) >= reflex.HOLE_MIN_ANGLE - 1e-9
+    stats = mesh_stats(mesh_decomposition(dec), domain)
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
+    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= min_sj
+    monkeypatch.setattr(reflex, "_hole_chord", lambda *a: None)
+    assert min(_patches_at(decompose(domain, spacing), corner) for corner in plan["holes"][0]) == 2
+
+
+def test_the_hole_fallback_takes_the_widest_of_every_foot(monkeypatch):
+    """reflex._hole_chord on draw 574's layout before it (the fallback off): the corner of two patches
+    left gets the chord whose worst angle is the widest of every candidate of every side (each foot of
+    reflex.FEET, reflex._chord_worst at reflex.HOLE_MIN_ANGLE and HOLE_MAX_RATIO), under the usual
+    limits (none qualified there) and at least HOLE_MIN_ANGLE."""
+    hole_chord = reflex._hole_chord
+    monkeypatch.setattr(reflex, "_hole_chord", lambda *a: None)
+    g = decompose(domain_from_dict(DRAW_574), 0.02).graph
+    (r,) = [n for n in graph_rings(g)[1][1] if np.allclose(g.get(n, "pos"), DRAW_574["holes"][0][2], atol=1e-9)]
+    assert g.degree(r, [PATCH_CORNER]) == 2
+    patches = sorted({g.ends(e)[0] for e in g.incident(r, [PATCH_CORNER])})
+    found = [strips.patch_sides(g, p) for p in patches]
+    angles = [reflex._corner(g, f, f.corners.index(r))[2] for f in found]
+    quads = [i for i, f in enumerate(found) if len(f.corners) == 4]
+    every = []
+    for i in quads:
+        k, other = found[i].corners.index(r), reflex._other_angle(boundary_angle(g, r), angles, i)
+        for j in (1, 2):
+            for target in reflex._targets(g, patches[i], found[i], k, j):
+                every.append(reflex._chord_worst(g, patches[i], found[i], k, j, target, other,
+                                                 reflex.HOLE_MIN_ANGLE, reflex.HOLE_MAX_RATIO))
+    best = hole_chord(g, (r, patches, found, angles), quads)
+    assert best is not None and best[0] == max(w for w in every if w is not None)
+    assert reflex.HOLE_MIN_ANGLE <= best[0] < reflex.MIN_CUT_ANGLE
+    assert len([w for w in every if w is not None]) > 1

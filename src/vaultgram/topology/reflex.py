@@ -26,7 +26,9 @@ chord runs inside the quad and its strip completes (:func:`~vaultgram.topology.s
 without ending in a triangle at a point the split would change (:func:`_strip_beyond`), the chord
 whose worst angle is widest: the three patch angles at the corner after the split and the chord's two
 angles with the side it ends on. Where that worst angle is below :data:`MIN_ANGLE` the corner is left
-as it is (a sliver of a patch would cost more in the mesh's worst element than the singularity).
+as it is (a sliver of a patch would cost more in the mesh's worst element than the singularity), but
+for fallbacks: at a hole corner, last, the widest chord over every foot down to :data:`HOLE_MIN_ANGLE`
+(:func:`_hole_chord`: a quad corner that narrow still has a scaled Jacobian above 0.3).
 
 A spike (:data:`SPIKE`: 315-360 degrees, regular valence 5, the noise of a geographic outline) asks for
 four faces: it gets a chord while it is the corner of two patches or of three (the rules'
@@ -68,7 +70,7 @@ from vaultgram.topology.types import (
 __all__ = ["reflex_chord", "reflex_side", "reflex_foot", "reflex_cut", "reflex_cut_index", "reflex_cut_at",
            "reflex_point", "rebranch_to_corner", "MIN_ANGLE", "MIN_CUT_ANGLE", "MAX_POLE_ANGLE", "MAX_RATIO", "FEET",
            "SPIKE", "PAST_STRAIGHT", "FOLD_MIN_ANGLE", "MAX_POLE_RATIO", "MIN_FAN_HALF",
-           "HOLE_MAX_RATIO"]
+           "HOLE_MAX_RATIO", "HOLE_MIN_ANGLE"]
 
 #: The node types at which a strip may not end in a triangle (:func:`_strip_beyond`).
 KEPT_ENDS = (BOUNDARY_VERTEX, FEATURE_POINT, CURVE_POINT)
@@ -114,6 +116,14 @@ MAX_POLE_RATIO = 5.0
 #: ring: there it folded a jagged outline (jagged_1: chords at its 299 and 240 degree corners beside a
 #: narrow 320 degree spike) and lowered jagged_2's min scaled Jacobian from 0.198 to 0.077.
 HOLE_MAX_RATIO = 3.5
+#: Degrees: where no chord of a hole corner qualifies at :data:`MIN_ANGLE` (:data:`MIN_CUT_ANGLE` off the
+#: middle), nor within :data:`HOLE_MAX_RATIO`, nor into a fan, the chord whose worst angle is widest over
+#: every foot of :data:`FEET` down to this (:func:`_hole_chord`): a quad corner of 20 degrees has a scaled
+#: Jacobian of sin 20 = 0.34, above the 0.3 the benchmarks count. On the 700 saved random plans main
+#: d952b9c left 24 hole corners of two patches whose best chord was at 0-40 degrees; at 25 the fallback
+#: took 11 of them, at 20 15 (23-25 and 132 too). Not on the outer ring: lower chord angles there folded
+#: jagged_1 (session 21); a hole corner's chord ends inside the plan or on the hole's ring.
+HOLE_MIN_ANGLE = 20.0
 #: Degrees: the triangle's angle at the corner must allow the three-quad split
 #: (:data:`vaultgram.meshing.splits.MAX_SPLIT_ANGLE`).
 MAX_POLE_ANGLE = 160.0
@@ -271,7 +281,8 @@ def _choose(graph, r: int) -> tuple | None:
     feature's fan, halved at the feature into two of :data:`MIN_CUT_ANGLE`, then of
     :data:`MIN_FAN_HALF`, as a cut's may be (never before: asked first, such chords took the place of
     the chosen ones at corners already regular, and plans 12, 395 and 444 fell under 0.3, 444 from
-    0.381 to 0.076)."""
+    0.381 to 0.076); where still none does at a hole corner, the widest chord down to
+    :data:`HOLE_MIN_ANGLE` (:func:`_hole_chord`)."""
     patches = sorted({graph.ends(e)[0] for e in graph.incident(r, [PATCH_CORNER])})
     found = [patch_sides(graph, p) for p in patches]
     if any(f is None for f in found):
@@ -285,18 +296,31 @@ def _choose(graph, r: int) -> tuple | None:
     for half in (MIN_CUT_ANGLE, MIN_FAN_HALF):
         if best is None:
             best = _widest_chord(graph, at, quads, None, fans=half)
+    if best is None and ring_place(graph, r)[0] > 0:
+        best = _hole_chord(graph, at, quads)
     turned = [i for i in quads if angles[i] > PAST_STRAIGHT] if boundary_angle(graph, r) >= SPIKE else []
     if best is None and turned:
         best = _widest_chord(graph, at, turned, FOLD_MIN_ANGLE)
     return None if best is None else best[1:]
 
 
+def _hole_chord(graph, at: tuple, quads: list) -> tuple | None:
+    """The last fallback of a hole corner's chord (:func:`_choose`, where no other qualifies): of every
+    foot of every side (not the first in :data:`FEET` order that qualifies), the chord whose worst angle
+    is widest, down to :data:`HOLE_MIN_ANGLE`, its edge group within :data:`HOLE_MAX_RATIO`. The widest
+    foot, not the first: at 20 degrees the first foot of plans 613 and 614 left 0.341 as their worst
+    scaled Jacobian, the widest 0.449 (main 0.496, the corner singular); plan 574's rose 0.521 -> 0.539."""
+    return _widest_chord(graph, at, quads, HOLE_MIN_ANGLE, HOLE_MAX_RATIO, every_foot=True)
+
+
 def _widest_chord(graph, at: tuple, quads: list, least: float | None, ratio: float = MAX_RATIO,
-                  fans: float | None = None) -> tuple | None:
+                  fans: float | None = None, every_foot: bool = False) -> tuple | None:
     """Of the chords from the reflex corner in the quads ``quads`` (indices into ``at``: the corner,
     its patches, their sides and their angles there), the one whose worst angle is widest, as
     ``(worst, patch, kind, target, side, fraction)`` (:func:`_choose`); ``least`` and ``ratio`` are
-    passed on to :func:`_chord_worst`, ``fans`` to :func:`_targets`. None where none qualifies."""
+    passed on to :func:`_chord_worst`, ``fans`` to :func:`_targets`. Of a side's feet the first that
+    qualifies, in :data:`FEET` order (the middle first), or with ``every_foot`` the widest of all of
+    them (:func:`_hole_chord`). None where none qualifies."""
     r, patches, found, angles = at
     theta = boundary_angle(graph, r)
     best = None
@@ -311,7 +335,8 @@ def _widest_chord(graph, at: tuple, quads: list, least: float | None, ratio: flo
                 if worst is not None:
                     if best is None or worst > best[0]:
                         best = (worst, p, kind, target, sides.corners[(k + j) % 4], fraction)
-                    break
+                    if not every_foot:
+                        break
     return best
 
 
