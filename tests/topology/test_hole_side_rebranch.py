@@ -11,7 +11,7 @@ import pytest
 from vaultgram.domain import domain_from_dict
 from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import decompose, mesh_decomposition
-from vaultgram.topology import hole_sides, reflex
+from vaultgram.topology import hole_sides, reflex, strips
 from vaultgram.topology.corners import boundary_angle, graph_rings
 from vaultgram.topology.types import DIAGONAL, PATCH_CORNER
 
@@ -123,3 +123,49 @@ def test_without_the_rebranch_the_corner_stays_inside_a_side(monkeypatch):
     g = decompose(domain_from_dict(DRAW_666)).graph
     assert g.degree(_node_at(g, CORNER_666), [PATCH_CORNER]) == 0 and not _rebranches(g)
 
+
+
+#: Saved random plan 665 (666's outline and hole, two boundary point features; spacing 0.02): the
+#: cuts of the hole corners (2.585, -3.557) and (-1.176, -2.699) run to a curved branch with one
+#: triangle of the point (-1.012, -5.044)'s fan beyond; the chord from the branch's middle to the
+#: point leaves the triangle, so the strip walk refused the cut whatever its foot (main d952b9c: 3
+#: boundary singular vertices, min scaled Jacobian 0.301).
+DRAW_665 = {
+    "outer": DRAW_666["outer"],
+    "holes": DRAW_666["holes"],
+    "points": [[-1.011735208765991, -5.044038657090011], [8.272444227521358, -2.216224364125512]],
+    "curves": DRAW_666["curves"],
+}
+
+
+def test_a_cut_may_end_in_a_fan_triangle_whose_middle_chord_leaves_it():
+    """Draw 665: the cut of the hole corner (-1.176, -2.699) takes a foot off the middle of the
+    curved branch, whose chord to the point runs inside the fan triangle (reflex.cut_walk): the corner
+    is the corner of two patches (main: of none; no chord of its quads qualifies after), the hole
+    corner of two patches beside it, whose chords all left under 5 degrees on main, gets its third; 2
+    boundary singular vertices (main 3), no fold, min scaled Jacobian at least 0.3 (main 0.301)."""
+    domain = domain_from_dict(DRAW_665)
+    dec = decompose(domain)
+    assert dec.graph.degree(_node_at(dec.graph, DRAW_665["holes"][0][3]), [PATCH_CORNER]) == 2
+    assert dec.graph.degree(_node_at(dec.graph, DRAW_665["holes"][0][2]), [PATCH_CORNER]) == 3
+    stats = mesh_stats(mesh_decomposition(dec), domain)
+    assert stats["inverted_faces"] == 0 and stats["boundary_singular"] <= 2, stats["boundary_singular_angles"]
+    assert stats["min_scaled_jacobian"] >= 0.3
+
+
+def test_the_fan_walk_is_the_triangle_beyond_whose_middle_chord_leaves_it():
+    """Draw 665's hole corner (2.585, -3.557), still inside a side: the strip walk from the middle of
+    the side opposite refuses it (reflex._strip_beyond is None), reflex.cut_walk gives the one triangle
+    beyond, ending at the point feature opposite the side, and the chord from the middle to the point
+    leaves that triangle while one from a foot of reflex.FEET runs inside it."""
+    g = decompose(domain_from_dict(DRAW_665)).graph
+    r, f = _node_at(g, DRAW_665["holes"][0][1]), _node_at(g, DRAW_665["points"][0])
+    patch, i = reflex._on_side(g, r)
+    found = strips.patch_sides(g, patch)
+    edge = strips.side_edge(g, patch, found.corners[(i + 2) % 4])
+    assert reflex._strip_beyond(g, patch, edge, fans=True) is None
+    walk = reflex.cut_walk(g, patch, edge)
+    triangle = strips.patch_sides(g, walk.patches[0])
+    assert walk.edges == (edge,) and walk.end == f and len(triangle.corners) == 3
+    inside = [strips.chord_inside(triangle, strips.edge_cut(g, edge, t)[1], g.get(f, "pos")) for t in reflex.FEET]
+    assert not inside[0] and any(inside)

@@ -63,7 +63,7 @@ def _candidates(graph, r: int):
     patch, i = at
     found = patch_sides(graph, patch)
     edge = side_edge(graph, patch, found.corners[(i + 2) % 4])
-    walk = reflex._strip_beyond(graph, patch, edge, fans=True) if edge >= 0 else None
+    walk = reflex.cut_walk(graph, patch, edge) if edge >= 0 else None
     fan = reflex._fan_end(graph, walk) if walk is not None else None
     if fan is None or not reflex._feature(graph, walk.end):
         return None
