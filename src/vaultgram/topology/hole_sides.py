@@ -73,9 +73,9 @@ def _candidates(graph, r: int):
 def _score(graph, r: int, cand) -> float | None:
     """The worst angle (degrees) the chord from the pole to ``r`` leaves at ``r`` and at the pole
     (:func:`_candidates`' ``cand``), or None where a test of the module docstring refuses it."""
-    patch, i, edge, tri, pole, fan = cand
+    patch, i, _, tri, pole, fan = cand
     found, sides = patch_sides(graph, patch), patch_sides(graph, tri)
-    a, b, c, d = (found.corners[(i + j) % 4] for j in range(4))
+    c, d = found.corners[(i + 2) % 4], found.corners[(i + 3) % 4]
     if set(sides.corners) != {c, d, pole}:
         return None
     pos, at = graph.get(r, "pos"), graph.get(pole, "pos")
@@ -117,7 +117,7 @@ def _even(graph, found, i: int, r: int, pole: int, sides) -> bool:
 def _choose(graph, r: int):
     """The rebranch for the hole corner ``r`` (:func:`_candidates`), where ``r`` is, of the hole
     corners inside the same side that it could serve, the one whose worst angle is widest (ties:
-    the first along the side); None otherwise."""
+    the lower node id, for determinism); None otherwise."""
     cand = _candidates(graph, r)
     if cand is None:
         return None
