@@ -21,6 +21,7 @@ from vaultgram.errors import RuleError
 from vaultgram.geometry.polygons import interior_angle, regular_valence, signed_area
 from vaultgram.geometry.polylines import arc_lengths, point_at_length, turning_angles
 from vaultgram.topology import corners, reflex
+from vaultgram.topology.hole_sides import register_hole_side_helpers
 from vaultgram.topology.lone_branch import register_lone_branch_helpers
 from vaultgram.topology.ogrid import register_o_grid_helpers
 from vaultgram.topology.patches import (
@@ -539,6 +540,7 @@ def vault_functions() -> Functions:
     register_o_grid_helpers(f)
     register_lone_branch_helpers(f)
     register_strip_helpers(f)
+    register_hole_side_helpers(f)
     return f
 
 

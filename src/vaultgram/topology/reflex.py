@@ -49,6 +49,7 @@ from vaultgram.topology.corners import boundary_angle, graph_rings, ring_place
 from vaultgram.topology.patches import half_edge_polyline
 from vaultgram.topology.statecache import per_state
 from vaultgram.topology.strips import (
+    Walk,
     chord_inside,
     edge_cut,
     patch_across,
@@ -70,7 +71,7 @@ from vaultgram.topology.types import (
 __all__ = ["reflex_chord", "reflex_side", "reflex_foot", "reflex_cut", "reflex_cut_index", "reflex_cut_at",
            "reflex_point", "rebranch_to_corner", "MIN_ANGLE", "MIN_CUT_ANGLE", "MAX_POLE_ANGLE", "MAX_RATIO", "FEET",
            "SPIKE", "PAST_STRAIGHT", "FOLD_MIN_ANGLE", "MAX_POLE_RATIO", "MIN_FAN_HALF",
-           "HOLE_MAX_RATIO", "HOLE_MIN_ANGLE"]
+           "HOLE_MAX_RATIO", "HOLE_MIN_ANGLE", "cut_walk"]
 
 #: The node types at which a strip may not end in a triangle (:func:`_strip_beyond`).
 KEPT_ENDS = (BOUNDARY_VERTEX, FEATURE_POINT, CURVE_POINT)
@@ -164,7 +165,8 @@ def _feet(graph, walk, fractions=FEET, half: float = MIN_CUT_ANGLE) -> Iterator[
     fan = _fan_end(graph, walk)
     for f in fractions[:1] if walk.end is None else fractions:
         at = edge_cut(graph, edge, f)[1]
-        if (f == 0.5 or chord_inside(found, at, to)) and (fan is None or _halves_fan(fan, at, half)):
+        walked = f == 0.5 and fan is None  # the strip's walk ran this chord (a fan's: maybe not, _fan_walk)
+        if (walked or chord_inside(found, at, to)) and (fan is None or _halves_fan(fan, at, half)):
             yield f, at, _edge_tangent(graph, edge, f)
 
 
@@ -401,6 +403,31 @@ def _strip_beyond(graph, patch: int, edge: int, fans: bool = False):
     return None if kept else walk
 
 
+def cut_walk(graph, patch: int, edge: int):
+    """The walk of the strip a hole corner's cut across the quad ``patch`` to its side ``edge`` starts
+    (:func:`_strip_beyond` with ``fans``), or where that is refused only because the chord from the
+    middle of ``edge`` to the corner opposite it in the triangle beyond leaves the triangle (a curved
+    side), that triangle as a one-patch walk (:func:`_fan_walk`): the cut's feet off the middle may
+    run inside it (:func:`_feet` checks each)."""
+    walk = _strip_beyond(graph, patch, edge, fans=True)
+    return walk if walk is not None else _fan_walk(graph, patch, edge)
+
+
+def _fan_walk(graph, patch: int, edge: int) -> Walk | None:
+    """The one triangle beyond the side ``edge`` of the quad ``patch``, as a walk ending at its corner
+    opposite ``edge``, where that corner is a pole (:func:`_pole`: a point feature or a curve's free
+    end, which stays the pole of both halves); None otherwise. For a cut whose strip walk
+    (:func:`~vaultgram.topology.strips.strip_walk`, from the middle) is refused there: on the 700 saved
+    random plans, hole corners of plans 579 and 665 whose chord from the middle of a curved branch to
+    the point feature leaves the fan triangle, while chords from feet at 0.6-0.7 of it run inside."""
+    beyond = patch_across(graph, patch, edge)
+    found = patch_sides(graph, beyond[0]) if beyond is not None else None
+    if found is None or len(found.corners) != 3:
+        return None
+    end = found.corners[(beyond[1] + 2) % 3]
+    return Walk((beyond[0],), (edge,), end) if _pole(graph, end) else None
+
+
 def _side_length(graph, side) -> float:
     """The length of a patch side (its half-edges' polylines)."""
     return sum(float(arc_lengths(half_edge_polyline(graph, e, u))[-1]) for e, u in side)
@@ -518,7 +545,7 @@ def _cut(graph, r: int) -> tuple | None:
     edge = side_edge(graph, patch, found.corners[(i + 2) % 4])
     if edge < 0:
         return None
-    walk = _strip_beyond(graph, patch, edge, fans=True)
+    walk = cut_walk(graph, patch, edge)
     halves = (MIN_CUT_ANGLE, MIN_FAN_HALF) if walk is not None and _fan_end(graph, walk) else (MIN_CUT_ANGLE,)
     for half in halves:
         fraction = _cut_foot(graph, r, found, _feet(graph, walk, half=half))
