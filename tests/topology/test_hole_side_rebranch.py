@@ -67,17 +67,23 @@ def _rebranches(graph) -> list[tuple[int, int]]:
             for r, f in (graph.ends(e), graph.ends(e)[::-1]) if r in hole and reflex._feature(graph, f)]
 
 
+def _rebranched(plan: dict, corner) -> tuple:
+    """Decompose ``plan``, check that its one hole-corner-to-feature chord joins ``corner`` to the
+    plan's first point feature, and mesh it: the layout graph, the corner's node and the mesh's stats."""
+    domain = domain_from_dict(plan)
+    dec = decompose(domain)
+    g = dec.graph
+    r, f = _node_at(g, corner), _node_at(g, plan["points"][0])
+    assert _rebranches(g) == [(r, f)]
+    return g, r, mesh_stats(mesh_decomposition(dec), domain)
+
+
 def test_a_hole_corner_takes_the_chord_to_the_fan_pole_and_then_its_third_patch():
     """Draw 86: the hole corner (0.641, 3.163) is joined to the point feature by a chord and, with the
     chord rules' split after it, is the corner of three patches (main: of none, two faces); 2
     boundary singular vertices (main 3), no fold, min scaled Jacobian at least 0.36 (main 0.341)."""
-    domain = domain_from_dict(DRAW_86)
-    dec = decompose(domain)
-    g = dec.graph
-    r, f = _node_at(g, CORNER_86), _node_at(g, DRAW_86["points"][0])
-    assert _rebranches(g) == [(r, f)]
+    g, r, stats = _rebranched(DRAW_86, CORNER_86)
     assert g.degree(r, [PATCH_CORNER]) == 3
-    stats = mesh_stats(mesh_decomposition(dec), domain)
     assert stats["inverted_faces"] == 0 and stats["boundary_singular"] <= 2, stats["boundary_singular_angles"]
     assert stats["min_scaled_jacobian"] >= 0.36
 
@@ -87,13 +93,8 @@ def test_the_rebranch_takes_a_skewed_fan_triangle_out_of_the_mesh():
     feature and becomes a patch corner (of two: no chord of its quads qualifies after); the fan
     triangle whose sliver of a face was the mesh's worst is gone: 3 boundary singular vertices (main
     7), no fold, min scaled Jacobian at least 0.29 (main 0.005)."""
-    domain = domain_from_dict(DRAW_666)
-    dec = decompose(domain)
-    g = dec.graph
-    r, f = _node_at(g, CORNER_666), _node_at(g, DRAW_666["points"][0])
-    assert _rebranches(g) == [(r, f)]
+    g, r, stats = _rebranched(DRAW_666, CORNER_666)
     assert g.degree(r, [PATCH_CORNER]) == 2
-    stats = mesh_stats(mesh_decomposition(dec), domain)
     assert stats["inverted_faces"] == 0 and stats["boundary_singular"] <= 3, stats["boundary_singular_angles"]
     assert stats["min_scaled_jacobian"] >= 0.29
 
