@@ -12,7 +12,7 @@ from hypothesis import HealthCheck, given, settings
 from vaultgram.domain import domain_from_dict, load_domain
 from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import decompose, mesh_decomposition
-from vaultgram.topology.corners import chord_feet, ray_hit, rectilinear_rings
+from vaultgram.topology.corners import boundary_angle, chord_feet, ray_hit, rectilinear_rings
 
 from paths import ARCHITECTURE, EXAMPLES
 from strategies.domains import RECTILINEAR_PLANS, orthogonal_domains
@@ -124,13 +124,24 @@ def test_the_hiroshi_senju_museum_doorway_has_no_boundary_singularity():
 def test_a_neck_between_two_rooms_whose_skeleton_ends_in_them_stays():
     """Two round rooms joined by a corridor (radii jittered by 3%): the skeleton vertex at either
     end of the corridor's branch has only that branch and two rebranches, so cut_neck leaves it (it
-    would be the corner of a room's patch wrapped round it; 47 folded faces where base had 3)."""
+    would be the corner of a room's patch wrapped round it; 47 folded faces where base had 3). The
+    only diagonals are split_lone_corner_quad's (s24-corners): from a room's lone 135-225 degree corner
+    to the skeleton vertex opposite it (main b7eedca had none, and its mesh folded: 5 inverted faces;
+    with them none)."""
     t = np.linspace(0, 2 * np.pi, 24, endpoint=False)
     r = 3 * (1 + 0.03 * np.random.default_rng(1).standard_normal(24))
     rooms = [shapely.Polygon(np.c_[x + r * np.cos(t), k * r * np.sin(t)]) for x, k in ((0, 0.8), (8, 1.0))]
     plan = shapely.set_precision(shapely.union_all([*rooms, shapely.box(0, -0.5, 8, 0.5)]), 1e-6)
-    dec = decompose(domain_from_dict({"outer": np.asarray(plan.exterior.coords)[:-1].tolist()}))
-    assert not [e for e in dec.graph.edges() if dec.graph.edge_type(e) == "Diagonal"]
+    domain = domain_from_dict({"outer": np.asarray(plan.exterior.coords)[:-1].tolist()})
+    dec = decompose(domain)
+    assert [step.applications for step in dec.reports if step.step.startswith("cut_neck")] == [0]
+    g = dec.graph
+    for e in (e for e in g.edges() if g.edge_type(e) == "Diagonal"):
+        corner, skeleton = sorted(g.ends(e), key=lambda n: not g.schema.is_subtype(g.node_type(n), "BoundaryVertex"))
+        assert g.schema.is_subtype(g.node_type(corner), "BoundaryVertex")
+        assert g.schema.is_subtype(g.node_type(skeleton), "SkeletonVertex")
+        assert 135 <= boundary_angle(g, corner) < 225
+    assert mesh_stats(mesh_decomposition(dec), domain)["inverted_faces"] == 0
 
 
 @pytest.mark.parametrize("width, length", [(1.0, 0.2), (1.5, 0.5)])
