@@ -723,8 +723,9 @@ def _joined(names) -> str:
 @FORMAT
 @input_options
 @max_faces_option
+@RULES
 def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities_path, allow_folds,
-                 supports_path, formats, input_format, layers, max_faces) -> None:
+                 supports_path, formats, input_format, layers, max_faces, rules_dir) -> None:
     """Quad-mesh a DOMAIN (paper 3): decompose, mesh the patches, weld, smooth.
 
     Writes mesh.json (vertices, faces, vertex labels, edge groups, the vertices that bear thrust) and
@@ -741,13 +742,13 @@ def mesh_command(domain_path, out_dir, spacing, target_length, smooth, densities
         from vaultgram.meshpipeline import mesh_domain
         from vaultgram.topology.rulebook import load_vault_rulebook
 
-        load_vault_rulebook()  # the shipped rulebook, which mesh_domain then finds loaded
+        load_vault_rulebook(rules_dir)  # the rulebook, which mesh_domain then finds loaded
 
     formats = parse_formats(formats)
     domain = load_domain(domain_path, input_format, layer_names(layers), spacing)
     spec = load_densities(densities_path) if densities_path else None
     mesh = mesh_domain(domain, spacing, target_length, DEFAULT_ITERATIONS if smooth is None else smooth, spec,
-                       allow_folds=allow_folds, max_faces=max_faces)
+                       rules_dir=rules_dir, allow_folds=allow_folds, max_faces=max_faces)
     supports = read_json(supports_path) if supports_path else domain.supports
     if isinstance(supports, list):
         supports = {"vertices": supports}

@@ -12,11 +12,11 @@ from click.testing import CliRunner
 
 from vaultgram.cli import main
 
-from folding import FOLDING
+from folding import FOLDING, rules_without_fan_check
 
 
-def design(plan, out):
-    return CliRunner().invoke(main, ["design", str(plan), "--out", str(out), "--quiet"])
+def design(plan, out, *options):
+    return CliRunner().invoke(main, ["design", str(plan), "--out", str(out), "--quiet", *options])
 
 
 def red_pixels(png) -> int:
@@ -27,14 +27,14 @@ def red_pixels(png) -> int:
     return int((np.abs(rgb - [214, 39, 40]).sum(axis=-1) < 30).sum())
 
 
-def failed_design(tmp_path, plan_data: dict, name: str):
+def failed_design(tmp_path, plan_data: dict, name: str, *options):
     """``design`` of ``plan_data`` (written to ``tmp_path/name``) into ``tmp_path/out``: it fails with
-    one line ending with the error figure's path, and the folder holds that figure alone. Returns the
-    line, the plan's path and the folder."""
+    one line ending with the error figure's path, and the folder holds that figure alone (``options``:
+    more of design's options). Returns the line, the plan's path and the folder."""
     plan = tmp_path / name
     plan.write_text(json.dumps(plan_data))
     out = tmp_path / "out"
-    result = design(plan, out)
+    result = design(plan, out, *options)
     assert result.exit_code == 2 and "Traceback" not in result.output
     (line,) = result.output.strip().splitlines()
     assert line.endswith(f"(drawn in {out / 'error.png'})")
@@ -42,25 +42,27 @@ def failed_design(tmp_path, plan_data: dict, name: str):
     return line, plan, out
 
 
-def test_a_fold_draws_error_png_and_writes_nothing_else(tmp_path):
-    line, plan, out = failed_design(tmp_path, FOLDING, "folding.json")
+def test_a_fold_draws_error_png_and_writes_nothing_else(tmp_path, tmp_path_factory):
+    rules = ("--rules", str(rules_without_fan_check(tmp_path_factory.mktemp("book"))))  # tests/folding.py
+    line, plan, out = failed_design(tmp_path, FOLDING, "folding.json", *rules)
     assert "the mesh folds" in line
     assert sorted(p.name for p in tmp_path.iterdir()) == ["folding.json", "out"]  # no staging folder left
     png = (out / "error.png").read_bytes()
     assert png.startswith(b"\x89PNG\r\n\x1a\n")
     assert red_pixels(out / "error.png") > 20  # the folded faces and their marks, not a blank figure
     first = png
-    design(plan, out)  # again: the same figure, still alone
+    design(plan, out, *rules)  # again: the same figure, still alone
     assert [p.name for p in out.iterdir()] == ["error.png"] and (out / "error.png").read_bytes() == first
 
 
-def test_beside_a_finished_result_the_figure_goes_next_to_it(tmp_path):
+def test_beside_a_finished_result_the_figure_goes_next_to_it(tmp_path, tmp_path_factory):
+    rules = ("--rules", str(rules_without_fan_check(tmp_path_factory.mktemp("book"))))  # tests/folding.py
     plan = tmp_path / "folding.json"
     plan.write_text(json.dumps(FOLDING))
     out = tmp_path / "out"
     out.mkdir()
     (out / "summary.json").write_text("{}")  # a previous result
-    result = design(plan, out)
+    result = design(plan, out, *rules)
     assert result.exit_code == 2 and f"(drawn in {tmp_path / 'out.error.png'})" in result.output
     assert [p.name for p in out.iterdir()] == ["summary.json"] and (out / "summary.json").read_text() == "{}"
     assert red_pixels(tmp_path / "out.error.png") > 20

@@ -15,7 +15,7 @@ from vaultgram.io.meshfiles import mesh_from_json
 from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import mesh_domain
 
-from folding import FOLDING, FOLDING_AT_COARSE_SPACING
+from folding import FOLDING, FOLDING_AT_COARSE_SPACING, rules_without_fan_check
 
 
 def test_stats_without_labels_use_mesh_topology():
@@ -41,36 +41,38 @@ def test_stats_without_labels_use_mesh_topology():
 def test_a_folded_mesh_is_an_error_naming_where(tmp_path):
     """A mesh with inverted faces after smoothing and untangling is not returned: MeshFoldError says
     where (the worst face and its patch's corners); with allow_folds the mesh comes back, folded.
-    The CLI fails with one line and exit code 2, writing nothing, unless --allow-folds."""
+    The CLI fails with one line and exit code 2, writing nothing, unless --allow-folds. (The plan
+    folds with a rulebook whose Figure 4 split leaves a crescent fan: tests/folding.py.)"""
     from vaultgram.errors import MeshFoldError
 
-    domain = domain_from_dict(FOLDING)
+    domain, rules = domain_from_dict(FOLDING), rules_without_fan_check(tmp_path)
     with pytest.raises(MeshFoldError, match=r"the mesh folds: \d+ inverted face\(s\), the worst near \(-0\.") as info:
-        mesh_domain(domain)
+        mesh_domain(domain, rules_dir=rules)
     assert "patch with corners" in str(info.value)
     # neither a finer mesh nor a finer spacing unfolds it: the advice is to move the features
     assert "neither --target-length 0.26 nor --spacing 0.01 unfolds it: move the features" in str(info.value)
-    folded = mesh_domain(domain, allow_folds=True)
+    folded = mesh_domain(domain, rules_dir=rules, allow_folds=True)
     assert mesh_stats(folded, domain)["inverted_faces"] > 0
     path = tmp_path / "folding.json"
     path.write_text(json.dumps(FOLDING))
     out = tmp_path / "out"
-    result = CliRunner().invoke(main, ["mesh", str(path), "--out", str(out)])
+    result = CliRunner().invoke(main, ["mesh", str(path), "--out", str(out), "--rules", str(rules)])
     assert result.exit_code == 2 and "the mesh folds" in result.output and "Traceback" not in result.output
     assert not out.exists() or not any(out.iterdir())
-    result = CliRunner().invoke(main, ["mesh", str(path), "--out", str(out), "--allow-folds"])
+    result = CliRunner().invoke(main, ["mesh", str(path), "--out", str(out), "--rules", str(rules), "--allow-folds"])
     assert result.exit_code == 0 and "warning:" in result.output and (out / "mesh.json").is_file()
 
 
-def test_a_fold_that_a_finer_spacing_unfolds_says_which():
+def test_a_fold_that_a_finer_spacing_unfolds_says_which(tmp_path):
     """Issue 12's Acceptance: a random plan that folds gets a clear error naming the narrow place and
-    the spacing it needs. At spacing 0.05 the patches round the boundary point (4.33, -1.43) fold;
-    half the target length does not unfold them, half the spacing does, and the error says so; meshed
-    at that spacing the plan has no inverted face."""
+    the spacing it needs. At spacing 0.05 the patches round the boundary point (4.33, -1.43) fold
+    (with the rulebook without the fan check, tests/folding.py); half the target length does not
+    unfold them, half the spacing does, and the error says so; meshed at that spacing the plan has no
+    inverted face."""
     from vaultgram.errors import MeshFoldError
 
-    domain = domain_from_dict(FOLDING_AT_COARSE_SPACING)
+    domain, rules = domain_from_dict(FOLDING_AT_COARSE_SPACING), rules_without_fan_check(tmp_path)
     with pytest.raises(MeshFoldError, match=r"this close together: mesh with --spacing 0\.025 or less \(") as info:
-        mesh_domain(domain, 0.05)
+        mesh_domain(domain, 0.05, rules_dir=rules)
     assert "the worst near (4.2" in str(info.value)
-    assert mesh_stats(mesh_domain(domain, 0.025))["inverted_faces"] == 0
+    assert mesh_stats(mesh_domain(domain, 0.025, rules_dir=rules))["inverted_faces"] == 0

@@ -1,7 +1,14 @@
 """Hole corners inside a ring patch's side whose cut would end in a skewed fan triangle (issue 12,
 item 2): the branch between the ring patch and the triangle goes, and a chord from the fan's pole
 (a point feature) to the hole corner splits the two into two quads
-(``rules/corners.vgr``'s ``rebranch_hole_side_to_fan_pole``, :mod:`vaultgram.topology.hole_sides`)."""
+(``rules/corners.vgr``'s ``rebranch_hole_side_to_fan_pole``, :mod:`vaultgram.topology.hole_sides`).
+
+Since session 24 Figure 4 does not make these drawings' fan triangles: each is a crescent (its
+outline turns back about the point by 100 to 111% of its angle there, :mod:`vaultgram.topology.fans`),
+so the shipped rulebook leaves the quad whole and the point a pole of its other triangle. The
+mechanism tests below draw the layouts as before (the check off, :func:`crescents_allowed`); what
+the plans give with it is :func:`test_with_the_fan_check_the_plans_keep_their_pole_and_mesh`.
+"""
 
 from __future__ import annotations
 
@@ -11,7 +18,7 @@ import pytest
 from vaultgram.domain import domain_from_dict
 from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import decompose, mesh_decomposition
-from vaultgram.topology import hole_sides, reflex, strips
+from vaultgram.topology import fans, hole_sides, reflex, strips
 from vaultgram.topology.corners import boundary_angle, graph_rings
 from vaultgram.topology.types import DIAGONAL, PATCH_CORNER
 
@@ -54,6 +61,27 @@ DRAW_86 = {
 CORNER_86 = DRAW_86["holes"][0][5]
 
 
+@pytest.fixture
+def crescents_allowed(monkeypatch):
+    """Figure 4 splits whatever fans it leaves (fan_clear always true), as before session 24."""
+    monkeypatch.setattr(fans, "fan_parts_seen", lambda outline, at, path: True)
+
+
+@pytest.mark.parametrize("plan, boundary_singular, min_sj", [(DRAW_86, 0, 0.33), (DRAW_666, 2, 0.29)],
+                         ids=["86", "666"])
+def test_with_the_fan_check_the_plans_keep_their_pole_and_mesh(plan, boundary_singular, min_sj):
+    """Draws 86 and 666 with the shipped rulebook: no chord from a hole corner to the point (no skewed
+    fan triangle to take out), the point is still a pole, the mesh has no fold, at most 0 and 2
+    boundary singular vertices (2 and 3 with the crescent and the rebranch) and a worst face of at
+    least 0.33 and 0.29 (0.36 and 0.29)."""
+    domain = domain_from_dict(plan)
+    dec = decompose(domain)
+    assert not _rebranches(dec.graph)
+    stats = mesh_stats(mesh_decomposition(dec), domain)
+    assert stats["inverted_faces"] == 0 and stats["feature_points_pole"] == stats["feature_points"] == 1
+    assert stats["boundary_singular"] <= boundary_singular and stats["min_scaled_jacobian"] >= min_sj
+
+
 def _node_at(graph, at) -> int:
     (n,) = [n for n in graph.nodes() if graph.node_type(n) != "Patch"
             and np.allclose(graph.get(n, "pos"), at, atol=1e-9)]
@@ -78,7 +106,7 @@ def _rebranched(plan: dict, corner) -> tuple:
     return g, r, mesh_stats(mesh_decomposition(dec), domain)
 
 
-def test_a_hole_corner_takes_the_chord_to_the_fan_pole_and_then_its_third_patch():
+def test_a_hole_corner_takes_the_chord_to_the_fan_pole_and_then_its_third_patch(crescents_allowed):
     """Draw 86: the hole corner (0.641, 3.163) is joined to the point feature by a chord and, with the
     chord rules' split after it, is the corner of three patches (main: of none, two faces); 2
     boundary singular vertices (main 3), no fold, min scaled Jacobian at least 0.36 (main 0.341)."""
@@ -88,7 +116,7 @@ def test_a_hole_corner_takes_the_chord_to_the_fan_pole_and_then_its_third_patch(
     assert stats["min_scaled_jacobian"] >= 0.36
 
 
-def test_the_rebranch_takes_a_skewed_fan_triangle_out_of_the_mesh():
+def test_the_rebranch_takes_a_skewed_fan_triangle_out_of_the_mesh(crescents_allowed):
     """Draw 666: of three hole corners inside one side, one (0.498, -4.034) is joined to the point
     feature and becomes a patch corner (of two: no chord of its quads qualifies after); the fan
     triangle whose sliver of a face was the mesh's worst is gone: 3 boundary singular vertices (main
@@ -100,7 +128,7 @@ def test_the_rebranch_takes_a_skewed_fan_triangle_out_of_the_mesh():
 
 
 @pytest.mark.parametrize("plan", [DRAW_86, DRAW_666], ids=["86", "666"])
-def test_the_chord_to_the_pole_leaves_no_narrow_angle_at_the_corner_or_the_pole(plan):
+def test_the_chord_to_the_pole_leaves_no_narrow_angle_at_the_corner_or_the_pole(plan, crescents_allowed):
     """Draws 86 and 666: the chord from the hole corner to the point splits the corner's angle (from the
     boundary leaving it, as its interior angle is measured) into two of at least reflex.MIN_CUT_ANGLE,
     and each patch with the chord as a side has at least hole_sides.MIN_POLE_PART degrees at the
@@ -117,7 +145,7 @@ def test_the_chord_to_the_pole_leaves_no_narrow_angle_at_the_corner_or_the_pole(
         assert p.corner_angles()[list(p.corners).index(f)] >= hole_sides.MIN_POLE_PART
 
 
-def test_without_the_rebranch_the_corner_stays_inside_a_side(monkeypatch):
+def test_without_the_rebranch_the_corner_stays_inside_a_side(monkeypatch, crescents_allowed):
     """Draw 666 with the rebranch turned off (hole_sides._choose refuses every corner): the corner is
     the corner of no patch, as on main, and no chord joins a hole corner to the point."""
     monkeypatch.setattr(hole_sides, "_choose", lambda graph, r: None)
@@ -139,7 +167,7 @@ DRAW_665 = {
 }
 
 
-def test_a_cut_may_end_in_a_fan_triangle_whose_middle_chord_leaves_it():
+def test_a_cut_may_end_in_a_fan_triangle_whose_middle_chord_leaves_it(crescents_allowed):
     """Draw 665: the cut of the hole corner (-1.176, -2.699) takes a foot off the middle of the
     curved branch, whose chord to the point runs inside the fan triangle (reflex.cut_walk): the corner
     is the corner of two patches or more (main d952b9c: of none; with the hole chords' last fallback,
@@ -153,7 +181,7 @@ def test_a_cut_may_end_in_a_fan_triangle_whose_middle_chord_leaves_it():
     assert stats["min_scaled_jacobian"] >= 0.3
 
 
-def test_the_fan_walk_is_the_triangle_beyond_whose_middle_chord_leaves_it():
+def test_the_fan_walk_is_the_triangle_beyond_whose_middle_chord_leaves_it(crescents_allowed):
     """Draw 665's hole corner (2.585, -3.557), still inside a side: the strip walk from the middle of
     the side opposite refuses it (reflex._strip_beyond is None), reflex.cut_walk gives the one triangle
     beyond, ending at the point feature opposite the side, and the chord from the middle to the point

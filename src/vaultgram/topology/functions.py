@@ -20,7 +20,7 @@ from vaultgram.engine.expressions import Functions
 from vaultgram.errors import RuleError
 from vaultgram.geometry.polygons import interior_angle, regular_valence, signed_area
 from vaultgram.geometry.polylines import arc_lengths, point_at_length, turning_angles
-from vaultgram.topology import corners, reflex
+from vaultgram.topology import corners, fans, reflex
 from vaultgram.topology.hole_sides import register_hole_side_helpers
 from vaultgram.topology.lone_branch import register_lone_branch_helpers
 from vaultgram.topology.lone_corners import register_lone_corner_helpers
@@ -43,7 +43,7 @@ from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE, CURVE_POINT, DUAL, 
 __all__ = ["vault_functions", "distance", "midpoint", "lerp", "move_end", "move_branch_end", "angle_between",
            "curve_side", "curve_turn",
            "curve_neighbours", "patch_corner", "patch_in_plan", "patch_chains", "patch_side_starts", "patch_angle",
-           "patch_angle_split",
+           "patch_angle_split", "fan_clear",
            "diagonal_path", "bend_first",
            "path_clear", "plan_area", "domain_area", "plan_euler", "hole_count", "holes_enclosed",
            "curve_crossings", "plan_crossings"]
@@ -289,6 +289,15 @@ def patch_angle_split(graph, patch: int, x: int, point) -> float:
     return min(interior_angle(point, outline[0], outline[1]), interior_angle(outline[-2], outline[0], point))
 
 
+def fan_clear(graph, patch: int, x: int, o: int) -> bool:
+    """Whether the split of a Patch node by its diagonal from corner ``x`` to corner ``o``
+    (:func:`diagonal_path`) leaves two parts that mesh as fans round ``x`` as their pole, neither a
+    crescent whose outline turns back about ``x`` by more than half its angle there (Figure 4, §4.1;
+    :func:`~vaultgram.topology.fans.fan_parts_seen`); False where there is no such diagonal."""
+    found, path = _patch_outline(graph, patch, x), diagonal_path(graph, patch, x, o)
+    return bool(path) and fans.fan_parts_seen(found[1], _point_of(found, o), path)
+
+
 def bend_first(graph, patch: int) -> bool:
     """Whether a Patch node of 5 or more sides turns by more than 180 degrees at a bend of a curve
     (a curve point marked corner, not an extremity: §4.2) from which a diagonal to a corner two or
@@ -528,6 +537,7 @@ def vault_functions() -> Functions:
     f.register("patch_angle", patch_angle, ("node", "node"), "float", uses_graph=True, local=False)
     f.register("patch_angle_split", patch_angle_split, ("node", "node", "vec2"), "float", uses_graph=True,
                local=False)
+    f.register("fan_clear", fan_clear, ("node", "node", "node"), "bool", uses_graph=True, local=False)
     f.register("patch_side_starts", patch_side_starts, ("node", "node", "node"), "bool", uses_graph=True,
                local=False)
     f.register("patch_corner", patch_corner, ("node", "int"), "node", uses_graph=True, local=False)
