@@ -13,7 +13,7 @@ from vaultgram.errors import VaultgramError
 from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.meshing.layout import is_feature_node
 from vaultgram.meshing.quality import mesh_stats, regular_boundary_faces
-from vaultgram.meshing.splits import split_patterns
+from vaultgram.meshing.splits import halved_patterns, split_patterns
 from vaultgram.pipeline import mesh_domain
 
 from strategies.domains import convex_domains
@@ -154,15 +154,22 @@ def test_examples_meet_acceptance(meshed, name):
 @pytest.mark.parametrize("name", ["l_shape", "quad_with_hole", "rv_lips_pattern", "rv_quad_pattern",
                                   "british_museum_map"])
 def test_halved_target_length(meshed, name):
-    domain, layout, _, mesh, stats = meshed(name)
+    domain, layout, counts, mesh, stats = meshed(name)
     _, _, fine_counts, fine, fine_stats = meshed(name, 0.5)
     assert 3.3 < fine.n_faces / mesh.n_faces < 4.7
     assert acceptance_failures(fine, fine_stats, domain, forced_boundary_singular(layout, fine_counts)) == []
 
     def singular_nodes(m, s):  # by decomposition node, since vertex numbers change
-        return sorted(int(m.node[v]) for v in s["interior_singular_vertices"])
+        return sorted(int(m.node[v]) for v in s["interior_singular_vertices"] if m.node[v] >= 0)
+
+    def inner_points(m, s):  # the inner points of split triangles (no decomposition node)
+        return sum(int(m.node[v]) < 0 for v in s["interior_singular_vertices"])
 
     assert singular_nodes(fine, fine_stats) == singular_nodes(mesh, stats)
+    # finer, a point feature's fans that the finer counts would thin are split (issue 18): the only
+    # singular vertices added are the inner points of the splits made for the finer counts
+    splits = [len(split_patterns(layout, c)) + len(halved_patterns(layout, c)) for c in (counts, fine_counts)]
+    assert inner_points(fine, fine_stats) - inner_points(mesh, stats) == splits[1] - splits[0]
 
 
 # ---------------------------------------------------------------------------------------------

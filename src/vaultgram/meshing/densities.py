@@ -28,7 +28,7 @@ from vaultgram.io.files import read_json
 from vaultgram.limits import MAX_COUNT
 from vaultgram.meshing.guards import check_mesh_size
 from vaultgram.meshing.layout import EdgeGroup, Layout, kept_points, side_anchors
-from vaultgram.meshing.splits import split_counts
+from vaultgram.meshing.splits import remember_default_counts, split_counts
 
 __all__ = ["DensitySpec", "group_counts", "group_length", "unresolved_holes", "curve_min_counts",
            "densities_from_dict", "load_densities",
@@ -143,7 +143,8 @@ def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length:
         if counts[g.id] <= CHORD_SEARCH_LIMIT:
             counts[g.id] = max(counts[g.id], _chord_count(layout, g, counts[g.id], CHORD_TOLERANCE * diag))
     counts = np.maximum(counts, curve_min_counts(layout))
-    if split:  # issue 12: thin fans become three quads
+    if split:  # issue 12: thin fans become three quads (issue 18: fans at features finer than the default too)
+        remember_default_counts(layout, lambda: group_counts(layout))
         free = np.zeros(layout.n_groups, dtype=bool)
         free[[g.id for g in by_length]] = True
         counts = split_counts(layout, counts, free)

@@ -16,7 +16,7 @@ import numpy as np
 
 from vaultgram.errors import VaultgramError
 from vaultgram.limits import BYTES_PER_FACE, MAX_FACES
-from vaultgram.meshing.splits import split_patterns
+from vaultgram.meshing.splits import halved_patterns, halving, split_patterns
 
 __all__ = ["MAX_FACES", "BYTES_PER_FACE", "MeshEstimate", "estimate_mesh", "check_mesh_size"]
 
@@ -50,13 +50,26 @@ def estimate_mesh(layout, counts) -> MeshEstimate:
     True
     """
     c = np.asarray(counts, dtype=float)[layout.group_of]
-    split = split_patterns(layout, counts)
+    split, halved = split_patterns(layout, counts), halved_patterns(layout, counts)
     faces = 0.0
     for i, pat in enumerate(layout.patterns):
         k = pat.pole or 0
         m, n = c[pat.sides[k][0]], c[pat.sides[(k + 1) % len(pat.sides)][0]]
-        faces += n // 2 * (2 * m - n // 2) if i in split else m * n  # three quads: n/2 (n/2 + 2 (m - n/2))
+        if i in halved:  # two halves of three quads each, of opposite sides j and n - j
+            j = halving(int(m), int(n))
+            faces += _split_faces(m, j) + _split_faces(m, n - j)
+        else:
+            faces += _split_faces(m, n) if i in split else m * n
     return MeshEstimate(int(min(faces, 2.0**62)), int(min(faces * BYTES_PER_FACE, 2.0**62)))
+
+
+def _split_faces(m: float, n: float) -> float:
+    """The faces of a triangle split into three quads: ``n/2 (n/2 + 2 (m - n/2))``.
+
+    >>> _split_faces(7, 6)  # 3 x 3 at the pole, 3 x 4 at B and at C
+    33
+    """
+    return n // 2 * (2 * m - n // 2)
 
 
 def check_mesh_size(layout, counts, max_faces: int = MAX_FACES) -> MeshEstimate:

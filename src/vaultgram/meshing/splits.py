@@ -14,23 +14,44 @@ count ``n``, the spokes from ``O`` to the three sides have counts ``n/2`` (to ``
 ``n/2 x (m - n/2)``. So the split needs ``n`` even and ``n < 2m``; :func:`split_counts` raises the
 counts (length-given groups only, never a designer's) until every thin fan can split. The pole keeps
 one quad of this patch instead of ``n`` triangles, and ``O`` is one interior vertex of valence 3.
+
+A finer target length gives every fan more triangles (issue 18's 10^4 to 10^6 faces): the fans that
+stay, at an inner point feature (kept for their radial load paths, §4) and at a feature whose splits
+would leave it regular (§4.1: point features are poles), thin without bound (armadillo_vault_plan's
+worst face 0.544 at the default, 0.090 at 8,000 faces, 0.060 at 16,000). Finer than the default, an
+inner point feature's fan splits too once it has more triangles than at the default length, and a
+feature the splits would leave regular keeps two quads of one halved patch (:func:`halved_patterns`)
+instead of a thin fan: the faces at the pole then no longer grow with the resolution.
 """
 
 from __future__ import annotations
 
 import math
+import weakref
 
 import numpy as np
 
 from vaultgram.geometry.polygons import regular_valence
 from vaultgram.meshing.fans import FAN_FLOOR
-from vaultgram.meshing.layout import Layout, PatchPattern, _outside_angle, is_boundary_node, is_feature_node
+from vaultgram.meshing.layout import (
+    Layout,
+    PatchPattern,
+    _outside_angle,
+    is_boundary_node,
+    is_feature_node,
+)
 
-__all__ = ["fan_estimate", "split_patterns", "split_counts", "split_points", "thinnest_fan"]
+__all__ = ["fan_estimate", "halved_patterns", "halving", "split_patterns", "split_counts", "split_points",
+           "remember_default_counts", "thinnest_fan"]
 
 #: No split where the pole's angle is wider: the quad there would keep a flat or reflex corner
 #: (a fan spans any angle).
 MAX_SPLIT_ANGLE = 160.0
+#: Per layout, its counts at the default target length (:func:`_default_counts`), and the layouts
+#: whose default counts are being made.
+_DEFAULT_COUNTS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+_PENDING: weakref.WeakSet = weakref.WeakSet()
+_NO_REFERENCE = np.zeros(0, dtype=np.int64)
 #: Rounds of :func:`split_counts` (each only raises counts; two or three settle every plan).
 MAX_ROUNDS = 32
 
@@ -56,14 +77,52 @@ def _thin(layout: Layout, pat: PatchPattern, side_count: np.ndarray) -> bool:
     """A triangle whose fan is below :data:`FAN_FLOOR` and whose split can do better: the quad corner
     at the pole keeps about the patch's angle there, so its sine must reach the floor (a sliver's
     pole stays a fan: a quad of a 5 degree corner folds in smoothing) and the angle be at most
-    :data:`MAX_SPLIT_ANGLE`. An inner point feature keeps its fan (:func:`_inner_point_feature`)."""
-    if pat.pole is None or _inner_point_feature(layout, pat.corners[pat.pole]):
+    :data:`MAX_SPLIT_ANGLE`. An inner point feature keeps its fan (:func:`_inner_point_feature`) but
+    where a target length finer than the default one thins it (:func:`_finer_than_default`)."""
+    if pat.pole is None:
         return False
     angle = _pole_angle(layout, pat)
     if angle > MAX_SPLIT_ANGLE or math.sin(math.radians(angle)) < FAN_FLOOR:
         return False
-    return (fan_estimate(angle, int(side_count[pat.sides[(pat.pole + 1) % 3][0]])) < FAN_FLOOR
-            or _boundary_pole(layout, pat))
+    if _inner_point_feature(layout, pat.corners[pat.pole]):
+        return _finer_than_default(layout, pat, side_count)
+    n = int(side_count[pat.sides[(pat.pole + 1) % 3][0]])
+    return fan_estimate(angle, n) < FAN_FLOOR or _boundary_pole(layout, pat)
+
+
+def _finer_than_default(layout: Layout, pat: PatchPattern, side_count: np.ndarray) -> bool:
+    """A fan at a point feature that a target length finer than the default one makes thinner than
+    :data:`FAN_FLOOR`: more triangles than it has at the default counts (:func:`_default_counts`;
+    issues 12 and 18), by two at least (:func:`split_counts` may make a count even, at the default
+    length too: saved random plan 243's boundary feature would be halved there). Its triangles
+    would share the pole's angle ever more thinly as the mesh is refined (armadillo_vault_plan's inner
+    points: 3 or 4 triangles per patch at the default, 15 to 22 at 8,000 faces, scaled Jacobian 0.09),
+    so it is split instead; at the default length and coarser it stays the paper's fan (§4.1)."""
+    if layout in _PENDING or layout not in _DEFAULT_COUNTS:  # Figure 3's fans at the default counts
+        return False
+    default = _default_counts(layout)[layout.group_of][pat.sides[(pat.pole + 1) % 3][0]]
+    return _fan_of(layout, pat, side_count) < FAN_FLOOR and _pole_counts(pat, side_count)[1] > default + 1
+
+
+def _default_counts(layout: Layout) -> np.ndarray:
+    """The layout's counts at the default target length, as :func:`remember_default_counts` made them;
+    where they were never made (counts not from ``group_counts``), whatever counts are given are taken
+    as the default (Figure 3's fans at point features, as at the default length)."""
+    return _DEFAULT_COUNTS.get(layout, _NO_REFERENCE)
+
+
+def remember_default_counts(layout: Layout, make) -> None:
+    """Make the layout's counts at the default target length once (``make()``: ``group_counts`` at
+    the default, with :func:`_finer_than_default` off while they are made), for
+    :func:`_finer_than_default`. ``group_counts`` calls it (it cannot be imported here: it imports this
+    module)."""
+    if layout in _DEFAULT_COUNTS or layout in _PENDING:
+        return
+    _PENDING.add(layout)
+    try:
+        _DEFAULT_COUNTS[layout] = np.asarray(make(), dtype=np.int64)
+    finally:
+        _PENDING.discard(layout)
 
 
 def _boundary_pole(layout: Layout, pat: PatchPattern) -> bool:
@@ -82,7 +141,9 @@ def _inner_point_feature(layout: Layout, node: int) -> bool:
     """A point feature inside the domain: a point load or a column, whose high-valency pole gives "a
     large number of load paths" (§4) -- the voussoirs follow its radial force flow: split, the
     joints of square_point_loads turned 11.4 degrees from the force flow (median; 8.3 with the fans,
-    the tessellation's floor is 10). Boundary features and curve extremities split."""
+    the tessellation's floor is 10). Boundary features and curve extremities split. At a target
+    length finer than the default it splits too (:func:`_finer_than_default`): its fan's count grows
+    with the resolution, its quality would fall without bound."""
     dec = layout.decomposition
     graph = dec.graph
     return (is_feature_node(dec, node) and graph.node_type(node) != "CurveExtremity"
@@ -96,7 +157,8 @@ def _pole_counts(pat: PatchPattern, side_count: np.ndarray) -> tuple[int, int]:
 
 def split_patterns(layout: Layout, counts) -> frozenset:
     """Indices (into ``layout.patterns``) of the three-sided patches meshed as three quads: thin fans
-    (see the module docstring) whose counts allow the split (``n`` even, ``n < 2m``).
+    (see the module docstring) whose counts allow the split (``n`` even, ``n < 2m``); the halved ones
+    (:func:`halved_patterns`) among them.
 
     >>> from vaultgram.domain import load_domain
     >>> from vaultgram.meshing.densities import group_counts
@@ -106,6 +168,19 @@ def split_patterns(layout: Layout, counts) -> frozenset:
     >>> len(split_patterns(layout, group_counts(layout)))  # 6 triangles in each 45 degrees
     8
     """
+    return _splits(layout, counts)[0]
+
+
+def halved_patterns(layout: Layout, counts) -> frozenset:
+    """Indices of the split patches (:func:`split_patterns`) meshed as two halves, each three quads: the
+    pole of a point feature whose split patches would leave it regular and whose fans would be thin
+    (:func:`_keep_feature_poles`), so that it keeps two quads of one patch (one face more) instead of a
+    fan of ``n`` triangles."""
+    return _splits(layout, counts)[1]
+
+
+def _splits(layout: Layout, counts) -> tuple[frozenset, frozenset]:
+    """The split patterns and the halved ones among them."""
     side_count = np.asarray(counts)[layout.group_of]
     out = set()
     for k, pat in enumerate(layout.patterns):
@@ -113,7 +188,8 @@ def split_patterns(layout: Layout, counts) -> frozenset:
             m, n = _pole_counts(pat, side_count)
             if n % 2 == 0 and n < 2 * m:
                 out.add(k)
-    return frozenset(_keep_feature_poles(layout, side_count, _whole_poles(layout, side_count, out)))
+    split, halved = _keep_feature_poles(layout, side_count, _whole_poles(layout, side_count, out))
+    return frozenset(split), frozenset(halved)
 
 
 def thinnest_fan(layout: Layout, counts) -> float:
@@ -154,29 +230,61 @@ def _whole_poles(layout: Layout, side_count: np.ndarray, split: set) -> set:
     return {k for k in split if pole(k) not in stuck}
 
 
-def _keep_feature_poles(layout: Layout, side_count: np.ndarray, split: set) -> set:
+def _keep_feature_poles(layout: Layout, side_count: np.ndarray, split: set) -> tuple[set, set]:
     """``split`` without the splits that would leave a point feature regular (§4.1: point features
-    are poles): at such a feature, its split patches are meshed as fans again, the least thin first,
-    until its number of faces is irregular."""
+    are poles), and the split patches to halve: at such a feature, one split patch is halved (its pole
+    keeps two quads of it: :func:`_halving`) where the fan it would get back is thinner than
+    :data:`FAN_FLOOR` (a finer mesh gives a fan more triangles: 18 in 112 degrees at
+    two_holes_five_points' inner point at 8,000 faces, 0.125); otherwise its split patches are meshed
+    as fans again, the least thin first, until its number of faces is irregular."""
     dec = layout.decomposition
+    halved = set()
     for node in sorted({layout.patterns[k].corners[layout.patterns[k].pole] for k in split}):
         if not is_feature_node(dec, node):
             continue
         mine = sorted((k for k in split if layout.patterns[k].corners[layout.patterns[k].pole] == node),
                       key=lambda k: (-_fan_of(layout, layout.patterns[k], side_count), k))
-        while mine and _faces_at(layout, node, side_count, split) == _regular_faces(dec, node):
+        if not mine or _faces_at(layout, node, side_count, split, halved) != _regular_faces(dec, node):
+            continue
+        half = _to_halve(layout, side_count, mine)
+        if half is not None and _finer_than_default(layout, layout.patterns[mine[0]], side_count):
+            halved.add(half)
+        while mine and _faces_at(layout, node, side_count, split, halved) == _regular_faces(dec, node):
             split.discard(mine.pop(0))
-    return split
+    return split, halved
+
+
+def _to_halve(layout: Layout, side_count: np.ndarray, mine: list):
+    """Of the split patterns ``mine`` at one pole, the one to halve: the widest at the pole whose
+    counts allow it (:func:`halving`); None where none does."""
+    ok = [k for k in mine if halving(*_pole_counts(layout.patterns[k], side_count)) is not None]
+    return max(ok, key=lambda k: (_pole_angle(layout, layout.patterns[k]), -k), default=None)
+
+
+def halving(m: int, n: int) -> int | None:
+    """Where a split triangle (pole sides of count ``m``, opposite side of count ``n``) is halved: the
+    sample of the opposite side nearest its middle at which both halves have an even count under
+    ``2m`` (each then splits into three quads, :func:`split_points`); None where there is none.
+
+    >>> halving(7, 12), halving(7, 10), halving(3, 10), halving(7, 2)  # 6 + 6, 4 + 6, 6 is not under 6, 2
+    (6, 4, None, None)
+    """
+    j = n // 2 - (n // 2) % 2
+    return j if n % 2 == 0 and j >= 2 and n - j < 2 * m else None
 
 
 def _fan_of(layout: Layout, pat: PatchPattern, side_count: np.ndarray) -> float:
     return fan_estimate(_pole_angle(layout, pat), _pole_counts(pat, side_count)[1])
 
 
-def _faces_at(layout: Layout, node: int, side_count: np.ndarray, split: set) -> int:
-    """Faces at a patch corner: 1 per patch, the opposite side's count at the pole of a fan."""
-    return sum(_pole_counts(p, side_count)[1] if p.pole is not None and p.corners[p.pole] == node and k not in split
-               else 1 for k, p in enumerate(layout.patterns) if node in p.corners)
+def _faces_at(layout: Layout, node: int, side_count: np.ndarray, split: set, halved: set) -> int:
+    """Faces at a patch corner: 1 per patch, the opposite side's count at the pole of a fan, 2 at the
+    pole of a halved split."""
+    def faces(k, p):
+        if p.pole is None or p.corners[p.pole] != node:
+            return 1
+        return 2 if k in halved else 1 if k in split else _pole_counts(p, side_count)[1]
+    return sum(faces(k, p) for k, p in enumerate(layout.patterns) if node in p.corners)
 
 
 def _regular_faces(dec, node: int) -> int:

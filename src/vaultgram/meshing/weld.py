@@ -32,7 +32,7 @@ from vaultgram.geometry.polylines import resample_polyline
 from vaultgram.meshing.coons import coons_grid, grid_faces
 from vaultgram.meshing.layout import Layout, PatchPattern, is_feature_node, kept_points, side_anchors
 from vaultgram.meshing.quadmesh import QuadMesh, SlideConstraint
-from vaultgram.meshing.splits import split_patterns, split_points
+from vaultgram.meshing.splits import halved_patterns, halving, split_patterns, split_points
 from vaultgram.topology.types import CURVE_POINT, SKELETON_NODES
 
 __all__ = ["weld"]
@@ -71,8 +71,8 @@ def weld(layout: Layout, counts, split: bool = True) -> QuadMesh:
     table = _VertexTable()
     vid_of_node = _corner_vertices(layout, table)
     sides = _side_samples(layout, counts[layout.group_of], table, vid_of_node)
-    split = split_patterns(layout, counts) if split else frozenset()
-    faces, face_patch, centres = _patch_faces(layout, sides, table, split)
+    split, halved = (split_patterns(layout, counts), halved_patterns(layout, counts)) if split else ((), ())
+    faces, face_patch, centres = _patch_faces(layout, sides, table, split, halved)
     vertices, disc_point, node = table.arrays()
     labels = _vertex_labels(layout, sides, vid_of_node, disc_point)
     labels["singular"][centres] = True  # the inner point of a split triangle: valence 3
@@ -194,15 +194,16 @@ def _side_samples(layout: Layout, side_count: np.ndarray, table: _VertexTable,
 
 
 def _patch_faces(layout: Layout, sides: list[_SideSamples], table: _VertexTable,
-                 split: frozenset = frozenset()) -> tuple[Faces, np.ndarray, np.ndarray]:
+                 split=(), halved=()) -> tuple[Faces, np.ndarray, np.ndarray]:
     """Mesh every patch with its Coons grid (adding the interior grid points as vertices), the
-    patterns in ``split`` as three quads (:mod:`vaultgram.meshing.splits`): the faces, quads first then
-    triangles, the patch of each face, and the inner points of the split patches."""
+    patterns in ``split`` as three quads (:mod:`vaultgram.meshing.splits`), those in ``halved`` as two
+    halves of three quads each: the faces, quads first then triangles, the patch of each face, and the
+    inner points of the split patches."""
     quads, tris, quad_patch, tri_patch, centres = [], [], [], [], []
     for k, pat in enumerate(layout.patterns):
         if k in split:
-            q, t, centre = _mesh_split(pat, sides, table)
-            centres.append(centre)
+            q, t, inner = (_mesh_halved if k in halved else _mesh_split)(pat, sides, table)
+            centres.extend(inner)
         else:
             q, t = _mesh_patch(pat.patch, _coons_sides(pat, sides), table, pat.pole is not None)
         quads.append(q)
@@ -252,24 +253,46 @@ def _mesh_patch(patch: int, coons_sides: tuple, table: _VertexTable,
 
 
 def _mesh_split(pat: PatchPattern, sides: list[_SideSamples], table: _VertexTable) -> tuple:
-    """A three-sided patch as three quads meeting at an inner point ``O`` (:mod:`vaultgram.meshing.splits`):
+    """A three-sided patch as three quads meeting at an inner point (:func:`_split_triangle`): the
+    quads, no triangles, and the inner point's vertex id in a list."""
+    q, o = _split_triangle(pat.patch, *(_oriented(sides, pat.sides[(pat.pole + j) % 3]) for j in range(3)),
+                           table=table)
+    return q, np.zeros((0, 3), dtype=np.int64), [o]
+
+
+def _mesh_halved(pat: PatchPattern, sides: list[_SideSamples], table: _VertexTable) -> tuple:
+    """A three-sided patch ``ABC`` (pole ``A``) halved by a straight spoke from ``A`` to the sample
+    ``M`` of ``BC`` where :func:`~vaultgram.meshing.splits.halving` puts it, with the count of the pole's
+    sides, and each half ``ABM``, ``AMC`` split into three quads (:func:`_split_triangle`): the pole
+    keeps two quads. Returns the quads, no triangles and the two inner points' vertex ids."""
+    a, b, c = (_oriented(sides, pat.sides[(pat.pole + j) % 3]) for j in range(3))
+    m, n = len(a[0]) - 1, len(b[0]) - 1
+    j = halving(m, n)
+    spoke = _spoke(int(a[0][0]), a[1][0], int(b[0][j]), b[1][j], m, table)
+    q1, o1 = _split_triangle(pat.patch, a, _cut(*b, 0, j), _rev(spoke), table=table)
+    q2, o2 = _split_triangle(pat.patch, spoke, _cut(*b, j, n), c, table=table)
+    return np.vstack([q1, q2]), np.zeros((0, 3), dtype=np.int64), [o1, o2]
+
+
+def _split_triangle(patch: int, a: tuple, b: tuple, c: tuple, table: _VertexTable) -> tuple[np.ndarray, int]:
+    """The triangle whose sides are the samples ``a`` (``A`` to ``B``), ``b`` (``B`` to ``C``) and ``c``
+    (``C`` to ``A``) as three quads meeting at an inner point ``O`` (:mod:`vaultgram.meshing.splits`):
     ``O`` is the mean of the split points on the sides, the spokes from it to them are straight, and
-    each quad is a Coons grid. Returns ``(quads, no triangles, the vertex id of O)``."""
-    (ai, ap), (bi, bp), (ci, cp) = (_oriented(sides, pat.sides[(pat.pole + j) % 3]) for j in range(3))
+    each quad is a Coons grid. Returns ``(quads, the vertex id of O)``."""
+    (ai, ap), (bi, bp), (ci, cp) = a, b, c
     m, n = len(ai) - 1, len(bi) - 1
     h_ab, h_bc, h_ca = split_points(m, n)
     centre = (ap[h_ab] + bp[h_bc] + cp[h_ca]) / 3.0
     o = int(table.add(centre[None])[0])
-    s_ab, s_bc, s_ca = (_spoke(o, centre, i[h], p[h], c, table)
-                        for (i, p), h, c in (((ai, ap), h_ab, n // 2), ((bi, bp), h_bc, m - n // 2),
+    s_ab, s_bc, s_ca = (_spoke(o, centre, i[h], p[h], k, table)
+                        for (i, p), h, k in (((ai, ap), h_ab, n // 2), ((bi, bp), h_bc, m - n // 2),
                                              ((ci, cp), h_ca, n // 2)))
     quads = [
         (_cut(ai, ap, 0, h_ab), _rev(s_ab), _rev(s_ca), _rev(_cut(ci, cp, h_ca, m))),  # at the pole A
         (_cut(ai, ap, h_ab, m), _cut(bi, bp, 0, h_bc), s_bc, _rev(s_ab)),  # at B
         (_rev(s_ca), s_bc, _rev(_cut(bi, bp, h_bc, n)), _rev(_cut(ci, cp, 0, h_ca))),  # at C
     ]
-    q = np.vstack([_mesh_patch(pat.patch, sides4, table)[0] for sides4 in quads])
-    return q, np.zeros((0, 3), dtype=np.int64), o
+    return np.vstack([_mesh_patch(patch, sides4, table)[0] for sides4 in quads]), o
 
 
 def _spoke(o: int, centre: np.ndarray, end: int, end_point: np.ndarray, count: int, table: _VertexTable) -> tuple:
