@@ -8,19 +8,26 @@ import json
 import numpy as np
 import pytest
 
-from vaultgram.domain import domain_from_dict
+from vaultgram.domain import domain_from_dict, load_domain
 from vaultgram.errors import VaultgramError
+from vaultgram.meshing import densities
 from vaultgram.meshing.densities import (
+    COUNT_CEILING,
     DensitySpec,
     densities_from_dict,
     group_counts,
     group_length,
     load_densities,
+    point_load_caps,
     unresolved_holes,
 )
+from vaultgram.meshing.fans import FAN_FLOOR
 from vaultgram.meshing.layout import edge_groups
 from vaultgram.meshing.quality import face_scaled_jacobians, mesh_stats
+from vaultgram.meshing.splits import _inner_point_feature, _pole_angle, fan_estimate
 from vaultgram.pipeline import decompose, mesh_domain
+
+from paths import ARCHITECTURE, EXAMPLES
 
 
 def test_counts_follow_target_length(qwh_layout):
@@ -157,3 +164,44 @@ def test_small_holes_wedges_are_split_for_the_mean():
     sj = face_scaled_jacobians(mesh.vertices, mesh.faces)
     assert sj.mean() >= 0.93 and sj.min() >= 0.55
     assert mesh_stats(mesh)["interior_singular"] == 12
+
+
+#: Plans with inner point features (point loads), their fans' count before the caps (at the default
+#: target length): 39 triangles round each load of square_point_loads, 27 round rv_lips_pattern's.
+POINT_LOAD_PLANS = [EXAMPLES / "square_point_loads.json", ARCHITECTURE / "rv_lips_pattern.json",
+                    EXAMPLES / "fig6_inner_points.json"]
+
+
+@pytest.mark.parametrize("path", POINT_LOAD_PLANS, ids=lambda p: p.stem)
+def test_a_point_loads_fans_get_the_most_triangles_that_reach_the_floor(path, monkeypatch):
+    """Each fan round an inner point feature has at most the triangles whose equal share of the patch's
+    angle at the pole reaches the floor, and the cap is the most that do (one more would not); so the
+    pole's triangles fit in its 360 degrees at the floor (at most 23). The caps only lower counts:
+    every other group keeps the count it has without them."""
+    if not path.is_file():
+        pytest.skip(f"{path} not found (the shared data lives beside the checkout)")
+    layout = edge_groups(decompose(load_domain(path)))
+    caps, counts = point_load_caps(layout), group_counts(layout)
+    side_count = counts[layout.group_of]
+    per_pole = {}
+    for pat in layout.patterns:
+        if pat.pole is None or not _inner_point_feature(layout, pat.corners[pat.pole]):
+            continue
+        angle, n = _pole_angle(layout, pat), int(side_count[pat.sides[(pat.pole + 1) % 3][0]])
+        g = layout.group_of[pat.sides[(pat.pole + 1) % 3][0]]
+        assert n <= caps[g] and fan_estimate(angle, caps[g]) >= FAN_FLOOR > fan_estimate(angle, caps[g] + 1)
+        per_pole[pat.corners[pat.pole]] = per_pole.get(pat.corners[pat.pole], 0) + n
+    assert per_pole and max(per_pole.values()) <= 23 and min(per_pole.values()) > 4  # still poles (§4.1)
+    uncapped = caps >= COUNT_CEILING
+    monkeypatch.setattr(densities, "point_load_caps", lambda lay: np.full(lay.n_groups, COUNT_CEILING))
+    before = group_counts(layout)
+    assert (counts <= before).all() and np.array_equal(counts[uncapped], before[uncapped])
+
+
+def test_a_designers_count_is_not_capped():
+    """A count the designer gives is kept even where it gives a point load's fan more triangles."""
+    layout = edge_groups(decompose(load_domain(EXAMPLES / "square_point_loads.json")))
+    caps = point_load_caps(layout)
+    g = int(np.argmin(caps))
+    counts = group_counts(layout, DensitySpec(groups={g: int(caps[g]) + 5}))
+    assert counts[g] == caps[g] + 5

@@ -5,6 +5,7 @@ from __future__ import annotations
 import sys
 
 import numpy as np
+from uncapped import without_point_load_caps
 
 from vaultgram.domain import domain_from_dict
 from vaultgram.geometry.meshes import grid_mesh
@@ -29,8 +30,10 @@ def test_curve_turn_is_zero_at_the_ends_and_the_bend_inside():
     assert [worst_faces.curve_turn(x, np.array([0, 1, 2]), c) for c in (0, 1, 2)] == [0.0, 90.0, 0.0]
 
 
-def test_the_worst_face_of_a_curve_end_plan_is_its_free_end_fan():
-    """CURVE_END_PLAN's worst face is a triangle round the curve's free end, under the fan bound there."""
+def test_the_worst_face_of_a_curve_end_plan_is_its_free_end_fan(monkeypatch):
+    """CURVE_END_PLAN's worst face is a triangle round the curve's free end, under the fan bound there
+    (drawn without the point-load caps, as in test_fans)."""
+    without_point_load_caps(monkeypatch)
     row = worst_faces.cause(mesh_domain(domain_from_dict(CURVE_END_PLAN), 0.04))
     assert row["cause"] == "triangle: fan at curve free end" and row["sides"] == 3
     assert np.allclose(row["xy"], CURVE_END, atol=1e-4) and row["angle"] > 359.9

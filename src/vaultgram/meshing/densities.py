@@ -26,12 +26,19 @@ from vaultgram.geometry.polylines import chord_deviation, resample_polyline
 from vaultgram.io import strict
 from vaultgram.io.files import read_json
 from vaultgram.limits import MAX_COUNT
+from vaultgram.meshing.fans import FAN_FLOOR
 from vaultgram.meshing.guards import check_mesh_size
 from vaultgram.meshing.layout import EdgeGroup, Layout, kept_points, side_anchors
-from vaultgram.meshing.splits import remember_default_counts, split_counts
+from vaultgram.meshing.splits import (
+    _inner_point_feature,
+    _pole_angle,
+    fan_estimate,
+    remember_default_counts,
+    split_counts,
+)
 
 __all__ = ["DensitySpec", "group_counts", "group_length", "unresolved_holes", "curve_min_counts",
-           "densities_from_dict", "load_densities",
+           "point_load_caps", "most_triangles", "densities_from_dict", "load_densities",
            "TARGET_FRACTION", "CHORD_TOLERANCE"]
 
 #: Default global target edge length, as a fraction of the bounding-box diagonal of the domain.
@@ -126,7 +133,7 @@ def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length:
     local = _local_values(layout, spec)
     counts = np.empty(layout.n_groups, dtype=np.int64)
     small = {}  # per target length, the holes it cannot resolve
-    by_length = []
+    by_length, coarse = [], []  # groups counted by length, and whether at the default length or coarser
     for g in layout.groups:
         kind, v = local[g.id] or ("length", target)
         if kind == "count":
@@ -136,6 +143,12 @@ def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length:
             counts[g.id] = max(int(spec.min_count), _length_count(group_length(layout, g, v, spec.length_mode,
                                                                                small[v]), v))
             by_length.append(g)
+            coarse.append(v >= TARGET_FRACTION * diag)
+    capped = np.zeros(layout.n_groups, dtype=bool)  # issue 12: a point load's fans within the floor,
+    capped[[g.id for g, c in zip(by_length, coarse) if c]] = True  # at the default length or coarser
+    caps = point_load_caps(layout)
+    capped &= counts > caps
+    counts[capped] = caps[capped]  # the geometric minima below still hold
     if max_faces is not None:  # before the chord search, which resamples each side at its count
         check_mesh_size(layout, np.maximum(counts, 1), max_faces)
     counts = np.maximum(counts, anchor_min_counts(layout))  # issue 12: sharp vertices are mesh vertices
@@ -147,10 +160,59 @@ def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length:
         remember_default_counts(layout, lambda: group_counts(layout))
         free = np.zeros(layout.n_groups, dtype=bool)
         free[[g.id for g in by_length]] = True
-        counts = split_counts(layout, counts, free)
+        counts = split_counts(layout, counts, free & ~capped)
     if max_faces is not None:
         check_mesh_size(layout, counts, max_faces)
     return counts
+
+
+def point_load_caps(layout: Layout) -> np.ndarray:
+    """Per group, the most subdivisions that keep the fans of the inner point features (§4.1: point
+    loads, columns) of which it is the opposite side at the floor :data:`~vaultgram.meshing.fans.FAN_FLOOR`:
+    the largest ``n`` whose ``n`` equal triangles in the patch's angle at the pole reach it
+    (:func:`~vaultgram.meshing.splits.fan_estimate`; at least 1); :data:`COUNT_CEILING` for other groups.
+
+    Such a pole keeps its fans (they carry its radial force flow, :mod:`vaultgram.meshing.splits`),
+    and a fan gets one triangle per subdivision of its opposite side (Figure 3), so at the target
+    length its triangles may be too many for the pole's 360 degrees: 39 round each point load of
+    ``square_point_loads`` (fan bound 0.185, the mesh's worst face 0.093), 27 round that of
+    ``rv_lips_pattern`` (0.266). At most ``angle / asin(FAN_FLOOR sqrt(3) / 2)`` (15.06 degrees) per
+    patch, the pole's triangles are at most 23, which its fans' evening
+    (:func:`~vaultgram.meshing.fans.even_fans`) spreads at 15.65 degrees each (0.311). The price is
+    coarser opposite sides (those groups only; a designer's counts and the geometric minima of
+    :func:`group_counts` are kept). :func:`group_counts` caps only groups counted at the default
+    target length or a coarser one: finer, the fans split into quads instead
+    (:func:`vaultgram.meshing.splits.split_counts`, once they have more triangles than at the default)
+    and the groups refine with the target length.
+
+    >>> from vaultgram.domain import load_domain
+    >>> from vaultgram.meshing.layout import edge_groups
+    >>> from vaultgram.pipeline import decompose
+    >>> layout = edge_groups(decompose(load_domain("examples/square_point_loads.json")))
+    >>> caps = point_load_caps(layout)
+    >>> sorted(int(c) for c in caps[caps < COUNT_CEILING])  # two 48 and four 156 degree corners at the loads
+    [3, 10, 10, 10, 10]
+    """
+    caps = np.full(layout.n_groups, COUNT_CEILING, dtype=np.int64)
+    for pat in layout.patterns:
+        if pat.pole is not None and _inner_point_feature(layout, pat.corners[pat.pole]):
+            g = int(layout.group_of[pat.sides[(pat.pole + 1) % 3][0]])
+            caps[g] = min(caps[g], most_triangles(_pole_angle(layout, pat)))
+    return caps
+
+
+def most_triangles(angle: float) -> int:
+    """The most equal triangles sharing ``angle`` degrees at a pole whose scaled Jacobian
+    (:func:`~vaultgram.meshing.splits.fan_estimate`) reaches :data:`~vaultgram.meshing.fans.FAN_FLOOR`
+    (each corner at least ``asin(FAN_FLOOR sqrt(3) / 2)``, 15.06 degrees); at least 1.
+
+    >>> most_triangles(360.0), most_triangles(90.0), most_triangles(10.0)
+    (23, 5, 1)
+    """
+    n = max(1, int(angle // math.degrees(math.asin(FAN_FLOOR * math.sqrt(3.0) / 2))))
+    while n > 1 and fan_estimate(angle, n) < FAN_FLOOR:  # round-off at an exact multiple
+        n -= 1
+    return n
 
 
 def group_length(layout: Layout, group: EdgeGroup, target: float, mode: str = "average", small=None) -> float:
