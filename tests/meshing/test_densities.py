@@ -24,7 +24,7 @@ from vaultgram.meshing.densities import (
 from vaultgram.meshing.fans import FAN_FLOOR
 from vaultgram.meshing.layout import edge_groups
 from vaultgram.meshing.quality import face_scaled_jacobians, mesh_stats
-from vaultgram.meshing.splits import _inner_point_feature, _pole_angle, fan_estimate
+from vaultgram.meshing.splits import fan_estimate, inner_point_feature, pole_angle
 from vaultgram.pipeline import decompose, mesh_domain
 
 from paths import ARCHITECTURE, EXAMPLES
@@ -185,9 +185,9 @@ def test_a_point_loads_fans_get_the_most_triangles_that_reach_the_floor(path, mo
     side_count = counts[layout.group_of]
     per_pole = {}
     for pat in layout.patterns:
-        if pat.pole is None or not _inner_point_feature(layout, pat.corners[pat.pole]):
+        if pat.pole is None or not inner_point_feature(layout, pat.corners[pat.pole]):
             continue
-        angle, n = _pole_angle(layout, pat), int(side_count[pat.sides[(pat.pole + 1) % 3][0]])
+        angle, n = pole_angle(layout, pat), int(side_count[pat.sides[(pat.pole + 1) % 3][0]])
         g = layout.group_of[pat.sides[(pat.pole + 1) % 3][0]]
         assert n <= caps[g] and fan_estimate(angle, caps[g]) >= FAN_FLOOR > fan_estimate(angle, caps[g] + 1)
         per_pole[pat.corners[pat.pole]] = per_pole.get(pat.corners[pat.pole], 0) + n

@@ -21,7 +21,7 @@ MIN_FLOOR, MEAN_FLOOR = 0.3, 0.9
 # Plans below the min floor, with the reason; FAN: the fan bound proves no smoothing can reach it.
 FAN = "a pole's fan of triangles: its fan bound (the best any placement can do) is below 0.3"
 MIN_MISSES: dict = {}
-# Inner point features keep their fans (vaultgram.meshing.splits._inner_point_feature: the tessellation
+# Inner point features keep their fans (vaultgram.meshing.splits.inner_point_feature: the tessellation
 # follows their radial force flow); split, rv_lips reached 0.562, square_point_loads 0.337 and
 # two_holes_five_points 0.228, but square_point_loads' joints turned 11.4 degrees from the force flow.
 # fig5_boundary_points was bound by its fans (0.151) until thin fans became three quads.

@@ -30,9 +30,9 @@ from vaultgram.meshing.fans import FAN_FLOOR
 from vaultgram.meshing.guards import check_mesh_size
 from vaultgram.meshing.layout import EdgeGroup, Layout, kept_points, side_anchors
 from vaultgram.meshing.splits import (
-    _inner_point_feature,
-    _pole_angle,
     fan_estimate,
+    inner_point_feature,
+    pole_angle,
     remember_default_counts,
     split_counts,
 )
@@ -195,9 +195,9 @@ def point_load_caps(layout: Layout) -> np.ndarray:
     """
     caps = np.full(layout.n_groups, COUNT_CEILING, dtype=np.int64)
     for pat in layout.patterns:
-        if pat.pole is not None and _inner_point_feature(layout, pat.corners[pat.pole]):
+        if pat.pole is not None and inner_point_feature(layout, pat.corners[pat.pole]):
             g = int(layout.group_of[pat.sides[(pat.pole + 1) % 3][0]])
-            caps[g] = min(caps[g], most_triangles(_pole_angle(layout, pat)))
+            caps[g] = min(caps[g], most_triangles(pole_angle(layout, pat)))
     return caps
 
 

@@ -41,8 +41,8 @@ from vaultgram.meshing.layout import (
     is_feature_node,
 )
 
-__all__ = ["fan_estimate", "halved_patterns", "halving", "split_patterns", "split_counts", "split_points",
-           "remember_default_counts", "thinnest_fan"]
+__all__ = ["fan_estimate", "inner_point_feature", "pole_angle", "halved_patterns", "halving", "split_patterns",
+           "split_counts", "split_points", "remember_default_counts", "thinnest_fan"]
 
 #: No split where the pole's angle is wider: the quad there would keep a flat or reflex corner
 #: (a fan spans any angle).
@@ -66,7 +66,7 @@ def fan_estimate(angle: float, n: int) -> float:
     return 2.0 / math.sqrt(3.0) * math.sin(math.radians(min(angle / max(n, 1), 90.0)))
 
 
-def _pole_angle(layout: Layout, pat: PatchPattern) -> float:
+def pole_angle(layout: Layout, pat: PatchPattern) -> float:
     """The patch's interior angle (degrees) at its pole."""
     patch = layout.decomposition.patches[pat.patch]
     k = pat.pole
@@ -77,14 +77,14 @@ def _thin(layout: Layout, pat: PatchPattern, side_count: np.ndarray) -> bool:
     """A triangle whose fan is below :data:`FAN_FLOOR` and whose split can do better: the quad corner
     at the pole keeps about the patch's angle there, so its sine must reach the floor (a sliver's
     pole stays a fan: a quad of a 5 degree corner folds in smoothing) and the angle be at most
-    :data:`MAX_SPLIT_ANGLE`. An inner point feature keeps its fan (:func:`_inner_point_feature`) but
+    :data:`MAX_SPLIT_ANGLE`. An inner point feature keeps its fan (:func:`inner_point_feature`) but
     where a target length finer than the default one thins it (:func:`_finer_than_default`)."""
     if pat.pole is None:
         return False
-    angle = _pole_angle(layout, pat)
+    angle = pole_angle(layout, pat)
     if angle > MAX_SPLIT_ANGLE or math.sin(math.radians(angle)) < FAN_FLOOR:
         return False
-    if _inner_point_feature(layout, pat.corners[pat.pole]):
+    if inner_point_feature(layout, pat.corners[pat.pole]):
         return _finer_than_default(layout, pat, side_count)
     n = int(side_count[pat.sides[(pat.pole + 1) % 3][0]])
     return fan_estimate(angle, n) < FAN_FLOOR or _boundary_pole(layout, pat)
@@ -137,7 +137,7 @@ def _boundary_pole(layout: Layout, pat: PatchPattern) -> bool:
             and not is_feature_node(dec, node))
 
 
-def _inner_point_feature(layout: Layout, node: int) -> bool:
+def inner_point_feature(layout: Layout, node: int) -> bool:
     """A point feature inside the domain: a point load or a column, whose high-valency pole gives "a
     large number of load paths" (§4) -- the voussoirs follow its radial force flow: split, the
     joints of square_point_loads turned 11.4 degrees from the force flow (median; 8.3 with the fans,
@@ -258,7 +258,7 @@ def _to_halve(layout: Layout, side_count: np.ndarray, mine: list):
     """Of the split patterns ``mine`` at one pole, the one to halve: the widest at the pole whose
     counts allow it (:func:`halving`); None where none does."""
     ok = [k for k in mine if halving(*_pole_counts(layout.patterns[k], side_count)) is not None]
-    return max(ok, key=lambda k: (_pole_angle(layout, layout.patterns[k]), -k), default=None)
+    return max(ok, key=lambda k: (pole_angle(layout, layout.patterns[k]), -k), default=None)
 
 
 def halving(m: int, n: int) -> int | None:
@@ -274,7 +274,7 @@ def halving(m: int, n: int) -> int | None:
 
 
 def _fan_of(layout: Layout, pat: PatchPattern, side_count: np.ndarray) -> float:
-    return fan_estimate(_pole_angle(layout, pat), _pole_counts(pat, side_count)[1])
+    return fan_estimate(pole_angle(layout, pat), _pole_counts(pat, side_count)[1])
 
 
 def _faces_at(layout: Layout, node: int, side_count: np.ndarray, split: set, halved: set) -> int:
