@@ -194,3 +194,18 @@ def test_density_regions_of_a_far_plan_are_in_its_coordinates():
         counts.append(len(mesh_domain(domain_from_dict(plan), 0.05, densities=spec).faces))
     plain = len(mesh_domain(domain_from_dict(_pair("quad_with_hole")[0]), 0.05).faces)
     assert counts[0] == counts[1] > plain
+
+
+def test_coordinates_below_the_plans_precision_are_zero():
+    """A coordinate smaller than double precision's step at the plan's size carries no shape (moved by
+    a metre, the plan loses it): it is zero, and the plan meshes as the one that says zero (saved random
+    plan 183 had a hole corner at y = -2.2e-311, and a boundary vertex slid to (x, 0) beside it)."""
+    square = [[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]]
+    hole = [[4.0, 5.0], [5.0, 4.0], [6.0, 5.0], [5.0, 6.0]]
+    tiny = {"outer": [[0.0, -2.2e-311], *square[1:]], "holes": [[[4.0, 5.0 + 1e-17], *hole[1:]]],
+            "points": [[3e-16, 2.0]]}
+    domain = domain_from_dict(tiny)
+    assert domain.outer.min() == 0.0 and not np.signbit(domain.outer).any() and domain.points[0, 0] == 0.0
+    assert domain.holes[0][np.argmin(domain.holes[0][:, 0]), 1] == 5.0
+    plain = domain_from_dict({"outer": square, "holes": [hole], "points": [[0.0, 2.0]]})
+    assert np.array_equal(mesh_domain(domain).vertices, mesh_domain(plain).vertices)
