@@ -22,6 +22,7 @@ __all__ = [
     "halfway_point",
     "turning_angles",
     "locate_on_polyline",
+    "ray_hit_fraction",
     "project_to_polyline",
     "resample_polyline",
     "chord_deviation",
@@ -175,6 +176,36 @@ def locate_on_polyline(poly: np.ndarray, p: np.ndarray, closed: bool = False) ->
     d = np.hypot(*(qj[0] - pj for qj, pj in zip(q, p)))
     i = int(np.argmin(d))
     return float(d[i]), i, float(t[0, i])
+
+
+def ray_hit_fraction(poly: np.ndarray, origin, direction: float) -> float | None:
+    """Where the ray from ``origin`` in the direction ``direction`` (radians) first meets an open
+    polyline, as a fraction of the polyline's arc length (0 at its start, 1 at its end); None where it
+    misses it (or the polyline has no length). A chord from a fan's pole that bisects the fan
+    triangle's angle ends here on the triangle's far side (:mod:`vaultgram.topology.reflex`).
+
+    >>> round(ray_hit_fraction(np.array([[0.0, 1.0], [4.0, 1.0]]), (1.0, 0.0), np.pi / 2), 9)
+    0.25
+    >>> round(ray_hit_fraction(np.array([[0.0, 1.0], [2.0, 1.0], [2.0, 3.0]]), (3.0, 2.0), np.pi), 9)
+    0.75
+    >>> ray_hit_fraction(np.array([[0.0, 1.0], [4.0, 1.0]]), (1.0, 0.0), -np.pi / 2) is None
+    True
+    """
+    pts = np.asarray(poly, dtype=float)[:, :2]
+    s = arc_lengths(pts)
+    a, ab = pts[:-1], np.diff(pts, axis=0)
+    u = np.array([np.cos(direction), np.sin(direction)])
+    det = ab[:, 0] * u[1] - ab[:, 1] * u[0]  # cross(ab, u): zero where the segment runs along the ray
+    ok = np.abs(det) > 1e-12 * np.maximum(np.hypot(*ab.T), 1e-300)
+    det = np.where(ok, det, 1.0)
+    rel = a - np.asarray(origin, dtype=float)
+    t = (ab[:, 0] * rel[:, 1] - ab[:, 1] * rel[:, 0]) / det  # along the ray
+    w = (u[0] * rel[:, 1] - u[1] * rel[:, 0]) / det  # along the segment, 0 to 1
+    hit = ok & (t > 0.0) & (w >= 0.0) & (w <= 1.0)
+    if s[-1] <= 0.0 or not hit.any():
+        return None
+    j = int(np.flatnonzero(hit)[np.argmin(t[hit])])
+    return float((s[j] + w[j] * (s[j + 1] - s[j])) / s[-1])
 
 
 def project_to_polyline(points: np.ndarray, poly: np.ndarray, closed: bool = False) -> np.ndarray:

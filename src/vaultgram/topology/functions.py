@@ -573,6 +573,12 @@ def _register_corner_helpers(f: Functions) -> None:
     f.register("reflex_cut", reflex.reflex_cut, ("node", "node"), "edge", uses_graph=True, local=False)
     f.register("reflex_cut_index", reflex.reflex_cut_index, ("node", "node"), "int", uses_graph=True, local=False)
     f.register("reflex_cut_at", reflex.reflex_cut_at, ("node",), "bool", uses_graph=True, local=False)
+    f.register("reflex_bisecting_cut", reflex.reflex_bisecting_cut, ("node", "node"), "edge", uses_graph=True,
+               local=False)
+    f.register("reflex_bisecting_cut_index", reflex.reflex_bisecting_cut_index, ("node", "node"), "int",
+               uses_graph=True, local=False)
+    f.register("reflex_bisecting_cut_at", reflex.reflex_bisecting_cut_at, ("node",), "bool", uses_graph=True,
+               local=False)
     f.register("reflex_foot", reflex.reflex_foot, ("node", "node"), "node", uses_graph=True, local=False)
     f.register("reflex_point", reflex.reflex_point, ("node", "node"), "vec2", uses_graph=True, local=False)
     f.register("rebranch_to_corner", reflex.rebranch_to_corner, ("node", "node", "node", "node"), "bool",

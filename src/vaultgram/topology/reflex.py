@@ -19,7 +19,10 @@ inner point: the index the corner gives up goes inside the plan. A reflex corner
 side (the corner of no patch: the corners of a polygonal hole along the ring patch round it) is first
 made the corner of two quads by a chord across its quad, a strip too (``cut_quad_at_reflex_corner``,
 :func:`reflex_cut`), ending at the first of :data:`FEET` along the opposite edge that leaves no angle
-below :data:`MIN_CUT_ANGLE` (the middle where it can; :func:`reflex_point`).
+below :data:`MIN_CUT_ANGLE` (the middle where it can; :func:`reflex_point`). Where the strip is one
+triangle of a pole's fan that none of them halves evenly enough, a last cut, after the rules' rebranch
+to the pole (:mod:`vaultgram.topology.hole_sides`), ends at the foot whose chord bisects the triangle's
+angle at the pole (:func:`reflex_bisecting_cut`, :func:`_bisecting_foot`).
 
 :func:`reflex_chord` and :func:`reflex_foot` pick, among the corner's quads and their sides, where the
 chord runs inside the quad and its strip completes (:func:`~vaultgram.topology.strips.strip_walk`)
@@ -44,7 +47,7 @@ import weakref
 from collections.abc import Iterator
 
 from vaultgram.geometry.polygons import regular_valence
-from vaultgram.geometry.polylines import arc_lengths
+from vaultgram.geometry.polylines import arc_lengths, ray_hit_fraction
 from vaultgram.topology.corners import boundary_angle, graph_rings, ring_place
 from vaultgram.topology.patches import half_edge_polyline
 from vaultgram.topology.statecache import per_state
@@ -69,9 +72,10 @@ from vaultgram.topology.types import (
 )
 
 __all__ = ["reflex_chord", "reflex_side", "reflex_foot", "reflex_cut", "reflex_cut_index", "reflex_cut_at",
+           "reflex_bisecting_cut", "reflex_bisecting_cut_index", "reflex_bisecting_cut_at",
            "reflex_point", "rebranch_to_corner", "MIN_ANGLE", "MIN_CUT_ANGLE", "MAX_POLE_ANGLE", "MAX_RATIO", "FEET",
            "SPIKE", "PAST_STRAIGHT", "FOLD_MIN_ANGLE", "MAX_POLE_RATIO", "MIN_FAN_HALF",
-           "HOLE_MAX_RATIO", "HOLE_MIN_ANGLE", "cut_walk"]
+           "HOLE_MAX_RATIO", "HOLE_MIN_ANGLE", "BISECTING_FOOT", "cut_walk"]
 
 #: The node types at which a strip may not end in a triangle (:func:`_strip_beyond`).
 KEPT_ENDS = (BOUNDARY_VERTEX, FEATURE_POINT, CURVE_POINT)
@@ -93,6 +97,13 @@ MIN_CUT_ANGLE = 40.0
 #: random plans whose cut's strip is one fan triangle mostly had no foot leaving 40 either side, but
 #: their best at 36-40 (plans 4, 231, 579, 692: 37-38).
 MIN_FAN_HALF = 36.0
+#: Where none of :data:`FEET` serves a hole corner's cut whose strip is one triangle of a pole's fan, the
+#: foot whose chord to the pole bisects the triangle's angle there (:func:`_bisecting_foot`: the most
+#: even halves any foot gives) may lie this fraction of the edge from either end, nearer than
+#: :data:`FEET` reach: a skewed fan triangle's bisector meets its far side off the middle (saved random
+#: plans 226 and 691 of the 700 drawn in session 25: 0.27 and 0.81 along, halves of 39 and 45 degrees,
+#: where the nearest of :data:`FEET` left 35.8 and 35.1).
+BISECTING_FOOT = 0.15
 #: Degrees: a corner this wide or wider is a spike (regular valence 5: four faces, two chords).
 SPIKE = 315.0
 #: Degrees: a quad wider than this at a corner turns past straight there, and its mesh folds at any
@@ -537,21 +548,61 @@ def _cut(graph, r: int) -> tuple | None:
     anywhere along the hole's side, and a chord to the middle of the loop beyond may run along it.
     Where the strip is one triangle of a point feature's fan and no foot halves it into two of
     :data:`MIN_CUT_ANGLE` degrees, the feet that halve it into two of :data:`MIN_FAN_HALF`."""
-    at = _on_side(graph, r)
-    if at is None or len(patch_sides(graph, at[0]).corners) != 4:
+    across = _cut_across(graph, r)
+    if across is None:
         return None
-    patch, i = at
-    found = patch_sides(graph, patch)
-    edge = side_edge(graph, patch, found.corners[(i + 2) % 4])
-    if edge < 0:
-        return None
-    walk = cut_walk(graph, patch, edge)
+    patch, i, found, edge, walk = across
     halves = (MIN_CUT_ANGLE, MIN_FAN_HALF) if walk is not None and _fan_end(graph, walk) else (MIN_CUT_ANGLE,)
     for half in halves:
         fraction = _cut_foot(graph, r, found, _feet(graph, walk, half=half))
         if fraction is not None:
             return patch, i, edge, fraction
     return None
+
+
+def _cut_across(graph, r: int) -> tuple | None:
+    """Where a cut from the reflex corner ``r`` inside a quad's side may run: ``(patch, side index, its
+    sides, the plan edge opposite, the walk of the strip a cut to it starts)`` (:func:`cut_walk`, None
+    where it does not complete); None where ``r`` lies inside no quad's side or the opposite side is
+    not one plan edge a strip may cut."""
+    at = _on_side(graph, r)
+    if at is None or len(patch_sides(graph, at[0]).corners) != 4:
+        return None
+    patch, i = at
+    found = patch_sides(graph, patch)
+    edge = side_edge(graph, patch, found.corners[(i + 2) % 4])
+    return None if edge < 0 else (patch, i, found, edge, cut_walk(graph, patch, edge))
+
+
+def _bisecting_cut(graph, r: int) -> tuple | None:
+    """The cut of the reflex corner ``r`` (as :func:`_cut`'s) whose strip is one triangle of a pole's
+    fan, ending at the foot whose chord to the pole bisects the triangle's angle there
+    (:func:`_bisecting_foot`), where :func:`_cut` has none: the halves reach :data:`MIN_FAN_HALF`, the
+    chords run inside, the cut leaves no angle below :data:`MIN_CUT_ANGLE` (:func:`_cut_foot`). For
+    ``rules/corners.vgr``'s last cut, after the rebranch to the fan's pole (which takes a skewed fan
+    triangle out of the layout where it qualifies: with Figure 4's crescents allowed, the bisecting
+    cut taken first left draw 666 of session 23's plans 7 boundary singular vertices and a worst face
+    of 0.014, the rebranch 3 and 0.301)."""
+    across = _cut_across(graph, r)
+    if across is None or across[4] is None or _fan_end(graph, across[4]) is None or _once(graph, _cut, r):
+        return None
+    patch, i, found, edge, walk = across
+    fraction = _cut_foot(graph, r, found, _feet(graph, walk, _bisecting_foot(graph, walk), MIN_FAN_HALF))
+    return None if fraction is None else (patch, i, edge, fraction)
+
+
+def _bisecting_foot(graph, walk) -> tuple:
+    """Where the chord from the pole of the fan triangle ``walk`` ends (:func:`_fan_end`: a strip of one
+    triangle, entered by the side opposite the pole) bisects the triangle's angle at the pole: the
+    fraction of the entry edge's length there, as a one-foot tuple for :func:`_feet`, where it lies at
+    least :data:`BISECTING_FOOT` from either end; empty otherwise. The most even halves any foot of that
+    edge gives the fan (§4.1: the pole stays the pole of both), found where :data:`FEET`' fixed
+    fractions miss them on a skewed triangle."""
+    pos, d_out, whole = _fan_end(graph, walk)
+    edge = walk.edges[0]
+    fraction = ray_hit_fraction(half_edge_polyline(graph, edge, graph.ends(edge)[0]), pos,
+                                d_out + math.radians(whole / 2.0))
+    return (fraction,) if fraction is not None and BISECTING_FOOT <= fraction <= 1.0 - BISECTING_FOOT else ()
 
 
 def _cut_foot(graph, r: int, found, feet) -> float | None:
@@ -590,12 +641,31 @@ def reflex_cut_at(graph, r: int) -> bool:
     return _once(graph, _cut, r) is not None
 
 
+def reflex_bisecting_cut(graph, patch: int, r: int) -> int:
+    """As :func:`reflex_cut`, for the cut whose chord to a fan's pole bisects the fan triangle
+    (:func:`_bisecting_cut`): the plan edge it cuts in the quad ``patch``; -1 where there is none."""
+    cut = _once(graph, _bisecting_cut, r)
+    return cut[2] if cut is not None and cut[0] == patch else -1
+
+
+def reflex_bisecting_cut_index(graph, patch: int, r: int) -> int:
+    """The index of the side of the quad ``patch`` inside which ``r`` lies, where
+    :func:`reflex_bisecting_cut` has a cut for it; -1 otherwise."""
+    cut = _once(graph, _bisecting_cut, r)
+    return cut[1] if cut is not None and cut[0] == patch else -1
+
+
+def reflex_bisecting_cut_at(graph, r: int) -> bool:
+    """Whether :func:`reflex_bisecting_cut` has a cut for the reflex corner ``r`` in some quad."""
+    return _once(graph, _bisecting_cut, r) is not None
+
+
 def _foot_of(graph, patch: int, r: int) -> tuple[int, float]:
     """The plan edge where the chord from the reflex corner ``r`` in the quad ``patch`` ends and the
-    fraction of its length there: the cut's where ``r`` lies inside a side (:func:`reflex_cut`), else
-    the chord's (:func:`reflex_chord`). Asked only where one of them matched."""
+    fraction of its length there: the cut's where ``r`` lies inside a side (:func:`reflex_cut`, or
+    :func:`reflex_bisecting_cut`), else the chord's (:func:`reflex_chord`). Asked only where one of them matched."""
     if not graph.degree(r, [PATCH_CORNER]):
-        cut = _once(graph, _cut, r)
+        cut = _once(graph, _cut, r) or _once(graph, _bisecting_cut, r)
         return cut[2], cut[3]
     choice = _once(graph, _choose, r)
     return choice[2], choice[4]
