@@ -38,7 +38,7 @@ from vaultgram.meshing.optimise import maximise_min_quality
 from vaultgram.meshing.orthogonalise import orthogonalise
 from vaultgram.meshing.quadmesh import QuadMesh
 from vaultgram.meshing.quality import check_not_folded, face_scaled_jacobians
-from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS, laplacian_smooth
+from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS, KINK_REACH, kink_offsets, laplacian_smooth
 from vaultgram.meshing.splits import split_patterns, thinnest_fan
 from vaultgram.meshing.untangle import improve_shapes, untangle
 from vaultgram.meshing.weld import weld
@@ -351,7 +351,9 @@ def _smoothed(mesh: QuadMesh, layout: Layout, smooth: int, timings: dict | None,
             held = held_vertices(mesh.fixed, mesh.boundary, mesh.constraints)
             x, rays, refused = even_fans(x, mesh.faces, mesh.face_patch, mesh.pole, held, regardless, wide,
                                          radial=point_loads(mesh.feature, mesh.boundary, mesh.curve_labels()[1]))
-        x = laplacian_smooth(x, mesh.faces, smooth, mesh.fixed, mesh.constraints + rays)
+        reach = KINK_REACH * TARGET_FRACTION * layout.decomposition.disc.domain.diagonal
+        offsets = kink_offsets(x, mesh.faces, mesh.boundary, reach, mesh.fixed | mesh.pole) if smooth > 0 else None
+        x = laplacian_smooth(x, mesh.faces, smooth, mesh.fixed, mesh.constraints + rays, offsets=offsets)
         if smooth > 0 and regardless:
             x, rays = _evened_again(x, mesh, held, rays, regardless, wide)
         slides = mesh.constraints + rays
