@@ -102,7 +102,8 @@ def _thin(layout: Layout, pat: PatchPattern, side_count: np.ndarray) -> bool:
     if pat.pole is None:
         return False
     angle = pole_angle(layout, pat)
-    if angle > MAX_DIVIDED_ANGLE or math.sin(math.radians(angle / _parts_at(angle))) < FAN_FLOOR:
+    part = angle / _parts_at(angle, _corner_pole(layout, pat))
+    if angle > MAX_DIVIDED_ANGLE or math.sin(math.radians(part)) < FAN_FLOOR:
         return False
     if inner_point_feature(layout, pat.corners[pat.pole]):
         return _finer_than_default(layout, pat, side_count)
@@ -224,7 +225,7 @@ def _splits(layout: Layout, counts) -> tuple[frozenset, dict]:
     parts = {}
     for k, pat in enumerate(layout.patterns):
         if _thin(layout, pat, side_count):
-            count = _parts(pole_angle(layout, pat), *_pole_counts(pat, side_count))
+            count = _parts(pole_angle(layout, pat), *_pole_counts(pat, side_count), _corner_pole(layout, pat))
             if count:
                 parts[k] = count
     split = _whole_poles(layout, side_count, set(parts))
@@ -232,16 +233,26 @@ def _splits(layout: Layout, counts) -> tuple[frozenset, dict]:
     return frozenset(split), {k: parts[k] for k in sorted(split) if parts[k] > 1}
 
 
-def _parts_at(angle: float) -> int:
-    """Parts of a split at a pole of ``angle`` degrees: each at most :data:`PART_ANGLE` wide."""
-    return max(1, math.ceil(angle / PART_ANGLE - 1e-9))
+def _parts_at(angle: float, corner: bool = False) -> int:
+    """Parts of a split at a pole of ``angle`` degrees: each at most :data:`PART_ANGLE` wide; one at a
+    ``corner`` (:func:`_corner_pole`)."""
+    return 1 if corner else max(1, math.ceil(angle / PART_ANGLE - 1e-9))
 
 
-def _parts(angle: float, m: int, n: int) -> int:
+def _corner_pole(layout: Layout, pat: PatchPattern) -> bool:
+    """A triangle whose pole is a boundary vertex but not a point feature: a plan corner, whose faces
+    the patches round it count (issue 12: regular by its angle), so its split keeps one part (saved
+    random plan 642's 300 degree hole tip, the corner of three patches of 86, 57 and 157 degrees: the
+    157 degree one halved gave it four faces, a boundary singularity)."""
+    node = pat.corners[pat.pole]
+    return is_boundary_node(layout.decomposition.graph, node) and not is_feature_node(layout.decomposition, node)
+
+
+def _parts(angle: float, m: int, n: int, corner: bool = False) -> int:
     """The number of parts of a split at a pole of ``angle`` degrees whose counts allow it
     (:func:`division`): :func:`_parts_at`, or fewer where the counts do not allow as many (one part,
     the plain three-quad split, only up to :data:`MAX_SPLIT_ANGLE`); 0 where none does."""
-    for count in range(_parts_at(angle), 0, -1):
+    for count in range(_parts_at(angle, corner), 0, -1):
         if division(m, n, count) is not None and (count > 1 or angle <= MAX_SPLIT_ANGLE):
             return count
     return 0
