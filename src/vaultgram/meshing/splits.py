@@ -314,8 +314,11 @@ def _keep_feature_poles(layout: Layout, side_count: np.ndarray, split: set, part
         if not mine or _faces_at(layout, node, side_count, split, parts) != _regular_faces(dec, node):
             continue
         more = _to_divide(layout, side_count, mine, parts)
+        fewer = _to_undivide(layout, mine, parts)
         if more is not None and _finer_than_default(layout, layout.patterns[mine[0]], side_count):
             parts[more] += 1
+        elif fewer is not None:  # the parts left it regular: one part fewer keeps the splits
+            parts[fewer] -= 1
         while mine and _faces_at(layout, node, side_count, split, parts) == _regular_faces(dec, node):
             split.discard(mine.pop(0))
     return split, parts
@@ -326,6 +329,16 @@ def _to_divide(layout: Layout, side_count: np.ndarray, mine: list, parts: dict):
     pole (per part) whose counts allow it (:func:`division`); None where none does."""
     ok = [k for k in mine if division(*_pole_counts(layout.patterns[k], side_count), parts[k] + 1) is not None]
     return max(ok, key=lambda k: (pole_angle(layout, layout.patterns[k]) / parts[k], -k), default=None)
+
+
+def _to_undivide(layout: Layout, mine: list, parts: dict):
+    """Of the split patterns ``mine`` at one pole, the one to cut into one part fewer where the parts
+    leave the pole regular at the default length: the narrowest per part among those that can lose
+    one (one part only up to :data:`MAX_SPLIT_ANGLE`); None where none can. (tests/meshing/test_fans.py's
+    PLAN_111, a curve end: its 148 degree split halved made it regular, and both its splits went back to fans.)"""
+    ok = [k for k in mine
+          if parts[k] > 2 or parts[k] == 2 and pole_angle(layout, layout.patterns[k]) <= MAX_SPLIT_ANGLE]
+    return min(ok, key=lambda k: (pole_angle(layout, layout.patterns[k]) / parts[k], k), default=None)
 
 
 def division(m: int, n: int, parts: int = 2) -> tuple | None:
