@@ -71,6 +71,15 @@ FAN_MARGIN = 0.95
 #: five, min scaled Jacobian 0.589 -> 0.508; multiple_lobes: a side round two lobes turning by 259,
 #: 0.395 -> 0.010). A quarter disc's arc turns by 90 and meshes well.
 SIDE_TURN_LIMIT = 90.0
+#: Rounds of untangling, shape improvement and the max-min optimisation again, each from the last one's
+#: optimised mesh, while it keeps inverted faces and the round raised its worst face
+#: (:func:`_untangled_again`), where a mesh folds with and without the three-quad splits.
+UNTANGLE_ROUNDS = 4
+#: The rounds' mesh is taken only where its worst face reaches this (untangling's own aim,
+#: :data:`~vaultgram.meshing.untangle.UNTANGLE_TARGET`); below it the fold stands, with its advice
+#: (:func:`mesh_or_advise`): tests/folding.py's crescent fans untangle to 0.0008 and 0.014, a layout
+#: that has no usable mesh at that spacing, while hiroshi_senju_museum at 16,000 faces reaches 0.114.
+UNTANGLED_FLOOR = 0.1
 
 
 # --------------------------------------------------------------------------------------------
@@ -281,11 +290,18 @@ def _meshed(dec: Decomposition, target_length, smooth: int, densities, allow_fol
         counts = group_counts(layout, densities, target_length, max_faces)
     mesh, x = _welded_and_smoothed(layout, counts, smooth, timings)
     quality = face_scaled_jacobians(x, mesh.faces) if smooth > 0 else None
+    split = True
     if quality is not None and quality.min() <= 0:
         # issue 12: where the three-quad splits of thin fans (or the counts they need) fold, Figure 3's fans
         plain = group_counts(layout, densities, target_length, max_faces, split=False)
         if split_patterns(layout, counts) or not np.array_equal(plain, counts):
-            mesh, x = _welded_and_smoothed(layout, plain, smooth, timings, split=False)
+            counts, split = plain, False
+            mesh, x = _welded_and_smoothed(layout, counts, smooth, timings, split=split)
+            quality = face_scaled_jacobians(x, mesh.faces)
+    if quality is not None and quality.min() <= 0:  # issue 12 What 4: untangling on until it reaches
+        again, y = _welded_and_smoothed(layout, counts, smooth, timings, split=split, rounds=True)
+        if face_scaled_jacobians(y, again.faces).min() >= UNTANGLED_FLOOR:
+            mesh, x = again, y
             quality = face_scaled_jacobians(x, mesh.faces)
     if quality is not None and quality.min() > 0:  # issue 12: the mean scaled Jacobian, the worst face kept
         with progress.timed(timings, "orthogonalise"):
@@ -297,20 +313,21 @@ def _meshed(dec: Decomposition, target_length, smooth: int, densities, allow_fol
 
 
 def _welded_and_smoothed(layout: Layout, counts, smooth: int, timings: dict | None,
-                         split: bool = True) -> tuple[QuadMesh, np.ndarray]:
+                         split: bool = True, rounds: bool = False) -> tuple[QuadMesh, np.ndarray]:
     """The welded mesh (with or without the three-quad splits of :mod:`vaultgram.meshing.splits`) and
-    its vertices after smoothing, untangling, the max-min optimisation and the boundary's bends put
-    back (§3.2)."""
+    its vertices after smoothing, untangling (with ``rounds``, again while faces stay inverted:
+    :func:`_untangled_again`), the max-min optimisation and the boundary's bends put back (§3.2)."""
     with progress.timed(timings, "weld"):
         welded = weld(layout, counts, split)
-    mesh, x = _fans_evened_and_smoothed(welded, layout, smooth, timings)
+    mesh, x = _fans_evened_and_smoothed(welded, layout, smooth, timings, rounds=rounds)
     if smooth > 0 and poles_to_widen(x, mesh.faces, welded.pole):  # a fan hemmed in by quads bounds it
-        mesh, x = _better(mesh, x, *_fans_evened_and_smoothed(welded, layout, smooth, timings, wide=True))
+        mesh, x = _better(mesh, x, *_fans_evened_and_smoothed(welded, layout, smooth, timings, wide=True,
+                                                              rounds=rounds))
     return mesh, x
 
 
 def _fans_evened_and_smoothed(welded: QuadMesh, layout: Layout, smooth: int, timings: dict | None,
-                              wide: bool = False) -> tuple[QuadMesh, np.ndarray]:
+                              wide: bool = False, rounds: bool = False) -> tuple[QuadMesh, np.ndarray]:
     """The ``welded`` mesh smoothed (:func:`_smoothed`), and smoothed again with the poles whose
     evening was refused (or left under the floor) evened regardless where one of them holds the worst
     face (:func:`~vaultgram.meshing.fans.poles_to_retry`), the better of the two; again while the
@@ -318,14 +335,14 @@ def _fans_evened_and_smoothed(welded: QuadMesh, layout: Layout, smooth: int, tim
     :data:`MAX_RETRIES` times. (Saved random plan 290 of 700: one boundary point feature's fan evened,
     the worst face moves to the other's; that evened too, 0.275 -> 0.321. Evening every refused pole
     with a face under the floor at once instead, plan 355 got 0.148 instead of 0.230.)"""
-    mesh, x, refused = _smoothed(welded, layout, smooth, timings, wide=wide)
+    mesh, x, refused = _smoothed(welded, layout, smooth, timings, wide=wide, rounds=rounds)
     tried: frozenset = frozenset()
     for _ in range(MAX_RETRIES if smooth > 0 else 0):
         retry = tried | poles_to_retry(x, mesh.faces, mesh.face_patch, refused)
         if retry == tried:  # no refused pole holds the worst face, or it was retried already
             break
         tried = retry  # a pole whose evening was refused bounds the mesh: smoothed again with it evened
-        mesh, x = _better(mesh, x, *_smoothed(welded, layout, smooth, timings, retry, wide)[:2])
+        mesh, x = _better(mesh, x, *_smoothed(welded, layout, smooth, timings, retry, wide, rounds)[:2])
     return mesh, x
 
 
@@ -338,13 +355,14 @@ def _better(mesh: QuadMesh, x: np.ndarray, other: QuadMesh, y: np.ndarray) -> tu
 
 
 def _smoothed(mesh: QuadMesh, layout: Layout, smooth: int, timings: dict | None, regardless=frozenset(),
-              wide: bool = False) -> tuple[QuadMesh, np.ndarray, tuple]:
+              wide: bool = False, rounds: bool = False) -> tuple[QuadMesh, np.ndarray, tuple]:
     """The welded ``mesh`` smoothed (§3.2): its fans evened (those round the poles in ``regardless``
     without the check, :func:`~vaultgram.meshing.fans.even_fans`, and again after smoothing,
     :func:`_evened_again`; where ``wide``, with the corners of the quads round each pole in the share),
     Laplacian smoothing, untangling, the
-    max-min optimisation and the boundary's bends put back; the mesh with its labels, its vertices and
-    the poles whose evening was refused."""
+    max-min optimisation (with ``rounds``, untangling and the optimisation again while faces stay
+    inverted: :func:`_untangled_again`) and the boundary's bends put back; the mesh with its labels, its
+    vertices and the poles whose evening was refused."""
     with progress.timed(timings, "smooth"):
         x, rays, refused = mesh.vertices, (), ()
         if smooth > 0:  # the fans round poles evened, their spokes sliding on rays (§3.2, issue 12)
@@ -362,8 +380,34 @@ def _smoothed(mesh: QuadMesh, layout: Layout, smooth: int, timings: dict | None,
             x = untangle(x, mesh.faces, mesh.fixed, slides)
             x = improve_shapes(x, mesh.faces, mesh.fixed, slides)
             x = maximise_min_quality(x, mesh.faces, mesh.fixed, slides, still=mesh.feature)
+            x = _untangled_again(x, mesh, slides) if rounds else x
             x, mesh = _held_to_the_plan(x, mesh, layout.decomposition.disc)
     return mesh, x, refused
+
+
+def _untangled_again(x: np.ndarray, mesh: QuadMesh, slides: tuple) -> np.ndarray:
+    """Untangling, shape improvement and the max-min optimisation again from the optimised ``x`` while
+    it has inverted faces, at most :data:`UNTANGLE_ROUNDS` times and while each round raises the worst
+    face (issue 12 What 4: a fold only where no valid mesh exists). Untangling's gradient steps stall
+    where inverted faces lie beside faces of almost no area (any step inverts one of those), which the
+    optimiser's one-vertex moves open up; from its result untangling goes on. hiroshi_senju_museum at
+    16,000 faces asked: 4 inverted faces in a sheared quad patch wrapping a hole's 199 degree corner,
+    none after one more round (worst face 0.114); at 82,000: 9 inverted, none after three rounds but
+    a worst face of 0.0065 (under :data:`UNTANGLED_FLOOR`: the fold stands). Run only where the mesh
+    folds with and without the splits (:func:`_meshed`): a split that folds falls back to the fans
+    first, as before."""
+    worst = face_scaled_jacobians(x, mesh.faces).min()
+    for _ in range(UNTANGLE_ROUNDS):
+        if worst > 0:
+            break
+        y = untangle(x, mesh.faces, mesh.fixed, slides)
+        y = improve_shapes(y, mesh.faces, mesh.fixed, slides)
+        y = maximise_min_quality(y, mesh.faces, mesh.fixed, slides, still=mesh.feature)
+        now = face_scaled_jacobians(y, mesh.faces).min()
+        if now <= worst:
+            break
+        x, worst = y, now
+    return x
 
 
 def _evened_again(x: np.ndarray, mesh: QuadMesh, held: np.ndarray, rays: tuple, poles, wide: bool = False

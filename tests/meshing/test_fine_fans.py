@@ -98,7 +98,9 @@ def test_a_point_feature_the_splits_would_leave_regular_keeps_two_quads_of_a_hal
 
 def test_halving_leaves_the_default_meshes_alone():
     """At the default length no patch of the plans is halved (a fan kept at a point feature is no
-    thinner there than the default makes it: fig7_curves' 147 degree curve end keeps its fan of 10)."""
+    thinner there than the default makes it). Splits at poles wider than PART_ANGLE are cut into parts
+    at any length (fig7_curves' 147 degree curve end: tests/meshing/test_divided_splits.py); these
+    plans have none at the default."""
     for name in ("two_holes_five_points", "armadillo_vault_plan", "rv_lips_pattern"):
         layout = edge_groups(decompose(_plan(name)))
         assert not halved_patterns(layout, group_counts(layout))

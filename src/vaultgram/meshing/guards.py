@@ -16,7 +16,7 @@ import numpy as np
 
 from vaultgram.errors import VaultgramError
 from vaultgram.limits import BYTES_PER_FACE, MAX_FACES
-from vaultgram.meshing.splits import halved_patterns, halving, split_patterns
+from vaultgram.meshing.splits import divided_patterns, division, split_patterns
 
 __all__ = ["MAX_FACES", "BYTES_PER_FACE", "MeshEstimate", "estimate_mesh", "check_mesh_size"]
 
@@ -50,14 +50,14 @@ def estimate_mesh(layout, counts) -> MeshEstimate:
     True
     """
     c = np.asarray(counts, dtype=float)[layout.group_of]
-    split, halved = split_patterns(layout, counts), halved_patterns(layout, counts)
+    split, divided = split_patterns(layout, counts), divided_patterns(layout, counts)
     faces = 0.0
     for i, pat in enumerate(layout.patterns):
         k = pat.pole or 0
         m, n = c[pat.sides[k][0]], c[pat.sides[(k + 1) % len(pat.sides)][0]]
-        if i in halved:  # two halves of three quads each, of opposite sides j and n - j
-            j = halving(int(m), int(n))
-            faces += _split_faces(m, j) + _split_faces(m, n - j)
+        if i in divided:  # parts of three quads each, their opposite sides cut at the spokes
+            ends = (0, *division(int(m), int(n), divided[i]), int(n))
+            faces += sum(_split_faces(m, hi - lo) for lo, hi in zip(ends[:-1], ends[1:]))
         else:
             faces += _split_faces(m, n) if i in split else m * n
     return MeshEstimate(int(min(faces, 2.0**62)), int(min(faces * BYTES_PER_FACE, 2.0**62)))

@@ -22,6 +22,15 @@ worst face 0.544 at the default, 0.090 at 8,000 faces, 0.060 at 16,000). Finer t
 inner point feature's fan splits too once it has more triangles than at the default length, and a
 feature the splits would leave regular keeps two quads of one halved patch (:func:`halved_patterns`)
 instead of a thin fan: the faces at the pole then no longer grow with the resolution.
+
+A split at a pole wider than :data:`PART_ANGLE` is first cut into parts by straight spokes from the pole
+(:func:`divided_patterns`, :func:`division`), each part split into three quads: the quad at the pole of
+one three-quad split keeps the pole's whole angle, and past about 140 degrees its inner point ``O``
+(the mean of the split points) comes to lie near the opposite side, so the quads at ``B`` and ``C``
+fold (square_point_loads at half the default target length: the 155.8 degree triangles round its
+point loads, 10 inverted faces, and the mesh fell back to fans of 0.045). Parts of at most
+:data:`PART_ANGLE` degrees each keep their quads convex, and poles up to :data:`MAX_DIVIDED_ANGLE`
+(fig6_inner_points' 166 and 194 degree fans) split too.
 """
 
 from __future__ import annotations
@@ -41,12 +50,21 @@ from vaultgram.meshing.layout import (
     is_feature_node,
 )
 
-__all__ = ["fan_estimate", "inner_point_feature", "pole_angle", "halved_patterns", "halving", "split_patterns",
-           "split_counts", "split_points", "remember_default_counts", "thinnest_fan"]
+__all__ = ["fan_estimate", "inner_point_feature", "pole_angle", "divided_patterns", "division", "halved_patterns",
+           "halving", "split_patterns", "split_counts", "split_points", "remember_default_counts", "thinnest_fan"]
 
 #: No split where the pole's angle is wider: the quad there would keep a flat or reflex corner
 #: (a fan spans any angle).
 MAX_SPLIT_ANGLE = 160.0
+#: A split pole wider than this many degrees is cut into ``ceil(angle / PART_ANGLE)`` parts, each split
+#: into three quads (:func:`divided_patterns`): the quad at the pole of a part keeps the part's angle,
+#: and a three-quad split of a wider pole folds or stays thin (its inner point near the opposite side:
+#: square_point_loads' 155.8 degree splits fold at half the default target length, fig7_curves' 147
+#: and 158 degree ones leave 0.046 there), while splits of 121 to 136 degrees mesh well
+#: (rv_lips_pattern and armadillo_vault_plan at a quarter of the default target length: 0.54, 0.51).
+PART_ANGLE = 140.0
+#: No split where the pole's angle is wider (degrees), in parts or not: three parts of 100 degrees.
+MAX_DIVIDED_ANGLE = 300.0
 #: Per layout, its counts at the default target length (:func:`_default_counts`), and the layouts
 #: whose default counts are being made.
 _DEFAULT_COUNTS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
@@ -77,12 +95,15 @@ def _thin(layout: Layout, pat: PatchPattern, side_count: np.ndarray) -> bool:
     """A triangle whose fan is below :data:`FAN_FLOOR` and whose split can do better: the quad corner
     at the pole keeps about the patch's angle there, so its sine must reach the floor (a sliver's
     pole stays a fan: a quad of a 5 degree corner folds in smoothing) and the angle be at most
-    :data:`MAX_SPLIT_ANGLE`. An inner point feature keeps its fan (:func:`inner_point_feature`) but
-    where a target length finer than the default one thins it (:func:`_finer_than_default`)."""
+    :data:`MAX_DIVIDED_ANGLE` (past :data:`PART_ANGLE` the split is cut into parts, the sine is the
+    part's; past :data:`MAX_SPLIT_ANGLE` only in parts). An inner point feature keeps its fan
+    (:func:`inner_point_feature`) but where a target length finer than the default one thins it
+    (:func:`_finer_than_default`)."""
     if pat.pole is None:
         return False
     angle = pole_angle(layout, pat)
-    if angle > MAX_SPLIT_ANGLE or math.sin(math.radians(angle)) < FAN_FLOOR:
+    part = angle / _parts_at(angle, _corner_pole(layout, pat))
+    if angle > MAX_DIVIDED_ANGLE or math.sin(math.radians(part)) < FAN_FLOOR:
         return False
     if inner_point_feature(layout, pat.corners[pat.pole]):
         return _finer_than_default(layout, pat, side_count)
@@ -172,24 +193,69 @@ def split_patterns(layout: Layout, counts) -> frozenset:
 
 
 def halved_patterns(layout: Layout, counts) -> frozenset:
-    """Indices of the split patches (:func:`split_patterns`) meshed as two halves, each three quads: the
-    pole of a point feature whose split patches would leave it regular and whose fans would be thin
-    (:func:`_keep_feature_poles`), so that it keeps two quads of one patch (one face more) instead of a
-    fan of ``n`` triangles."""
+    """Indices of the split patches (:func:`split_patterns`) meshed in two parts or more
+    (:func:`divided_patterns`), each three quads: the pole of a point feature whose split patches would
+    leave it regular and whose fans would be thin (:func:`_keep_feature_poles`), so that it keeps two
+    quads of one patch (one face more) instead of a fan of ``n`` triangles, and poles wider than
+    :data:`PART_ANGLE`."""
+    return frozenset(_splits(layout, counts)[1])
+
+
+def divided_patterns(layout: Layout, counts) -> dict:
+    """The split patches (:func:`split_patterns`) cut into parts by spokes from the pole, each part
+    split into three quads, with their number of parts (2 or more; :func:`division` says where the
+    spokes meet the opposite side): ``ceil(angle / PART_ANGLE)`` at a pole wider than
+    :data:`PART_ANGLE` (fewer where the counts do not allow as many), and one part more at a point
+    feature the splits would leave regular (:func:`_keep_feature_poles`).
+
+    >>> from vaultgram.domain import load_domain
+    >>> from vaultgram.meshing.densities import group_counts
+    >>> from vaultgram.meshing.layout import edge_groups
+    >>> from vaultgram.pipeline import decompose
+    >>> layout = edge_groups(decompose(load_domain("examples/square_point_loads.json")))
+    >>> divided_patterns(layout, group_counts(layout, target_length=0.177))  # 155.8 degree poles
+    {8: 2, 9: 2, 12: 2, 13: 2}
+    """
     return _splits(layout, counts)[1]
 
 
-def _splits(layout: Layout, counts) -> tuple[frozenset, frozenset]:
-    """The split patterns and the halved ones among them."""
+def _splits(layout: Layout, counts) -> tuple[frozenset, dict]:
+    """The split patterns and the divided ones among them with their numbers of parts."""
     side_count = np.asarray(counts)[layout.group_of]
-    out = set()
+    parts = {}
     for k, pat in enumerate(layout.patterns):
         if _thin(layout, pat, side_count):
-            m, n = _pole_counts(pat, side_count)
-            if n % 2 == 0 and n < 2 * m:
-                out.add(k)
-    split, halved = _keep_feature_poles(layout, side_count, _whole_poles(layout, side_count, out))
-    return frozenset(split), frozenset(halved)
+            count = _parts(pole_angle(layout, pat), *_pole_counts(pat, side_count), _corner_pole(layout, pat))
+            if count:
+                parts[k] = count
+    split = _whole_poles(layout, side_count, set(parts))
+    split, parts = _keep_feature_poles(layout, side_count, split, parts)
+    return frozenset(split), {k: parts[k] for k in sorted(split) if parts[k] > 1}
+
+
+def _parts_at(angle: float, corner: bool = False) -> int:
+    """Parts of a split at a pole of ``angle`` degrees: each at most :data:`PART_ANGLE` wide; one at a
+    ``corner`` (:func:`_corner_pole`)."""
+    return 1 if corner else max(1, math.ceil(angle / PART_ANGLE - 1e-9))
+
+
+def _corner_pole(layout: Layout, pat: PatchPattern) -> bool:
+    """A triangle whose pole is a boundary vertex but not a point feature: a plan corner, whose faces
+    the patches round it count (issue 12: regular by its angle), so its split keeps one part (saved
+    random plan 642's 300 degree hole tip, the corner of three patches of 86, 57 and 157 degrees: the
+    157 degree one halved gave it four faces, a boundary singularity)."""
+    node = pat.corners[pat.pole]
+    return is_boundary_node(layout.decomposition.graph, node) and not is_feature_node(layout.decomposition, node)
+
+
+def _parts(angle: float, m: int, n: int, corner: bool = False) -> int:
+    """The number of parts of a split at a pole of ``angle`` degrees whose counts allow it
+    (:func:`division`): :func:`_parts_at`, or fewer where the counts do not allow as many (one part,
+    the plain three-quad split, only up to :data:`MAX_SPLIT_ANGLE`); 0 where none does."""
+    for count in range(_parts_at(angle, corner), 0, -1):
+        if division(m, n, count) is not None and (count > 1 or angle <= MAX_SPLIT_ANGLE):
+            return count
+    return 0
 
 
 def thinnest_fan(layout: Layout, counts) -> float:
@@ -230,60 +296,91 @@ def _whole_poles(layout: Layout, side_count: np.ndarray, split: set) -> set:
     return {k for k in split if pole(k) not in stuck}
 
 
-def _keep_feature_poles(layout: Layout, side_count: np.ndarray, split: set) -> tuple[set, set]:
+def _keep_feature_poles(layout: Layout, side_count: np.ndarray, split: set, parts: dict) -> tuple[set, dict]:
     """``split`` without the splits that would leave a point feature regular (§4.1: point features
-    are poles), and the split patches to halve: at such a feature, one split patch is halved (its pole
-    keeps two quads of it: :func:`_halving`) where the fan it would get back is thinner than
-    :data:`FAN_FLOOR` (a finer mesh gives a fan more triangles: 18 in 112 degrees at
-    two_holes_five_points' inner point at 8,000 faces, 0.125); otherwise its split patches are meshed
-    as fans again, the least thin first, until its number of faces is irregular."""
+    are poles), and ``parts`` (the numbers of parts of the splits, :func:`divided_patterns`) with one
+    more at such a feature: one split patch gets one part more (its pole keeps one quad more of it:
+    :func:`halving`) where the fan it would get back is thinner than :data:`FAN_FLOOR` (a finer mesh
+    gives a fan more triangles: 18 in 112 degrees at two_holes_five_points' inner point at 8,000
+    faces, 0.125); otherwise its split patches are meshed as fans again, the least thin first, until
+    its number of faces is irregular."""
     dec = layout.decomposition
-    halved = set()
+    parts = dict(parts)
     for node in sorted({layout.patterns[k].corners[layout.patterns[k].pole] for k in split}):
         if not is_feature_node(dec, node):
             continue
         mine = sorted((k for k in split if layout.patterns[k].corners[layout.patterns[k].pole] == node),
                       key=lambda k: (-_fan_of(layout, layout.patterns[k], side_count), k))
-        if not mine or _faces_at(layout, node, side_count, split, halved) != _regular_faces(dec, node):
+        if not mine or _faces_at(layout, node, side_count, split, parts) != _regular_faces(dec, node):
             continue
-        half = _to_halve(layout, side_count, mine)
-        if half is not None and _finer_than_default(layout, layout.patterns[mine[0]], side_count):
-            halved.add(half)
-        while mine and _faces_at(layout, node, side_count, split, halved) == _regular_faces(dec, node):
+        more = _to_divide(layout, side_count, mine, parts)
+        fewer = _to_undivide(layout, mine, parts)
+        if more is not None and _finer_than_default(layout, layout.patterns[mine[0]], side_count):
+            parts[more] += 1
+        elif fewer is not None:  # the parts left it regular: one part fewer keeps the splits
+            parts[fewer] -= 1
+        while mine and _faces_at(layout, node, side_count, split, parts) == _regular_faces(dec, node):
             split.discard(mine.pop(0))
-    return split, halved
+    return split, parts
 
 
-def _to_halve(layout: Layout, side_count: np.ndarray, mine: list):
-    """Of the split patterns ``mine`` at one pole, the one to halve: the widest at the pole whose
-    counts allow it (:func:`halving`); None where none does."""
-    ok = [k for k in mine if halving(*_pole_counts(layout.patterns[k], side_count)) is not None]
-    return max(ok, key=lambda k: (pole_angle(layout, layout.patterns[k]), -k), default=None)
+def _to_divide(layout: Layout, side_count: np.ndarray, mine: list, parts: dict):
+    """Of the split patterns ``mine`` at one pole, the one to cut into one part more: the widest at the
+    pole (per part) whose counts allow it (:func:`division`); None where none does."""
+    ok = [k for k in mine if division(*_pole_counts(layout.patterns[k], side_count), parts[k] + 1) is not None]
+    return max(ok, key=lambda k: (pole_angle(layout, layout.patterns[k]) / parts[k], -k), default=None)
+
+
+def _to_undivide(layout: Layout, mine: list, parts: dict):
+    """Of the split patterns ``mine`` at one pole, the one to cut into one part fewer where the parts
+    leave the pole regular at the default length: the narrowest per part among those that can lose
+    one (one part only up to :data:`MAX_SPLIT_ANGLE`); None where none can. (tests/meshing/test_fans.py's
+    PLAN_111, a curve end: its 148 degree split halved made it regular, and both its splits went back to fans.)"""
+    ok = [k for k in mine
+          if parts[k] > 2 or parts[k] == 2 and pole_angle(layout, layout.patterns[k]) <= MAX_SPLIT_ANGLE]
+    return min(ok, key=lambda k: (pole_angle(layout, layout.patterns[k]) / parts[k], k), default=None)
+
+
+def division(m: int, n: int, parts: int = 2) -> tuple | None:
+    """Where spokes from the pole cut a split triangle (pole sides of count ``m``, opposite side of
+    count ``n``) into ``parts`` parts: the samples of the opposite side, as evenly spread as even counts
+    allow, at which every part has an even count of at least 2 and under ``2m`` (each then splits into
+    three quads, :func:`split_points`; the spokes get the count ``m``); None where there are none.
+    One part: no spoke, the plain split (``n`` even, under ``2m``).
+
+    >>> division(7, 12), division(7, 12, 3), division(7, 10, 3), division(3, 10), division(7, 2), division(7, 6, 1)
+    ((6,), (4, 8), (2, 6), None, None, ())
+    """
+    if n % 2 or parts < 1:
+        return None
+    cuts = tuple(2 * (i * n // (2 * parts)) for i in range(1, parts))
+    sizes = np.diff((0, *cuts, n))
+    return cuts if sizes.min() >= 2 and sizes.max() < 2 * m else None
 
 
 def halving(m: int, n: int) -> int | None:
     """Where a split triangle (pole sides of count ``m``, opposite side of count ``n``) is halved: the
     sample of the opposite side nearest its middle at which both halves have an even count under
-    ``2m`` (each then splits into three quads, :func:`split_points`); None where there is none.
+    ``2m`` (:func:`division` in two parts); None where there is none.
 
     >>> halving(7, 12), halving(7, 10), halving(3, 10), halving(7, 2)  # 6 + 6, 4 + 6, 6 is not under 6, 2
     (6, 4, None, None)
     """
-    j = n // 2 - (n // 2) % 2
-    return j if n % 2 == 0 and j >= 2 and n - j < 2 * m else None
+    cuts = division(m, n, 2)
+    return None if cuts is None else cuts[0]
 
 
 def _fan_of(layout: Layout, pat: PatchPattern, side_count: np.ndarray) -> float:
     return fan_estimate(pole_angle(layout, pat), _pole_counts(pat, side_count)[1])
 
 
-def _faces_at(layout: Layout, node: int, side_count: np.ndarray, split: set, halved: set) -> int:
-    """Faces at a patch corner: 1 per patch, the opposite side's count at the pole of a fan, 2 at the
-    pole of a halved split."""
+def _faces_at(layout: Layout, node: int, side_count: np.ndarray, split: set, parts: dict) -> int:
+    """Faces at a patch corner: 1 per patch, the opposite side's count at the pole of a fan, the
+    number of parts at the pole of a split (:func:`divided_patterns`)."""
     def faces(k, p):
         if p.pole is None or p.corners[p.pole] != node:
             return 1
-        return 2 if k in halved else 1 if k in split else _pole_counts(p, side_count)[1]
+        return parts.get(k, 1) if k in split else _pole_counts(p, side_count)[1]
     return sum(faces(k, p) for k, p in enumerate(layout.patterns) if node in p.corners)
 
 

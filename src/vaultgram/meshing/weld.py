@@ -32,7 +32,7 @@ from vaultgram.geometry.polylines import resample_polyline
 from vaultgram.meshing.coons import coons_grid, grid_faces
 from vaultgram.meshing.layout import Layout, PatchPattern, is_feature_node, kept_points, side_anchors
 from vaultgram.meshing.quadmesh import QuadMesh, SlideConstraint
-from vaultgram.meshing.splits import halved_patterns, halving, split_patterns, split_points
+from vaultgram.meshing.splits import divided_patterns, division, split_patterns, split_points
 from vaultgram.topology.types import CURVE_POINT, SKELETON_NODES
 
 __all__ = ["weld"]
@@ -71,8 +71,8 @@ def weld(layout: Layout, counts, split: bool = True) -> QuadMesh:
     table = _VertexTable()
     vid_of_node = _corner_vertices(layout, table)
     sides = _side_samples(layout, counts[layout.group_of], table, vid_of_node)
-    split, halved = (split_patterns(layout, counts), halved_patterns(layout, counts)) if split else ((), ())
-    faces, face_patch, centres = _patch_faces(layout, sides, table, split, halved)
+    split, divided = (split_patterns(layout, counts), divided_patterns(layout, counts)) if split else ((), {})
+    faces, face_patch, centres = _patch_faces(layout, sides, table, split, divided)
     vertices, disc_point, node = table.arrays()
     labels = _vertex_labels(layout, sides, vid_of_node, disc_point)
     labels["singular"][centres] = True  # the inner point of a split triangle: valence 3
@@ -194,15 +194,16 @@ def _side_samples(layout: Layout, side_count: np.ndarray, table: _VertexTable,
 
 
 def _patch_faces(layout: Layout, sides: list[_SideSamples], table: _VertexTable,
-                 split=(), halved=()) -> tuple[Faces, np.ndarray, np.ndarray]:
+                 split=(), divided=None) -> tuple[Faces, np.ndarray, np.ndarray]:
     """Mesh every patch with its Coons grid (adding the interior grid points as vertices), the
-    patterns in ``split`` as three quads (:mod:`vaultgram.meshing.splits`), those in ``halved`` as two
-    halves of three quads each: the faces, quads first then triangles, the patch of each face, and the
-    inner points of the split patches."""
+    patterns in ``split`` as three quads (:mod:`vaultgram.meshing.splits`), those in ``divided`` (a
+    dict: pattern to number of parts) as that many parts of three quads each: the faces, quads first
+    then triangles, the patch of each face, and the inner points of the split patches."""
+    divided = divided or {}
     quads, tris, quad_patch, tri_patch, centres = [], [], [], [], []
     for k, pat in enumerate(layout.patterns):
         if k in split:
-            q, t, inner = (_mesh_halved if k in halved else _mesh_split)(pat, sides, table)
+            q, t, inner = _mesh_divided(pat, sides, table, divided.get(k, 1))
             centres.extend(inner)
         else:
             q, t = _mesh_patch(pat.patch, _coons_sides(pat, sides), table, pat.pole is not None)
@@ -252,26 +253,23 @@ def _mesh_patch(patch: int, coons_sides: tuple, table: _VertexTable,
     return grid_faces(ids, pole=pole)
 
 
-def _mesh_split(pat: PatchPattern, sides: list[_SideSamples], table: _VertexTable) -> tuple:
-    """A three-sided patch as three quads meeting at an inner point (:func:`_split_triangle`): the
-    quads, no triangles, and the inner point's vertex id in a list."""
-    q, o = _split_triangle(pat.patch, *(_oriented(sides, pat.sides[(pat.pole + j) % 3]) for j in range(3)),
-                           table=table)
-    return q, np.zeros((0, 3), dtype=np.int64), [o]
-
-
-def _mesh_halved(pat: PatchPattern, sides: list[_SideSamples], table: _VertexTable) -> tuple:
-    """A three-sided patch ``ABC`` (pole ``A``) halved by a straight spoke from ``A`` to the sample
-    ``M`` of ``BC`` where :func:`~vaultgram.meshing.splits.halving` puts it, with the count of the pole's
-    sides, and each half ``ABM``, ``AMC`` split into three quads (:func:`_split_triangle`): the pole
-    keeps two quads. Returns the quads, no triangles and the two inner points' vertex ids."""
+def _mesh_divided(pat: PatchPattern, sides: list[_SideSamples], table: _VertexTable, parts: int = 1) -> tuple:
+    """A three-sided patch ``ABC`` (pole ``A``) cut into ``parts`` parts by straight spokes from ``A``
+    to the samples ``M1, M2, ...`` of ``BC`` where :func:`~vaultgram.meshing.splits.division` puts
+    them, with the count of the pole's sides, and each part ``ABM1``, ``AM1M2``, ..., ``AMC`` split
+    into three quads (:func:`_split_triangle`; one part: the patch itself): the pole keeps one quad per
+    part. Returns the quads, no triangles and the parts' inner points' vertex ids."""
     a, b, c = (_oriented(sides, pat.sides[(pat.pole + j) % 3]) for j in range(3))
     m, n = len(a[0]) - 1, len(b[0]) - 1
-    j = halving(m, n)
-    spoke = _spoke(int(a[0][0]), a[1][0], int(b[0][j]), b[1][j], m, table)
-    q1, o1 = _split_triangle(pat.patch, a, _cut(*b, 0, j), _rev(spoke), table=table)
-    q2, o2 = _split_triangle(pat.patch, spoke, _cut(*b, j, n), c, table=table)
-    return np.vstack([q1, q2]), np.zeros((0, 3), dtype=np.int64), [o1, o2]
+    cuts = division(m, n, parts)
+    spokes = [_spoke(int(a[0][0]), a[1][0], int(b[0][j]), b[1][j], m, table) for j in cuts]
+    ends = (0, *cuts, n)
+    quads, inner = [], []
+    for first, lo, hi, last in zip([a] + spokes, ends[:-1], ends[1:], [_rev(s) for s in spokes] + [c]):
+        q, o = _split_triangle(pat.patch, first, _cut(*b, lo, hi), last, table=table)
+        quads.append(q)
+        inner.append(o)
+    return np.vstack(quads), np.zeros((0, 3), dtype=np.int64), inner
 
 
 def _split_triangle(patch: int, a: tuple, b: tuple, c: tuple, table: _VertexTable) -> tuple[np.ndarray, int]:
