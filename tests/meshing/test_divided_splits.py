@@ -40,6 +40,21 @@ def _faces_at(mesh, xy) -> list:
     return [k for k, f in enumerate(mesh.faces) if pole in f]
 
 
+def _half_length_mesh(domain):
+    """The mesh at half the default target length, checked valid and at least 0.3 everywhere."""
+    mesh = mesh_domain(domain, target_length=_half_target(domain))
+    stats = mesh_stats(mesh, domain)
+    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.3
+    return mesh
+
+
+def _five_quads_at(mesh, xy) -> list:
+    """The faces at the point feature ``xy``, checked to be five quads (a pole, §4.1)."""
+    at = _faces_at(mesh, np.asarray(xy, dtype=float))
+    assert len(at) == 5 and all(len(mesh.faces[k]) == 4 for k in at)
+    return at
+
+
 def test_division_spreads_even_parts_under_twice_the_pole_count():
     """Every part even, at least 2 and under 2 m, the cuts as even as that allows; None where no
     cut does, and the plain split (no cut) for one part."""
@@ -69,12 +84,9 @@ def test_square_point_loads_obtuse_splits_are_halved_at_half_the_default_length(
     mesh, x = _welded_and_smoothed(layout, counts, 20, None)  # the split mesh itself, before any fallback
     assert face_scaled_jacobians(x, mesh.faces).min() > 0.25
     assert len(weld(layout, counts).faces) == estimate_mesh(layout, counts).faces
-    mesh = mesh_domain(domain, target_length=_half_target(domain))
-    stats = mesh_stats(mesh, domain)
-    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.3
+    mesh = _half_length_mesh(domain)
     for xy in domain.points:
-        at = _faces_at(mesh, np.asarray(xy, dtype=float))
-        assert len(at) == 5 and all(len(mesh.faces[k]) == 4 for k in at)
+        at = _five_quads_at(mesh, xy)
         assert sorted(Counter(int(mesh.face_patch[k]) for k in at).values()) == [1, 2, 2]
 
 
@@ -93,12 +105,9 @@ def test_fig6_inner_points_wide_fans_split_in_parts_and_stay_poles():
     assert sorted(angles.values()) == [166.2, 166.2, 193.8, 193.8]
     assert all(divided[k] == (3 if angles[k] > 180 else 2) for k in divided)
     assert len(weld(layout, counts).faces) == estimate_mesh(layout, counts).faces
-    mesh = mesh_domain(domain, target_length=_half_target(domain))
-    stats = mesh_stats(mesh, domain)
-    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.3
+    mesh = _half_length_mesh(domain)
     for xy in domain.points:
-        at = _faces_at(mesh, np.asarray(xy, dtype=float))
-        assert len(at) == 5 and all(len(mesh.faces[k]) == 4 for k in at)
+        at = _five_quads_at(mesh, xy)
         x = np.asarray(mesh.vertices)[:, :2]
         for k in at:  # every quad's corner at the point is convex and at most PART_ANGLE wide
             f = list(mesh.faces[k])

@@ -620,20 +620,26 @@ def _cut_foot(graph, r: int, found, feet) -> float | None:
     return None
 
 
+def _cut_part(graph, find, patch: int, r: int, part: int) -> int:
+    """Item ``part`` of the cut that ``find`` (:func:`_cut` or :func:`_bisecting_cut`) gives the reflex
+    corner ``r`` (1: the index of the quad's side holding ``r``, 2: the plan edge cut), where that cut
+    lies in the quad ``patch``; -1 otherwise."""
+    cut = _once(graph, find, r)
+    return cut[part] if cut is not None and cut[0] == patch else -1
+
+
 def reflex_cut(graph, patch: int, r: int) -> int:
     """Where the reflex corner ``r`` lies inside a side of the quad ``patch`` (the corner of no patch:
     two faces where its angle asks for three), the plan edge opposite that side, to whose middle a
     chord from ``r`` runs, carried on beyond as a strip; -1 where there is none (the chord would
     leave the quad, its strip would not complete, an angle would be below :data:`MIN_ANGLE`)."""
-    cut = _once(graph, _cut, r)
-    return cut[2] if cut is not None and cut[0] == patch else -1
+    return _cut_part(graph, _cut, patch, r, 2)
 
 
 def reflex_cut_index(graph, patch: int, r: int) -> int:
     """The index of the side of the quad ``patch`` inside which the reflex corner ``r`` lies, where
     :func:`reflex_cut` has a chord for it; -1 otherwise."""
-    cut = _once(graph, _cut, r)
-    return cut[1] if cut is not None and cut[0] == patch else -1
+    return _cut_part(graph, _cut, patch, r, 1)
 
 
 def reflex_cut_at(graph, r: int) -> bool:
@@ -644,15 +650,13 @@ def reflex_cut_at(graph, r: int) -> bool:
 def reflex_bisecting_cut(graph, patch: int, r: int) -> int:
     """As :func:`reflex_cut`, for the cut whose chord to a fan's pole bisects the fan triangle
     (:func:`_bisecting_cut`): the plan edge it cuts in the quad ``patch``; -1 where there is none."""
-    cut = _once(graph, _bisecting_cut, r)
-    return cut[2] if cut is not None and cut[0] == patch else -1
+    return _cut_part(graph, _bisecting_cut, patch, r, 2)
 
 
 def reflex_bisecting_cut_index(graph, patch: int, r: int) -> int:
     """The index of the side of the quad ``patch`` inside which ``r`` lies, where
     :func:`reflex_bisecting_cut` has a cut for it; -1 otherwise."""
-    cut = _once(graph, _bisecting_cut, r)
-    return cut[1] if cut is not None and cut[0] == patch else -1
+    return _cut_part(graph, _bisecting_cut, patch, r, 1)
 
 
 def reflex_bisecting_cut_at(graph, r: int) -> bool:
