@@ -194,7 +194,6 @@ def _valid_faces(x: np.ndarray, corners: _FaceCorners) -> np.ndarray:
     return ~bad
 
 
-
 def kink_offsets(x: np.ndarray, faces, boundary: np.ndarray, reach: float, stops: np.ndarray | None = None
                  ) -> np.ndarray | None:
     """The offsets (:func:`laplacian_smooth`'s ``offsets``) that keep the rows at the reflex kinks of
