@@ -13,7 +13,7 @@ from vaultgram.errors import VaultgramError
 from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.meshing.layout import is_feature_node
 from vaultgram.meshing.quality import mesh_stats, regular_boundary_faces
-from vaultgram.meshing.splits import halved_patterns, split_patterns
+from vaultgram.meshing.splits import divided_patterns, split_patterns
 from vaultgram.pipeline import mesh_domain
 
 from strategies.domains import convex_domains
@@ -168,7 +168,7 @@ def test_halved_target_length(meshed, name):
     assert singular_nodes(fine, fine_stats) == singular_nodes(mesh, stats)
     # finer, a point feature's fans that the finer counts would thin are split (issue 18): the only
     # singular vertices added are the inner points of the splits made for the finer counts
-    splits = [len(split_patterns(layout, c)) + len(halved_patterns(layout, c)) for c in (counts, fine_counts)]
+    splits = [len(split_patterns(layout, c)) + len(divided_patterns(layout, c)) for c in (counts, fine_counts)]
     assert inner_points(fine, fine_stats) - inner_points(mesh, stats) == splits[1] - splits[0]
 
 

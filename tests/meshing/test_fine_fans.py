@@ -16,7 +16,7 @@ from vaultgram.meshing.densities import group_counts
 from vaultgram.meshing.guards import estimate_mesh
 from vaultgram.meshing.layout import edge_groups
 from vaultgram.meshing.quality import mesh_stats
-from vaultgram.meshing.splits import halved_patterns, split_patterns
+from vaultgram.meshing.splits import divided_patterns, split_patterns
 from vaultgram.meshing.weld import weld
 from vaultgram.meshpipeline import decompose, mesh_domain
 
@@ -79,7 +79,7 @@ def test_a_point_feature_the_splits_would_leave_regular_keeps_two_quads_of_a_hal
     layout = edge_groups(decompose(domain))
     counts = group_counts(layout, target_length=_target(domain, 8000))
     fans = _inner_point_fans(layout)
-    halved = halved_patterns(layout, counts) & set(fans)
+    halved = set(divided_patterns(layout, counts)) & set(fans)
     assert len(fans) == 4 and len(halved) == 1 and set(fans) <= split_patterns(layout, counts)
     mesh = weld(layout, counts)
     assert len(mesh.faces) == estimate_mesh(layout, counts).faces
@@ -103,4 +103,4 @@ def test_halving_leaves_the_default_meshes_alone():
     plans have none at the default."""
     for name in ("two_holes_five_points", "armadillo_vault_plan", "rv_lips_pattern"):
         layout = edge_groups(decompose(_plan(name)))
-        assert not halved_patterns(layout, group_counts(layout))
+        assert not divided_patterns(layout, group_counts(layout))

@@ -20,7 +20,7 @@ stay, at an inner point feature (kept for their radial load paths, §4) and at a
 would leave it regular (§4.1: point features are poles), thin without bound (armadillo_vault_plan's
 worst face 0.544 at the default, 0.090 at 8,000 faces, 0.060 at 16,000). Finer than the default, an
 inner point feature's fan splits too once it has more triangles than at the default length, and a
-feature the splits would leave regular keeps two quads of one halved patch (:func:`halved_patterns`)
+feature the splits would leave regular keeps two quads of one patch cut in two (:func:`divided_patterns`)
 instead of a thin fan: the faces at the pole then no longer grow with the resolution.
 
 A split at a pole wider than :data:`PART_ANGLE` is first cut into parts by straight spokes from the pole
@@ -50,8 +50,8 @@ from vaultgram.meshing.layout import (
     is_feature_node,
 )
 
-__all__ = ["fan_estimate", "inner_point_feature", "pole_angle", "divided_patterns", "division", "halved_patterns",
-           "halving", "split_patterns", "split_counts", "split_points", "remember_default_counts", "thinnest_fan"]
+__all__ = ["fan_estimate", "inner_point_feature", "pole_angle", "divided_patterns", "division",
+           "split_patterns", "split_counts", "split_points", "remember_default_counts", "thinnest_fan"]
 
 #: No split where the pole's angle is wider: the quad there would keep a flat or reflex corner
 #: (a fan spans any angle).
@@ -178,8 +178,8 @@ def _pole_counts(pat: PatchPattern, side_count: np.ndarray) -> tuple[int, int]:
 
 def split_patterns(layout: Layout, counts) -> frozenset:
     """Indices (into ``layout.patterns``) of the three-sided patches meshed as three quads: thin fans
-    (see the module docstring) whose counts allow the split (``n`` even, ``n < 2m``); the halved ones
-    (:func:`halved_patterns`) among them.
+    (see the module docstring) whose counts allow the split (``n`` even, ``n < 2m``); the ones cut into
+    parts (:func:`divided_patterns`) among them.
 
     >>> from vaultgram.domain import load_domain
     >>> from vaultgram.meshing.densities import group_counts
@@ -190,15 +190,6 @@ def split_patterns(layout: Layout, counts) -> frozenset:
     8
     """
     return _splits(layout, counts)[0]
-
-
-def halved_patterns(layout: Layout, counts) -> frozenset:
-    """Indices of the split patches (:func:`split_patterns`) meshed in two parts or more
-    (:func:`divided_patterns`), each three quads: the pole of a point feature whose split patches would
-    leave it regular and whose fans would be thin (:func:`_keep_feature_poles`), so that it keeps two
-    quads of one patch (one face more) instead of a fan of ``n`` triangles, and poles wider than
-    :data:`PART_ANGLE`."""
-    return frozenset(_splits(layout, counts)[1])
 
 
 def divided_patterns(layout: Layout, counts) -> dict:
@@ -300,7 +291,7 @@ def _keep_feature_poles(layout: Layout, side_count: np.ndarray, split: set, part
     """``split`` without the splits that would leave a point feature regular (§4.1: point features
     are poles), and ``parts`` (the numbers of parts of the splits, :func:`divided_patterns`) with one
     more at such a feature: one split patch gets one part more (its pole keeps one quad more of it:
-    :func:`halving`) where the fan it would get back is thinner than :data:`FAN_FLOOR` (a finer mesh
+    :func:`division`) where the fan it would get back is thinner than :data:`FAN_FLOOR` (a finer mesh
     gives a fan more triangles: 18 in 112 degrees at two_holes_five_points' inner point at 8,000
     faces, 0.125); otherwise its split patches are meshed as fans again, the least thin first, until
     its number of faces is irregular."""
@@ -356,18 +347,6 @@ def division(m: int, n: int, parts: int = 2) -> tuple | None:
     cuts = tuple(2 * (i * n // (2 * parts)) for i in range(1, parts))
     sizes = np.diff((0, *cuts, n))
     return cuts if sizes.min() >= 2 and sizes.max() < 2 * m else None
-
-
-def halving(m: int, n: int) -> int | None:
-    """Where a split triangle (pole sides of count ``m``, opposite side of count ``n``) is halved: the
-    sample of the opposite side nearest its middle at which both halves have an even count under
-    ``2m`` (:func:`division` in two parts); None where there is none.
-
-    >>> halving(7, 12), halving(7, 10), halving(3, 10), halving(7, 2)  # 6 + 6, 4 + 6, 6 is not under 6, 2
-    (6, 4, None, None)
-    """
-    cuts = division(m, n, 2)
-    return None if cuts is None else cuts[0]
 
 
 def _fan_of(layout: Layout, pat: PatchPattern, side_count: np.ndarray) -> float:
