@@ -29,11 +29,10 @@ import numpy as np
 from vaultgram.errors import VaultgramError
 from vaultgram.geometry.meshes import Faces
 from vaultgram.geometry.polylines import chord_deviation, resample_polyline, segment_lengths, turning_angles
-from vaultgram.meshing.coons import coons_grid, grid_faces
+from vaultgram.meshing.coons import coons_grid, grid_faces, grid_worst_corner
 from vaultgram.meshing.densities import CHORD_TOLERANCE
 from vaultgram.meshing.layout import Layout, PatchPattern, is_feature_node, kept_points, side_anchors
 from vaultgram.meshing.quadmesh import QuadMesh, SlideConstraint
-from vaultgram.meshing.quality import face_scaled_jacobians
 from vaultgram.meshing.splits import divided_patterns, division, split_patterns, split_points
 from vaultgram.topology.types import CURVE_POINT, SKELETON_NODES
 
@@ -248,9 +247,7 @@ def _may_wrap(side) -> bool:
 def _grid_quality(pat: PatchPattern, samples: list) -> float:
     """The worst scaled Jacobian of a quad patch's Coons grid on the side points in ``samples``."""
     pts = [samples[sid][0][::-1] if rev else samples[sid][0] for sid, rev in pat.sides]
-    grid = coons_grid(pts[0], pts[1], pts[2][::-1], pts[3][::-1])
-    quads, _ = grid_faces(np.arange(grid.shape[0] * grid.shape[1]).reshape(grid.shape[:2]))
-    return float(face_scaled_jacobians(grid.reshape(-1, 2), quads).min())
+    return grid_worst_corner(coons_grid(pts[0], pts[1], pts[2][::-1], pts[3][::-1]))
 
 
 def _wrapped_lengths(poly: np.ndarray, width: float, reverse: bool) -> np.ndarray | None:
