@@ -279,7 +279,7 @@ def _share_counts(lengths: np.ndarray, n: int) -> np.ndarray:
     return np.diff(np.concatenate([[0], ends]))
 
 
-def resample_polyline(poly: np.ndarray, n: int, anchors=()) -> tuple[np.ndarray, list[int]]:
+def resample_polyline(poly: np.ndarray, n: int, anchors=(), lengths=None) -> tuple[np.ndarray, list[int]]:
     """``n + 1`` points along a polyline, uniform in arc length, hitting the ``anchors`` if possible.
 
     Parameters
@@ -291,6 +291,9 @@ def resample_polyline(poly: np.ndarray, n: int, anchors=()) -> tuple[np.ndarray,
         Indices of interior points of ``poly`` that should be samples. Honoured when ``n`` leaves at
         least one subdivision per piece between anchors; the counts are shared in proportion to
         the pieces' lengths.
+    lengths : ndarray (k - 1,), optional
+        The measure of each segment to be uniform in instead of its length (all positive): a
+        segment measured longer gets more samples.
 
     Returns
     -------
@@ -306,7 +309,7 @@ def resample_polyline(poly: np.ndarray, n: int, anchors=()) -> tuple[np.ndarray,
     ([0.0, 1.0, 2.0, 3.0, 4.0], [1])
     """
     poly = np.asarray(poly, dtype=float)
-    s = arc_lengths(poly)
+    s = arc_lengths(poly) if lengths is None else np.concatenate([[0.0], np.cumsum(lengths)])
     anchors = sorted(int(a) for a in anchors if 0 < a < len(poly) - 1)
     breaks = [0, *anchors, len(poly) - 1]
     lengths = np.diff(s[breaks])

@@ -25,7 +25,7 @@ import numpy as np
 from vaultgram.geometry.meshes import MeshError
 from vaultgram.geometry.polylines import arc_parameters
 
-__all__ = ["coons_grid", "grid_faces"]
+__all__ = ["coons_grid", "grid_faces", "grid_worst_corner"]
 
 
 def coons_grid(bottom: np.ndarray, right: np.ndarray, top: np.ndarray, left: np.ndarray) -> np.ndarray:
@@ -101,3 +101,26 @@ def grid_faces(ids: np.ndarray, pole: bool = False) -> tuple[np.ndarray, np.ndar
         return quads.reshape(-1, 4), np.zeros((0, 3), dtype=ids.dtype)
     tris = np.stack([a[0], b[0], c[0]], axis=-1)
     return quads[1:].reshape(-1, 4), tris
+
+
+def grid_worst_corner(grid: np.ndarray) -> float:
+    """The smallest scaled Jacobian (the sine of the corner angle, <= 0 where a cell is inverted or a
+    side has no length) over the corners of a quad grid's cells, counter-clockwise cells as
+    :func:`grid_faces` makes them: the structured grid's own form of the mesh quality of issue 12,
+    computed with slices, so that a patch's Coons grid can be judged before it is welded
+    (:mod:`vaultgram.meshing.weld` resamples the sides of patches whose grid is sheared).
+
+    >>> g = np.array([[[0, 0], [0, 1.]], [[1, 0], [2, 1.]]])  # one cell, its corner at (1, 0) 135 degrees
+    >>> round(grid_worst_corner(g), 4)
+    0.7071
+    """
+    g = np.asarray(grid, dtype=float)[..., :2]
+    ring = (g[:-1, :-1], g[1:, :-1], g[1:, 1:], g[:-1, 1:])  # a cell's corners, counter-clockwise
+    worst = np.inf
+    for k in range(4):
+        e1, e2 = ring[(k + 1) % 4] - ring[k], ring[k - 1] - ring[k]
+        norm = np.hypot(e1[..., 0], e1[..., 1]) * np.hypot(e2[..., 0], e2[..., 1])
+        cross = e1[..., 0] * e2[..., 1] - e1[..., 1] * e2[..., 0]
+        sj = np.where(norm > 0, cross / np.where(norm > 0, norm, 1.0), -1.0)
+        worst = min(worst, float(sj.min())) if sj.size else worst
+    return worst
