@@ -28,7 +28,8 @@ def test_rules_check_prints_summary():
     assert (
         "patching: cut_neck fixpoint; split_at_boundary_feature(onto_boundary = false) fixpoint; "
         "split_at_boundary_feature fixpoint; "
-        "choose { split_quad_at_feature_beside_boundary, split_quad_at_feature, keep_quad_at_feature } fixpoint"
+        "choose { split_quad_at_feature_beside_boundary, split_quad_at_feature_beside_boundary_back, "
+        "split_quad_at_feature, keep_quad_at_feature } fixpoint"
     ) in result.output
 
 

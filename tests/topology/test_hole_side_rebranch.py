@@ -18,7 +18,7 @@ import pytest
 from vaultgram.domain import domain_from_dict
 from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import decompose, mesh_decomposition
-from vaultgram.topology import fans, hole_sides, reflex, strips
+from vaultgram.topology import fans, hole_hub, hole_sides, reflex, strips
 from vaultgram.topology.corners import boundary_angle, graph_rings
 from vaultgram.topology.types import DIAGONAL, PATCH_CORNER
 
@@ -150,9 +150,11 @@ def test_without_the_rebranch_the_corner_stays_inside_a_side(monkeypatch, cresce
     the corner of no patch, as on main, and no chord joins a hole corner to the point. The cut to the
     bisecting foot (reflex._bisecting_foot, session 25), the fallback after the rebranch, is off too:
     it would cut the corner (the corner of two patches, 7 boundary singular vertices and a worst face
-    of 0.014 where the rebranch gives 3 and 0.301)."""
+    of 0.014 where the rebranch gives 3 and 0.301), and so is the hub split after it (hole_hub,
+    session 26)."""
     monkeypatch.setattr(hole_sides, "_choose", lambda graph, r: None)
     monkeypatch.setattr(reflex, "_bisecting_foot", lambda graph, walk: ())
+    monkeypatch.setattr(hole_hub, "_best_hub", lambda *args: None)
     g = decompose(domain_from_dict(DRAW_666)).graph
     assert g.degree(_node_at(g, CORNER_666), [PATCH_CORNER]) == 0 and not _rebranches(g)
 
