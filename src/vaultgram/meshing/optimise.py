@@ -42,8 +42,9 @@ SLIDE_TARGET = 0.3
 FAN_MARGIN = 0.97
 #: A corner's quality is its scaled Jacobian times ``min(1, side / (SIDE_SHARE x opposite side))`` for
 #: each of its two sides, the opposite side (a triangle's: the mean of its other two) measured before the
-#: optimisation (:func:`_scaled`). 0.1 let shared plans' sides shrink to a third of what smoothing left
-#: (multiple_lobes 0.006 -> 0.0013 of the median edge), 0.3 cost mexico_airport's worst face 0.659 -> 0.429.
+#: optimisation (:func:`_scaled`). 0.1 let shared plans' sides shrink under half of what smoothing left
+#: (features_combined 0.012 -> 0.005 of the median edge, multiple_lobes 0.006 -> 0.002); 0.3 cost
+#: mexico_airport's worst face 0.659 -> 0.429 and square_point_loads' mean 0.902 -> 0.896.
 SIDE_SHARE = 0.2
 #: A trial must raise the worst corner (or, that equal, the mean) by more than this to be taken.
 _GAIN = 1e-3
