@@ -9,7 +9,8 @@ and prints per plan: patches (triangles among them), interior and boundary singu
 boundary ones by the regular valence of their angle, boundary point features apart), min and mean
 scaled Jacobian, inverted faces, the boundary's distance from the domain's (relative to the
 diagonal), the fan bound (:func:`vaultgram.meshing.fans.fan_bounds`: the best scaled Jacobian the
-corners round the worst vertex could reach at all, given its faces), the mesh's faces and the best
+corners round the worst vertex could reach at all, given its faces), the shortest edge over the median
+edge (``short``: a quad with a vanished side scores well on the scaled Jacobian), the mesh's faces and the best
 of ``R`` meshing CPU times (``mesh_domain``, process time: less noisy than wall-clock on a shared
 machine, but still note the load beside them). ``--without-optimise`` measures the pipeline without
 :func:`vaultgram.meshing.optimise.maximise_min_quality` (the comparison of the issue).
@@ -79,13 +80,14 @@ def measure(domain, repeat: int, target: float | None = None) -> str:
     return (f"{mesh.info['patches']:5d} {mesh.info['triangle_patches']:4d} {s['interior_singular']:4d} "
             f"{s['boundary_singular']:4d} {s['boundary_feature_singular']:4d} {s['min_scaled_jacobian']:7.3f} "
             f"{s['mean_scaled_jacobian']:7.3f} {s['inverted_faces']:4d} {s['boundary_distance_relative']:8.5f} "
-            f"{fan_bounds(mesh.vertices, mesh.faces).min():6.3f} {len(mesh.faces):7d} {best:7.3f}")
+            f"{fan_bounds(mesh.vertices, mesh.faces).min():6.3f} {s['shortest_over_median_edge']:7.4f} "
+            f"{len(mesh.faces):7d} {best:7.3f}")
 
 
 def table(domains: dict, names: list, repeat: int, label: str, scale: float | None, faces: int | None) -> None:
     """One table: every plan (those in ``names``, if any) meshed at one size (``label``)."""
     print(f"size: {label}; load average {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
-    print(f"{'plan':28s} patch  tri  int  bnd feat  min SJ mean SJ  inv bnd dist    fan   faces   cpu s")
+    print(f"{'plan':28s} patch  tri  int  bnd feat  min SJ mean SJ  inv bnd dist    fan   short   faces   cpu s")
     total = 0.0
     for name, domain in domains.items():
         if names and name not in names:

@@ -75,11 +75,13 @@ SIDE_TURN_LIMIT = 90.0
 #: optimised mesh, while it keeps inverted faces and the round raised its worst face
 #: (:func:`_untangled_again`), where a mesh folds with and without the three-quad splits.
 UNTANGLE_ROUNDS = 4
-#: The rounds' mesh is taken only where its worst face reaches this (untangling's own aim,
-#: :data:`~vaultgram.meshing.untangle.UNTANGLE_TARGET`); below it the fold stands, with its advice
-#: (:func:`mesh_or_advise`): tests/folding.py's crescent fans untangle to 0.0008 and 0.014, a layout
-#: that has no usable mesh at that spacing, while hiroshi_senju_museum at 16,000 faces reaches 0.114.
-UNTANGLED_FLOOR = 0.1
+#: The rounds' mesh is taken only where its worst face reaches this; below it the fold stands, with its
+#: advice (:func:`mesh_or_advise`): tests/folding.py's crescent fans untangle to 0.0008 and 0.014, a layout
+#: that has no usable mesh at that spacing, while hiroshi_senju_museum at 16,000 faces reaches 0.093. It was
+#: untangling's own aim (:data:`~vaultgram.meshing.untangle.UNTANGLE_TARGET`, 0.1) while hiroshi reached 0.114,
+#: with sides collapsed beside the fold (3e-7 and 0.0005 of the median edge) that the max-min optimisation
+#: no longer makes (:data:`~vaultgram.meshing.optimise.SIDE_SHARE`).
+UNTANGLED_FLOOR = 0.08
 
 
 # --------------------------------------------------------------------------------------------
@@ -427,22 +429,42 @@ def _evened_again(x: np.ndarray, mesh: QuadMesh, held: np.ndarray, rays: tuple, 
 
 def _held_to_the_plan(x: np.ndarray, mesh: QuadMesh, disc) -> tuple[np.ndarray, QuadMesh]:
     """The smoothed boundary put back on the plan (§3.2, issue 12 What 5; :mod:`vaultgram.meshing.fidelity`):
-    a vertex on each sharp ring vertex the sliding left bare, the faces optimised again with those
-    fixed (where one was placed), and the bends that chords cut off put back; the mesh with its labels
-    of the ring points following the vertices (``fixed`` the vertices on sharp ring vertices too,
-    ``turning`` the turning of the ring point a boundary vertex sits on)."""
+    a vertex on each sharp ring vertex the sliding left bare (:func:`_on_sharp_points`; where each
+    vertex that could go there folds a face, one goes anyway when the optimisation after it unfolds
+    the faces), and the bends that chords cut off put back; the mesh with its labels of the ring points
+    following the vertices (``fixed`` the vertices on sharp ring vertices too, ``turning`` the turning
+    of the ring point a boundary vertex sits on).
+
+    The second try: multiple_lobes' outline vertex 22 (21.24, 18.62), a 202.5 degree bend that a sliding
+    vertex left, has two candidates 0.23 m off, each folding a face there (-0.13, -0.04); placed, the
+    optimisation unfolds it (worst face 0.407). Main placed one only because the max-min optimisation
+    had collapsed the four strips' ends beside it into one point (the sides under 0.001 of the median
+    edge that :data:`vaultgram.meshing.optimise.SIDE_SHARE` now keeps)."""
     tol, eps = CHORD_TOLERANCE * disc.domain.diagonal, SAME_POINT * disc.domain.diagonal
     sharp = disc.points[kept_points(disc) & (disc.ring >= 0)]
-    placed, on_sharp = place_on_points(x, mesh.faces, mesh.constraints, sharp, eps)
-    if not np.array_equal(placed, x):
-        placed = hold_boundary(placed, mesh.faces, mesh.constraints, tol)
-        placed = maximise_min_quality(placed, mesh.faces, mesh.fixed | on_sharp, mesh.constraints,
-                                      still=mesh.feature, moved=np.flatnonzero(np.any(placed != x, axis=1)))
+    placed, on_sharp = _on_sharp_points(x, mesh, sharp, eps, tol)
+    if on_sharp.sum() < len(sharp):
+        again, on_again = _on_sharp_points(x, mesh, sharp, eps, tol, folding=True)
+        if on_again.sum() > on_sharp.sum() and face_scaled_jacobians(again, mesh.faces).min() > 0:
+            placed, on_sharp = again, on_again
     placed = hold_boundary(placed, mesh.faces, mesh.constraints, tol)
     on_ring = disc.ring >= 0
     turning = mesh.turning.copy()
     turning[mesh.boundary] = on_points(placed[mesh.boundary], disc.points[on_ring], disc.turning[on_ring], eps)
     return placed, dataclasses.replace(mesh, fixed=mesh.fixed | on_sharp, turning=turning)
+
+
+def _on_sharp_points(x: np.ndarray, mesh: QuadMesh, sharp: np.ndarray, eps: float, tol: float,
+                     folding: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """A vertex on each of the ``sharp`` ring vertices the sliding left bare (:func:`place_on_points`,
+    with ``folding`` even where it folds a face), and where one was placed the boundary held and the
+    faces optimised again with those fixed; the vertices, and which of them sit on sharp points."""
+    placed, on_sharp = place_on_points(x, mesh.faces, mesh.constraints, sharp, eps, folding)
+    if not np.array_equal(placed, x):
+        placed = hold_boundary(placed, mesh.faces, mesh.constraints, tol)
+        placed = maximise_min_quality(placed, mesh.faces, mesh.fixed | on_sharp, mesh.constraints,
+                                      still=mesh.feature, moved=np.flatnonzero(np.any(placed != x, axis=1)))
+    return placed, on_sharp
 
 
 def _mesh_info(dec: Decomposition, layout: Layout, smooth: int) -> dict:

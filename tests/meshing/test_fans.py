@@ -178,8 +178,10 @@ def test_a_refused_pole_that_bounds_the_mesh_is_smoothed_again_evened(monkeypatc
     smoothing), and the mesh's worst face is then in its patches (0.196); smoothed again with the
     fan evened regardless (and evened once more after smoothing, round where its held spokes moved),
     the mesh's worst face is 0.314, over issue 12's floor, and the end's narrowest corner is 15.8
-    degrees (a run of 8 equal ones) instead of 9.8. Since session 25 the 147 degree split there is
-    halved (splits.PART_ANGLE) and no fan is refused: the plan is meshed with splits in one part."""
+    degrees (a run of 8 equal ones) instead of 10.1 (worst face 0.201 without the retry; 9.8 and 0.196
+    until the max-min optimisation kept sides against their opposite sides). Since session 25 the 147
+    degree split there is halved (splits.PART_ANGLE) and no fan is refused: the plan is meshed with
+    splits in one part."""
     monkeypatch.setattr(splits, "PART_ANGLE", 360.0)  # the 147 degree split at (1, 1) in one part, as on 7aa879d
     domain = load_domain(EXAMPLES / "fig7_curves.json")
     retried = mesh_domain(domain)
@@ -187,9 +189,9 @@ def test_a_refused_pole_that_bounds_the_mesh_is_smoothed_again_evened(monkeypatc
     checked = mesh_domain(domain)
     end = int(np.argmin(np.hypot(*(retried.vertices[:, :2] - [1.0, 1.0]).T)))
     worst = [face_scaled_jacobians(m.vertices, m.faces).min() for m in (retried, checked)]
-    assert worst[0] >= 0.3 and worst[1] < 0.2
+    assert worst[0] >= 0.3 and worst[1] < 0.21
     narrowest = [_pole_corners(m.vertices, m.faces, end).min() for m in (retried, checked)]
-    assert narrowest[0] > 15 and narrowest[1] < 10
+    assert narrowest[0] > 15 and narrowest[1] < 10.5
 
 
 @given(st.integers(0, 12), st.integers(0, 6), st.floats(0.3, 2 * math.pi))

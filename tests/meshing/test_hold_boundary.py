@@ -102,6 +102,22 @@ def test_of_the_two_nearest_the_one_whose_faces_stay_better_goes():
     assert y[3].tolist() == [3.0, -0.3] and y[2].tolist() == x[2].tolist()
 
 
+def test_a_point_every_candidate_folds_a_face_to_reach_gets_one_only_with_folding():
+    """Two quads over a bent bottom side whose vertex 1 slid off the bend (1, -0.3); the interior
+    vertex 4 at (1.4, -0.1) is so low that vertex 1 on the bend folds the right quad. Without
+    ``folding`` the point stays bare; with it the vertex goes there, for the pipeline to optimise the
+    faces and keep it only if they unfold (meshpipeline._held_to_the_plan)."""
+    faces = [(0, 1, 4, 5), (1, 2, 3, 4)]
+    x = np.array([[0.0, 0.0], [1.4, -0.18], [3.0, 0.0], [3.0, 1.0], [1.4, -0.1], [0.0, 1.0]])
+    bottom = SlideConstraint(np.array([1]), np.array([[0.0, 0.0], [1.0, -0.3], [3.0, 0.0]]))
+    assert face_scaled_jacobians(x, faces).min() > 0.7
+    y, on = place_on_points(x, faces, [bottom], np.array([[1.0, -0.3]]), 1e-9)
+    assert np.array_equal(y, x) and not on.any()
+    y, on = place_on_points(x, faces, [bottom], np.array([[1.0, -0.3]]), 1e-9, folding=True)
+    assert y[1].tolist() == [1.0, -0.3] and np.flatnonzero(on).tolist() == [1]
+    assert face_scaled_jacobians(y, faces)[1] < 0 < face_scaled_jacobians(y, faces)[0]
+
+
 def test_a_point_a_vertex_sits_on_moves_nothing():
     x, faces, c = _grid_on(BEND, np.zeros(N - 1))
     x[3] = BEND[1]

@@ -87,6 +87,22 @@ def test_vertex_minima_and_goals_by_one_grouping(jittered):
     assert np.array_equal(optimise._vertex_minima(x, table), _touch_reference(sj, u, v, p, len(x)))
     values = np.random.default_rng(2).normal(size=len(u))
     assert np.array_equal(optimise._touching(values, table, len(x), np.inf), _touch_reference(values, u, v, p, len(x)))
+    # the length factor: each side against SIDE_SHARE of its opposite side (a triangle's: the mean of its
+    # other two) as on entry, here a mesh ten times the size, so that most factors are below 1
+    ref1, ref2 = [], []
+    for f in faces:
+        n = len(f)
+        side = [math.dist(x[f[i]], x[f[(i + 1) % n]]) for i in range(n)]
+        ref = [side[(i + 2) % 4] if n == 4 else (side[(i + 1) % 3] + side[(i + 2) % 3]) / 2 for i in range(n)]
+        ref1 += ref
+        ref2 += [ref[i - 1] for i in range(n)]
+    ref1, ref2 = 10 * optimise.SIDE_SHARE * np.array(ref1), 10 * optimise.SIDE_SHARE * np.array(ref2)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        factor = np.minimum(1.0, np.minimum(np.hypot(*(xy[v] - xy[u]).T) / ref1, np.hypot(*(xy[p] - xy[u]).T) / ref2))
+    expected = np.where(sj > 0, sj * factor, sj)
+    assert (factor < 1).mean() > 0.9
+    assert np.allclose(optimise._vertex_minima(x, optimise._corner_table(faces, 10 * x)),
+                       _touch_reference(expected, u, v, p, len(x)), rtol=1e-12, atol=0)
 
 
 def test_untangling_targets_and_scaled_jacobians_in_pieces(jittered):

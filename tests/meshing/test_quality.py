@@ -38,6 +38,22 @@ def test_stats_without_labels_use_mesh_topology():
     assert flipped["inverted_faces"] == 1 and not flipped["oriented"]
 
 
+def test_shortest_over_median_edge_sees_a_side_the_scaled_jacobian_does_not(tmp_path):
+    """Two unit quads side by side, the right one's far side shrunk to 1 mm: its corners still score
+    0.7 and more (the scaled Jacobian sees directions), the edge ratio shows the vanished side; the
+    CLI's stats print it."""
+    v = [[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0], [1, 1, 0], [2, 0.001, 0]]
+    data = {"vertices": v, "faces": [[0, 1, 4, 3], [1, 2, 5, 4]]}
+    stats = mesh_stats(mesh_from_json(data))
+    assert stats["min_scaled_jacobian"] > 0.7
+    assert stats["shortest_over_median_edge"] == pytest.approx(0.001)
+    square = mesh_stats(mesh_from_json({**data, "vertices": v[:5] + [[2, 1, 0]]}))
+    assert square["shortest_over_median_edge"] == pytest.approx(1.0)
+    (tmp_path / "mesh.json").write_text(json.dumps(data))
+    out = CliRunner().invoke(main, ["stats", str(tmp_path / "mesh.json")]).output
+    assert [line.split()[1] for line in out.splitlines() if line.startswith("shortest_over_median_edge")] == ["0.001"]
+
+
 def test_a_folded_mesh_is_an_error_naming_where(tmp_path):
     """A mesh with inverted faces after smoothing and untangling is not returned: MeshFoldError says
     where (the worst face and its patch's corners); with allow_folds the mesh comes back, folded.

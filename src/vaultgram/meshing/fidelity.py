@@ -87,12 +87,13 @@ def hold_boundary(vertices: np.ndarray, faces, constraints, tol: float) -> np.nd
     return x
 
 
-def place_on_points(vertices: np.ndarray, faces, constraints, points: np.ndarray, eps: float
-                    ) -> tuple[np.ndarray, np.ndarray]:
+def place_on_points(vertices: np.ndarray, faces, constraints, points: np.ndarray, eps: float,
+                    folding: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """The vertices with one sliding vertex moved onto each of ``points`` that lies on a stretch's
     polyline with no vertex within ``eps`` of it (of the :data:`_CANDIDATES` nearest that reach it
     without passing a neighbour, the one that leaves the best worst face round it, unless each folds
-    one), and per vertex whether it sits on one of ``points``.
+    one; with ``folding``, even then: for a caller that optimises the faces after it and checks that
+    they unfold), and per vertex whether it sits on one of ``points``.
 
     Example
     -------
@@ -114,7 +115,7 @@ def place_on_points(vertices: np.ndarray, faces, constraints, points: np.ndarray
         on = np.flatnonzero(nearest_within(points, poly, eps)[0] >= 0)
         for k in on[nearest_within(stretch_chain(x, c)[0], poly[on], eps)[0] < 0]:
             around = _faces_around(faces, len(x)) if around is None else around  # once a point is bare
-            _place_vertex_on(x, faces, around, c, int(k))
+            _place_vertex_on(x, faces, around, c, int(k), folding)
     return x, nearest_within(points, x, eps)[0] >= 0
 
 
@@ -130,10 +131,10 @@ def on_points(vertices: np.ndarray, points: np.ndarray, values: np.ndarray, eps:
     return np.where(at >= 0, np.asarray(values, dtype=float)[at], 0.0)
 
 
-def _place_vertex_on(x: np.ndarray, faces, around, c: SlideConstraint, k: int) -> None:
+def _place_vertex_on(x: np.ndarray, faces, around, c: SlideConstraint, k: int, folding: bool = False) -> None:
     """Move the sliding vertex of ``c`` that :func:`place_on_points` picks onto polyline point ``k``."""
     poly = np.asarray(c.polyline, dtype=float)[:, :2]
-    best, who = 0.0, -1
+    best, who = -np.inf if folding else 0.0, -1
     for v in _nearest(x, c, poly[k]):
         if not np.any(np.all(_reach(x, c, v, poly) == poly[k], axis=1)):
             continue
