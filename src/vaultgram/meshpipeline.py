@@ -77,10 +77,12 @@ SIDE_TURN_LIMIT = 90.0
 UNTANGLE_ROUNDS = 4
 #: The rounds' mesh is taken only where its worst face reaches this; below it the fold stands, with its
 #: advice (:func:`mesh_or_advise`): tests/folding.py's crescent fans untangle to 0.0008 and 0.014, a layout
-#: that has no usable mesh at that spacing, while hiroshi_senju_museum at 16,000 faces reaches 0.093. It was
-#: untangling's own aim (:data:`~vaultgram.meshing.untangle.UNTANGLE_TARGET`, 0.1) while hiroshi reached 0.114,
-#: with sides collapsed beside the fold (3e-7 and 0.0005 of the median edge) that the max-min optimisation
-#: no longer makes (:data:`~vaultgram.meshing.optimise.SIDE_SHARE`).
+#: that has no usable mesh at that spacing, while hiroshi_senju_museum at 16,000 faces with its hole side
+#: sampled by arc length reaches 0.093. It was untangling's own aim
+#: (:data:`~vaultgram.meshing.untangle.UNTANGLE_TARGET`, 0.1) while hiroshi reached 0.114, with sides collapsed
+#: beside the fold (3e-7 and 0.0005 of the median edge) that the max-min optimisation no longer makes
+#: (:data:`~vaultgram.meshing.optimise.SIDE_SHARE`). Since that side is sampled by its offset length
+#: (:data:`~vaultgram.meshing.weld.WRAP_FLOOR`) hiroshi does not fold at all (0.50 from 4x to 82,000 faces).
 UNTANGLED_FLOOR = 0.08
 
 
@@ -393,9 +395,10 @@ def _untangled_again(x: np.ndarray, mesh: QuadMesh, slides: tuple) -> np.ndarray
     face (issue 12 What 4: a fold only where no valid mesh exists). Untangling's gradient steps stall
     where inverted faces lie beside faces of almost no area (any step inverts one of those), which the
     optimiser's one-vertex moves open up; from its result untangling goes on. hiroshi_senju_museum at
-    16,000 faces asked: 4 inverted faces in a sheared quad patch wrapping a hole's 199 degree corner,
-    none after one more round (worst face 0.114); at 82,000: 9 inverted, none after three rounds but
-    a worst face of 0.0065 (under :data:`UNTANGLED_FLOOR`: the fold stands). Run only where the mesh
+    16,000 faces asked, its hole side sampled by arc length (as before session 26): 4 inverted faces in
+    a sheared quad patch wrapping a hole's 199 degree corner, none after one more round (worst face
+    0.093); at 82,000: 9 inverted, none after three rounds but a worst face of 0.0065 (under
+    :data:`UNTANGLED_FLOOR`: the fold stands). Run only where the mesh
     folds with and without the splits (:func:`_meshed`): a split that folds falls back to the fans
     first, as before."""
     worst = face_scaled_jacobians(x, mesh.faces).min()
