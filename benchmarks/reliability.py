@@ -7,6 +7,9 @@
   run of the same code, but hypothesis mixes the constants of the loaded local modules into its
   draws, so another version of vaultgram draws other plans: to compare two versions on the same
   plans, the first run saves them to ``--plans-file`` and the second reads them from it.
+  With ``--per-plan F`` it also writes one row per plan to F (JSON: index, shortest edge over median
+  edge, min scaled Jacobian, boundary singular vertices, inverted faces; ``null`` for a refused plan), to
+  see which plans a change moves.
 * ``python benchmarks/reliability.py ngon N`` -- seconds to mesh a regular N-gon, per stage.
 * ``python benchmarks/reliability.py guard`` -- seconds to refuse ``--target-length 1e-3`` on
   examples/quad_with_hole.json (in-process, after imports, and the whole command).
@@ -65,30 +68,51 @@ def saved_plans(count: int, path: Path | None) -> list:
     return plans
 
 
-def mesh_rate(count: int, path: Path | None = None) -> dict:
+#: Shortest edge over median edge: a mesh under one of these has a quad collapsed towards a triangle
+#: (the scaled Jacobian does not see it; issue 12, session 26).
+SHORT_EDGES = (0.001, 0.01, 0.05)
+
+
+def mesh_rate(count: int, path: Path | None = None, per_plan: Path | None = None) -> dict:
     """Mesh every plan; count the valid meshes and group the refusals by their message's kind. Of the
     valid meshes: their boundary singularities (by the domain's corners, :func:`mesh_stats`), the plans
-    with any, the plans whose worst scaled Jacobian is under 0.1 and under 0.3, and its mean."""
+    with any, the plans whose worst scaled Jacobian is under 0.1 and under 0.3, and its mean, and the
+    plans whose shortest edge is under each of :data:`SHORT_EDGES` of their median edge. With
+    ``per_plan``, the row of each plan written there (:func:`_plan_row`)."""
     from vaultgram.domain import domain_from_dict
     from vaultgram.errors import VaultgramError
     from vaultgram.meshing.quality import mesh_stats
     from vaultgram.pipeline import mesh_domain
 
-    stats, refusals = [], collections.Counter()
+    stats, rows, refusals = [], [], collections.Counter()
     plans = saved_plans(count, path)
-    for data, spacing in plans:
+    for index, (data, spacing) in enumerate(plans):
         try:
             domain = domain_from_dict(data)
             stats.append(mesh_stats(mesh_domain(domain, spacing), domain))
+            rows.append(_plan_row(index, stats[-1]))
         except VaultgramError as exc:
             refusals[re.sub(r"-?\d[\d.e+-]*", "N", str(exc).split(": ")[-1])[:90]] += 1
+            rows.append(None)
+    if per_plan is not None:
+        per_plan.write_text(json.dumps(rows))
     valid = [s for s in stats if s["inverted_faces"] == 0]
     worst = np.array([s["min_scaled_jacobian"] for s in valid])
+    short = np.array([s["shortest_over_median_edge"] for s in valid])
     bnd = [s["boundary_singular"] for s in valid]
     return {"plans": len(plans), "valid": len(valid), "rate": len(valid) / max(len(plans), 1),
             "boundary_singular": sum(bnd), "plans_boundary_singular": sum(b > 0 for b in bnd),
             "min_sj_under_0.1": int((worst < 0.1).sum()), "min_sj_under_0.3": int((worst < 0.3).sum()),
-            "mean_min_sj": round(float(worst.mean()), 4) if len(worst) else None, "refusals": refusals.most_common()}
+            "mean_min_sj": round(float(worst.mean()), 4) if len(worst) else None,
+            "shortest_edge_under": {str(r): int((short < r).sum()) for r in SHORT_EDGES},
+            "refusals": refusals.most_common()}
+
+
+def _plan_row(index: int, stats: dict) -> list:
+    """A plan's row of ``--per-plan``: index, shortest edge over median edge, min scaled Jacobian,
+    boundary singular vertices, inverted faces."""
+    return [index, stats["shortest_over_median_edge"], stats["min_scaled_jacobian"], stats["boundary_singular"],
+            stats["inverted_faces"]]
 
 
 def ngon(n: int) -> dict:
@@ -143,12 +167,15 @@ def main() -> None:
     plans.add_argument("--count", type=int, default=200)
     plans.add_argument("--plans-file", type=Path, default=None,
                        help="JSON of the plans: read if it exists, else the new draws are saved there")
+    plans.add_argument("--per-plan", type=Path, default=None,
+                       help="also write each plan's row here (JSON: index, shortest edge / median edge, min SJ, "
+                            "boundary singular, inverted faces)")
     sub.add_parser("ngon").add_argument("n", type=int)
     sub.add_parser("guard")
     sub.add_parser("peak").add_argument("--target-length", type=float, default=0.0316)
     args = parser.parse_args()
-    result = {"plans": lambda: mesh_rate(args.count, args.plans_file), "ngon": lambda: ngon(args.n), "guard": guard,
-              "peak": lambda: peak(args.target_length)}[args.what]()
+    result = {"plans": lambda: mesh_rate(args.count, args.plans_file, args.per_plan), "ngon": lambda: ngon(args.n),
+              "guard": guard, "peak": lambda: peak(args.target_length)}[args.what]()
     print(json.dumps(result, indent=1, default=str))
 
 
