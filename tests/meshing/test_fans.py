@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 import pytest
+from diagonal_at_curve_ends import rules_with_diagonals_at_curve_ends
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from uncapped import without_point_load_caps
@@ -173,7 +174,7 @@ def test_an_evened_curve_end_fan_that_holds_the_worst_face_is_evened_again_on_a_
 
 
 @pytest.mark.skipif(not (EXAMPLES / "fig7_curves.json").exists(), reason="examples not present")
-def test_a_refused_pole_that_bounds_the_mesh_is_smoothed_again_evened(monkeypatch):
+def test_a_refused_pole_that_bounds_the_mesh_is_smoothed_again_evened(monkeypatch, tmp_path):
     """fig7's curve end (1, 1): the check refuses to even its fan (its spokes' quads get worse before
     smoothing), and the mesh's worst face is then in its patches (0.196); smoothed again with the
     fan evened regardless (and evened once more after smoothing, round where its held spokes moved),
@@ -181,12 +182,13 @@ def test_a_refused_pole_that_bounds_the_mesh_is_smoothed_again_evened(monkeypatc
     degrees (a run of 8 equal ones) instead of 10.1 (worst face 0.201 without the retry; 9.8 and 0.196
     until the max-min optimisation kept sides against their opposite sides). Since session 25 the 147
     degree split there is halved (splits.PART_ANGLE) and no fan is refused: the plan is meshed with
-    splits in one part."""
+    splits in one part. Since session 27 the default splits the quads at (1, 1) to the side (no sliver,
+    no 147 degree pole): drawn with the rules as before (tests/diagonal_at_curve_ends.py)."""
     monkeypatch.setattr(splits, "PART_ANGLE", 360.0)  # the 147 degree split at (1, 1) in one part, as on 7aa879d
-    domain = load_domain(EXAMPLES / "fig7_curves.json")
-    retried = mesh_domain(domain)
+    domain, rules = load_domain(EXAMPLES / "fig7_curves.json"), rules_with_diagonals_at_curve_ends(tmp_path)
+    retried = mesh_domain(domain, rules_dir=rules)
     monkeypatch.setattr(meshpipeline, "poles_to_retry", lambda *args: frozenset())
-    checked = mesh_domain(domain)
+    checked = mesh_domain(domain, rules_dir=rules)
     end = int(np.argmin(np.hypot(*(retried.vertices[:, :2] - [1.0, 1.0]).T)))
     worst = [face_scaled_jacobians(m.vertices, m.faces).min() for m in (retried, checked)]
     assert worst[0] >= 0.3 and worst[1] < 0.21

@@ -208,18 +208,29 @@ def test_figure_8_to_the_side_makes_the_curve_end_a_triangle_pole_and_carries_th
         assert any(g.other(e, x) in cut for x in ends for e in g.incident(x, ["Diagonal"]))
 
 
-def test_the_default_decomposition_has_strips_only_beyond_curve_tips():
-    """No choice point starts a strip by default; the only strips are those the patches wrapped under
-    a curve's free end start (rules/curves.vgr, split_triangle_under_curve_tip): fig7's curve x = 5
-    from y = 7.5 to 9 has one straight beyond each end, joined to it by a diagonal."""
+def test_the_default_decomposition_has_strips_only_from_curve_ends():
+    """No choice point starts a strip by default; the only strips are those started at a curve's free
+    end (rules/curves.vgr): each strip point is joined by a diagonal to the end it starts from. fig7's
+    curve x = 5 from y = 7.5 to 9 has one straight beyond each end (the patches wrapped under it,
+    split_triangle_under_curve_tip); since session 27 its end (1, 1) starts one on each side of the
+    curve y = x, mirror images, across the branch bending round it to the wall (the sliver step,
+    split_quad_at_curve_end_to_side(sliver = 30)). quad_with_hole has none."""
     for name in ("fig7_curves", "quad_with_hole"):
         dec = decompose(_domain(name), SPACING)
         g = dec.graph
         cut = [n for n in g.nodes() if g.node_type(n) == "StripPoint"]
         assert all(r.applications == 0 for r in dec.reports if r.step.startswith("{ absorb_strip_point"))
-        assert all(g.get(n, "pos")[0] == pytest.approx(5.0) for n in cut)
-        tips = {g.other(e, n) for n in cut for e in g.incident(n, ["Diagonal"])} & set(g.of_types(["CurveExtremity"]))
-        assert len(cut) == len(tips) == (2 if name == "fig7_curves" else 0)
+        ends = set(g.of_types(["CurveExtremity"]))
+        starts = [{g.other(e, n) for e in g.incident(n, ["Diagonal"])} & ends for n in cut]
+        assert all(len(s) == 1 for s in starts)
+        at = {tuple(np.round(g.get(x, "pos"), 6)) for s in starts for x in s}
+        assert at == ({(5.0, 7.5), (5.0, 9.0), (1.0, 1.0)} if name == "fig7_curves" else set())
+        origin = [np.asarray(g.get(next(iter(s)), "pos")) for s in starts]
+        beyond = [np.asarray(g.get(n, "pos")) for n, o in zip(cut, origin) if o[0] == pytest.approx(5.0)]
+        side = [np.asarray(g.get(n, "pos")) for n, o in zip(cut, origin) if np.allclose(o, 1.0)]
+        assert len(beyond) == len(side) == (2 if name == "fig7_curves" else 0)
+        assert all(p[0] == pytest.approx(5.0) for p in beyond)
+        assert not side or np.allclose(side[0], side[1][::-1], atol=1e-6)
 
 
 def test_explore_offers_the_strips_of_a_plan_without_other_choices_and_replays_them(tmp_path):

@@ -44,7 +44,7 @@ from vaultgram.topology.types import BOUNDARY_VERTEX, CURVE, CURVE_POINT, DUAL, 
 __all__ = ["vault_functions", "distance", "midpoint", "lerp", "move_end", "move_branch_end", "angle_between",
            "curve_side", "curve_turn",
            "curve_neighbours", "patch_corner", "patch_in_plan", "patch_chains", "patch_side_starts", "patch_angle",
-           "patch_angle_split", "fan_clear",
+           "patch_angle_split", "diagonal_side_angle", "fan_clear",
            "diagonal_path", "bend_first",
            "path_clear", "plan_area", "domain_area", "plan_euler", "hole_count", "holes_enclosed",
            "curve_crossings", "plan_crossings"]
@@ -288,6 +288,22 @@ def patch_angle_split(graph, patch: int, x: int, point) -> float:
         return math.nan
     outline = found[1]
     return min(interior_angle(point, outline[0], outline[1]), interior_angle(outline[-2], outline[0], point))
+
+
+def diagonal_side_angle(graph, patch: int, x: int, o: int, y: int) -> float:
+    """The corner (degrees) that the diagonal of a Patch node from its corner ``x`` to its corner ``o``
+    (:func:`diagonal_path`) would leave at ``o`` on the side of ``o``'s neighbouring corner ``y``:
+    between the diagonal's last segment and the first segment of the patch's side from ``o`` towards
+    ``y`` (the sides may curve: a skeleton branch bending round a curve's end leaves ``o`` at 17.1
+    degrees to the diagonal of fig7_curves' quad at the end (1, 1), 5.6 between the chords; Figure 8,
+    §4.2). NaN (every comparison false) where there is no such diagonal or the patch is not a face
+    of the plan."""
+    path, found = diagonal_path(graph, patch, x, o), _patch_outline(graph, patch, o)
+    if len(path) < 2 or found is None:
+        return math.nan
+    outline = found[1]
+    ahead = _point_of(found, y) < _point_of(found, x)  # y comes before x counter-clockwise from o
+    return angle_between(outline[1] if ahead else outline[-2], outline[0], path[-2])
 
 
 def fan_clear(graph, patch: int, x: int, o: int) -> bool:
@@ -537,6 +553,8 @@ def vault_functions() -> Functions:
     f.register("path_crosses_only", path_crosses_only, ("list", "edge"), "bool", uses_graph=True, local=False)
     f.register("patch_angle", patch_angle, ("node", "node"), "float", uses_graph=True, local=False)
     f.register("patch_angle_split", patch_angle_split, ("node", "node", "vec2"), "float", uses_graph=True,
+               local=False)
+    f.register("diagonal_side_angle", diagonal_side_angle, ("node", "node", "node", "node"), "float", uses_graph=True,
                local=False)
     f.register("fan_clear", fan_clear, ("node", "node", "node"), "bool", uses_graph=True, local=False)
     f.register("patch_side_starts", patch_side_starts, ("node", "node", "node"), "bool", uses_graph=True,
