@@ -1,7 +1,7 @@
 """Boundary singular vertices by cause (issue 12, What 1-3; results in benchmarks/README.md).
 
-Run: ``python benchmarks/boundary_causes.py [--plans-file /work/plans700.json] [--first N] [--jagged]
-[--json FILE]``
+Run: ``python benchmarks/boundary_causes.py [--plans-file /work/plans700.json] [--first N] [--only I ...]
+[--jagged] [--json FILE]``
 
 Each plan is decomposed and meshed as ``vaultgram mesh`` does (:func:`vaultgram.meshpipeline.decompose`,
 :func:`~vaultgram.meshpipeline.mesh_decomposition`); every boundary singular vertex of the mesh
@@ -172,6 +172,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--plans-file", type=Path, default=Path("/work/plans700.json"))
     ap.add_argument("--first", type=int, default=None)
+    ap.add_argument("--only", type=int, nargs="+", default=None, help="these plan indices only")
     ap.add_argument("--jagged", action="store_true", help="the four jagged plans instead")
     ap.add_argument("--json", type=Path, default=None, help="write every row (with its plan) here")
     args = ap.parse_args()
@@ -185,6 +186,7 @@ def main() -> None:
     else:
         plans = [(str(i), d, s) for i, (d, s) in enumerate(json.loads(args.plans_file.read_text()))]
     plans = plans[:args.first] if args.first else plans
+    plans = [plans[i] for i in args.only] if args.only else plans
     table, every, worst = collections.Counter(), [], []
     for name, data, spacing in plans:
         try:

@@ -167,7 +167,7 @@ def _feet(graph, walk, fractions=FEET, half: float = MIN_CUT_ANGLE) -> Iterator[
     if walk is None:
         return
     edge, found = walk.edges[0], patch_sides(graph, walk.patches[0])
-    to = strip_point(graph, walk.edges[1]) if len(walk.edges) > 1 else graph.get(walk.end, "pos")
+    to = strip_point(graph, walk.edges[1]) if len(walk.edges) > 1 else walk.end_point(graph)
     fan = fan_end(graph, walk)
     for f in fractions[:1] if walk.end is None else fractions:
         at = edge_cut(graph, edge, f)[1]
