@@ -382,7 +382,7 @@ def chord_worst(graph, patch: int, found, k: int, j: int, target: tuple, other: 
     return worst if even_group(graph, patch, found, k, j, at, _pieces(graph, kind, edge, fraction), ratio) else None
 
 
-def strip_beyond(graph, patch: int, edge: int, fans: bool = False):
+def strip_beyond(graph, patch: int, edge: int, fans: bool = False, split: bool = False):
     """The walk of the strip a chord in the quad ``patch`` to the middle of its side ``edge`` starts
     in the patch beyond, where it completes (:func:`~vaultgram.topology.strips.strip_walk`, as for
     Figure 8's split to a side, §4.2) without ending in a triangle at a point the split would
@@ -397,9 +397,11 @@ def strip_beyond(graph, patch: int, edge: int, fans: bool = False):
     patches only where no other chord qualifies (:func:`choose_chord`: asked first, it changed the chosen
     chord at corners already regular: plans 12, 395 and 444 fell under 0.3, 444 from 0.381 to
     0.076). Not for a strip of several patches into a fan (from the
-    middle at 20-30 degrees, plans 23 and 24 took a wedge of slivers, min SJ 0.455 -> 0.048)."""
+    middle at 20-30 degrees, plans 23 and 24 took a wedge of slivers, min SJ 0.455 -> 0.048). With
+    ``split`` (a cut, :func:`cut_walk`), the strip may end at the middle of a boundary side that is one
+    boundary edge (:func:`~vaultgram.topology.strips.strip_boundary_split`)."""
     beyond = patch_across(graph, patch, edge)
-    walk = None if beyond is None else strip_walk(graph, beyond[0], beyond[1], frozenset([patch]))
+    walk = None if beyond is None else strip_walk(graph, beyond[0], beyond[1], frozenset([patch]), split)
     if walk is None or walk.end is None or len(patch_sides(graph, walk.patches[-1]).corners) == 4:
         return walk
     if fans and fan_end(graph, walk) is not None:
@@ -411,11 +413,11 @@ def strip_beyond(graph, patch: int, edge: int, fans: bool = False):
 
 def cut_walk(graph, patch: int, edge: int):
     """The walk of the strip a hole corner's cut across the quad ``patch`` to its side ``edge`` starts
-    (:func:`strip_beyond` with ``fans``), or where that is refused only because the chord from the
+    (:func:`strip_beyond` with ``fans`` and ``split``), or where that is refused only because the chord from the
     middle of ``edge`` to the corner opposite it in the triangle beyond leaves the triangle (a curved
     side), that triangle as a one-patch walk (:func:`_fan_walk`): the cut's feet off the middle may
     run inside it (:func:`_feet` checks each)."""
-    walk = strip_beyond(graph, patch, edge, fans=True)
+    walk = strip_beyond(graph, patch, edge, fans=True, split=True)
     return walk if walk is not None else _fan_walk(graph, patch, edge)
 
 

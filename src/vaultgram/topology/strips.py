@@ -252,7 +252,11 @@ def strip_boundary_split(graph, patch: int, corner: int) -> int:
     at a new boundary point of 180 degrees with two faces, regular (§4.2's strip reaches the boundary
     as anywhere else): saved random plans 456-458 (an octagonal hole's 225 degree corner inside a
     ring patch's side), whose cut's strip crossed one quad to a 0.57 long boundary edge between two
-    other strips' ends and was refused, the corner left with two faces."""
+    other strips' ends and was refused, the corner left with two faces. Only the walks of a hole
+    corner's cut ask for it (:func:`strip_walk`'s ``split``,
+    :func:`vaultgram.topology.reflex.cut_walk`): allowed for every strip walk (the chords of corners of
+    two patches, Figure 8's and the lone corners' strips too), it changed jagged_1's layout (three patch
+    corners past straight for two, worst scaled Jacobian 0.061 -> 0.043)."""
     found = patch_sides(graph, patch)
     if found is None or corner not in found.corners:
         return -1
@@ -310,12 +314,14 @@ class Walk:
         return self.end is None
 
 
-def strip_walk(graph, patch: int, k: int, seen: frozenset = frozenset()) -> Walk | None:
+def strip_walk(graph, patch: int, k: int, seen: frozenset = frozenset(), split: bool = False) -> Walk | None:
     """The strip that enters ``patch`` through the middle of its side ``k`` (a plan edge it may cut),
     walked on: across a quad to the middle of its opposite side, into the patch beyond, until it
-    ends on the boundary (at a free point of a boundary side), in a triangle (at its corner opposite
-    the entry), or back at its entry edge. None where it cannot: a patch that is no quad or triangle,
-    a side it may not cut, a patch twice (or one of ``seen``), a chord that leaves its patch.
+    ends on the boundary (at a free point of a boundary side; with ``split``, also at the middle of a
+    boundary side that is one boundary edge: :func:`strip_boundary_split`), in a triangle (at its
+    corner opposite the entry), or back at its entry edge. None where it cannot: a patch that is no
+    quad or triangle, a side it may not cut, a patch twice (or one of ``seen``), a chord that leaves
+    its patch.
     """
     entry = side_edge(graph, patch, patch_sides(graph, patch).corners[k]) if patch_sides(graph, patch) else -1
     patches, edges = [], [entry]
@@ -329,9 +335,9 @@ def strip_walk(graph, patch: int, k: int, seen: frozenset = frozenset()) -> Walk
         nxt = side_edge(graph, patch, out) if len(found.corners) == 4 else -1
         if nxt < 0:  # the end: the triangle's corner opposite the strip, or a point of a boundary side
             end = out if len(found.corners) == 3 else strip_boundary_end(graph, patch, out)
-            split = strip_boundary_split(graph, patch, out) if end == out and len(found.corners) == 4 else -1
-            walk = Walk(tuple(patches), tuple(edges), end, split)
-            ok = end != out or len(found.corners) == 3 or split >= 0
+            cut = strip_boundary_split(graph, patch, out) if split and end == out and len(found.corners) == 4 else -1
+            walk = Walk(tuple(patches), tuple(edges), end, cut)
+            ok = end != out or len(found.corners) == 3 or cut >= 0
             return walk if ok and chord_inside(found, here, walk.end_point(graph)) else None
         if not chord_inside(found, here, strip_point(graph, nxt)):
             return None
