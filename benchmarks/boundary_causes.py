@@ -1,7 +1,7 @@
 """Boundary singular vertices by cause (issue 12, What 1-3; results in benchmarks/README.md).
 
-Run: ``python benchmarks/boundary_causes.py [--plans-file /work/plans700.json] [--first N] [--jagged]
-[--json FILE]``
+Run: ``python benchmarks/boundary_causes.py [--plans-file /work/plans700.json] [--first N] [--only I ...]
+[--jagged] [--json FILE]``
 
 Each plan is decomposed and meshed as ``vaultgram mesh`` does (:func:`vaultgram.meshpipeline.decompose`,
 :func:`~vaultgram.meshpipeline.mesh_decomposition`); every boundary singular vertex of the mesh
@@ -10,7 +10,7 @@ its angle in the mesh, issue 12's rule) is matched to the nearest boundary point
 decomposition graph and described by: its angle class, its faces against the regular number, hole or
 outer ring, polygon corner or not, the number of patches it is the corner of, and, for a corner of
 225-360 degrees with too few faces, the first reason the reflex rules refused it
-(:func:`why_reflex`, the tests of ``topology.reflex._choose`` and ``_cut`` redone with the refusal
+(:func:`why_reflex`, the tests of ``topology.reflex.choose_chord`` and ``choose_cut`` redone with the refusal
 kept). The table counts the vertices by (class, faces, patches, reason).
 """
 
@@ -37,7 +37,7 @@ def angle_class(theta: float) -> str:
 
 
 def _chord_refusal(graph, r: int) -> str:
-    """Why no chord of the corner ``r`` of two or more patches qualified (``reflex._widest_chord``'s
+    """Why no chord of the corner ``r`` of two or more patches qualified (``reflex.widest_chord``'s
     tests in order over every candidate, those into a feature's fan too, the most advanced refusal):
     ``ratio`` (a candidate passed the angles, the edge group was uneven: beyond ``reflex.MAX_RATIO``,
     or ``HOLE_MAX_RATIO`` at a hole corner), ``pole`` (the triangle's angle too wide for its split),
@@ -52,20 +52,20 @@ def _chord_refusal(graph, r: int) -> str:
     found = [patch_sides(graph, p) for p in patches]
     if any(f is None for f in found):
         return "patch not found"
-    angles = [reflex._corner(graph, s, s.corners.index(r))[2] for s in found]
+    angles = [reflex.patch_corner(graph, s, s.corners.index(r))[2] for s in found]
     theta = boundary_angle(graph, r)
     best_angle, ratio, pole, targets = -1.0, False, False, 0
     for i, (p, sides) in enumerate(zip(patches, found)):
         if len(sides.corners) != 4:
             continue
         k = sides.corners.index(r)
-        other = reflex._other_angle(theta, angles, i)
+        other = reflex.other_angle(theta, angles, i)
         for j in (1, 2):
-            candidates = reflex._targets(graph, p, sides, k, j) + reflex._targets(graph, p, sides, k, j,
+            candidates = reflex.chord_targets(graph, p, sides, k, j) + reflex.chord_targets(graph, p, sides, k, j,
                                                                                   fans=reflex.MIN_FAN_HALF)
             for kind, target, point, tangent, fraction in candidates:
                 targets += 1
-                worst, pole_angle = reflex._angles(graph, sides, k, j, point, tangent, other)
+                worst, pole_angle = reflex.chord_angles(graph, sides, k, j, point, tangent, other)
                 least = reflex.MIN_ANGLE if fraction in (0.5, None) else reflex.MIN_CUT_ANGLE
                 if worst < least:
                     best_angle = max(best_angle, worst)
@@ -83,11 +83,11 @@ def _chord_refusal(graph, r: int) -> str:
 
 
 def _cut_refusal(graph, r: int) -> str:
-    """Why the reflex corner ``r`` inside a patch side got no cut (``reflex._cut``'s tests in order)."""
+    """Why the reflex corner ``r`` inside a patch side got no cut (``reflex.choose_cut``'s tests in order)."""
     from vaultgram.topology import reflex
     from vaultgram.topology.strips import patch_across, patch_sides, side_edge, strip_walk
 
-    at = reflex._on_side(graph, r)
+    at = reflex.on_side(graph, r)
     if at is None:
         return "side not found"
     patch, i = at
@@ -97,7 +97,7 @@ def _cut_refusal(graph, r: int) -> str:
     edge = side_edge(graph, patch, found.corners[(i + 2) % 4])
     if edge < 0:
         return "opposite side not one edge"
-    if reflex._strip_beyond(graph, patch, edge) is None:
+    if reflex.strip_beyond(graph, patch, edge) is None:
         beyond = patch_across(graph, patch, edge)
         walk = None if beyond is None else strip_walk(graph, beyond[0], beyond[1], frozenset([patch]))
         if walk is None:
@@ -172,6 +172,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--plans-file", type=Path, default=Path("/work/plans700.json"))
     ap.add_argument("--first", type=int, default=None)
+    ap.add_argument("--only", type=int, nargs="+", default=None, help="these plan indices only")
     ap.add_argument("--jagged", action="store_true", help="the four jagged plans instead")
     ap.add_argument("--json", type=Path, default=None, help="write every row (with its plan) here")
     args = ap.parse_args()
@@ -185,6 +186,7 @@ def main() -> None:
     else:
         plans = [(str(i), d, s) for i, (d, s) in enumerate(json.loads(args.plans_file.read_text()))]
     plans = plans[:args.first] if args.first else plans
+    plans = [plans[i] for i in args.only] if args.only else plans
     table, every, worst = collections.Counter(), [], []
     for name, data, spacing in plans:
         try:

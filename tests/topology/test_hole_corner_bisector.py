@@ -1,5 +1,5 @@
 """A hole corner's cut into a skewed fan triangle ends where its chord to the pole bisects the triangle's
-angle (issue 12, item 2; reflex._bisecting_foot). A reflex hole corner inside a side of the ring patch
+angle (issue 12, item 2; reflex.bisecting_foot). A reflex hole corner inside a side of the ring patch
 round the hole is cut across that patch; where the cut's strip is one triangle of a point feature's fan,
 entered by the side opposite the point, the strip ends at the point, halving the triangle there. On a
 skewed triangle the fixed feet (reflex.FEET, 0.25-0.75 of the edge) all leave one half under 36 degrees
@@ -102,7 +102,7 @@ def test_without_the_bisecting_foot_the_corner_keeps_two_faces(monkeypatch, name
     """The fixed feet alone leave the hole corner inside the ring patch's side (main's layout): the
     corner of no patch, one boundary singularity. The hub split after the bisecting cut (session 26,
     hole_hub) is switched off too: it is the last fallback, and would take the corner in its place."""
-    monkeypatch.setattr(reflex, "_bisecting_foot", lambda graph, walk: ())
+    monkeypatch.setattr(reflex, "bisecting_foot", lambda graph, walk: ())
     monkeypatch.setattr(hole_hub, "_best_hub", lambda *args: None)
     plan, spacing, corner, _, _ = CASES[name]
     domain = domain_from_dict(plan)
@@ -112,7 +112,7 @@ def test_without_the_bisecting_foot_the_corner_keeps_two_faces(monkeypatch, name
 
 
 def test_the_bisecting_foot_halves_the_fan_triangle_and_keeps_off_the_ends(monkeypatch):
-    """reflex._bisecting_foot on a straight far side: a triangle with its pole at the origin and its
+    """reflex.bisecting_foot on a straight far side: a triangle with its pole at the origin and its
     far side from (4, -1) to (4, 3) (50.9 degrees at the pole): the chord to the foot bisects it; a far
     side whose bisector meets it within reflex.BISECTING_FOOT of an end ((4, -0.1) to (4, 30): 0.12
     along) gives no foot."""
@@ -120,9 +120,9 @@ def test_the_bisecting_foot_halves_the_fan_triangle_and_keeps_off_the_ends(monke
 
     def foot_of(side):
         start = math.atan2(side[0][1], side[0][0])
-        monkeypatch.setattr(reflex, "_fan_end", lambda graph, walk: ((0.0, 0.0), start, _angle(side)))
+        monkeypatch.setattr(reflex, "fan_end", lambda graph, walk: ((0.0, 0.0), start, _angle(side)))
         monkeypatch.setattr(reflex, "half_edge_polyline", lambda graph, edge, u: np.array(side, dtype=float))
-        return reflex._bisecting_foot(_Graph(), _Walk())
+        return reflex.bisecting_foot(_Graph(), _Walk())
 
     (fraction,) = foot_of(far)
     foot = np.array(far[0]) + fraction * (np.array(far[1]) - np.array(far[0]))
@@ -145,7 +145,7 @@ class _Walk:
 
 
 class _Graph:
-    """The one graph method reflex._bisecting_foot asks besides the patched helpers."""
+    """The one graph method reflex.bisecting_foot asks besides the patched helpers."""
 
     @staticmethod
     def ends(edge):

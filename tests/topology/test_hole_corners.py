@@ -84,12 +84,12 @@ def test_the_chords_at_a_hole_corner_leave_it_no_narrow_angle(meshed):
         for r in set(g.ends(e)) & hole:
             pts = half_edge_polyline(g, e, r)
             chord = math.atan2(pts[1][1] - pts[0][1], pts[1][0] - pts[0][0])
-            first = math.degrees(chord - reflex._ahead(g, r)) % 360.0
+            first = math.degrees(chord - reflex.boundary_ahead(g, r)) % 360.0
             assert reflex.MIN_ANGLE <= first <= boundary_angle(g, r) - reflex.MIN_ANGLE, (name, r, first)
 
 
 def test_the_boundary_ahead_of_a_corner_starts_its_interior_angle():
-    """reflex._ahead is the direction to the next point of the ring (the domain on its left): the
+    """reflex.boundary_ahead is the direction to the next point of the ring (the domain on its left): the
     interior angle turns counter-clockwise from it to the previous point, on the outer ring and on a
     hole (whose points run clockwise), whatever the order of the corner's boundary edges."""
     g = decompose(_plan("hexagon")).graph
@@ -97,7 +97,8 @@ def test_the_boundary_ahead_of_a_corner_starts_its_interior_angle():
     for ring, ids in zip(rings, nodes):
         for k, n in enumerate(ids):
             back = math.atan2(*(ring[k - 1] - ring[k])[::-1])
-            assert math.degrees(back - reflex._ahead(g, n)) % 360.0 == pytest.approx(boundary_angle(g, n), abs=1e-6)
+            turn = math.degrees(back - reflex.boundary_ahead(g, n)) % 360.0
+            assert turn == pytest.approx(boundary_angle(g, n), abs=1e-6)
 
 
 def test_an_octagonal_hole_is_on_the_threshold_alike_in_the_layout_and_in_the_mesh():
@@ -208,7 +209,7 @@ def test_a_chord_off_the_middle_leaves_no_angle_below_the_cut_limit(kite):
         assert lengths[1] <= reflex.MAX_RATIO * lengths[0]
         pts = half_edge_polyline(g, e, r)
         chord = math.atan2(pts[1][1] - pts[0][1], pts[1][0] - pts[0][0])
-        first = math.degrees(chord - reflex._ahead(g, r)) % 360.0
+        first = math.degrees(chord - reflex.boundary_ahead(g, r)) % 360.0
         assert reflex.MIN_CUT_ANGLE <= first <= boundary_angle(g, r) - reflex.MIN_CUT_ANGLE, (r, first)
     assert off >= 1
 
@@ -236,7 +237,7 @@ def test_a_hole_corner_whose_cut_qualifies_after_its_neighbours_gets_it():
 #: (240 degrees at each corner, for the domain) and a boundary point feature on its lower side. On
 #: main e95b500 two hole corners kept two faces: their cuts across the ring patch round the hole
 #: would end their strips in a triangle of the point's fan (96 degrees there), which
-#: reflex._strip_beyond refused whatever the split left.
+#: reflex.strip_beyond refused whatever the split left.
 DRAW_393 = {
     "outer": [[8.03516225820164, 3.1533089287242664], [1.4739097723996062, 4.777822724089388],
               [-3.536659687670014, 5.187639389609454], [-4.986008512293039, 0.3737902023078613],
@@ -270,7 +271,7 @@ def _fan_halves_of_hole_corner_cuts(dec, plan: dict) -> tuple[int, list]:
 def test_hole_corner_cut_may_halve_a_fan_triangle_at_a_boundary_point():
     """Draw 393: a cut whose strip is one triangle of a boundary point's fan ends at the point where a
     foot of the cut (reflex.FEET) splits the triangle's angle there into two of at least 40 degrees
-    (reflex._halves_fan): every hole corner the corner of three patches, no boundary singularity
+    (reflex.halves_fan): every hole corner the corner of three patches, no boundary singularity
     (main: 2); min scaled Jacobian 0.508 -> 0.361 (the price, above 0.3; 0.388 until the max-min
     optimisation kept sides against their opposite sides: the worst face then had a side of 0.012 of
     the median edge beside one of 0.86, a triangle in all but name). The point keeps its fan,
@@ -288,15 +289,15 @@ def test_hole_corner_cut_may_halve_a_fan_triangle_at_a_boundary_point():
 
 
 def test_a_fan_triangle_is_halved_only_by_a_chord_that_leaves_40_degrees_each_side():
-    """reflex._halves_fan on a triangle with a 90 degree corner at the origin (the feature), its sides
+    """reflex.halves_fan on a triangle with a 90 degree corner at the origin (the feature), its sides
     along x and y: the chord from (0.5, 0.5) leaves 45 and 45 degrees, from (0.52, 0.48) 42.7 and
     47.3, from (0.55, 0.45) 39.3 (refused), from points near either end under 40 on one side; a
     chord outside the corner's angle is refused."""
     fan = ((0.0, 0.0), 0.0, 90.0)
-    assert reflex._halves_fan(fan, (0.5, 0.5)) and reflex._halves_fan(fan, (0.52, 0.48))
-    assert not reflex._halves_fan(fan, (0.55, 0.45))
-    assert not reflex._halves_fan(fan, (0.9, 0.1)) and not reflex._halves_fan(fan, (0.1, 0.9))
-    assert not reflex._halves_fan(fan, (-0.5, 0.5))
+    assert reflex.halves_fan(fan, (0.5, 0.5)) and reflex.halves_fan(fan, (0.52, 0.48))
+    assert not reflex.halves_fan(fan, (0.55, 0.45))
+    assert not reflex.halves_fan(fan, (0.9, 0.1)) and not reflex.halves_fan(fan, (0.1, 0.9))
+    assert not reflex.halves_fan(fan, (-0.5, 0.5))
 
 
 #: Saved random plan 692 (a pentagonal hole, two boundary point features): the hole corner at
@@ -333,16 +334,16 @@ def test_hole_corner_cut_may_halve_a_fan_triangle_into_two_of_36_degrees():
 
 
 def test_the_fan_fallback_halves_at_36_degrees():
-    """reflex._halves_fan with the fallback's limit (reflex.MIN_FAN_HALF) on a triangle of 80 degrees
+    """reflex.halves_fan with the fallback's limit (reflex.MIN_FAN_HALF) on a triangle of 80 degrees
     at the origin: a chord at 37 degrees from one side passes at 36 and fails at 40; one at 35 fails
     both; the halves are measured on either side (43 + 37)."""
     fan = ((0.0, 0.0), 0.0, 80.0)
     at37 = (math.cos(math.radians(37.0)), math.sin(math.radians(37.0)))
     at43 = (math.cos(math.radians(43.0)), math.sin(math.radians(43.0)))
     at35 = (math.cos(math.radians(35.0)), math.sin(math.radians(35.0)))
-    assert reflex._halves_fan(fan, at37, reflex.MIN_FAN_HALF) and not reflex._halves_fan(fan, at37)
-    assert reflex._halves_fan(fan, at43, reflex.MIN_FAN_HALF) and not reflex._halves_fan(fan, at43)
-    assert not reflex._halves_fan(fan, at35, reflex.MIN_FAN_HALF)
+    assert reflex.halves_fan(fan, at37, reflex.MIN_FAN_HALF) and not reflex.halves_fan(fan, at37)
+    assert reflex.halves_fan(fan, at43, reflex.MIN_FAN_HALF) and not reflex.halves_fan(fan, at43)
+    assert not reflex.halves_fan(fan, at35, reflex.MIN_FAN_HALF)
     assert reflex.MIN_FAN_HALF < reflex.MIN_CUT_ANGLE
 
 
@@ -385,12 +386,12 @@ def _meshed_with_hole_corners_of_three(plan: dict, min_sj: float):
 
 def test_a_hole_corner_takes_a_chord_within_the_hole_ratio_where_none_is_within_2_5(monkeypatch):
     """Draw 370: no chord of the corner (3.125, -1.468) keeps its edge group within reflex.MAX_RATIO
-    (with the fallback off, and the later reflex._hole_chord, it stays the corner of two patches);
+    (with the fallback off, and the later reflex.hole_chord, it stays the corner of two patches);
     one within reflex.HOLE_MAX_RATIO gives it its third: every hole corner the corner of three
     patches, no boundary singularity (main: 2), min scaled Jacobian at least 0.31 (main 0.434: the price)."""
     domain = _meshed_with_hole_corners_of_three(DRAW_370, 0.31)
     monkeypatch.setattr(reflex, "HOLE_MAX_RATIO", reflex.MAX_RATIO)
-    monkeypatch.setattr(reflex, "_hole_chord", lambda *a: None)  # the last fallback would take it
+    monkeypatch.setattr(reflex, "hole_chord", lambda *a: None)  # the last fallback would take it
     assert _patches_at(decompose(domain, 0.03), DRAW_370["holes"][0][1]) == 2
 
 
@@ -415,11 +416,11 @@ def test_a_hole_corner_chord_may_end_its_strip_in_a_fan_where_no_other_chord_qua
     Jacobian at least 0.35 (0.357; 0.385 until the max-min optimisation kept sides against their
     opposite sides: its worst face, a sliver along the strip, then had a side of 0.0005 of the median
     edge, 0.046 now). Without that fallback (and the later
-    reflex._hole_chord) a hole corner keeps two patches."""
+    reflex.hole_chord) a hole corner keeps two patches."""
     domain = _meshed_with_hole_corners_of_three(DRAW_444, 0.35)
-    widest = reflex._widest_chord
-    monkeypatch.setattr(reflex, "_widest_chord", lambda *a, fans=None, **k: None if fans else widest(*a, **k))
-    monkeypatch.setattr(reflex, "_hole_chord", lambda *a: None)  # the last fallback would take it
+    widest = reflex.widest_chord
+    monkeypatch.setattr(reflex, "widest_chord", lambda *a, fans=None, **k: None if fans else widest(*a, **k))
+    monkeypatch.setattr(reflex, "hole_chord", lambda *a: None)  # the last fallback would take it
     before = decompose(domain, 0.03)
     assert min(_patches_at(before, corner) for corner in DRAW_444["holes"][0]) == 2
 
@@ -440,7 +441,7 @@ DRAW_327 = {
 
 def test_a_hole_corner_cut_may_halve_a_triangle_at_a_curve_free_end(monkeypatch):
     """Draw 327: a curve's free end is the pole of the triangles round it (§4.2) as a point feature is
-    (reflex._pole), so the cut's strip may end there where its foot halves the triangle into two of
+    (reflex.is_pole), so the cut's strip may end there where its foot halves the triangle into two of
     40 degrees: every hole corner the corner of three patches, the end the corner of a diagonal from a
     strip point, no boundary singularity (main: 1), min scaled Jacobian at least 0.34 (main 0.333).
     With curve ends treated as main did, a hole corner stays inside a side (the corner of none)."""
@@ -455,12 +456,12 @@ def test_a_hole_corner_cut_may_halve_a_triangle_at_a_curve_free_end(monkeypatch)
     stats = mesh_stats(mesh_decomposition(dec), domain)
     assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
     assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.34
-    monkeypatch.setattr(reflex, "_pole", reflex._feature)
+    monkeypatch.setattr(reflex, "is_pole", reflex.is_feature)
     assert min(_patches_at(decompose(domain, 0.04), c) for c in DRAW_327["holes"][0]) == 0
 
 
 def test_the_poles_a_strip_may_end_at_are_point_features_and_curve_free_ends():
-    """reflex._pole on every point of draw 327's and draw 393's decompositions: a curve's free end or a
+    """reflex.is_pole on every point of draw 327's and draw 393's decompositions: a curve's free end or a
     point feature, nothing else (not a curve's inner point, not a plain boundary point)."""
     kinds = set()
     for plan, spacing in ((DRAW_327, 0.04), (DRAW_393, 0.03)):
@@ -468,7 +469,7 @@ def test_the_poles_a_strip_may_end_at_are_point_features_and_curve_free_ends():
         for n in (n for n in g.nodes() if g.schema.is_subtype(g.node_type(n), "Point")):
             kind = g.node_type(n)
             want = kind == "CurveExtremity" or kind == "FeaturePoint" or bool(g.get(n, "feature"))
-            assert reflex._pole(g, n) == want, (kind, g.get(n, "pos"))
+            assert reflex.is_pole(g, n) == want, (kind, g.get(n, "pos"))
             kinds.add((kind, want))
     assert {("CurveExtremity", True), ("CurvePoint", False), ("BoundaryVertex", True),
             ("BoundaryVertex", False)} <= kinds
@@ -510,7 +511,8 @@ def _hole_chord_angles(dec) -> list:
     for e in (e for e in g.edges() if g.edge_type(e) == DIAGONAL):
         for r in set(g.ends(e)) & hole:
             pts = half_edge_polyline(g, e, r)
-            first = math.degrees(math.atan2(pts[1][1] - pts[0][1], pts[1][0] - pts[0][0]) - reflex._ahead(g, r)) % 360
+            leaving = math.atan2(pts[1][1] - pts[0][1], pts[1][0] - pts[0][0])
+            first = math.degrees(leaving - reflex.boundary_ahead(g, r)) % 360
             angles.append(min(first, boundary_angle(g, r) - first))
     return angles
 
@@ -533,30 +535,30 @@ def test_a_hole_corner_takes_its_widest_chord_down_to_the_hole_limit_where_none_
     stats = mesh_stats(mesh_decomposition(dec), domain)
     assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
     assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= min_sj
-    monkeypatch.setattr(reflex, "_hole_chord", lambda *a: None)
+    monkeypatch.setattr(reflex, "hole_chord", lambda *a: None)
     assert min(_patches_at(decompose(domain, spacing), corner) for corner in plan["holes"][0]) == 2
 
 
 def test_the_hole_fallback_takes_the_widest_of_every_foot(monkeypatch):
-    """reflex._hole_chord on draw 574's layout before it (the fallback off): the corner of two patches
+    """reflex.hole_chord on draw 574's layout before it (the fallback off): the corner of two patches
     left gets the chord whose worst angle is the widest of every candidate of every side (each foot of
-    reflex.FEET, reflex._chord_worst at reflex.HOLE_MIN_ANGLE and HOLE_MAX_RATIO), under the usual
+    reflex.FEET, reflex.chord_worst at reflex.HOLE_MIN_ANGLE and HOLE_MAX_RATIO), under the usual
     limits (none qualified there) and at least HOLE_MIN_ANGLE."""
-    hole_chord = reflex._hole_chord
-    monkeypatch.setattr(reflex, "_hole_chord", lambda *a: None)
+    hole_chord = reflex.hole_chord
+    monkeypatch.setattr(reflex, "hole_chord", lambda *a: None)
     g = decompose(domain_from_dict(DRAW_574), 0.02).graph
     (r,) = [n for n in graph_rings(g)[1][1] if np.allclose(g.get(n, "pos"), DRAW_574["holes"][0][2], atol=1e-9)]
     assert g.degree(r, [PATCH_CORNER]) == 2
     patches = sorted({g.ends(e)[0] for e in g.incident(r, [PATCH_CORNER])})
     found = [strips.patch_sides(g, p) for p in patches]
-    angles = [reflex._corner(g, f, f.corners.index(r))[2] for f in found]
+    angles = [reflex.patch_corner(g, f, f.corners.index(r))[2] for f in found]
     quads = [i for i, f in enumerate(found) if len(f.corners) == 4]
     every = []
     for i in quads:
-        k, other = found[i].corners.index(r), reflex._other_angle(boundary_angle(g, r), angles, i)
+        k, other = found[i].corners.index(r), reflex.other_angle(boundary_angle(g, r), angles, i)
         for j in (1, 2):
-            for target in reflex._targets(g, patches[i], found[i], k, j):
-                every.append(reflex._chord_worst(g, patches[i], found[i], k, j, target, other,
+            for target in reflex.chord_targets(g, patches[i], found[i], k, j):
+                every.append(reflex.chord_worst(g, patches[i], found[i], k, j, target, other,
                                                  reflex.HOLE_MIN_ANGLE, reflex.HOLE_MAX_RATIO))
     best = hole_chord(g, (r, patches, found, angles), quads)
     assert best is not None and best[0] == max(w for w in every if w is not None)

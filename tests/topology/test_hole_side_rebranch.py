@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 from vaultgram.domain import domain_from_dict
+from vaultgram.geometry.polygons import ccw_degrees, direction
 from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import decompose, mesh_decomposition
 from vaultgram.topology import fans, hole_hub, hole_sides, reflex, strips
@@ -92,7 +93,7 @@ def _rebranches(graph) -> list[tuple[int, int]]:
     """The chords of the layout from a hole corner to a point feature: ``(corner, feature)``."""
     hole = {n for ring in graph_rings(graph)[1][1:] for n in ring}
     return [(r, f) for e in graph.edges() if graph.edge_type(e) == DIAGONAL
-            for r, f in (graph.ends(e), graph.ends(e)[::-1]) if r in hole and reflex._feature(graph, f)]
+            for r, f in (graph.ends(e), graph.ends(e)[::-1]) if r in hole and reflex.is_feature(graph, f)]
 
 
 def _rebranched(plan: dict, corner) -> tuple:
@@ -137,7 +138,7 @@ def test_the_chord_to_the_pole_leaves_no_narrow_angle_at_the_corner_or_the_pole(
     g = dec.graph
     ((r, f),) = _rebranches(g)
     pos, at = g.get(r, "pos"), g.get(f, "pos")
-    first = reflex._ccw(reflex._ahead(g, r), reflex._direction(pos, at))
+    first = ccw_degrees(reflex.boundary_ahead(g, r), direction(pos, at))
     assert min(first, boundary_angle(g, r) - first) >= reflex.MIN_CUT_ANGLE
     beside = [p for p in dec.patches if r in p.corners and f in p.corners]
     assert len(beside) == 2 and all(p.n_sides in (3, 4) for p in beside)
@@ -146,14 +147,14 @@ def test_the_chord_to_the_pole_leaves_no_narrow_angle_at_the_corner_or_the_pole(
 
 
 def test_without_the_rebranch_the_corner_stays_inside_a_side(monkeypatch, crescents_allowed):
-    """Draw 666 with the rebranch turned off (hole_sides._choose refuses every corner): the corner is
+    """Draw 666 with the rebranch turned off (hole_sides.choose_rebranch refuses every corner): the corner is
     the corner of no patch, as on main, and no chord joins a hole corner to the point. The cut to the
-    bisecting foot (reflex._bisecting_foot, session 25), the fallback after the rebranch, is off too:
+    bisecting foot (reflex.bisecting_foot, session 25), the fallback after the rebranch, is off too:
     it would cut the corner (the corner of two patches, 7 boundary singular vertices and a worst face
     of 0.014 where the rebranch gives 3 and 0.301), and so is the hub split after it (hole_hub,
     session 26)."""
-    monkeypatch.setattr(hole_sides, "_choose", lambda graph, r: None)
-    monkeypatch.setattr(reflex, "_bisecting_foot", lambda graph, walk: ())
+    monkeypatch.setattr(hole_sides, "choose_rebranch", lambda graph, r: None)
+    monkeypatch.setattr(reflex, "bisecting_foot", lambda graph, walk: ())
     monkeypatch.setattr(hole_hub, "_best_hub", lambda *args: None)
     g = decompose(domain_from_dict(DRAW_666)).graph
     assert g.degree(_node_at(g, CORNER_666), [PATCH_CORNER]) == 0 and not _rebranches(g)
@@ -177,7 +178,7 @@ def test_a_cut_may_end_in_a_fan_triangle_whose_middle_chord_leaves_it(crescents_
     """Draw 665: the cut of the hole corner (-1.176, -2.699) takes a foot off the middle of the
     curved branch, whose chord to the point runs inside the fan triangle (reflex.cut_walk): the corner
     is the corner of two patches or more (main d952b9c: of none; with the hole chords' last fallback,
-    reflex._hole_chord, it takes its third and the hole corner beside it keeps two); 2 boundary
+    reflex.hole_chord, it takes its third and the hole corner beside it keeps two); 2 boundary
     singular vertices (main 3), no fold, min scaled Jacobian at least 0.3 (main 0.301)."""
     domain = domain_from_dict(DRAW_665)
     dec = decompose(domain)
@@ -189,15 +190,15 @@ def test_a_cut_may_end_in_a_fan_triangle_whose_middle_chord_leaves_it(crescents_
 
 def test_the_fan_walk_is_the_triangle_beyond_whose_middle_chord_leaves_it(crescents_allowed):
     """Draw 665's hole corner (2.585, -3.557), still inside a side: the strip walk from the middle of
-    the side opposite refuses it (reflex._strip_beyond is None), reflex.cut_walk gives the one triangle
+    the side opposite refuses it (reflex.strip_beyond is None), reflex.cut_walk gives the one triangle
     beyond, ending at the point feature opposite the side, and the chord from the middle to the point
     leaves that triangle while one from a foot of reflex.FEET runs inside it."""
     g = decompose(domain_from_dict(DRAW_665)).graph
     r, f = _node_at(g, DRAW_665["holes"][0][1]), _node_at(g, DRAW_665["points"][0])
-    patch, i = reflex._on_side(g, r)
+    patch, i = reflex.on_side(g, r)
     found = strips.patch_sides(g, patch)
     edge = strips.side_edge(g, patch, found.corners[(i + 2) % 4])
-    assert reflex._strip_beyond(g, patch, edge, fans=True) is None
+    assert reflex.strip_beyond(g, patch, edge, fans=True) is None
     walk = reflex.cut_walk(g, patch, edge)
     triangle = strips.patch_sides(g, walk.patches[0])
     assert walk.edges == (edge,) and walk.end == f and len(triangle.corners) == 3

@@ -16,7 +16,7 @@ from vaultgram.meshpipeline import decompose
 from vaultgram.pipeline import mesh_domain
 from vaultgram.testing.jagged import jagged_plans
 from vaultgram.topology.corners import boundary_angle
-from vaultgram.topology.reflex import PAST_STRAIGHT, _other_angle
+from vaultgram.topology.reflex import PAST_STRAIGHT, other_angle
 from vaultgram.topology.types import PATCH_CORNER
 
 PLANS = jagged_plans()
@@ -88,9 +88,9 @@ def test_jagged_0_worst_element():
 def test_other_angle_counts_the_rest_beside_two_patches_only():
     """Beside two patches a chord counts the other's angle (the rest of the corner's); beside three
     (a spike after its first chord) none, so a sliver the skeleton left does not bar the chord."""
-    assert _other_angle(300.0, [190.0, 110.0], 0) == pytest.approx(110.0)
-    assert _other_angle(300.0, [190.0, 110.0], 1) == pytest.approx(190.0)
-    assert _other_angle(342.0, [136.0, 196.0, 10.0], 1) == float("inf")
+    assert other_angle(300.0, [190.0, 110.0], 0) == pytest.approx(110.0)
+    assert other_angle(300.0, [190.0, 110.0], 1) == pytest.approx(190.0)
+    assert other_angle(342.0, [136.0, 196.0, 10.0], 1) == float("inf")
 
 
 def test_fold_at_a_plain_corner_names_the_corner_not_a_feature():

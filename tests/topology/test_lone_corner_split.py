@@ -123,8 +123,8 @@ def test_lone_diagonal_on_the_quad_it_splits(monkeypatch):
     assert not lone_corners.lone_diagonal(g, p, b, found.corners[(k + 1) % 4])
     assert not lone_corners.lone_diagonal(g, p, x, b)  # the kite is 22 degrees at x: no two parts of 30
     for i in range(4):
-        lengths = lone_corners._strip_lengths(g, p, found, i)
-        assert lengths[:2] == [reflex._side_length(g, found.sides[i]), reflex._side_length(g, found.sides[(i + 2) % 4])]
+        lengths = lone_corners.strip_lengths(g, p, found, i)
+        assert lengths[:2] == [reflex.side_length(g, found.sides[i]), reflex.side_length(g, found.sides[(i + 2) % 4])]
         assert all(length > 0 for length in lengths)
 
 
@@ -141,6 +141,6 @@ def test_no_split_that_joins_a_short_group_to_a_long_one():
     (p,) = [g.ends(e)[0] for e in g.incident(b, [PATCH_CORNER])]
     found = patch_sides(g, p)
     k = found.corners.index(b)
-    longest = [max(lone_corners._strip_lengths(g, p, found, (k + j) % 4)) for j in (1, 2)]
+    longest = [max(lone_corners.strip_lengths(g, p, found, (k + j) % 4)) for j in (1, 2)]
     assert max(longest) > reflex.MAX_RATIO * min(longest)
     assert not lone_corners.lone_diagonal(g, p, b, found.corners[(k + 2) % 4])

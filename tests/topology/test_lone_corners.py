@@ -136,7 +136,7 @@ OCTAGON_34 = [[6.635, 2.253], [2.672, 5.42], [-2.201, 6.483], [-5.282, 2.604], [
 
 def test_a_lone_corner_two_points_from_the_rebranch_gets_a_second_patch():
     """The rebranch moves to the lone corner from the next patch corner along the ring, over the free
-    smooth point between (reflex._smooth_boundary_side): the corner of a quad and of a triangle with
+    smooth point between (reflex.smooth_boundary_side): the corner of a quad and of a triangle with
     it as the marked pole, no boundary singularity (main: 1, the 148 degree corner with one face),
     min scaled Jacobian 0.534 -> 0.718."""
     domain = domain_from_dict({"name": "octagon 34", "outer": OCTAGON_34})
@@ -148,11 +148,11 @@ def test_a_lone_corner_two_points_from_the_rebranch_gets_a_second_patch():
 
 
 def test_smooth_boundary_side_is_a_boundary_run_of_smooth_free_points():
-    """reflex._smooth_boundary_side on every side of every patch of the octagon's decomposition
+    """reflex.smooth_boundary_side on every side of every patch of the octagon's decomposition
     before the patching rules' changes matter: true exactly where every half-edge is a boundary
     segment and every point inside the side has an angle of 135 to 225 degrees (no feature)."""
     from vaultgram.geometry.polygons import regular_valence
-    from vaultgram.topology.reflex import _smooth_boundary_side
+    from vaultgram.topology.reflex import smooth_boundary_side
     from vaultgram.topology.strips import patch_sides
 
     domain = domain_from_dict({"name": "octagon 34", "outer": OCTAGON_34})
@@ -162,7 +162,7 @@ def test_smooth_boundary_side_is_a_boundary_run_of_smooth_free_points():
         for side in patch_sides(g, p).sides:
             on_boundary = all(g.edge_type(e) == "Boundary" for e, _ in side)
             smooth = all(regular_valence(boundary_angle(g, u)) == 3 for _, u in side[1:]) if on_boundary else False
-            assert _smooth_boundary_side(g, side) == smooth
+            assert smooth_boundary_side(g, side) == smooth
             results.append(smooth)
     assert any(results) and not all(results)
 

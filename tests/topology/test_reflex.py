@@ -82,7 +82,7 @@ def test_no_chord_that_would_over_refine_a_fan_shaped_patch():
     """multiple_lobes' notch corners of 233 and 237 degrees sit at fan-shaped patches (a side of 0.7
     opposite one of 4.7): a chord there would put the long side in one edge group with a chord of
     5.7 and the short one, twice the faces (2338 for 1110), slivers at the notch, and 7150 voussoirs
-    for 974 in `vaultgram design`. They keep their two faces (reflex._even_group); the mesh stays
+    for 974 in `vaultgram design`. They keep their two faces (reflex.even_group); the mesh stays
     the size it was, its worst quad no worse."""
     domain = _shared("multiple_lobes")
     mesh = mesh_decomposition(decompose(domain))

@@ -10,8 +10,8 @@ import math
 
 import numpy as np
 
-__all__ = ["signed_area", "bbox_diagonal", "interior_angle", "regular_valence", "cross_z", "signed_angles",
-           "triangle_areas", "elongation"]
+__all__ = ["signed_area", "bbox_diagonal", "interior_angle", "direction", "ccw_degrees", "regular_valence", "cross_z",
+           "signed_angles", "triangle_areas", "elongation"]
 
 
 def signed_area(poly: np.ndarray) -> float:
@@ -45,6 +45,28 @@ def interior_angle(before, corner, after) -> float:
     a = math.atan2(after[1] - corner[1], after[0] - corner[0])
     b = math.atan2(before[1] - corner[1], before[0] - corner[0])
     return math.degrees((b - a) % (2 * math.pi))
+
+
+def direction(a, b) -> float:
+    """The direction (radians, counter-clockwise from the x axis) from point ``a`` to point ``b``:
+    the angles of chords and sides at a layout's corners are measured between such directions
+    (:func:`ccw_degrees`; §3.1's corner angles, the chords of issue 12).
+
+    >>> round(math.degrees(direction((1, 1), (1, 3))), 6), round(math.degrees(direction((0, 0), (-1, 0))), 6)
+    (90.0, 180.0)
+    """
+    return math.atan2(float(b[1]) - float(a[1]), float(b[0]) - float(a[0]))
+
+
+def ccw_degrees(start: float, end: float) -> float:
+    """Degrees turning counter-clockwise from the direction ``start`` to ``end`` (radians), in
+    [0, 360): the angle a polygon's interior spans at a corner from its leaving side to another ray,
+    as :func:`interior_angle` measures it.
+
+    >>> ccw_degrees(0.0, math.pi / 2), ccw_degrees(math.pi / 2, 0.0)
+    (90.0, 270.0)
+    """
+    return math.degrees(end - start) % 360.0
 
 
 def regular_valence(theta) -> np.ndarray:

@@ -124,8 +124,10 @@ _RINGS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> {sta
 
 
 def graph_rings(graph) -> tuple[list, list]:
-    """The rings of the rule graph's boundary vertices, in ring order: their positions and node ids
-    (computed once per state of the graph)."""
+    """The rings of the rule graph's boundary vertices, in ring order (by ``index``; equal indices by
+    node id: a boundary edge a strip splits, :func:`~vaultgram.topology.strips.strip_boundary_split`,
+    gives its new point its first point's index): their positions and node ids (computed once per
+    state of the graph)."""
     rings, nodes, _ = per_state(_RINGS, graph, _rings_now)
     return rings, nodes
 

@@ -486,8 +486,8 @@ def domain_area(graph) -> float:
     """The area of the domain: its outer ring's less its holes' (from the boundary vertices)."""
     rings: dict[int, list] = {}
     for n in graph.of_types(graph.schema.subtypes(BOUNDARY_VERTEX)):
-        rings.setdefault(graph.get(n, "ring"), []).append((graph.get(n, "index"), graph.get(n, "pos")))
-    areas = {r: abs(signed_area(np.array([p for _, p in sorted(pts)]))) for r, pts in rings.items()}
+        rings.setdefault(graph.get(n, "ring"), []).append((graph.get(n, "index"), n, graph.get(n, "pos")))
+    areas = {r: abs(signed_area(np.array([p for _, _, p in sorted(pts)]))) for r, pts in rings.items()}
     return float(areas.get(0, 0.0) - sum(a for r, a in areas.items() if r > 0))
 
 

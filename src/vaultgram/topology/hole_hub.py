@@ -31,6 +31,7 @@ import weakref
 
 import numpy as np
 
+from vaultgram.geometry.polygons import ccw_degrees, direction
 from vaultgram.topology import hole_sides, reflex
 from vaultgram.topology.corners import boundary_angle
 from vaultgram.topology.statecache import per_state
@@ -62,11 +63,11 @@ def _hub(graph, r: int):
     """The hub split for the hole corner ``r`` (see the module docstring): ``(patch, side index, edge
     c - d, fan triangle, pole F, position of X)``, or None. A fallback after the cut, the rebranch and
     the bisecting cut."""
-    if not hole_sides._inside_corner(graph, r) or hole_sides.fan_rebranch_at(graph, r):
+    if not hole_sides.inside_corner(graph, r) or hole_sides.fan_rebranch_at(graph, r):
         return None
     if reflex.reflex_bisecting_cut_at(graph, r):
         return None
-    cand = hole_sides._candidates(graph, r)  # None where the cut qualifies
+    cand = hole_sides.rebranch_candidate(graph, r)  # None where the cut qualifies
     if cand is None:
         return None
     patch, i, edge, tri, pole, fan = cand
@@ -108,22 +109,23 @@ def _angles_fit(angles: list) -> bool:
 def _hub_angles(graph, r: int, found, i: int, sides, t: int, x) -> list | None:
     """The angles (degrees) of the three quads round ``x``: at ``r`` (two), at ``c`` and ``d`` (two
     each: the pentagon's angle there split by the chord to ``x``) and at ``x`` (three), each between
-    the first steps of its sides as :func:`~vaultgram.topology.reflex._corner` measures a patch's;
+    the first steps of its sides as :func:`~vaultgram.topology.reflex.patch_corner` measures a patch's;
     None where a chord leaves ``P`` (``found``; ``x`` must lie inside it) or the angles at ``x`` do
     not close (``x`` outside the triangle ``r, c, d``'s order)."""
     c, d = found.corners[(i + 2) % 4], found.corners[(i + 3) % 4]
     pos = {n: graph.get(n, "pos") for n in (r, c, d)}
     if not all(chord_inside(found, pos[n], x) for n in (r, c, d)):
         return None
-    to_x = {n: reflex._direction(pos[n], x) for n in (r, c, d)}
-    from_x = {n: reflex._direction(x, pos[n]) for n in (r, c, d)}
-    p_c, (_, p_out_d, p_d) = reflex._corner(graph, found, (i + 2) % 4)[2], reflex._corner(graph, found, (i + 3) % 4)
-    _, t_out_c, t_c = reflex._corner(graph, sides, (t - 1) % 3)  # T at c: leaving towards F
-    t_d = reflex._corner(graph, sides, (t + 1) % 3)[2]
-    first = reflex._ccw(reflex._ahead(graph, r), to_x[r])
-    at_c = reflex._ccw(t_out_c, to_x[c])  # quad (c, F, d, X) at c; (r, b, c, X) has the rest
-    at_d = reflex._ccw(p_out_d, to_x[d])  # quad (d, a, r, X) at d; (c, F, d, X) has the rest
-    around = [reflex._ccw(from_x[r], from_x[c]), reflex._ccw(from_x[c], from_x[d]), reflex._ccw(from_x[d], from_x[r])]
+    to_x = {n: direction(pos[n], x) for n in (r, c, d)}
+    from_x = {n: direction(x, pos[n]) for n in (r, c, d)}
+    p_c = reflex.patch_corner(graph, found, (i + 2) % 4)[2]
+    _, p_out_d, p_d = reflex.patch_corner(graph, found, (i + 3) % 4)
+    _, t_out_c, t_c = reflex.patch_corner(graph, sides, (t - 1) % 3)  # T at c: leaving towards F
+    t_d = reflex.patch_corner(graph, sides, (t + 1) % 3)[2]
+    first = ccw_degrees(reflex.boundary_ahead(graph, r), to_x[r])
+    at_c = ccw_degrees(t_out_c, to_x[c])  # quad (c, F, d, X) at c; (r, b, c, X) has the rest
+    at_d = ccw_degrees(p_out_d, to_x[d])  # quad (d, a, r, X) at d; (c, F, d, X) has the rest
+    around = [ccw_degrees(from_x[r], from_x[c]), ccw_degrees(from_x[c], from_x[d]), ccw_degrees(from_x[d], from_x[r])]
     if abs(sum(around) - 360.0) > 1e-6:
         return None
     return [first, boundary_angle(graph, r) - first, at_c, p_c + t_c - at_c, at_d, p_d + t_d - at_d, *around]
@@ -134,9 +136,9 @@ def _even(graph, found, i: int, r: int, sides, t: int, x) -> bool:
     length (one edge group each, §3.2: the longer's count would over-refine the shorter)."""
     side = found.sides[i]
     k = next(j for j, (_, u) in enumerate(side) if u == r)
-    a_r, r_b = reflex._side_length(graph, side[:k]), reflex._side_length(graph, side[k:])
-    b_c, d_a = (reflex._side_length(graph, found.sides[(i + j) % 4]) for j in (1, 3))
-    f_d, c_f = reflex._side_length(graph, sides.sides[t]), reflex._side_length(graph, sides.sides[t - 1])
+    a_r, r_b = reflex.side_length(graph, side[:k]), reflex.side_length(graph, side[k:])
+    b_c, d_a = (reflex.side_length(graph, found.sides[(i + j) % 4]) for j in (1, 3))
+    f_d, c_f = reflex.side_length(graph, sides.sides[t]), reflex.side_length(graph, sides.sides[t - 1])
     x_r, x_c, x_d = (math.dist(x, graph.get(n, "pos")) for n in (r, found.corners[(i + 2) % 4],
                                                                   found.corners[(i + 3) % 4]))
     pairs = ((r_b, x_c), (b_c, x_r), (c_f, x_d), (f_d, x_c), (d_a, x_r), (a_r, x_d))

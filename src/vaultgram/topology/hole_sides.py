@@ -29,7 +29,7 @@ import weakref
 import numpy as np
 import shapely
 
-from vaultgram.geometry.polygons import regular_valence
+from vaultgram.geometry.polygons import ccw_degrees, direction, regular_valence
 from vaultgram.topology import reflex
 from vaultgram.topology.corners import boundary_angle
 from vaultgram.topology.statecache import per_state
@@ -37,7 +37,8 @@ from vaultgram.topology.strips import patch_sides, side_edge
 from vaultgram.topology.types import PATCH_CORNER
 
 __all__ = ["fan_rebranch_at", "fan_rebranch_edge", "fan_rebranch_index", "fan_rebranch_pole",
-           "fan_rebranch_patch", "MIN_POLE_PART", "MAX_GROUP_RATIO", "register_hole_side_helpers"]
+           "fan_rebranch_patch", "MIN_POLE_PART", "MAX_GROUP_RATIO", "register_hole_side_helpers",
+           "rebranch_candidate", "inside_corner", "choose_rebranch"]
 
 #: Degrees: the least angle either new quad may have at the fan's pole ``F``.
 MIN_POLE_PART = 15.0
@@ -50,29 +51,29 @@ MAX_GROUP_RATIO = 4.0
 _STATE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> {state: {corner: choice}}
 
 
-def _candidates(graph, r: int):
+def rebranch_candidate(graph, r: int):
     """The ring patch ``P`` (a quad) with the hole corner ``r`` inside its side ``i``, its opposite
     side's plan edge and the triangle of a point feature's fan beyond it whose pole is opposite that
-    edge, as ``(patch, i, edge, fan patch, pole, fan)`` (:func:`~vaultgram.topology.reflex._fan_end`);
+    edge, as ``(patch, i, edge, fan patch, pole, fan)`` (:func:`~vaultgram.topology.reflex.fan_end`);
     None where any is missing or ``r``'s cut qualifies (the rebranch is its fallback)."""
     if reflex.reflex_cut_at(graph, r):
         return None
-    at = reflex._on_side(graph, r)
+    at = reflex.on_side(graph, r)
     if at is None or len(patch_sides(graph, at[0]).corners) != 4:
         return None
     patch, i = at
     found = patch_sides(graph, patch)
     edge = side_edge(graph, patch, found.corners[(i + 2) % 4])
     walk = reflex.cut_walk(graph, patch, edge) if edge >= 0 else None
-    fan = reflex._fan_end(graph, walk) if walk is not None else None
-    if fan is None or not reflex._feature(graph, walk.end):
+    fan = reflex.fan_end(graph, walk) if walk is not None else None
+    if fan is None or not reflex.is_feature(graph, walk.end):
         return None
     return patch, i, edge, walk.patches[0], walk.end, fan
 
 
 def _score(graph, r: int, cand) -> float | None:
     """The worst angle (degrees) the chord from the pole to ``r`` leaves at ``r`` and at the pole
-    (:func:`_candidates`' ``cand``), or None where a test of the module docstring refuses it."""
+    (:func:`rebranch_candidate`' ``cand``), or None where a test of the module docstring refuses it."""
     patch, i, _, tri, pole, fan = cand
     found, sides = patch_sides(graph, patch), patch_sides(graph, tri)
     c, d = found.corners[(i + 2) % 4], found.corners[(i + 3) % 4]
@@ -84,11 +85,11 @@ def _score(graph, r: int, cand) -> float | None:
     if not shapely.contains_properly(shapely.union(found.polygon, sides.polygon), chord):
         return None
     theta = boundary_angle(graph, r)
-    first = reflex._ccw(reflex._ahead(graph, r), reflex._direction(pos, at))
+    first = ccw_degrees(reflex.boundary_ahead(graph, r), direction(pos, at))
     f_pos, f_out, whole = fan
-    f_first = reflex._ccw(f_out, reflex._direction(f_pos, pos))
-    turns = [reflex._corner(graph, found, found.corners.index(n))[2]
-             + reflex._corner(graph, sides, sides.corners.index(n))[2] for n in (c, d)]
+    f_first = ccw_degrees(f_out, direction(f_pos, pos))
+    turns = [reflex.patch_corner(graph, found, found.corners.index(n))[2]
+             + reflex.patch_corner(graph, sides, sides.corners.index(n))[2] for n in (c, d)]
     if max(turns) > reflex.PAST_STRAIGHT or not _even(graph, found, i, r, pole, sides):
         return None
     worst_r, worst_f = min(first, theta - first), min(f_first, whole - f_first)
@@ -101,12 +102,12 @@ def _even(graph, found, i: int, r: int, pole: int, sides) -> bool:
     §3.2: the longer's count would over-refine the shorter)."""
     side = found.sides[i]
     k = next(j for j, (_, u) in enumerate(side) if u == r)
-    a_r, r_b = reflex._side_length(graph, side[:k]), reflex._side_length(graph, side[k:])
-    b_c, d_a = (reflex._side_length(graph, found.sides[(i + j) % 4]) for j in (1, 3))
+    a_r, r_b = reflex.side_length(graph, side[:k]), reflex.side_length(graph, side[k:])
+    b_c, d_a = (reflex.side_length(graph, found.sides[(i + j) % 4]) for j in (1, 3))
     c, d = found.corners[(i + 2) % 4], found.corners[(i + 3) % 4]
     tri = sides.corners.index(pole)
-    f_d = reflex._side_length(graph, sides.sides[tri])
-    c_f = reflex._side_length(graph, sides.sides[tri - 1])
+    f_d = reflex.side_length(graph, sides.sides[tri])
+    c_f = reflex.side_length(graph, sides.sides[tri - 1])
     if (sides.corners[(tri + 1) % 3], sides.corners[tri - 1]) != (d, c):
         return False
     chord = math.dist(graph.get(r, "pos"), graph.get(pole, "pos"))
@@ -114,24 +115,24 @@ def _even(graph, found, i: int, r: int, pole: int, sides) -> bool:
     return all(max(p) <= MAX_GROUP_RATIO * min(p) for p in pairs)
 
 
-def _choose(graph, r: int):
-    """The rebranch for the hole corner ``r`` (:func:`_candidates`), where ``r`` is, of the hole
+def choose_rebranch(graph, r: int):
+    """The rebranch for the hole corner ``r`` (:func:`rebranch_candidate`), where ``r`` is, of the hole
     corners inside the same side that it could serve, the one whose worst angle is widest (ties:
     the lower node id, for determinism); None otherwise."""
-    cand = _candidates(graph, r)
+    cand = rebranch_candidate(graph, r)
     if cand is None:
         return None
     patch, i = cand[:2]
     scores = []
     for _, u in patch_sides(graph, patch).sides[i][1:]:
-        other = cand if u == r else _inside_corner(graph, u) and _candidates(graph, u)
+        other = cand if u == r else inside_corner(graph, u) and rebranch_candidate(graph, u)
         score = _score(graph, u, other) if other and other[:3] == cand[:3] else None
         if score is not None:
             scores.append((-score, u))
     return cand if scores and min(scores)[1] == r else None
 
 
-def _inside_corner(graph, u: int) -> bool:
+def inside_corner(graph, u: int) -> bool:
     """Whether the boundary point ``u`` is a hole corner the rebranch may serve: no feature, the
     corner of no patch, regular valence 4 by its angle (225-315 degrees)."""
     return (not graph.get(u, "feature") and graph.degree(u, [PATCH_CORNER]) == 0
@@ -139,10 +140,10 @@ def _inside_corner(graph, u: int) -> bool:
 
 
 def _once(graph, r: int):
-    """:func:`_choose`, worked out once per corner and state of the graph."""
+    """:func:`choose_rebranch`, worked out once per corner and state of the graph."""
     memo = per_state(_STATE, graph, lambda g: {})
     if r not in memo:
-        memo[r] = _choose(graph, r) if _inside_corner(graph, r) else None
+        memo[r] = choose_rebranch(graph, r) if inside_corner(graph, r) else None
     return memo[r]
 
 

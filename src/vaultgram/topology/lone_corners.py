@@ -21,15 +21,16 @@ strip of quads through ``c -> x`` and ``a -> b``, and the one through ``x -> a``
 one of them runs on to sides much longer than the other's, the join raises the other's count along its
 whole strip: multiple_lobes' 136 degree corner, a strip reaching a 23 long lobe side joined to one whose
 longest side is 4.7, tripled the mesh (1080 faces to 3024). So the longest side along either strip
-(:func:`_strip_lengths`) must be within :data:`~vaultgram.topology.reflex.MAX_RATIO` of the other's.
+(:func:`strip_lengths`) must be within :data:`~vaultgram.topology.reflex.MAX_RATIO` of the other's.
 """
 
 from __future__ import annotations
 
+from vaultgram.geometry.polygons import ccw_degrees, direction
 from vaultgram.topology import reflex
 from vaultgram.topology.strips import chord_inside, patch_across, patch_sides, side_edge, strip_walk
 
-__all__ = ["lone_diagonal", "register_lone_corner_helpers"]
+__all__ = ["lone_diagonal", "register_lone_corner_helpers", "strip_lengths"]
 
 
 def lone_diagonal(graph, patch: int, b: int, x: int) -> bool:
@@ -45,21 +46,21 @@ def lone_diagonal(graph, patch: int, b: int, x: int) -> bool:
     k = found.corners.index(b)
     if found.corners[(k + 2) % 4] != x:
         return False
-    pos, d_out, whole = reflex._corner(graph, found, k)
+    pos, d_out, whole = reflex.patch_corner(graph, found, k)
     to = graph.get(x, "pos")
-    first = reflex._ccw(d_out, reflex._direction(pos, to))
+    first = ccw_degrees(d_out, direction(pos, to))
     if not (reflex.MIN_ANGLE <= first <= whole - reflex.MIN_ANGLE and chord_inside(found, pos, to)):
         return False
-    longest = [max(_strip_lengths(graph, patch, found, (k + j) % 4)) for j in (1, 2)]
+    longest = [max(strip_lengths(graph, patch, found, (k + j) % 4)) for j in (1, 2)]
     return max(longest) <= reflex.MAX_RATIO * min(longest)
 
 
-def _strip_lengths(graph, patch: int, found, i: int) -> list[float]:
+def strip_lengths(graph, patch: int, found, i: int) -> list[float]:
     """The lengths of the sides in one edge group with the side ``i`` of the quad ``patch`` (its sides
     ``found``), as far as the strip of quads through it shows them: that side, the opposite one, and
     the side each quad beyond side ``i`` has opposite the one the strip enters by
     (:func:`~vaultgram.topology.strips.strip_walk`; none where the walk does not complete)."""
-    lengths = [reflex._side_length(graph, found.sides[i]), reflex._side_length(graph, found.sides[(i + 2) % 4])]
+    lengths = [reflex.side_length(graph, found.sides[i]), reflex.side_length(graph, found.sides[(i + 2) % 4])]
     edge = side_edge(graph, patch, found.corners[i])
     beyond = patch_across(graph, patch, edge) if edge >= 0 else None
     walk = strip_walk(graph, beyond[0], beyond[1], frozenset([patch])) if beyond is not None else None
@@ -67,7 +68,7 @@ def _strip_lengths(graph, patch: int, found, i: int) -> list[float]:
         sides = patch_sides(graph, q)
         entry = [j for j, side in enumerate(sides.sides) if len(side) == 1 and side[0][0] == e]
         if len(sides.corners) == 4 and entry:
-            lengths.append(reflex._side_length(graph, sides.sides[(entry[0] + 2) % 4]))
+            lengths.append(reflex.side_length(graph, sides.sides[(entry[0] + 2) % 4]))
     return lengths
 
 

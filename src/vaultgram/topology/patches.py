@@ -248,13 +248,14 @@ def key_polyline(key: tuple) -> np.ndarray:
 
 def hole_rings(graph: HostGraph) -> list[np.ndarray]:
     """The hole rings of the plan (ring 1, 2, ...) as point arrays in ring order, from the graph's
-    ``BoundaryVertex`` nodes (their ``ring`` and ``index``)."""
+    ``BoundaryVertex`` nodes (their ``ring`` and ``index``, equal indices by node id as in
+    :func:`~vaultgram.topology.corners.graph_rings`)."""
     rings: dict[int, list] = {}
     for n in graph.of_types(graph.schema.subtypes(BOUNDARY_VERTEX)):
         ring = graph.get(n, "ring")
         if ring > 0:
-            rings.setdefault(ring, []).append((graph.get(n, "index"), graph.get(n, "pos")))
-    return [np.array([p for _, p in sorted(rings[r])], dtype=float) for r in sorted(rings)]
+            rings.setdefault(ring, []).append((graph.get(n, "index"), n, graph.get(n, "pos")))
+    return [np.array([p for _, _, p in sorted(rings[r])], dtype=float) for r in sorted(rings)]
 
 
 def enclosed_holes(outlines, holes) -> list[tuple[int, int]]:

@@ -22,21 +22,21 @@ made the corner of two quads by a chord across its quad, a strip too (``cut_quad
 below :data:`MIN_CUT_ANGLE` (the middle where it can; :func:`reflex_point`). Where the strip is one
 triangle of a pole's fan that none of them halves evenly enough, a last cut, after the rules' rebranch
 to the pole (:mod:`vaultgram.topology.hole_sides`), ends at the foot whose chord bisects the triangle's
-angle at the pole (:func:`reflex_bisecting_cut`, :func:`_bisecting_foot`).
+angle at the pole (:func:`reflex_bisecting_cut`, :func:`bisecting_foot`).
 
 :func:`reflex_chord` and :func:`reflex_foot` pick, among the corner's quads and their sides, where the
 chord runs inside the quad and its strip completes (:func:`~vaultgram.topology.strips.strip_walk`)
-without ending in a triangle at a point the split would change (:func:`_strip_beyond`), the chord
+without ending in a triangle at a point the split would change (:func:`strip_beyond`), the chord
 whose worst angle is widest: the three patch angles at the corner after the split and the chord's two
 angles with the side it ends on. Where that worst angle is below :data:`MIN_ANGLE` the corner is left
 as it is (a sliver of a patch would cost more in the mesh's worst element than the singularity), but
 for fallbacks: at a hole corner, last, the widest chord over every foot down to :data:`HOLE_MIN_ANGLE`
-(:func:`_hole_chord`: a quad corner that narrow still has a scaled Jacobian above 0.3).
+(:func:`hole_chord`: a quad corner that narrow still has a scaled Jacobian above 0.3).
 
 A spike (:data:`SPIKE`: 315-360 degrees, regular valence 5, the noise of a geographic outline) asks for
 four faces: it gets a chord while it is the corner of two patches or of three (the rules'
 ``patches`` parameter), the second beside the first's triangle, whose angle is then not counted
-(:func:`_other_angle`). A spike whose quad turns past straight gets that quad's chord even at a
+(:func:`other_angle`). A spike whose quad turns past straight gets that quad's chord even at a
 narrower angle (:data:`PAST_STRAIGHT`, :data:`FOLD_MIN_ANGLE`): the mesh would fold there.
 """
 
@@ -46,7 +46,7 @@ import math
 import weakref
 from collections.abc import Iterator
 
-from vaultgram.geometry.polygons import regular_valence
+from vaultgram.geometry.polygons import ccw_degrees, direction, regular_valence
 from vaultgram.geometry.polylines import arc_lengths, ray_hit_fraction
 from vaultgram.topology.corners import boundary_angle, graph_rings, ring_place
 from vaultgram.topology.patches import half_edge_polyline
@@ -75,9 +75,14 @@ __all__ = ["reflex_chord", "reflex_side", "reflex_foot", "reflex_cut", "reflex_c
            "reflex_bisecting_cut", "reflex_bisecting_cut_index", "reflex_bisecting_cut_at",
            "reflex_point", "rebranch_to_corner", "MIN_ANGLE", "MIN_CUT_ANGLE", "MAX_POLE_ANGLE", "MAX_RATIO", "FEET",
            "SPIKE", "PAST_STRAIGHT", "FOLD_MIN_ANGLE", "MAX_POLE_RATIO", "MIN_FAN_HALF",
-           "HOLE_MAX_RATIO", "HOLE_MIN_ANGLE", "BISECTING_FOOT", "cut_walk"]
+           "HOLE_MAX_RATIO", "HOLE_MIN_ANGLE", "BISECTING_FOOT", "cut_walk",
+           # helpers the other corner modules (hole_sides, hole_hub, lone_corners) and the benchmarks share
+           "patch_corner", "boundary_ahead", "side_length", "on_side", "fan_end", "is_feature", "is_pole",
+           "halves_fan", "strip_beyond", "bisecting_foot", "hole_chord", "widest_chord", "chord_worst",
+           "other_angle", "chord_targets", "chord_angles", "even_group", "choose_cut", "smooth_boundary_side",
+           "choose_chord"]
 
-#: The node types at which a strip may not end in a triangle (:func:`_strip_beyond`).
+#: The node types at which a strip may not end in a triangle (:func:`strip_beyond`).
 KEPT_ENDS = (BOUNDARY_VERTEX, FEATURE_POINT, CURVE_POINT)
 #: Degrees: no chord whose worst angle (at the corner or where it meets the side) is narrower.
 MIN_ANGLE = 30.0
@@ -92,13 +97,13 @@ FEET = (0.5, 0.45, 0.55, 0.4, 0.6, 0.35, 0.65, 0.3, 0.7, 0.25, 0.75)
 #: hexagonal hole at 32 degrees left a quad of scaled Jacobian 0.07 there).
 MIN_CUT_ANGLE = 40.0
 #: Degrees: where no foot of a hole corner's cut halves a point feature's fan triangle into two of
-#: :data:`MIN_CUT_ANGLE` (:func:`_halves_fan`), the halves may be this narrow: a fan of five triangles
+#: :data:`MIN_CUT_ANGLE` (:func:`halves_fan`), the halves may be this narrow: a fan of five triangles
 #: round a point of a straight boundary has 180 / 5 degrees each. The 42 hole corners of the 700 saved
 #: random plans whose cut's strip is one fan triangle mostly had no foot leaving 40 either side, but
 #: their best at 36-40 (plans 4, 231, 579, 692: 37-38).
 MIN_FAN_HALF = 36.0
 #: Where none of :data:`FEET` serves a hole corner's cut whose strip is one triangle of a pole's fan, the
-#: foot whose chord to the pole bisects the triangle's angle there (:func:`_bisecting_foot`: the most
+#: foot whose chord to the pole bisects the triangle's angle there (:func:`bisecting_foot`: the most
 #: even halves any foot gives) may lie this fraction of the edge from either end, nearer than
 #: :data:`FEET` reach: a skewed fan triangle's bisector meets its far side off the middle (saved random
 #: plans 226 and 691 of the 700 drawn in session 25: 0.27 and 0.81 along, halves of 39 and 45 degrees,
@@ -123,14 +128,14 @@ FOLD_MIN_ANGLE = 10.0
 #: with it: 2356 faces for 1080, min scaled Jacobian 0.395 -> 0.336.
 MAX_POLE_RATIO = 5.0
 #: Where no chord of a hole corner keeps its edge group within :data:`MAX_RATIO`, one within this
-#: (:func:`_choose`): on the 700 saved random plans the 7 hole corners refused only by the ratio
+#: (:func:`choose_chord`): on the 700 saved random plans the 7 hole corners refused only by the ratio
 #: (plans 314, 370, 395, 613, 614) were at 2.5-3.5, and 5 of them take such a chord. Not on the outer
 #: ring: there it folded a jagged outline (jagged_1: chords at its 299 and 240 degree corners beside a
 #: narrow 320 degree spike) and lowered jagged_2's min scaled Jacobian from 0.198 to 0.077.
 HOLE_MAX_RATIO = 3.5
 #: Degrees: where no chord of a hole corner qualifies at :data:`MIN_ANGLE` (:data:`MIN_CUT_ANGLE` off the
 #: middle), nor within :data:`HOLE_MAX_RATIO`, nor into a fan, the chord whose worst angle is widest over
-#: every foot of :data:`FEET` down to this (:func:`_hole_chord`): a quad corner of 20 degrees has a scaled
+#: every foot of :data:`FEET` down to this (:func:`hole_chord`): a quad corner of 20 degrees has a scaled
 #: Jacobian of sin 20 = 0.34, above the 0.3 the benchmarks count. On the 700 saved random plans main
 #: d952b9c left 24 hole corners of two patches whose best chord was at 0-40 degrees; at 25 the fallback
 #: took 11 of them, at 20 15 (23-25 and 132 too). Not on the outer ring: lower chord angles there folded
@@ -143,130 +148,120 @@ MAX_POLE_ANGLE = 160.0
 _STATE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> {state: {corner: choice}}
 
 
-def _direction(a, b) -> float:
-    """The direction (radians) from point ``a`` to point ``b``."""
-    return math.atan2(float(b[1]) - float(a[1]), float(b[0]) - float(a[0]))
-
-
-def _ccw(start: float, end: float) -> float:
-    """Degrees turning counter-clockwise from direction ``start`` to ``end``, in [0, 360)."""
-    return math.degrees(end - start) % 360.0
-
-
 def _edge_tangent(graph, edge: int, fraction: float = 0.5) -> float:
     """The direction (radians) of a plan edge at ``fraction`` of its length (where a chord ends)."""
     before, mid, after = edge_cut(graph, edge, fraction)
     ahead = after[0] if len(after) else graph.get(graph.ends(edge)[1], "pos")
     back = before[-1] if len(before) else graph.get(graph.ends(edge)[0], "pos")
-    return _direction(back, ahead)
+    return direction(back, ahead)
 
 
 def _feet(graph, walk, fractions=FEET, half: float = MIN_CUT_ANGLE) -> Iterator[tuple]:
-    """The points of the plan edge a strip enters by (``walk``, :func:`_strip_beyond`; none where it is
+    """The points of the plan edge a strip enters by (``walk``, :func:`strip_beyond`; none where it is
     None) where a chord may end (``fractions`` of its length, in that order), as ``(fraction, point,
     tangent there)``: where the strip's first chord, from there across the patch beyond, runs inside
-    it, and, where the strip is one triangle of a feature's fan (:func:`_fan_end`), the chord from
-    there to the feature halves its angle into two of at least ``half`` degrees (:func:`_halves_fan`).
+    it, and, where the strip is one triangle of a feature's fan (:func:`fan_end`), the chord from
+    there to the feature halves its angle into two of at least ``half`` degrees (:func:`halves_fan`).
     A closed strip comes back to the middle, its only foot. Lazily: a cut stops at the first that
     serves."""
     if walk is None:
         return
     edge, found = walk.edges[0], patch_sides(graph, walk.patches[0])
-    to = strip_point(graph, walk.edges[1]) if len(walk.edges) > 1 else graph.get(walk.end, "pos")
-    fan = _fan_end(graph, walk)
+    to = strip_point(graph, walk.edges[1]) if len(walk.edges) > 1 else walk.end_point(graph)
+    fan = fan_end(graph, walk)
     for f in fractions[:1] if walk.end is None else fractions:
         at = edge_cut(graph, edge, f)[1]
         walked = f == 0.5 and fan is None  # the strip's walk ran this chord (a fan's: maybe not, _fan_walk)
-        if (walked or chord_inside(found, at, to)) and (fan is None or _halves_fan(fan, at, half)):
+        if (walked or chord_inside(found, at, to)) and (fan is None or halves_fan(fan, at, half)):
             yield f, at, _edge_tangent(graph, edge, f)
 
 
-def _fan_end(graph, walk) -> tuple | None:
+def fan_end(graph, walk) -> tuple | None:
     """Where the strip ``walk`` is one triangle of a pole's fan, entered by the side opposite the pole
-    (:func:`_strip_beyond`, :func:`_pole`): the pole's position, the direction (radians) of the
+    (:func:`strip_beyond`, :func:`is_pole`): the pole's position, the direction (radians) of the
     triangle's side leaving it and the triangle's angle there (degrees); None otherwise."""
-    if walk.end is None or len(walk.patches) != 1 or not _pole(graph, walk.end):
+    if walk.end is None or len(walk.patches) != 1 or not is_pole(graph, walk.end):
         return None
     found = patch_sides(graph, walk.patches[0])
-    return _corner(graph, found, found.corners.index(walk.end)) if len(found.corners) == 3 else None
+    return patch_corner(graph, found, found.corners.index(walk.end)) if len(found.corners) == 3 else None
 
 
-def _halves_fan(fan: tuple, at, least: float = MIN_CUT_ANGLE) -> bool:
-    """Whether the chord from the point ``at`` to the feature of ``fan`` (:func:`_fan_end`) splits the
+def halves_fan(fan: tuple, at, least: float = MIN_CUT_ANGLE) -> bool:
+    """Whether the chord from the point ``at`` to the feature of ``fan`` (:func:`fan_end`) splits the
     triangle's angle there into two of at least ``least`` degrees (:data:`MIN_CUT_ANGLE` unless given,
     :data:`MIN_FAN_HALF` where no foot leaves that): the fan gains a triangle no narrower than a cut may
     leave, or than a fan of five round a point of a straight boundary has (§4.1: the feature stays the
     pole of both).
 
-    >>> _halves_fan(((0.0, 0.0), 0.0, 90.0), (1.0, 1.0)), _halves_fan(((0.0, 0.0), 0.0, 90.0), (1.0, 0.2))
+    >>> halves_fan(((0.0, 0.0), 0.0, 90.0), (1.0, 1.0)), halves_fan(((0.0, 0.0), 0.0, 90.0), (1.0, 0.2))
     (True, False)
-    >>> _halves_fan(((0.0, 0.0), 0.0, 80.0), (1.0, 0.75)), _halves_fan(((0.0, 0.0), 0.0, 80.0), (1.0, 0.75), 36.0)
+    >>> halves_fan(((0.0, 0.0), 0.0, 80.0), (1.0, 0.75)), halves_fan(((0.0, 0.0), 0.0, 80.0), (1.0, 0.75), 36.0)
     (False, True)
     """
     pos, d_out, whole = fan
-    first = _ccw(d_out, _direction(pos, at))
+    first = ccw_degrees(d_out, direction(pos, at))
     return least <= first <= whole - least
 
 
-def _feature(graph, n: int) -> bool:
+def is_feature(graph, n: int) -> bool:
     """Whether the point ``n`` is a point feature (a boundary point feature or an inner one)."""
     return bool(graph.get(n, "feature")) or graph.schema.is_subtype(graph.node_type(n), FEATURE_POINT)
 
 
-def _pole(graph, n: int) -> bool:
+def is_pole(graph, n: int) -> bool:
     """Whether the point ``n`` is a pole of the triangles round it whatever the layout: a point feature
     (§4.1) or a curve's free end (§4.2, Figure 8), so that halving one of its triangles keeps it one.
     A hole corner's cut whose strip is such a triangle at a curve's free end was refused as ending at
     a curve point (10 of the 137 boundary singular vertices of the 700 saved random plans, s21)."""
-    return _feature(graph, n) or graph.node_type(n) == CURVE_EXTREMITY
+    return is_feature(graph, n) or graph.node_type(n) == CURVE_EXTREMITY
 
 
 def _ring_tangent(graph, w: int) -> float:
     """The direction (radians) of the boundary at the boundary point ``w``, between its two
     neighbours along the ring."""
     a, b = (graph.other(e, w) for e in graph.incident(w, [BOUNDARY]))
-    return _direction(graph.get(a, "pos"), graph.get(b, "pos"))
+    return direction(graph.get(a, "pos"), graph.get(b, "pos"))
 
 
-def _ahead(graph, r: int) -> float:
+def boundary_ahead(graph, r: int) -> float:
     """The direction (radians) of the boundary leaving the boundary point ``r`` in ring order (towards
     the next point along its ring, the domain on the left): the side from which the domain's interior
     angle at ``r`` is measured counter-clockwise (:func:`~vaultgram.topology.corners.boundary_angle`)."""
     rings, _ = graph_rings(graph)
     ring, k = ring_place(graph, r)
-    return _direction(rings[ring][k], rings[ring][(k + 1) % len(rings[ring])])
+    return direction(rings[ring][k], rings[ring][(k + 1) % len(rings[ring])])
 
 
-def _angles(graph, found, k: int, j: int, end, tangent: float, other: float) -> tuple[float, float]:
+def chord_angles(graph, found, k: int, j: int, end, tangent: float, other: float) -> tuple[float, float]:
     """For the chord from corner ``k`` of the quad ``found`` to the point ``end`` on its side from
     corner ``k + j`` (``j`` 1 or 2), whose direction there is ``tangent`` (radians): the worst angle
     (degrees: the two parts of the quad's angle at the corner, ``other`` the angle of the corner's
     other patch, the chord's angles with the side) and the angle at the corner of the triangle the
     chord cuts off."""
-    pos, d_out, whole = _corner(graph, found, k)
-    d_chord = _direction(pos, end)
-    first = _ccw(d_out, d_chord)  # between the leaving side and the chord
+    pos, d_out, whole = patch_corner(graph, found, k)
+    d_chord = direction(pos, end)
+    first = ccw_degrees(d_out, d_chord)  # between the leaving side and the chord
     if not 0.0 < first < whole:
         return -1.0, 360.0
-    meet = _ccw(tangent, d_chord) % 180.0
+    meet = ccw_degrees(tangent, d_chord) % 180.0
     return min(first, whole - first, other, meet, 180.0 - meet), first if j == 1 else whole - first
 
 
-def _targets(graph, patch: int, found, k: int, j: int, fans: float | None = None) -> list[tuple]:
+def chord_targets(graph, patch: int, found, k: int, j: int, fans: float | None = None) -> list[tuple]:
     """Where a chord from corner ``k`` of a quad may end on its side from corner ``k + j``: the feet
     of that side's plan edge where a strip may cut it and carry on (``("edge", edge, point, tangent,
     fraction)``, :func:`_feet`: the middle first), or the free boundary point nearest the middle of a
     boundary side (``("point", node, point, tangent, None)``); only where the chord runs inside the
-    quad. A foot off the middle must pass the stricter tests of :func:`_chord_worst` (without them
+    quad. A foot off the middle must pass the stricter tests of :func:`chord_worst` (without them
     chords got through at multiple_lobes' notches beside fan-shaped patches, 1600 faces for 1080).
     With ``fans`` (degrees), only the feet of a strip that is one triangle of a point feature's fan,
-    which may end at the feature where the foot halves it into two of ``fans`` (:func:`_strip_beyond`,
+    which may end at the feature where the foot halves it into two of ``fans`` (:func:`strip_beyond`,
     :func:`_feet`): the others were asked without."""
     r, y = found.corners[k], found.corners[(k + j) % 4]
     pos, edge = graph.get(r, "pos"), side_edge(graph, patch, y)
     if edge >= 0:
-        walk = _strip_beyond(graph, patch, edge, fans is not None)
-        if fans is not None and (walk is None or _fan_end(graph, walk) is None):
+        walk = strip_beyond(graph, patch, edge, fans is not None)
+        if fans is not None and (walk is None or fan_end(graph, walk) is None):
             return []  # asked without fans already
         return [("edge", edge, at, tangent, f) for f, at, tangent in _feet(graph, walk, half=fans or MIN_CUT_ANGLE)
                 if chord_inside(found, pos, at)]
@@ -278,7 +273,7 @@ def _targets(graph, patch: int, found, k: int, j: int, fans: float | None = None
     return [("point", w, graph.get(w, "pos"), _ring_tangent(graph, w), None)]
 
 
-def _choose(graph, r: int) -> tuple | None:
+def choose_chord(graph, r: int) -> tuple | None:
     """The chord from the reflex corner ``r`` (see the module docstring): ``(patch, kind, target,
     side, fraction)``, ``kind`` ``"edge"`` (``target`` the plan edge cut at ``fraction`` of its length)
     or ``"point"`` (a boundary point), ``side`` the corner where the side it ends on starts; or None.
@@ -295,56 +290,56 @@ def _choose(graph, r: int) -> tuple | None:
     :data:`MIN_FAN_HALF`, as a cut's may be (never before: asked first, such chords took the place of
     the chosen ones at corners already regular, and plans 12, 395 and 444 fell under 0.3, 444 from
     0.381 to 0.076); where still none does at a hole corner, the widest chord down to
-    :data:`HOLE_MIN_ANGLE` (:func:`_hole_chord`)."""
+    :data:`HOLE_MIN_ANGLE` (:func:`hole_chord`)."""
     patches = sorted({graph.ends(e)[0] for e in graph.incident(r, [PATCH_CORNER])})
     found = [patch_sides(graph, p) for p in patches]
     if any(f is None for f in found):
         return None
-    angles = [_corner(graph, sides, sides.corners.index(r))[2] for sides in found]
+    angles = [patch_corner(graph, sides, sides.corners.index(r))[2] for sides in found]
     quads = [i for i, sides in enumerate(found) if len(sides.corners) == 4]
     at = (r, patches, found, angles)
-    best = _widest_chord(graph, at, quads, None)
+    best = widest_chord(graph, at, quads, None)
     if best is None and ring_place(graph, r)[0] > 0:
-        best = _widest_chord(graph, at, quads, None, HOLE_MAX_RATIO)
+        best = widest_chord(graph, at, quads, None, HOLE_MAX_RATIO)
     for half in (MIN_CUT_ANGLE, MIN_FAN_HALF):
         if best is None:
-            best = _widest_chord(graph, at, quads, None, fans=half)
+            best = widest_chord(graph, at, quads, None, fans=half)
     if best is None and ring_place(graph, r)[0] > 0:
-        best = _hole_chord(graph, at, quads)
+        best = hole_chord(graph, at, quads)
     turned = [i for i in quads if angles[i] > PAST_STRAIGHT] if boundary_angle(graph, r) >= SPIKE else []
     if best is None and turned:
-        best = _widest_chord(graph, at, turned, FOLD_MIN_ANGLE)
+        best = widest_chord(graph, at, turned, FOLD_MIN_ANGLE)
     return None if best is None else best[1:]
 
 
-def _hole_chord(graph, at: tuple, quads: list) -> tuple | None:
-    """The last fallback of a hole corner's chord (:func:`_choose`, where no other qualifies): of every
+def hole_chord(graph, at: tuple, quads: list) -> tuple | None:
+    """The last fallback of a hole corner's chord (:func:`choose_chord`, where no other qualifies): of every
     foot of every side (not the first in :data:`FEET` order that qualifies), the chord whose worst angle
     is widest, down to :data:`HOLE_MIN_ANGLE`, its edge group within :data:`HOLE_MAX_RATIO`. The widest
     foot, not the first: at 20 degrees the first foot of plans 613 and 614 left 0.341 as their worst
     scaled Jacobian, the widest 0.449 (main 0.496, the corner singular); plan 574's rose 0.521 -> 0.539."""
-    return _widest_chord(graph, at, quads, HOLE_MIN_ANGLE, HOLE_MAX_RATIO, every_foot=True)
+    return widest_chord(graph, at, quads, HOLE_MIN_ANGLE, HOLE_MAX_RATIO, every_foot=True)
 
 
-def _widest_chord(graph, at: tuple, quads: list, least: float | None, ratio: float = MAX_RATIO,
+def widest_chord(graph, at: tuple, quads: list, least: float | None, ratio: float = MAX_RATIO,
                   fans: float | None = None, every_foot: bool = False) -> tuple | None:
     """Of the chords from the reflex corner in the quads ``quads`` (indices into ``at``: the corner,
     its patches, their sides and their angles there), the one whose worst angle is widest, as
-    ``(worst, patch, kind, target, side, fraction)`` (:func:`_choose`); ``least`` and ``ratio`` are
-    passed on to :func:`_chord_worst`, ``fans`` to :func:`_targets`. Of a side's feet the first that
+    ``(worst, patch, kind, target, side, fraction)`` (:func:`choose_chord`); ``least`` and ``ratio`` are
+    passed on to :func:`chord_worst`, ``fans`` to :func:`chord_targets`. Of a side's feet the first that
     qualifies, in :data:`FEET` order (the middle first), or with ``every_foot`` the widest of all of
-    them (:func:`_hole_chord`). None where none qualifies."""
+    them (:func:`hole_chord`). None where none qualifies."""
     r, patches, found, angles = at
     theta = boundary_angle(graph, r)
     best = None
     for i in quads:
         p, sides = patches[i], found[i]
         k = sides.corners.index(r)
-        other = _other_angle(theta, angles, i)
+        other = other_angle(theta, angles, i)
         for j in (1, 2):
-            for kind, target, point, tangent, fraction in _targets(graph, p, sides, k, j, fans):
+            for kind, target, point, tangent, fraction in chord_targets(graph, p, sides, k, j, fans):
                 candidate = (kind, target, point, tangent, fraction)
-                worst = _chord_worst(graph, p, sides, k, j, candidate, other, least, ratio)
+                worst = chord_worst(graph, p, sides, k, j, candidate, other, least, ratio)
                 if worst is not None:
                     if best is None or worst > best[0]:
                         best = (worst, p, kind, target, sides.corners[(k + j) % 4], fraction)
@@ -353,7 +348,7 @@ def _widest_chord(graph, at: tuple, quads: list, least: float | None, ratio: flo
     return best
 
 
-def _other_angle(theta: float, angles: list, i: int) -> float:
+def other_angle(theta: float, angles: list, i: int) -> float:
     """The angle (degrees) at a reflex corner of interior angle ``theta`` that a chord in its ``i``-th
     patch (``angles``: its patches' angles at the corner) counts besides its own parts: beside two
     patches the other's, the rest of ``theta``; beside more (a spike of 315 to 360 degrees, regular
@@ -362,71 +357,73 @@ def _other_angle(theta: float, angles: list, i: int) -> float:
     splits the widest patch (jagged outlines: a quad of 196 degrees at a 342 degree spike beside a
     triangle of 10).
 
-    >>> _other_angle(270.0, [180.0, 90.0], 0), _other_angle(330.0, [150.0, 100.0, 80.0], 0)
+    >>> other_angle(270.0, [180.0, 90.0], 0), other_angle(330.0, [150.0, 100.0, 80.0], 0)
     (90.0, inf)
     """
     return theta - angles[i] if len(angles) == 2 else math.inf
 
 
-def _chord_worst(graph, patch: int, found, k: int, j: int, target: tuple, other: float,
+def chord_worst(graph, patch: int, found, k: int, j: int, target: tuple, other: float,
                  least: float | None = None, ratio: float = MAX_RATIO) -> float | None:
     """The worst angle of the chord from corner ``k`` of the quad ``patch`` to ``target`` (one of
-    :func:`_targets`' ``(kind, target, point, tangent, fraction)``) where the chord qualifies, None
-    otherwise: its worst angle (:func:`_angles`) reaches :data:`MIN_ANGLE` at the middle of an edge or
+    :func:`chord_targets`' ``(kind, target, point, tangent, fraction)``) where the chord qualifies, None
+    otherwise: its worst angle (:func:`chord_angles`) reaches :data:`MIN_ANGLE` at the middle of an edge or
     on the boundary and :data:`MIN_CUT_ANGLE` at a foot off the middle (as for a cut: a foot off the
     middle is taken only where it leaves no narrow angle), the triangle's pole angle allows its split,
     and the sides the chord puts in one edge group, with the edge's two pieces at a foot off the
-    middle, are even (:func:`_even_group`, within ``ratio``). ``least``, where given, replaces both
+    middle, are even (:func:`even_group`, within ``ratio``). ``least``, where given, replaces both
     angle limits."""
     kind, edge, at, tangent, fraction = target
-    worst, pole = _angles(graph, found, k, j, at, tangent, other)
+    worst, pole = chord_angles(graph, found, k, j, at, tangent, other)
     if least is None:
         least = MIN_ANGLE if fraction in (0.5, None) else MIN_CUT_ANGLE
     if worst < least or pole > MAX_POLE_ANGLE:
         return None
-    return worst if _even_group(graph, patch, found, k, j, at, _pieces(graph, kind, edge, fraction), ratio) else None
+    return worst if even_group(graph, patch, found, k, j, at, _pieces(graph, kind, edge, fraction), ratio) else None
 
 
-def _strip_beyond(graph, patch: int, edge: int, fans: bool = False):
+def strip_beyond(graph, patch: int, edge: int, fans: bool = False, split: bool = False):
     """The walk of the strip a chord in the quad ``patch`` to the middle of its side ``edge`` starts
     in the patch beyond, where it completes (:func:`~vaultgram.topology.strips.strip_walk`, as for
     Figure 8's split to a side, §4.2) without ending in a triangle at a point the split would
     change: a boundary point gains a face, a boundary singularity (rv_star_pattern's 215 degree
     vertex, the strip from its 256 degree corner); a point feature's fan carries its load (§4.1: a
     random plan's worst quad went from 0.31 to 0.20 there); a curve is a cut the layout keeps
-    (§4.2). None otherwise. With ``fans`` (a cut, :func:`_cut`), a strip that is one triangle of a
-    point feature's fan (:func:`_fan_end`) may end at the feature, which stays the pole of both
+    (§4.2). None otherwise. With ``fans`` (a cut, :func:`choose_cut`), a strip that is one triangle of a
+    point feature's fan (:func:`fan_end`) may end at the feature, which stays the pole of both
     halves, where the chord's foot halves the triangle's angle there (:func:`_feet`,
-    :func:`_halves_fan`): 58 of the 204 boundary singular vertices of the 700 saved random plans
+    :func:`halves_fan`): 58 of the 204 boundary singular vertices of the 700 saved random plans
     were hole corners whose cut was refused only by such an end. For the chords of a corner of two
-    patches only where no other chord qualifies (:func:`_choose`: asked first, it changed the chosen
+    patches only where no other chord qualifies (:func:`choose_chord`: asked first, it changed the chosen
     chord at corners already regular: plans 12, 395 and 444 fell under 0.3, 444 from 0.381 to
     0.076). Not for a strip of several patches into a fan (from the
-    middle at 20-30 degrees, plans 23 and 24 took a wedge of slivers, min SJ 0.455 -> 0.048)."""
+    middle at 20-30 degrees, plans 23 and 24 took a wedge of slivers, min SJ 0.455 -> 0.048). With
+    ``split`` (a cut, :func:`cut_walk`), the strip may end at the middle of a boundary side that is one
+    boundary edge (:func:`~vaultgram.topology.strips.strip_boundary_split`)."""
     beyond = patch_across(graph, patch, edge)
-    walk = None if beyond is None else strip_walk(graph, beyond[0], beyond[1], frozenset([patch]))
+    walk = None if beyond is None else strip_walk(graph, beyond[0], beyond[1], frozenset([patch]), split)
     if walk is None or walk.end is None or len(patch_sides(graph, walk.patches[-1]).corners) == 4:
         return walk
-    if fans and _fan_end(graph, walk) is not None:
+    if fans and fan_end(graph, walk) is not None:
         return walk
     kind = graph.node_type(walk.end)
-    kept = _feature(graph, walk.end) or any(graph.schema.is_subtype(kind, t) for t in KEPT_ENDS)
+    kept = is_feature(graph, walk.end) or any(graph.schema.is_subtype(kind, t) for t in KEPT_ENDS)
     return None if kept else walk
 
 
 def cut_walk(graph, patch: int, edge: int):
     """The walk of the strip a hole corner's cut across the quad ``patch`` to its side ``edge`` starts
-    (:func:`_strip_beyond` with ``fans``), or where that is refused only because the chord from the
+    (:func:`strip_beyond` with ``fans`` and ``split``), or where that is refused only because the chord from the
     middle of ``edge`` to the corner opposite it in the triangle beyond leaves the triangle (a curved
     side), that triangle as a one-patch walk (:func:`_fan_walk`): the cut's feet off the middle may
     run inside it (:func:`_feet` checks each)."""
-    walk = _strip_beyond(graph, patch, edge, fans=True)
+    walk = strip_beyond(graph, patch, edge, fans=True, split=True)
     return walk if walk is not None else _fan_walk(graph, patch, edge)
 
 
 def _fan_walk(graph, patch: int, edge: int) -> Walk | None:
     """The one triangle beyond the side ``edge`` of the quad ``patch``, as a walk ending at its corner
-    opposite ``edge``, where that corner is a pole (:func:`_pole`: a point feature or a curve's free
+    opposite ``edge``, where that corner is a pole (:func:`is_pole`: a point feature or a curve's free
     end, which stays the pole of both halves); None otherwise. For a cut whose strip walk
     (:func:`~vaultgram.topology.strips.strip_walk`, from the middle) is refused there: on the 700 saved
     random plans, hole corners of plans 579 and 665 whose chord from the middle of a curved branch to
@@ -436,10 +433,10 @@ def _fan_walk(graph, patch: int, edge: int) -> Walk | None:
     if found is None or len(found.corners) != 3:
         return None
     end = found.corners[(beyond[1] + 2) % 3]
-    return Walk((beyond[0],), (edge,), end) if _pole(graph, end) else None
+    return Walk((beyond[0],), (edge,), end) if is_pole(graph, end) else None
 
 
-def _side_length(graph, side) -> float:
+def side_length(graph, side) -> float:
     """The length of a patch side (its half-edges' polylines)."""
     return sum(float(arc_lengths(half_edge_polyline(graph, e, u))[-1]) for e, u in side)
 
@@ -453,7 +450,7 @@ def _pieces(graph, kind: str, target: int, fraction: float | None) -> tuple:
     return fraction * length, (1.0 - fraction) * length
 
 
-def _even_group(graph, patch: int, found, k: int, j: int, end, pieces: tuple = (),
+def even_group(graph, patch: int, found, k: int, j: int, end, pieces: tuple = (),
                 ratio: float = MAX_RATIO) -> bool:
     """Whether the chord from corner ``k`` to ``end`` leaves its edge group even, its lengths within
     ``ratio`` (:data:`MAX_RATIO` unless given; and the two ``pieces`` of the edge it cuts off the
@@ -466,18 +463,18 @@ def _even_group(graph, patch: int, found, k: int, j: int, end, pieces: tuple = (
     4.7), and chords of 5.7 beside them doubled the mesh (2338 faces for 1110) with slivers of
     0.05 x 0.17 that made the tessellation refine to 7150 voussoirs from 974."""
     side = found.sides[k] if j == 1 else found.sides[k - 1]
-    lengths = [math.dist(graph.get(found.corners[k], "pos"), end), _side_length(graph, side)]
+    lengths = [math.dist(graph.get(found.corners[k], "pos"), end), side_length(graph, side)]
     if pieces and max(pieces) > ratio * min(pieces):
         return False
     if len(side) == 1:
         beyond = patch_across(graph, patch, side[0][0])
         sides = patch_sides(graph, beyond[0]) if beyond else None
         if sides is not None and len(sides.corners) == 4:
-            lengths.append(_side_length(graph, sides.sides[(beyond[1] + 2) % 4]))
+            lengths.append(side_length(graph, sides.sides[(beyond[1] + 2) % 4]))
     return max(lengths) <= ratio * min(lengths)
 
 
-def _corner(graph, found, k: int) -> tuple[tuple, float, float]:
+def patch_corner(graph, found, k: int) -> tuple[tuple, float, float]:
     """A patch's corner ``k``: its position, the direction (radians) of the side leaving it and the
     patch's interior angle there (degrees), between the first steps of its two sides."""
     pos = graph.get(found.corners[k], "pos")
@@ -485,12 +482,12 @@ def _corner(graph, found, k: int) -> tuple[tuple, float, float]:
     out = half_edge_polyline(graph, e, u)[1]  # the first step along the side leaving the corner
     e, u = found.sides[k - 1][-1]
     back = half_edge_polyline(graph, e, u)[-2]  # the last step of the side arriving there, reversed
-    d_out = _direction(pos, out)
-    return pos, d_out, _ccw(d_out, _direction(pos, back))
+    d_out = direction(pos, out)
+    return pos, d_out, ccw_degrees(d_out, direction(pos, back))
 
 
 def _once(graph, work, r: int):
-    """``work(graph, r)`` (:func:`_choose` or :func:`_cut`), worked out once per corner and state of
+    """``work(graph, r)`` (:func:`choose_chord` or :func:`choose_cut`), worked out once per corner and state of
     the graph."""
     memo = per_state(_STATE, graph, lambda g: {})
     if (work, r) not in memo:
@@ -502,25 +499,25 @@ def reflex_chord(graph, patch: int, r: int) -> int:
     """The plan edge to whose middle the chord from the reflex corner ``r`` runs in the quad
     ``patch`` (a whole side of it away from ``r``; a strip carries it on beyond), where this is the
     corner's best chord (see the module docstring); -1 otherwise."""
-    choice = _once(graph, _choose, r)
+    choice = _once(graph, choose_chord, r)
     return choice[2] if choice is not None and choice[:2] == (patch, "edge") else -1
 
 
 def reflex_side(graph, patch: int, r: int) -> int:
     """The corner of the quad ``patch`` where the side starts on which the chord from the reflex
     corner ``r`` ends, where this is the corner's best chord; ``r`` itself otherwise."""
-    choice = _once(graph, _choose, r)
+    choice = _once(graph, choose_chord, r)
     return choice[3] if choice is not None and choice[0] == patch else r
 
 
 def reflex_foot(graph, patch: int, r: int) -> int:
     """The boundary point (on a side of the quad ``patch`` away from ``r``) where the chord from the
     reflex corner ``r`` ends, where this is the corner's best chord; ``r`` itself otherwise."""
-    choice = _once(graph, _choose, r)
+    choice = _once(graph, choose_chord, r)
     return choice[2] if choice is not None and choice[:2] == (patch, "point") else r
 
 
-def _on_side(graph, r: int) -> tuple[int, int] | None:
+def on_side(graph, r: int) -> tuple[int, int] | None:
     """The Patch node with the boundary point ``r`` inside one of its sides, and that side's index:
     found from the first patch corner before ``r`` along its ring (a patch's boundary side runs in
     ring order, the domain on its left); None where ``r`` is a patch's corner or none is found."""
@@ -540,7 +537,7 @@ def _on_side(graph, r: int) -> tuple[int, int] | None:
     return None
 
 
-def _cut(graph, r: int) -> tuple | None:
+def choose_cut(graph, r: int) -> tuple | None:
     """The chord across the quad on whose side the reflex corner ``r`` lies (:func:`reflex_cut`):
     ``(patch, side index, edge, fraction)``, or None. It ends at the first of the opposite edge's
     feet (:func:`_feet`: the middle where it can) where it runs inside the quad and leaves no angle
@@ -552,7 +549,7 @@ def _cut(graph, r: int) -> tuple | None:
     if across is None:
         return None
     patch, i, found, edge, walk = across
-    halves = (MIN_CUT_ANGLE, MIN_FAN_HALF) if walk is not None and _fan_end(graph, walk) else (MIN_CUT_ANGLE,)
+    halves = (MIN_CUT_ANGLE, MIN_FAN_HALF) if walk is not None and fan_end(graph, walk) else (MIN_CUT_ANGLE,)
     for half in halves:
         fraction = _cut_foot(graph, r, found, _feet(graph, walk, half=half))
         if fraction is not None:
@@ -565,7 +562,7 @@ def _cut_across(graph, r: int) -> tuple | None:
     sides, the plan edge opposite, the walk of the strip a cut to it starts)`` (:func:`cut_walk`, None
     where it does not complete); None where ``r`` lies inside no quad's side or the opposite side is
     not one plan edge a strip may cut."""
-    at = _on_side(graph, r)
+    at = on_side(graph, r)
     if at is None or len(patch_sides(graph, at[0]).corners) != 4:
         return None
     patch, i = at
@@ -575,30 +572,30 @@ def _cut_across(graph, r: int) -> tuple | None:
 
 
 def _bisecting_cut(graph, r: int) -> tuple | None:
-    """The cut of the reflex corner ``r`` (as :func:`_cut`'s) whose strip is one triangle of a pole's
+    """The cut of the reflex corner ``r`` (as :func:`choose_cut`'s) whose strip is one triangle of a pole's
     fan, ending at the foot whose chord to the pole bisects the triangle's angle there
-    (:func:`_bisecting_foot`), where :func:`_cut` has none: the halves reach :data:`MIN_FAN_HALF`, the
+    (:func:`bisecting_foot`), where :func:`choose_cut` has none: the halves reach :data:`MIN_FAN_HALF`, the
     chords run inside, the cut leaves no angle below :data:`MIN_CUT_ANGLE` (:func:`_cut_foot`). For
     ``rules/corners.vgr``'s last cut, after the rebranch to the fan's pole (which takes a skewed fan
     triangle out of the layout where it qualifies: with Figure 4's crescents allowed, the bisecting
     cut taken first left draw 666 of session 23's plans 7 boundary singular vertices and a worst face
     of 0.014, the rebranch 3 and 0.301)."""
     across = _cut_across(graph, r)
-    if across is None or across[4] is None or _fan_end(graph, across[4]) is None or _once(graph, _cut, r):
+    if across is None or across[4] is None or fan_end(graph, across[4]) is None or _once(graph, choose_cut, r):
         return None
     patch, i, found, edge, walk = across
-    fraction = _cut_foot(graph, r, found, _feet(graph, walk, _bisecting_foot(graph, walk), MIN_FAN_HALF))
+    fraction = _cut_foot(graph, r, found, _feet(graph, walk, bisecting_foot(graph, walk), MIN_FAN_HALF))
     return None if fraction is None else (patch, i, edge, fraction)
 
 
-def _bisecting_foot(graph, walk) -> tuple:
-    """Where the chord from the pole of the fan triangle ``walk`` ends (:func:`_fan_end`: a strip of one
+def bisecting_foot(graph, walk) -> tuple:
+    """Where the chord from the pole of the fan triangle ``walk`` ends (:func:`fan_end`: a strip of one
     triangle, entered by the side opposite the pole) bisects the triangle's angle at the pole: the
     fraction of the entry edge's length there, as a one-foot tuple for :func:`_feet`, where it lies at
     least :data:`BISECTING_FOOT` from either end; empty otherwise. The most even halves any foot of that
     edge gives the fan (§4.1: the pole stays the pole of both), found where :data:`FEET`' fixed
     fractions miss them on a skewed triangle."""
-    pos, d_out, whole = _fan_end(graph, walk)
+    pos, d_out, whole = fan_end(graph, walk)
     edge = walk.edges[0]
     fraction = ray_hit_fraction(half_edge_polyline(graph, edge, graph.ends(edge)[0]), pos,
                                 d_out + math.radians(whole / 2.0))
@@ -610,18 +607,18 @@ def _cut_foot(graph, r: int, found, feet) -> float | None:
     across the quad ``found`` runs inside it and leaves no angle below :data:`MIN_CUT_ANGLE` at ``r``
     (from the boundary leaving ``r``, measured as its interior angle is, and the rest) or with the
     edge it meets; None where none does."""
-    pos, ahead, theta = graph.get(r, "pos"), _ahead(graph, r), boundary_angle(graph, r)
+    pos, ahead, theta = graph.get(r, "pos"), boundary_ahead(graph, r), boundary_angle(graph, r)
     for fraction, foot, tangent in feet:
-        d_chord = _direction(pos, foot)
-        first = _ccw(ahead, d_chord)  # between the boundary leaving r and the chord
-        meet = _ccw(tangent, d_chord) % 180.0
+        d_chord = direction(pos, foot)
+        first = ccw_degrees(ahead, d_chord)  # between the boundary leaving r and the chord
+        meet = ccw_degrees(tangent, d_chord) % 180.0
         if min(first, theta - first, meet, 180.0 - meet) >= MIN_CUT_ANGLE and chord_inside(found, pos, foot):
             return fraction
     return None
 
 
 def _cut_part(graph, find, patch: int, r: int, part: int) -> int:
-    """Item ``part`` of the cut that ``find`` (:func:`_cut` or :func:`_bisecting_cut`) gives the reflex
+    """Item ``part`` of the cut that ``find`` (:func:`choose_cut` or :func:`_bisecting_cut`) gives the reflex
     corner ``r`` (1: the index of the quad's side holding ``r``, 2: the plan edge cut), where that cut
     lies in the quad ``patch``; -1 otherwise."""
     cut = _once(graph, find, r)
@@ -633,18 +630,18 @@ def reflex_cut(graph, patch: int, r: int) -> int:
     two faces where its angle asks for three), the plan edge opposite that side, to whose middle a
     chord from ``r`` runs, carried on beyond as a strip; -1 where there is none (the chord would
     leave the quad, its strip would not complete, an angle would be below :data:`MIN_ANGLE`)."""
-    return _cut_part(graph, _cut, patch, r, 2)
+    return _cut_part(graph, choose_cut, patch, r, 2)
 
 
 def reflex_cut_index(graph, patch: int, r: int) -> int:
     """The index of the side of the quad ``patch`` inside which the reflex corner ``r`` lies, where
     :func:`reflex_cut` has a chord for it; -1 otherwise."""
-    return _cut_part(graph, _cut, patch, r, 1)
+    return _cut_part(graph, choose_cut, patch, r, 1)
 
 
 def reflex_cut_at(graph, r: int) -> bool:
     """Whether :func:`reflex_cut` has a chord for the reflex corner ``r`` in some quad."""
-    return _once(graph, _cut, r) is not None
+    return _once(graph, choose_cut, r) is not None
 
 
 def reflex_bisecting_cut(graph, patch: int, r: int) -> int:
@@ -669,9 +666,9 @@ def _foot_of(graph, patch: int, r: int) -> tuple[int, float]:
     fraction of its length there: the cut's where ``r`` lies inside a side (:func:`reflex_cut`, or
     :func:`reflex_bisecting_cut`), else the chord's (:func:`reflex_chord`). Asked only where one of them matched."""
     if not graph.degree(r, [PATCH_CORNER]):
-        cut = _once(graph, _cut, r) or _once(graph, _bisecting_cut, r)
+        cut = _once(graph, choose_cut, r) or _once(graph, _bisecting_cut, r)
         return cut[2], cut[3]
-    choice = _once(graph, _choose, r)
+    choice = _once(graph, choose_chord, r)
     return choice[2], choice[4]
 
 
@@ -683,7 +680,7 @@ def reflex_point(graph, patch: int, r: int) -> tuple[float, float]:
     return float(foot[0]), float(foot[1])
 
 
-def _smooth_boundary_side(graph, side) -> bool:
+def smooth_boundary_side(graph, side) -> bool:
     """Whether a patch side (its half-edges ``(edge, start)``) runs along the boundary and every point
     inside it is a free smooth point (no feature, regular valence 3 by its angle: 135-225 degrees), so
     that the side may become part of the patch beyond's boundary side unchanged (two faces at each
@@ -701,9 +698,9 @@ def rebranch_to_corner(graph, patch: int, b: int, c: int, x: int) -> bool:
     straight inside the patch and splits its angle at ``b`` into two of at least :data:`MIN_ANGLE`
     degrees: the one on ``c``'s side (the patch beyond gets that) and the triangle's, at most
     :data:`MAX_POLE_ANGLE` (its pole, meshed as three quads). The same limits as a reflex corner's
-    chord (:func:`_choose`), for the same reason: a sliver beside ``b`` would cost more than its
+    chord (:func:`choose_chord`), for the same reason: a sliver beside ``b`` would cost more than its
     boundary singularity (issue 12, item 3). The patch's side from ``b`` to ``c`` must be a run of
-    free smooth boundary points (:func:`_smooth_boundary_side`: it joins the patch beyond's side, and
+    free smooth boundary points (:func:`smooth_boundary_side`: it joins the patch beyond's side, and
     each point keeps its two faces) and the triangle's sides at ``b`` within :data:`MAX_POLE_RATIO`."""
     found = patch_sides(graph, patch)
     if found is None or len(found.corners) != 4 or b not in found.corners:
@@ -711,12 +708,12 @@ def rebranch_to_corner(graph, patch: int, b: int, c: int, x: int) -> bool:
     k = found.corners.index(b)
     forward = c == found.corners[(k + 1) % 4]
     to_c, to_a = (found.sides[k], found.sides[k - 1]) if forward else (found.sides[k - 1], found.sides[k])
-    pos, d_out, whole = _corner(graph, found, k)
+    pos, d_out, whole = patch_corner(graph, found, k)
     to = graph.get(x, "pos")
-    pole_sides = math.dist(pos, to), _side_length(graph, to_a)
-    if not _smooth_boundary_side(graph, to_c) or max(pole_sides) > MAX_POLE_RATIO * min(pole_sides):
+    pole_sides = math.dist(pos, to), side_length(graph, to_a)
+    if not smooth_boundary_side(graph, to_c) or max(pole_sides) > MAX_POLE_RATIO * min(pole_sides):
         return False
-    first = _ccw(d_out, _direction(pos, to))  # between the side leaving b and the rebranch
+    first = ccw_degrees(d_out, direction(pos, to))  # between the side leaving b and the rebranch
     triangle = whole - first if forward else first
     return (MIN_ANGLE <= first <= whole - MIN_ANGLE and triangle <= MAX_POLE_ANGLE
             and chord_inside(found, pos, to))

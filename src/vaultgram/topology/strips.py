@@ -9,7 +9,7 @@ opposite side, and so on across quads until the strip reaches the boundary, ends
 the functions here let them start a strip only where it certainly completes as a valid layout
 (:func:`strip_start`, :func:`strip_from_curve_end`): they walk it first across the patches it
 would cross, and refuse it where it would meet a patch that is no quad or triangle, a side it
-cannot split (a curve, a boundary stretch without a free point, a side of several edges), the
+cannot split (a curve, a boundary stretch of several edges without a free point, a side of several edges), the
 same patch twice, or a chord that would leave its patch. The engine knows nothing of this; the
 vault pipeline registers the functions (:mod:`vaultgram.topology.functions`).
 """
@@ -47,7 +47,8 @@ from vaultgram.topology.types import (
 )
 
 __all__ = ["SPLITTABLE", "PatchSides", "patch_sides", "side_edge", "corner_chord_angle", "strip_point",
-           "strip_piece", "strip_piece_to", "side_through", "strip_boundary_end", "Walk", "strip_walk",
+           "strip_piece", "strip_piece_to", "side_through", "strip_boundary_end", "strip_boundary_split", "Walk",
+           "strip_walk",
            "strip_through", "strip_start", "strip_from_curve_end", "register_strip_helpers", "edge_halves",
            "cut_along", "chord_inside", "patch_across"]
 
@@ -244,6 +245,25 @@ def _boundary_end(graph, patch: int, corner: int) -> int:
     return min(inner)[1] if inner else corner
 
 
+def strip_boundary_split(graph, patch: int, corner: int) -> int:
+    """The boundary edge a strip splits at its middle to end there, where the side of the Patch node
+    ``patch`` from ``corner`` is that one boundary edge (both its points patch corners already: no free
+    point inside the side for :func:`strip_boundary_end`); -1 otherwise. The strip's chord then ends
+    at a new boundary point of 180 degrees with two faces, regular (§4.2's strip reaches the boundary
+    as anywhere else): saved random plans 456-458 (an octagonal hole's 225 degree corner inside a
+    ring patch's side), whose cut's strip crossed one quad to a 0.57 long boundary edge between two
+    other strips' ends and was refused, the corner left with two faces. Only the walks of a hole
+    corner's cut ask for it (:func:`strip_walk`'s ``split``,
+    :func:`vaultgram.topology.reflex.cut_walk`): allowed for every strip walk (the chords of corners of
+    two patches, Figure 8's and the lone corners' strips too), it changed jagged_1's layout (three patch
+    corners past straight for two, worst scaled Jacobian 0.061 -> 0.043)."""
+    found = patch_sides(graph, patch)
+    if found is None or corner not in found.corners:
+        return -1
+    side = found.sides[found.corners.index(corner)]
+    return side[0][0] if len(side) == 1 and graph.edge_type(side[0][0]) == BOUNDARY else -1
+
+
 def _free_boundary_point(graph, n: int) -> bool:
     return (graph.schema.is_subtype(graph.node_type(n), BOUNDARY_VERTEX) and graph.node_type(n) != CORNER
             and not graph.get(n, "feature") and graph.degree(n, [PATCH_CORNER]) == 0
@@ -275,23 +295,33 @@ def _patches_at(graph, n: int) -> list:
 class Walk:
     """The patches a strip crosses from one side on (in order), the plan edges it cuts on the way
     (the entry edge first), and where it ends: the corner of a triangle opposite the strip, a
-    boundary point, or None when it came back to its entry edge (a closed strip)."""
+    boundary point, or None when it came back to its entry edge (a closed strip). Where it ends on a
+    boundary side that is one boundary edge with no free point (:func:`strip_boundary_split`),
+    ``split`` is that edge, cut at its middle by a new boundary point, and ``end`` the quad's corner
+    where the side starts; -1 otherwise."""
 
     patches: tuple
     edges: tuple
     end: int | None
+    split: int = -1
+
+    def end_point(self, graph) -> tuple:
+        """Where the strip ends: the middle of the split boundary edge, else the end's position."""
+        return strip_point(graph, self.split) if self.split >= 0 else graph.get(self.end, "pos")
 
     @property
     def closed(self) -> bool:
         return self.end is None
 
 
-def strip_walk(graph, patch: int, k: int, seen: frozenset = frozenset()) -> Walk | None:
+def strip_walk(graph, patch: int, k: int, seen: frozenset = frozenset(), split: bool = False) -> Walk | None:
     """The strip that enters ``patch`` through the middle of its side ``k`` (a plan edge it may cut),
     walked on: across a quad to the middle of its opposite side, into the patch beyond, until it
-    ends on the boundary (at a free point of a boundary side), in a triangle (at its corner opposite
-    the entry), or back at its entry edge. None where it cannot: a patch that is no quad or triangle,
-    a side it may not cut, a patch twice (or one of ``seen``), a chord that leaves its patch.
+    ends on the boundary (at a free point of a boundary side; with ``split``, also at the middle of a
+    boundary side that is one boundary edge: :func:`strip_boundary_split`), in a triangle (at its
+    corner opposite the entry), or back at its entry edge. None where it cannot: a patch that is no
+    quad or triangle, a side it may not cut, a patch twice (or one of ``seen``), a chord that leaves
+    its patch.
     """
     entry = side_edge(graph, patch, patch_sides(graph, patch).corners[k]) if patch_sides(graph, patch) else -1
     patches, edges = [], [entry]
@@ -305,9 +335,10 @@ def strip_walk(graph, patch: int, k: int, seen: frozenset = frozenset()) -> Walk
         nxt = side_edge(graph, patch, out) if len(found.corners) == 4 else -1
         if nxt < 0:  # the end: the triangle's corner opposite the strip, or a point of a boundary side
             end = out if len(found.corners) == 3 else strip_boundary_end(graph, patch, out)
-            ok = end != out or len(found.corners) == 3
-            return Walk(tuple(patches), tuple(edges), end) if ok and chord_inside(found, here, graph.get(
-                end, "pos")) else None
+            cut = strip_boundary_split(graph, patch, out) if split and end == out and len(found.corners) == 4 else -1
+            walk = Walk(tuple(patches), tuple(edges), end, cut)
+            ok = end != out or len(found.corners) == 3 or cut >= 0
+            return walk if ok and chord_inside(found, here, walk.end_point(graph)) else None
         if not chord_inside(found, here, strip_point(graph, nxt)):
             return None
         if nxt == edges[0]:
@@ -373,6 +404,7 @@ def register_strip_helpers(f) -> None:
             ("strip_piece", strip_piece, ("edge", "node"), "list"),
             ("strip_piece_to", strip_piece_to, ("edge", "vec2", "node"), "list"),
             ("strip_boundary_end", strip_boundary_end, ("node", "node"), "node"),
+            ("strip_boundary_split", strip_boundary_split, ("node", "node"), "edge"),
             ("strip_start", strip_start, ("node", "node", "edge"), "bool"),
             ("strip_from_curve_end", strip_from_curve_end, ("node", "node", "edge"), "bool")):
         f.register(name, fn, params, returns, uses_graph=True, local=False)
