@@ -131,11 +131,11 @@ def test_lobes_heights_agree_between_resolutions_away_from_the_notches(architect
     (means 2.82 / 0.75 / 0.157%). The bounds fail for the layouts session 26 measured as worse at the notches:
     the left notch's chord into the upper lobe (max 3.52 / 4.56 / 3.90%, mean 3.99%, 99th mean 1.07%), its
     chord towards the skeleton (99th 1.29 / 1.22 / 1.54%, far median 0.451 / 0.425 / 0.116%). Nearer the
-    notches the heights still rise with the resolution (session 27: 0.5 m from the left notch's three corners by
-    1.0-1.4% of zmax from 82,399 to 832,000 faces, as from 16,298 to 82,399). History: with the boundary
-    pieces rounded one by one (before session 16) the boundary vertices drifted by up to an edge and the middle
-    pair's heights by 4.88% (max), 2.71% (99th percentile), 0.43% (median); from equal densities near the notches
-    (before session 17) 5.81% and 1.51% (cumulative counts in
+    notches the heights still change with the resolution (session 27: 0.5 m from the top and bottom notches'
+    corners the finer vault is higher at every step, by 0.8-1.3% of zmax from 82,399 to 832,000 faces). History:
+    with the boundary pieces rounded one by one (before session 16) the boundary vertices drifted by up to an edge
+    and the middle pair's heights by 4.88% (max), 2.71% (99th percentile), 0.43% (median); from equal densities
+    near the notches (before session 17) 5.81% and 1.51% (cumulative counts in
     :func:`vaultgram.geometry.polylines.resample_polyline`; the plan's own densities near the reflex corners,
     :func:`vaultgram.formfinding.relaxation.notch_densities`)."""
     domain = load_domain(architecture_dir / "multiple_lobes.json")
