@@ -93,36 +93,57 @@ def _reflex_corners(domain, origin) -> np.ndarray:
     return outer[np.degrees(np.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], (a * b).sum(1))) < -20]
 
 
-def test_lobes_heights_agree_between_resolutions_away_from_the_notches(architecture_dir):
-    """Issue 18's heights floor on the multiple-lobes plan at 8,159 and 16,298 faces, at the coarser
-    network's vertices farther than 1.5 m from the outline's reflex corners (nearer, the unfolding's
-    bands differ: not met there yet): within 2% of zmax, median within 0.3%. The relaxation places
-    every free vertex by the supports' spacing in index space, so the boundary vertices between kept
-    outline points must sit where a uniform subdivision of the side puts them at every resolution
-    (cumulative counts in :func:`vaultgram.geometry.polylines.resample_polyline`); with the pieces
-    rounded one by one (largest remainders, before session 16) they drifted by up to an edge, and the
-    heights by 4.88% (max), 2.71% (99th percentile) and 0.43% (median); with cumulative counts 1.59%,
-    0.99% and 0.16%. At all the coarser vertices, near the notches too: within 3%, 99th percentile
-    within 1% since the relaxation starts from the plan's own densities near the reflex corners
-    (session 17: 2.59% and 0.66%; from equal densities 5.81% and 1.51%)."""
+#: Three neighbouring pairs of resolutions around 10^4 faces (faces asked, each pair a factor 2), centred on the
+#: one pair the test had before session 27, on which it decided between layouts whose means are equal (session
+#: 26: of six such pairs from 9,000 to 12,000 faces asked main passed the old single-pair bounds at 3, a layout
+#: that failed at the old pair passed at 2 others). Six pairs cost 45 s of CPU, three about 23 s.
+LOBES_PAIRS = ((9500, 19000), (10000, 20000), (10500, 21000))
+
+
+def _lobes_pair_differences(domain, coarse_faces: int, fine_faces: int) -> tuple[np.ndarray, np.ndarray, int]:
+    """|finer height (linear interpolation) - coarser height| / the finer zmax at the coarser network's vertices
+    inside the finer one, the same at those farther than 1.5 m from the outline's reflex corners, and the
+    coarser network's vertex count; both networks converged in compression (issue 18)."""
     from scipy.interpolate import LinearNDInterpolator
     from scipy.spatial import cKDTree
 
-    domain = load_domain(architecture_dir / "multiple_lobes.json")
     networks = []
-    for faces in (10000, 20000):
+    for faces in (coarse_faces, fine_faces):
         mesh = mesh_domain(domain, 0.02, target_length=float(np.sqrt(domain.area / faces)))
         tn = thrust_of_mesh(mesh, domain.supports, domain)
         assert tn.summary["max_angle_deg"] < 0.5 and np.all(tn.q[tn.form.active] > 0)
         networks.append(tn.vertices)
     coarse, fine = networks
-    distance, _ = cKDTree(_reflex_corners(domain, mesh.origin)).query(coarse[:, :2])
     z = LinearNDInterpolator(fine[:, :2], fine[:, 2])(coarse[:, :2])
-    far = (distance > 1.5) & np.isfinite(z)
-    d = np.abs(z[far] - coarse[far, 2]) / fine[:, 2].max()
-    assert far.sum() > 0.75 * len(coarse)
-    assert d.max() < 0.02 and np.median(d) < 0.003
     inside = np.isfinite(z)
     d = np.abs(z[inside] - coarse[inside, 2]) / fine[:, 2].max()
-    assert inside.sum() > 0.99 * len(coarse)
-    assert d.max() < 0.03 and np.percentile(d, 99) < 0.01
+    distance, _ = cKDTree(_reflex_corners(domain, mesh.origin)).query(coarse[inside, :2])
+    return d, d[distance > 1.5], len(coarse)
+
+
+def test_lobes_heights_agree_between_resolutions_away_from_the_notches(architecture_dir):
+    """Issue 18's heights floor on the multiple-lobes plan (§5: the relaxation of mode "all"), as a statistic over
+    the neighbouring pairs of :data:`LOBES_PAIRS` (7,954 -> 15,618, 8,159 -> 16,298 and 8,526 -> 17,280 faces): at
+    the coarser network's vertices, per pair max < 4% of zmax and, farther than 1.5 m from the outline's reflex
+    corners (where the unfolding's bands do not reach), max < 2% (the issue's bound); over the pairs, mean of the
+    max < 3.3%, of the 99th percentile < 1%, of the far median < 0.25%. Main af3c82e (session 27): max 3.70 /
+    2.61 / 2.16%, 99th 0.88 / 0.59 / 0.77%, far max 1.04 / 0.70 / 0.93%, far median 0.168 / 0.145 / 0.158%
+    (means 2.82 / 0.75 / 0.157%). The bounds fail for the layouts session 26 measured as worse at the notches:
+    the left notch's chord into the upper lobe (max 3.52 / 4.56 / 3.90%, mean 3.99%, 99th mean 1.07%), its
+    chord towards the skeleton (99th 1.29 / 1.22 / 1.54%, far median 0.451 / 0.425 / 0.116%). Nearer the
+    notches the heights still change with the resolution (session 27: 0.5 m from the top and bottom notches'
+    corners the finer vault is higher at every step, by 0.8-1.3% of zmax from 82,399 to 832,000 faces). History:
+    with the boundary pieces rounded one by one (before session 16) the boundary vertices drifted by up to an edge
+    and the middle pair's heights by 4.88% (max), 2.71% (99th percentile), 0.43% (median); from equal densities
+    near the notches (before session 17) 5.81% and 1.51% (cumulative counts in
+    :func:`vaultgram.geometry.polylines.resample_polyline`; the plan's own densities near the reflex corners,
+    :func:`vaultgram.formfinding.relaxation.notch_densities`)."""
+    domain = load_domain(architecture_dir / "multiple_lobes.json")
+    stats = []
+    for coarse_faces, fine_faces in LOBES_PAIRS:
+        d, far, n_coarse = _lobes_pair_differences(domain, coarse_faces, fine_faces)
+        assert len(d) > 0.99 * n_coarse and len(far) > 0.75 * n_coarse
+        assert d.max() < 0.04 and far.max() < 0.02, (coarse_faces, d.max(), far.max())
+        stats.append((d.max(), np.percentile(d, 99), np.median(far)))
+    mean_max, mean_p99, mean_far_median = np.mean(stats, axis=0)
+    assert mean_max < 0.033 and mean_p99 < 0.01 and mean_far_median < 0.0025, stats
