@@ -23,7 +23,8 @@ point's fan) has no such side: a chord to the pole gives ``r`` two triangles, tw
 The foot is the first of :data:`~vaultgram.topology.reflex.FEET` where the chord runs inside the
 triangle, the strip's first chord inside the patch beyond, and the chord leaves no angle below
 :data:`~vaultgram.topology.reflex.MIN_CUT_ANGLE` at ``r`` or with the edge it meets (a quad cut's
-limits), and where the new patches' edge groups are even (:data:`MAX_RATIO`).
+limits) and leaves neither new patch turning past straight there, and where the new patches' edge groups
+are even (:data:`MAX_RATIO`).
 """
 
 from __future__ import annotations
@@ -85,7 +86,9 @@ def _foot_fits(graph, r: int, found, walk, edge: int, fraction: float, foot) -> 
     ``found``, the strip's first chord from there runs inside the patch beyond (a fan triangle's
     halved into two of :data:`~vaultgram.topology.reflex.MIN_FAN_HALF`), and the chord leaves no angle
     below :data:`~vaultgram.topology.reflex.MIN_CUT_ANGLE` at ``r`` (from the boundary leaving it, as
-    its angle is measured) or with the edge it meets."""
+    its angle is measured) or with the edge it meets, and neither new patch turns past straight at ``r``
+    (:data:`~vaultgram.topology.reflex.PAST_STRAIGHT`: the triangle's corner there stays one, and the quad's
+    need not wait for the chord that gives ``r`` its third patch; plans 688/689: 73.1 and 158.3)."""
     pos = graph.get(r, "pos")
     if not chord_inside(found, pos, foot):
         return False
@@ -100,7 +103,8 @@ def _foot_fits(graph, r: int, found, walk, edge: int, fraction: float, foot) -> 
     d_chord = direction(pos, foot)
     first = ccw_degrees(reflex.boundary_ahead(graph, r), d_chord)
     meet = ccw_degrees(direction(back, ahead), d_chord) % 180.0
-    return min(first, boundary_angle(graph, r) - first, meet, 180.0 - meet) >= reflex.MIN_CUT_ANGLE
+    rest = boundary_angle(graph, r) - first
+    return min(first, rest, meet, 180.0 - meet) >= reflex.MIN_CUT_ANGLE and max(first, rest) < reflex.PAST_STRAIGHT
 
 
 def _even(graph, r: int, found, i: int, pole: int, foot) -> bool:
