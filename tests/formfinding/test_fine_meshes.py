@@ -12,6 +12,7 @@ from formfinding.cases import holed_grid
 from vaultgram.domain import load_domain
 from vaultgram.formfinding.formdiagram import form_diagram
 from vaultgram.formfinding.horizontal import horizontal
+from vaultgram.formfinding.relaxation import _NOTCH_REACH
 from vaultgram.pipeline import mesh_domain, thrust_of_mesh
 
 
@@ -59,9 +60,13 @@ def test_lobes_at_ten_thousand_faces_unfold_at_the_notches(architecture_dir):
     densities within about 2 m of the reflex corners are the plan's own (dual over primal length,
     :func:`~vaultgram.formfinding.relaxation.notch_densities`) before the descent, which are more than
     a factor 2 from the median on about an eighth of the edges (the meshed quads' aspect ratios near
-    the notches); before, the descent alone changed under 5% of them. All within 8 median edges of a
-    reflex corner of the meshed plan (1.9 m; the relaxation moves the vertices by up to 2.2 m, so in the
-    relaxed diagram they reach 3.8 m)."""
+    the notches); before, the descent alone changed under 5% of them. All within 1.25 times that reach
+    of a reflex corner of the meshed plan (2.6 m; the relaxation moves the vertices by up to 2.2 m, so in
+    the relaxed diagram they reach 3.8 m). The bound is a length because the notch densities' reach is
+    one: it was 8 median edges until session 28, which main itself failed at 12,000 faces asked (2.05 m
+    against 2.00, the same spot on the left notch's chord as its 2.31 m here), and layouts that mesh the
+    plan finer at the same faces asked with it; layouts whose unequal densities really spread reach
+    5.2-11.1 m (benchmarks/README.md, sessions 27-28)."""
     from scipy.spatial import cKDTree
 
     from vaultgram.geometry.meshes import face_areas
@@ -83,7 +88,8 @@ def test_lobes_at_ten_thousand_faces_unfold_at_the_notches(architecture_dir):
     assert 10 < unequal.sum() < 0.15 * form.active.sum()
     meshed = np.asarray(mesh.vertices)[np.asarray(form.vertex_ids), :2]        # where the densities are set
     distance, _ = cKDTree(reflex).query(meshed[form.edges[unequal]].mean(axis=1))
-    assert distance.max() < 8 * np.median(np.linalg.norm(meshed[form.edges[:, 1]] - meshed[form.edges[:, 0]], axis=1))
+    reach = _NOTCH_REACH * float(np.hypot(*np.ptp(meshed, axis=0)))
+    assert distance.max() < 1.25 * reach
 
 
 def _reflex_corners(domain, origin) -> np.ndarray:
