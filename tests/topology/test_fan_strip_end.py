@@ -1,6 +1,7 @@
 """A hole corner's strip of several patches may end in a pole's fan triangle where its last strip point
-halves that triangle (:func:`vaultgram.topology.reflex.fan_foot`, :func:`~vaultgram.topology.strips.strip_fraction`,
-:func:`~vaultgram.topology.reflex.strip_fan`; issue 12 acceptance 3). Main 186f350 left the 252 degree
+halves that triangle (:func:`vaultgram.topology.reflex.fan_foot`, stored on the triangle's side by
+``rules/strips.vgr``' ``place_fan_foot`` and read by :func:`~vaultgram.topology.strips.strip_fraction`;
+:func:`~vaultgram.topology.reflex.strip_fan`; issue 12 acceptance 3). Main 171d5a0 left the 252 degree
 corner of saved random plan 256 (257: the same plan) the corner of two patches with two faces: the chord
 to its quad's far side starts a strip across a quad into the fan triangle of the boundary feature
 (3.85, 6.83), whose middle chord leaves 11.7 degrees of the triangle's 81 at the feature."""
@@ -88,8 +89,8 @@ def test_the_strip_halves_the_fan_triangle_evenly(fanned):
 
 
 def test_with_middle_strip_points_the_corner_keeps_two_faces(monkeypatch):
-    """With every strip point at its edge's middle (main's), the corner is the corner of two patches with
-    two faces: main's one boundary singular vertex at 252 degrees."""
+    """With every fan foot at its edge's middle (main's strip points), the corner is the corner of two
+    patches with two faces: main's one boundary singular vertex at 252 degrees."""
     monkeypatch.setattr(reflex, "_fan_foot", lambda graph, edge: 0.5)
     domain, dec, mesh = _run()
     assert dec.graph.degree(_node(dec.graph, CORNER), [PATCH_CORNER]) == 2
