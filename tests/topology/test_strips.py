@@ -17,7 +17,7 @@ from vaultgram.domain import load_domain
 from vaultgram.exploration.evaluate import mesh_metrics
 from vaultgram.exploration.program import Scripted, Stepper
 from vaultgram.geometry.polygons import signed_area
-from vaultgram.geometry.polylines import arc_lengths
+from vaultgram.geometry.polylines import arc_lengths, point_at_length
 from vaultgram.pipeline import decompose, mesh_decomposition
 from vaultgram.topology import strips
 from vaultgram.topology.decomposition import block_decomposition, decomposition_graph
@@ -162,7 +162,37 @@ def test_a_cut_edge_is_split_halfway_into_two_pieces_that_make_it_up():
         assert np.allclose(first[-1], mid) and np.allclose(second[-1], mid)
         assert np.allclose(first[0], poly[0]) and np.allclose(second[0], poly[-1])
         length = arc_lengths(poly)[-1]
-        assert arc_lengths(first)[-1] == pytest.approx(length / 2) == arc_lengths(second)[-1]
+        fraction = strips.strip_fraction(g, e)  # the middle but at a feature's fan triangle (reflex.fan_foot)
+        assert arc_lengths(first)[-1] == pytest.approx(length * fraction)
+        assert arc_lengths(second)[-1] == pytest.approx(length * (1.0 - fraction))
+
+
+def test_a_strip_cuts_an_edge_at_its_stored_foot_and_both_pieces_meet_there():
+    """Where a strip cuts an edge is the edge's ``foot`` (rules/schema.vgr's Splittable; place_fan_foot
+    stores one off the middle at a point feature's fan triangle): the start rule's new corner and both
+    pieces lie at that fraction of the edge, though the rule makes the second piece in another state of
+    the graph than the first (worked out from the patches round the edge at each call instead, the two
+    pieces of one cut ended at different points: fig7_curves' tiling broke, session 27)."""
+    stepper, options = _at_start_strip("fig7_curves")
+    g, pc, answers, mark = stepper.graph, stepper.pc, list(stepper.answers), stepper.graph.mark()
+    for k in range(1, 4):
+        g.rollback(mark)
+        stepper.pc, stepper.answers = pc, list(answers)
+        e = options[k].match.binding["e"]
+        u, v = g.ends(e)
+        poly = half_edge_polyline(g, e, u)
+        g.set_edge_attr(e, "foot", 0.45)
+        assert strips.strip_fraction(g, e) == 0.45
+        foot = point_at_length(poly, 0.45 * arc_lengths(poly)[-1])
+        stepper.take(k)
+        patches = stepper.complete()
+        assert sum(p.area() for p in patches) == pytest.approx(_area(_domain("fig7_curves")), rel=1e-6)
+        (m,) = [n for n in g.nodes() if g.node_type(n) == "StripPoint" and np.allclose(g.get(n, "pos"), foot)]
+        pieces = [g.get_edge(d, "polyline") for d in g.incident(m, ["Diagonal"]) if g.other(d, m) in (u, v)]
+        assert len(pieces) == 2 and all(np.allclose(piece[-1], foot) or np.allclose(piece[0], foot)
+                                        for piece in pieces)
+        lengths = sorted(arc_lengths(np.asarray(piece, dtype=float))[-1] for piece in pieces)
+        assert lengths == pytest.approx(sorted([0.45 * arc_lengths(poly)[-1], 0.55 * arc_lengths(poly)[-1]]))
 
 
 def test_the_halves_of_an_edge_are_kept_by_its_geometry():

@@ -603,5 +603,6 @@ def _register_corner_helpers(f: Functions) -> None:
                local=False)
     f.register("reflex_foot", reflex.reflex_foot, ("node", "node"), "node", uses_graph=True, local=False)
     f.register("reflex_point", reflex.reflex_point, ("node", "node"), "vec2", uses_graph=True, local=False)
+    f.register("fan_foot", reflex.fan_foot, ("edge",), "float", uses_graph=True, local=False)
     f.register("rebranch_to_corner", reflex.rebranch_to_corner, ("node", "node", "node", "node"), "bool",
                uses_graph=True, local=False)

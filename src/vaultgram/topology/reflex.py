@@ -77,7 +77,7 @@ __all__ = ["reflex_chord", "reflex_side", "reflex_foot", "reflex_cut", "reflex_c
            "SPIKE", "PAST_STRAIGHT", "FOLD_MIN_ANGLE", "MAX_POLE_RATIO", "MIN_FAN_HALF",
            "HOLE_MAX_RATIO", "HOLE_MIN_ANGLE", "BISECTING_FOOT", "cut_walk",
            # helpers the other corner modules (hole_sides, hole_hub, lone_corners) and the benchmarks share
-           "patch_corner", "boundary_ahead", "side_length", "on_side", "fan_end", "is_feature", "is_pole",
+           "patch_corner", "boundary_ahead", "side_length", "on_side", "fan_end", "strip_fan", "is_feature", "is_pole",
            "halves_fan", "strip_beyond", "bisecting_foot", "hole_chord", "widest_chord", "chord_worst",
            "other_angle", "chord_targets", "chord_angles", "even_group", "choose_cut", "smooth_boundary_side",
            "choose_chord"]
@@ -168,7 +168,9 @@ def _feet(graph, walk, fractions=FEET, half: float = MIN_CUT_ANGLE) -> Iterator[
         return
     edge, found = walk.edges[0], patch_sides(graph, walk.patches[0])
     to = strip_point(graph, walk.edges[1]) if len(walk.edges) > 1 else walk.end_point(graph)
-    fan = fan_end(graph, walk)
+    fan, far = fan_end(graph, walk), strip_fan(graph, walk)
+    if far is not None and not halves_fan(far[0], far[1], half):
+        return  # a strip of several patches enters its fan triangle at its last edge's foot, whatever the first
     for f in fractions[:1] if walk.end is None else fractions:
         at = edge_cut(graph, edge, f)[1]
         walked = f == 0.5 and fan is None  # the strip's walk ran this chord (a fan's: maybe not, _fan_walk)
@@ -184,6 +186,62 @@ def fan_end(graph, walk) -> tuple | None:
         return None
     found = patch_sides(graph, walk.patches[0])
     return patch_corner(graph, found, found.corners.index(walk.end)) if len(found.corners) == 3 else None
+
+
+def strip_fan(graph, walk) -> tuple | None:
+    """Where the strip ``walk`` crosses several patches and ends in one triangle of a pole's fan (at its
+    corner opposite the strip: :func:`is_pole`), that triangle's fan (as :func:`fan_end`'s) and the point
+    where the strip enters it, its entry edge's strip point (``rules/strips.vgr``' ``continue_strip``: the
+    edge's foot, :func:`fan_foot` where ``place_fan_foot`` stored it, else the middle): the chord from
+    there to the pole halves the triangle, which must leave two of :data:`MIN_FAN_HALF` at least
+    (:func:`halves_fan`, :func:`_feet`: plans 23 and 24's wedge of slivers came from such strips halved
+    at 20-30 degrees). None otherwise (a strip of one triangle: :func:`fan_end`)."""
+    if walk.end is None or len(walk.patches) < 2 or walk.split >= 0 or not is_pole(graph, walk.end):
+        return None
+    found = patch_sides(graph, walk.patches[-1])
+    if len(found.corners) != 3 or walk.end not in found.corners:
+        return None
+    return patch_corner(graph, found, found.corners.index(walk.end)), strip_point(graph, walk.edges[-1])
+
+
+def fan_foot(graph, edge: int) -> float:
+    """Where a strip should cut the plan edge ``edge`` (``rules/strips.vgr``' ``place_fan_foot`` stores it on
+    the edge, :func:`~vaultgram.topology.strips.strip_fraction` reads it): 0.5, but where ``edge`` is the
+    side of one triangle of a point feature's fan (:func:`is_feature`) opposite it and the chord from its
+    middle to the feature leaves the triangle or leaves a part of its angle there under
+    :data:`MIN_FAN_HALF`, the first of :data:`FEET`, then the bisecting foot (:func:`bisecting_foot`), whose
+    chord runs inside and halves it into two of :data:`MIN_CUT_ANGLE`, else of :data:`MIN_FAN_HALF`; the
+    middle where none does. Saved random plans 256 and 257: a hole corner's chord starts a strip across a
+    quad into such a triangle, whose middle chord leaves 11.7 degrees at the feature. Once per state."""
+    return _once(graph, _fan_foot, edge)
+
+
+def _fan_foot(graph, edge: int) -> float:
+    """:func:`fan_foot`, worked out (the middle first: most fan sides keep it)."""
+    if graph.edge_type(edge) == BOUNDARY:
+        return 0.5  # a boundary edge a strip splits (strips.strip_boundary_split): no fan beyond it
+    tri = [q for q in sorted({graph.ends(e)[0] for n in graph.ends(edge) for e in graph.incident(n, [PATCH_CORNER])})
+           for found in (patch_sides(graph, q),) if found is not None and len(found.corners) == 3
+           and any(len(side) == 1 and side[0][0] == edge for side in found.sides)]
+    if len(tri) != 1:
+        return 0.5
+    found = patch_sides(graph, tri[0])
+    k = next(i for i, side in enumerate(found.sides) if side[0][0] == edge)
+    pole = found.corners[(k + 2) % 3]
+    if not is_feature(graph, pole):  # a curve's free end: see benchmarks/README.md, session 28
+        return 0.5
+    fan = patch_corner(graph, found, (k + 2) % 3)
+    middle = edge_cut(graph, edge, 0.5)[1]
+    if chord_inside(found, middle, fan[0]) and halves_fan(fan, middle, MIN_FAN_HALF):
+        return 0.5
+    walk = Walk((tri[0],), (edge,), pole)
+    feet = [(f, edge_cut(graph, edge, f)[1]) for f in FEET[1:] + bisecting_foot(graph, walk)]
+    ok = [(f, at) for f, at in feet if chord_inside(found, at, fan[0])]
+    for least in (MIN_CUT_ANGLE, MIN_FAN_HALF):
+        for f, at in ok:
+            if halves_fan(fan, at, least):
+                return f
+    return 0.5
 
 
 def halves_fan(fan: tuple, at, least: float = MIN_CUT_ANGLE) -> bool:
@@ -261,7 +319,7 @@ def chord_targets(graph, patch: int, found, k: int, j: int, fans: float | None =
     pos, edge = graph.get(r, "pos"), side_edge(graph, patch, y)
     if edge >= 0:
         walk = strip_beyond(graph, patch, edge, fans is not None)
-        if fans is not None and (walk is None or fan_end(graph, walk) is None):
+        if fans is not None and (walk is None or fan_end(graph, walk) is None and strip_fan(graph, walk) is None):
             return []  # asked without fans already
         return [("edge", edge, at, tangent, f) for f, at, tangent in _feet(graph, walk, half=fans or MIN_CUT_ANGLE)
                 if chord_inside(found, pos, at)]
@@ -396,16 +454,17 @@ def strip_beyond(graph, patch: int, edge: int, fans: bool = False, split: bool =
     were hole corners whose cut was refused only by such an end. For the chords of a corner of two
     patches only where no other chord qualifies (:func:`choose_chord`: asked first, it changed the chosen
     chord at corners already regular: plans 12, 395 and 444 fell under 0.3, 444 from 0.381 to
-    0.076). Not for a strip of several patches into a fan (from the
-    middle at 20-30 degrees, plans 23 and 24 took a wedge of slivers, min SJ 0.455 -> 0.048). With
+    0.076). A strip of several patches into a fan only where its last strip point halves the fan
+    triangle into two of :data:`MIN_FAN_HALF` (:func:`strip_fan`, :func:`fan_foot`; from the middle at
+    20-30 degrees, plans 23 and 24 took a wedge of slivers, min SJ 0.455 -> 0.048). With
     ``split`` (a cut, :func:`cut_walk`), the strip may end at the middle of a boundary side that is one
     boundary edge (:func:`~vaultgram.topology.strips.strip_boundary_split`)."""
     beyond = patch_across(graph, patch, edge)
     walk = None if beyond is None else strip_walk(graph, beyond[0], beyond[1], frozenset([patch]), split)
     if walk is None or walk.end is None or len(patch_sides(graph, walk.patches[-1]).corners) == 4:
         return walk
-    if fans and fan_end(graph, walk) is not None:
-        return walk
+    if fans and (fan_end(graph, walk) is not None or strip_fan(graph, walk) is not None):
+        return walk  # a strip of several patches: only where its last chord halves the fan (_feet)
     kind = graph.node_type(walk.end)
     kept = is_feature(graph, walk.end) or any(graph.schema.is_subtype(kind, t) for t in KEPT_ENDS)
     return None if kept else walk
@@ -549,7 +608,8 @@ def choose_cut(graph, r: int) -> tuple | None:
     if across is None:
         return None
     patch, i, found, edge, walk = across
-    halves = (MIN_CUT_ANGLE, MIN_FAN_HALF) if walk is not None and fan_end(graph, walk) else (MIN_CUT_ANGLE,)
+    fans = walk is not None and (fan_end(graph, walk) or strip_fan(graph, walk))
+    halves = (MIN_CUT_ANGLE, MIN_FAN_HALF) if fans else (MIN_CUT_ANGLE,)
     for half in halves:
         fraction = _cut_foot(graph, r, found, _feet(graph, walk, half=half))
         if fraction is not None:

@@ -50,10 +50,12 @@ __all__ = ["SPLITTABLE", "PatchSides", "patch_sides", "side_edge", "corner_chord
            "strip_piece", "strip_piece_to", "side_through", "strip_boundary_end", "strip_boundary_split", "Walk",
            "strip_walk",
            "strip_through", "strip_start", "strip_from_curve_end", "register_strip_helpers", "edge_halves",
+           "strip_fraction",
            "cut_along", "chord_inside", "patch_across"]
 
 #: The plan edges a strip may cut in two (not a curve feature: the layout must not cross it, §4.2;
-#: not the boundary, which a strip ends at, at one of its points).
+#: not the boundary, which a strip ends at, at one of its points): the types of ``rules/schema.vgr``'s
+#: ``Splittable``, whose ``foot`` holds where a strip cuts them (:func:`strip_fraction`).
 SPLITTABLE = (BRANCH, REBRANCH, DIAGONAL)
 
 
@@ -183,14 +185,28 @@ def cut_along(pts: np.ndarray, fraction: float) -> tuple[np.ndarray, np.ndarray,
 
 
 def strip_point(graph, edge: int) -> tuple[float, float]:
-    """Where a strip cuts a plan edge: halfway along it."""
-    mid = edge_halves(graph, edge)[1]
+    """Where a strip cuts a plan edge: at :func:`strip_fraction` of its length (halfway, but where a
+    rule placed the edge's foot elsewhere)."""
+    mid = edge_cut(graph, edge, strip_fraction(graph, edge))[1]
     return float(mid[0]), float(mid[1])
 
 
+def strip_fraction(graph, edge: int) -> float:
+    """The fraction of the plan edge ``edge``'s length (from its source) where a strip cuts it: the
+    edge's ``foot`` (``rules/schema.vgr``, the type ``Splittable``), the middle unless
+    ``rules/strips.vgr``' ``place_fan_foot`` moved it to where the strip's last chord halves a point
+    feature's fan triangle (:func:`vaultgram.topology.reflex.fan_foot`, §4.1); the middle of an edge of
+    another type (a boundary edge a strip splits, :func:`strip_boundary_split`). Data of the edge, not
+    worked out from the layout round it: the walk that checks a strip (:func:`strip_walk`), the rule
+    that cuts the edge and both pieces it makes (:func:`strip_piece`, each asked in its own state of
+    the graph) read the same fraction, whatever changed round the edge meanwhile."""
+    return float(graph.get_edge(edge, "foot")) if graph.edge_type(edge) in SPLITTABLE else 0.5
+
+
 def strip_piece(graph, edge: int, end: int) -> tuple:
-    """The part of a plan edge from its end ``end`` to the strip point, as a polyline."""
-    before, mid, after = edge_halves(graph, edge)
+    """The part of a plan edge from its end ``end`` to the strip point (:func:`strip_point`), as a
+    polyline."""
+    before, mid, after = edge_cut(graph, edge, strip_fraction(graph, edge))
     piece = np.vstack([before, mid[None]]) if graph.ends(edge)[0] == end else np.vstack([after[::-1], mid[None]])
     return tuple((float(x), float(y)) for x, y in piece)
 
