@@ -17,7 +17,7 @@ from vaultgram.domain import domain_from_dict
 from vaultgram.geometry.polylines import ray_hit_fraction
 from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import decompose, mesh_decomposition
-from vaultgram.topology import hole_hub, reflex
+from vaultgram.topology import hole_hub, hole_rebranch, reflex
 from vaultgram.topology.types import DIAGONAL, PATCH_CORNER
 
 #: Draw 226 of the 700 random plans saved in session 25, as saved (spacing 0.03): an octagon with a
@@ -101,9 +101,12 @@ def test_a_hole_corner_cut_ends_where_it_bisects_a_skewed_fan_triangle(name):
 def test_without_the_bisecting_foot_the_corner_keeps_two_faces(monkeypatch, name):
     """The fixed feet alone leave the hole corner inside the ring patch's side (main's layout): the
     corner of no patch, one boundary singularity. The hub split after the bisecting cut (session 26,
-    hole_hub) is switched off too: it is the last fallback, and would take the corner in its place."""
+    hole_hub) and the rebranch moved to the corner after the hub (session 28, hole_rebranch: on draw
+    226 the rebranch to the corner's neighbour) are switched off too: they are the last fallbacks, and
+    would take the corner in its place."""
     monkeypatch.setattr(reflex, "bisecting_foot", lambda graph, walk: ())
     monkeypatch.setattr(hole_hub, "_best_hub", lambda *args: None)
+    monkeypatch.setattr(hole_rebranch, "_fits", lambda *args: False)
     plan, spacing, corner, _, _ = CASES[name]
     domain = domain_from_dict(plan)
     dec = decompose(domain, spacing)

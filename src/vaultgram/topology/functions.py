@@ -22,6 +22,7 @@ from vaultgram.geometry.polygons import interior_angle, regular_valence, signed_
 from vaultgram.geometry.polylines import arc_lengths, point_at_length, turning_angles
 from vaultgram.topology import corners, fans, reflex
 from vaultgram.topology.hole_hub import register_hole_hub_helpers
+from vaultgram.topology.hole_rebranch import register_hole_rebranch_helpers
 from vaultgram.topology.hole_sides import register_hole_side_helpers
 from vaultgram.topology.hole_triangles import register_hole_triangle_helpers
 from vaultgram.topology.lone_branch import register_lone_branch_helpers
@@ -574,6 +575,7 @@ def vault_functions() -> Functions:
     register_hole_side_helpers(f)
     register_hole_hub_helpers(f)
     register_hole_triangle_helpers(f)
+    register_hole_rebranch_helpers(f)
     register_lone_corner_helpers(f)
     return f
 
