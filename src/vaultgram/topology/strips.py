@@ -48,10 +48,8 @@ from vaultgram.topology.types import (
 
 __all__ = ["SPLITTABLE", "PatchSides", "patch_sides", "side_edge", "corner_chord_angle", "strip_point",
            "strip_piece", "strip_piece_to", "side_through", "strip_boundary_end", "strip_boundary_split", "Walk",
-           "strip_walk",
-           "strip_through", "strip_start", "strip_from_curve_end", "register_strip_helpers", "edge_halves",
-           "strip_fraction",
-           "cut_along", "chord_inside", "patch_across"]
+           "strip_walk", "strip_through", "strip_start", "strip_from_curve_end", "register_strip_helpers",
+           "edge_halves", "strip_fraction", "cut_along", "chord_inside", "patch_across"]
 
 #: The plan edges a strip may cut in two (not a curve feature: the layout must not cross it, §4.2;
 #: not the boundary, which a strip ends at, at one of its points): the types of ``rules/schema.vgr``'s
