@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from layout_probes import faces_at, node_at
 
 from vaultgram.domain import domain_from_dict
 from vaultgram.geometry.polygons import ccw_degrees, direction
@@ -37,18 +38,6 @@ CORNER = (1.9153603561537282, 1.175576382437469)
 POLE = (3.848064497584282, 6.833907839559991)
 
 
-def _node(g, at) -> int:
-    (n,) = [n for n in g.nodes() if g.node_type(n) != "Patch" and np.allclose(g.get(n, "pos"), at, atol=1e-9)]
-    return n
-
-
-def _faces_at(mesh, at) -> int:
-    x = np.asarray(mesh.vertices, dtype=float)[:, :2]
-    v = int(np.hypot(*(x - np.asarray(at)).T).argmin())
-    assert np.hypot(*(x[v] - np.asarray(at))) < 1e-9
-    return sum(v in face for face in mesh.faces)
-
-
 def _run():
     domain = domain_from_dict(DRAW_256)
     dec = decompose(domain, SPACING)
@@ -64,10 +53,10 @@ def test_the_hole_corner_gets_its_third_face(fanned):
     """The 252 degree corner is the corner of three patches with three faces (valence 4, regular): no
     boundary singular vertex is left (main 1), no inverted face, min scaled Jacobian main's 0.322 less 0.01."""
     domain, dec, mesh = fanned
-    r = _node(dec.graph, CORNER)
+    r = node_at(dec.graph, CORNER)
     assert boundary_angle(dec.graph, r) == pytest.approx(252.0)
     assert dec.graph.degree(r, [PATCH_CORNER]) == 3
-    assert _faces_at(mesh, CORNER) == 3
+    assert faces_at(mesh, CORNER) == 3
     stats = mesh_stats(mesh, domain)
     assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
     assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.312
@@ -79,7 +68,7 @@ def test_the_strip_halves_the_fan_triangle_evenly(fanned):
     angles between the feature's consecutive diagonals round it are all at least that."""
     _, dec, _ = fanned
     g = dec.graph
-    pole = _node(g, POLE)
+    pole = node_at(g, POLE)
     pos = g.get(pole, "pos")
     ends = [g.other(e, pole) for e in g.incident(pole, [DIAGONAL])]
     assert any(g.node_type(n) == "StripPoint" for n in ends)
@@ -93,7 +82,7 @@ def test_with_middle_strip_points_the_corner_keeps_two_faces(monkeypatch):
     patches with two faces: main's one boundary singular vertex at 252 degrees."""
     monkeypatch.setattr(reflex, "_fan_foot", lambda graph, edge: 0.5)
     domain, dec, mesh = _run()
-    assert dec.graph.degree(_node(dec.graph, CORNER), [PATCH_CORNER]) == 2
-    assert _faces_at(mesh, CORNER) == 2
+    assert dec.graph.degree(node_at(dec.graph, CORNER), [PATCH_CORNER]) == 2
+    assert faces_at(mesh, CORNER) == 2
     stats = mesh_stats(mesh, domain)
     assert stats["boundary_singular"] == 1 and stats["boundary_singular_angles"][0] == pytest.approx(252.0)

@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 import pytest
+from layout_probes import node_at
 
 from vaultgram.domain import domain_from_dict
 from vaultgram.geometry.polylines import ray_hit_fraction
@@ -59,11 +60,6 @@ CASES = {
 }
 
 
-def _node(g, at) -> int:
-    (n,) = [n for n in g.nodes() if g.node_type(n) != "Patch" and np.allclose(g.get(n, "pos"), at, atol=1e-9)]
-    return n
-
-
 def _halves(dec, corner: int, pole: int) -> list:
     """The angles at ``pole`` of the triangles at the foot of ``corner``'s cut (the strip point joined
     by diagonals to both): the two halves of the fan triangle the cut's strip ended in."""
@@ -88,8 +84,8 @@ def test_a_hole_corner_cut_ends_where_it_bisects_a_skewed_fan_triangle(name):
     domain = domain_from_dict(plan)
     dec = decompose(domain, spacing)
     g = dec.graph
-    assert g.degree(_node(g, corner), [PATCH_CORNER]) == 3
-    halves = _halves(dec, _node(g, corner), _node(g, pole))
+    assert g.degree(node_at(g, corner), [PATCH_CORNER]) == 3
+    halves = _halves(dec, node_at(g, corner), node_at(g, pole))
     assert len(halves) == 2 and abs(halves[0] - halves[1]) < 1.0, halves
     assert min(halves) >= reflex.MIN_FAN_HALF, halves
     stats = mesh_stats(mesh_decomposition(dec), domain)
@@ -110,7 +106,7 @@ def test_without_the_bisecting_foot_the_corner_keeps_two_faces(monkeypatch, name
     plan, spacing, corner, _, _ = CASES[name]
     domain = domain_from_dict(plan)
     dec = decompose(domain, spacing)
-    assert dec.graph.degree(_node(dec.graph, corner), [PATCH_CORNER]) == 0
+    assert dec.graph.degree(node_at(dec.graph, corner), [PATCH_CORNER]) == 0
     assert mesh_stats(mesh_decomposition(dec), domain)["boundary_singular"] == 1
 
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from layout_probes import node_at
 
 from vaultgram.domain import domain_from_dict
 from vaultgram.meshing.quality import mesh_stats
@@ -39,11 +40,6 @@ SKELETON_VERTEX = (3.908, 5.030)
 OLD_END = (4.783, 2.582)
 
 
-def _node(g, at, tol: float = 1e-9) -> int:
-    (n,) = [n for n in g.nodes() if g.node_type(n) != "Patch" and np.allclose(g.get(n, "pos"), at, atol=tol)]
-    return n
-
-
 def _plan_edges(g, n: int, kind: str) -> list:
     return [g.other(e, n) for e in g.incident(n) if g.edge_type(e) == kind]
 
@@ -57,7 +53,7 @@ def test_the_rebranch_moves_from_the_corners_neighbour_to_the_corner():
     domain = domain_from_dict(DRAW_317)
     dec = decompose(domain, SPACING)
     g = dec.graph
-    r, x, w = _node(g, CORNER), _node(g, SKELETON_VERTEX, 1e-3), _node(g, OLD_END, 1e-3)
+    r, x, w = node_at(g, CORNER), node_at(g, SKELETON_VERTEX, 1e-3), node_at(g, OLD_END, 1e-3)
     assert _plan_edges(g, r, REBRANCH) == [x] and not _plan_edges(g, w, REBRANCH)
     assert g.degree(r, [PATCH_CORNER]) == 3 and g.degree(w, [PATCH_CORNER]) == 0
     assert len(_plan_edges(g, w, BOUNDARY)) == 2
@@ -78,7 +74,7 @@ def test_without_the_move_the_corner_keeps_two_faces(monkeypatch):
     domain = domain_from_dict(DRAW_317)
     dec = decompose(domain, SPACING)
     g = dec.graph
-    r, w = _node(g, CORNER), _node(g, OLD_END, 1e-3)
+    r, w = node_at(g, CORNER), node_at(g, OLD_END, 1e-3)
     assert g.degree(r, [PATCH_CORNER]) == 0 and not _plan_edges(g, r, REBRANCH)
     assert len(_plan_edges(g, w, REBRANCH)) == 1 and g.degree(w, [PATCH_CORNER]) == 2
     mesh = mesh_decomposition(dec)

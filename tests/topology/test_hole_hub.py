@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from layout_probes import node_at
 
 from vaultgram.domain import domain_from_dict
 from vaultgram.meshing.quality import mesh_stats
@@ -80,11 +81,6 @@ CASES = {
 }
 
 
-def _node(g, at) -> int:
-    (n,) = [n for n in g.nodes() if g.node_type(n) != "Patch" and np.allclose(g.get(n, "pos"), at, atol=1e-9)]
-    return n
-
-
 @pytest.mark.parametrize("name", sorted(CASES))
 def test_a_hole_corner_beside_a_narrow_fan_triangle_gets_a_hub(name):
     """The hole corner is the corner of three patches, two of them quads round an inner point of three
@@ -96,7 +92,7 @@ def test_a_hole_corner_beside_a_narrow_fan_triangle_gets_a_hub(name):
     domain = domain_from_dict(plan)
     dec = decompose(domain, spacing)
     g = dec.graph
-    r, f = _node(g, corner), _node(g, pole)
+    r, f = node_at(g, corner), node_at(g, pole)
     assert g.degree(r, [PATCH_CORNER]) == 3
     (hub,) = [x for x in g.nodes() if g.node_type(x) == "HubPoint"]
     joined = {g.other(e, hub) for e in g.incident(hub, [DIAGONAL])}
@@ -122,7 +118,7 @@ def test_without_the_hub_the_corner_keeps_two_faces(monkeypatch, name):
     plan, spacing, corner, _, _ = CASES[name]
     domain = domain_from_dict(plan)
     dec = decompose(domain, spacing)
-    assert dec.graph.degree(_node(dec.graph, corner), [PATCH_CORNER]) == 0
+    assert dec.graph.degree(node_at(dec.graph, corner), [PATCH_CORNER]) == 0
     assert not [x for x in dec.graph.nodes() if dec.graph.node_type(x) == "HubPoint"]
     mesh = mesh_decomposition(dec)
     stats = mesh_stats(mesh, domain)

@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 import pytest
+from layout_probes import faces_at, node_at
 
 from vaultgram.domain import domain_from_dict
 from vaultgram.geometry.polygons import ccw_degrees, direction
@@ -44,19 +45,6 @@ POLE = (-0.28382352814421047, -1.2435221262615133)
 AHEAD = (1.2754913575903433, -1e-05)
 
 
-def _node(g, at) -> int:
-    (n,) = [n for n in g.nodes() if g.node_type(n) != "Patch" and np.allclose(g.get(n, "pos"), at, atol=1e-9)]
-    return n
-
-
-def _faces_at(mesh, at) -> int:
-    """The faces at the mesh vertex at ``at`` (a fixed polygon corner)."""
-    x = np.asarray(mesh.vertices, dtype=float)[:, :2]
-    v = int(np.hypot(*(x - np.asarray(at)).T).argmin())
-    assert np.hypot(*(x[v] - np.asarray(at))) < 1e-9
-    return sum(v in face for face in mesh.faces)
-
-
 def _patches(g, n) -> list:
     return sorted({g.ends(e)[0] for e in g.incident(n, [PATCH_CORNER])})
 
@@ -77,10 +65,10 @@ def test_the_hole_corner_gets_its_third_face(cut):
     (valence 4, regular); no boundary singular vertex is left (main 1), no inverted face, min scaled
     Jacobian at least main's 0.500 less 0.01."""
     domain, dec, mesh = cut
-    r = _node(dec.graph, CORNER)
+    r = node_at(dec.graph, CORNER)
     assert boundary_angle(dec.graph, r) == pytest.approx(231.4, abs=0.05)
     assert len(_patches(dec.graph, r)) == 3
-    assert _faces_at(mesh, CORNER) == 3
+    assert faces_at(mesh, CORNER) == 3
     stats = mesh_stats(mesh, domain)
     assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
     assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.49
@@ -95,7 +83,7 @@ def test_the_triangle_is_cut_to_its_poles_other_side(cut):
     triangle."""
     _, dec, _ = cut
     g = dec.graph
-    r, pole = _node(g, CORNER), _node(g, POLE)
+    r, pole = node_at(g, CORNER), node_at(g, POLE)
     (tri,) = [p for p in _patches(g, r) if _pole_of(g, p) == pole]
     assert len(patch_sides(g, tri).corners) == 3
     (m,) = [c for c in patch_sides(g, tri).corners if c not in (r, pole)]
@@ -119,7 +107,7 @@ def test_the_cut_leaves_the_boundary_at_40_degrees_or_more(cut):
     limit, :data:`vaultgram.topology.reflex.MIN_CUT_ANGLE`)."""
     _, dec, _ = cut
     g = dec.graph
-    r, pole = _node(g, CORNER), _node(g, POLE)
+    r, pole = node_at(g, CORNER), node_at(g, POLE)
     (tri,) = [p for p in _patches(g, r) if _pole_of(g, p) == pole]
     (m,) = [c for c in patch_sides(g, tri).corners if c not in (r, pole)]
     first = ccw_degrees(reflex.boundary_ahead(g, r), direction(g.get(r, "pos"), g.get(m, "pos")))
@@ -135,12 +123,12 @@ def test_without_the_cut_the_corner_keeps_two_faces(monkeypatch):
     dec = decompose(domain, SPACING)
     mesh = mesh_decomposition(dec)
     g = dec.graph
-    r = _node(g, CORNER)
+    r = node_at(g, CORNER)
     assert g.degree(r, [PATCH_CORNER]) == 0
     tri, i = reflex.on_side(g, r)
     corners = patch_sides(g, tri).corners
-    assert len(corners) == 3 and (corners[i], corners[(i + 1) % 3]) == (_node(g, AHEAD), _node(g, POLE))
-    assert _pole_of(g, tri) == _node(g, POLE)
-    assert _faces_at(mesh, CORNER) == 2
+    assert len(corners) == 3 and (corners[i], corners[(i + 1) % 3]) == (node_at(g, AHEAD), node_at(g, POLE))
+    assert _pole_of(g, tri) == node_at(g, POLE)
+    assert faces_at(mesh, CORNER) == 2
     stats = mesh_stats(mesh, domain)
     assert stats["boundary_singular"] == 1 and stats["boundary_singular_angles"][0] == pytest.approx(231.4, abs=0.05)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from layout_probes import faces_at, node_at
 
 from vaultgram.domain import domain_from_dict
 from vaultgram.meshing.quality import mesh_stats
@@ -40,19 +41,6 @@ CORNER = (0.25229885609886604, -3.541417492861469)
 EDGE_ENDS = ((0.5706336501298902, -6.07063365012989), (1.1412673002597804, -6.141267300259781))
 
 
-def _node(g, at) -> int:
-    (n,) = [n for n in g.nodes() if g.node_type(n) != "Patch" and np.allclose(g.get(n, "pos"), at, atol=1e-9)]
-    return n
-
-
-def _faces_at(mesh, at, tol: float = 1e-9) -> int:
-    """The faces at the mesh vertex nearest ``at``, which lies within ``tol`` of it."""
-    x = np.asarray(mesh.vertices, dtype=float)[:, :2]
-    v = int(np.hypot(*(x - np.asarray(at)).T).argmin())
-    assert np.hypot(*(x[v] - np.asarray(at))) < tol
-    return sum(v in face for face in mesh.faces)
-
-
 @pytest.fixture(scope="module")
 def split():
     domain = domain_from_dict(DRAW_456)
@@ -65,10 +53,10 @@ def test_the_hole_corner_gets_its_third_face(split):
     (valence 4, regular); no boundary singular vertex is left (main 1), no inverted face, min scaled
     Jacobian at least main's 0.357 less 0.01."""
     domain, dec, mesh = split
-    r = _node(dec.graph, CORNER)
+    r = node_at(dec.graph, CORNER)
     assert boundary_angle(dec.graph, r) == pytest.approx(225.0)
     assert dec.graph.degree(r, [PATCH_CORNER]) == 3
-    assert _faces_at(mesh, CORNER) == 3
+    assert faces_at(mesh, CORNER) == 3
     stats = mesh_stats(mesh, domain)
     assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
     assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.347
@@ -82,14 +70,14 @@ def test_the_boundary_edge_is_split_at_its_middle_into_a_regular_point(split):
     a point on a straight edge)."""
     domain, dec, mesh = split
     g = dec.graph
-    a, b = (_node(g, p) for p in EDGE_ENDS)
+    a, b = (node_at(g, p) for p in EDGE_ENDS)
     middle = tuple((np.asarray(EDGE_ENDS[0]) + np.asarray(EDGE_ENDS[1])) / 2)
-    w = _node(g, middle)
+    w = node_at(g, middle)
     assert {g.other(e, w) for e in g.incident(w, [BOUNDARY])} == {a, b}
     assert g.degree(w, [DIAGONAL]) == 1 and g.degree(w, [PATCH_CORNER]) == 2
     assert not any(g.other(e, a) == b for e in g.incident(a, [BOUNDARY]))  # the edge a-b is gone
     assert boundary_angle(g, w) == pytest.approx(180.0)
-    assert _faces_at(mesh, middle, 0.1 * np.hypot(*np.subtract(*EDGE_ENDS))) == 2  # smoothing slides it a little
+    assert faces_at(mesh, middle, 0.1 * np.hypot(*np.subtract(*EDGE_ENDS))) == 2  # smoothing slides it a little
     rings, nodes = graph_rings(g)
     k = nodes[0].index(w)
     assert (nodes[0][k - 1], nodes[0][(k + 1) % len(nodes[0])]) == (a, b)
@@ -110,7 +98,7 @@ def test_without_the_split_the_corner_keeps_two_faces(monkeypatch):
     domain = domain_from_dict(DRAW_456)
     dec = decompose(domain, SPACING)
     mesh = mesh_decomposition(dec)
-    assert dec.graph.degree(_node(dec.graph, CORNER), [PATCH_CORNER]) == 0
-    assert _faces_at(mesh, CORNER) == 2
+    assert dec.graph.degree(node_at(dec.graph, CORNER), [PATCH_CORNER]) == 0
+    assert faces_at(mesh, CORNER) == 2
     stats = mesh_stats(mesh, domain)
     assert stats["boundary_singular"] == 1 and stats["boundary_singular_angles"][0] == pytest.approx(225.0)
