@@ -1,9 +1,24 @@
-"""Probes the layout and mesh tests share: the decomposition's node at a point, the mesh faces at a
-polygon corner (a corner's face count is its valence on the boundary less one, issue 12)."""
+"""Probes the layout and mesh tests share: a plan laid out and meshed, the decomposition's node at a
+point, the mesh faces at a polygon corner (a corner's face count is its valence on the boundary less
+one, issue 12)."""
 
 from __future__ import annotations
 
 import numpy as np
+
+from vaultgram.domain import domain_from_dict
+from vaultgram.meshing.quality import mesh_stats
+from vaultgram.pipeline import decompose, mesh_decomposition
+from vaultgram.topology.corners import boundary_angle
+from vaultgram.topology.types import PATCH_CORNER
+
+
+def laid_out(plan: dict, spacing: float) -> tuple:
+    """The plan ``plan`` (vaultgram JSON as a dict): its domain, its decomposition at ``spacing`` and
+    that decomposition's mesh."""
+    domain = domain_from_dict(plan)
+    dec = decompose(domain, spacing)
+    return domain, dec, mesh_decomposition(dec)
 
 
 def node_at(graph, at, tol: float = 1e-9) -> int:
@@ -20,3 +35,18 @@ def faces_at(mesh, at, tol: float = 1e-9) -> int:
     v = int(np.hypot(*(x - np.asarray(at)).T).argmin())
     assert np.hypot(*(x[v] - np.asarray(at))) < tol
     return sum(v in face for face in mesh.faces)
+
+
+def assert_regular_hole_corner(laid, corner, angle: float, min_sj: float, tol: float = 1e-6) -> None:
+    """The hole corner at ``corner`` of the plan ``laid`` (:func:`laid_out`), of interior angle ``angle``
+    degrees (within ``tol``), is the corner of three patches with three faces in the mesh (valence 4,
+    regular for 225-315 degrees); the mesh has no boundary singular vertex, no inverted face and a min
+    scaled Jacobian of at least ``min_sj``."""
+    domain, dec, mesh = laid
+    r = node_at(dec.graph, corner)
+    assert abs(boundary_angle(dec.graph, r) - angle) <= tol
+    assert dec.graph.degree(r, [PATCH_CORNER]) == 3
+    assert faces_at(mesh, corner) == 3
+    stats = mesh_stats(mesh, domain)
+    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
+    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= min_sj

@@ -10,14 +10,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from layout_probes import faces_at, node_at
+from layout_probes import assert_regular_hole_corner, faces_at, laid_out, node_at
 
-from vaultgram.domain import domain_from_dict
 from vaultgram.geometry.polygons import ccw_degrees, direction
 from vaultgram.meshing.quality import mesh_stats
-from vaultgram.pipeline import decompose, mesh_decomposition
 from vaultgram.topology import reflex
-from vaultgram.topology.corners import boundary_angle
 from vaultgram.topology.types import DIAGONAL, PATCH_CORNER
 
 #: Saved random plan 256 of the 700 (spacing 0.04): a nonagon with a pentagonal hole (252 degree
@@ -39,9 +36,7 @@ POLE = (3.848064497584282, 6.833907839559991)
 
 
 def _run():
-    domain = domain_from_dict(DRAW_256)
-    dec = decompose(domain, SPACING)
-    return domain, dec, mesh_decomposition(dec)
+    return laid_out(DRAW_256, SPACING)
 
 
 @pytest.fixture(scope="module")
@@ -52,14 +47,7 @@ def fanned():
 def test_the_hole_corner_gets_its_third_face(fanned):
     """The 252 degree corner is the corner of three patches with three faces (valence 4, regular): no
     boundary singular vertex is left (main 1), no inverted face, min scaled Jacobian main's 0.322 less 0.01."""
-    domain, dec, mesh = fanned
-    r = node_at(dec.graph, CORNER)
-    assert boundary_angle(dec.graph, r) == pytest.approx(252.0)
-    assert dec.graph.degree(r, [PATCH_CORNER]) == 3
-    assert faces_at(mesh, CORNER) == 3
-    stats = mesh_stats(mesh, domain)
-    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
-    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.312
+    assert_regular_hole_corner(fanned, CORNER, 252.0, 0.312)
 
 
 def test_the_strip_halves_the_fan_triangle_evenly(fanned):

@@ -11,12 +11,10 @@ import math
 
 import numpy as np
 import pytest
-from layout_probes import faces_at, node_at
+from layout_probes import assert_regular_hole_corner, faces_at, laid_out, node_at
 
-from vaultgram.domain import domain_from_dict
 from vaultgram.geometry.polygons import ccw_degrees, direction
 from vaultgram.meshing.quality import mesh_stats
-from vaultgram.pipeline import decompose, mesh_decomposition
 from vaultgram.topology import hole_triangles, reflex
 from vaultgram.topology.corners import boundary_angle
 from vaultgram.topology.strips import patch_sides
@@ -55,23 +53,14 @@ def _pole_of(g, patch) -> int | None:
 
 @pytest.fixture(scope="module")
 def cut():
-    domain = domain_from_dict(DRAW_688)
-    dec = decompose(domain, SPACING)
-    return domain, dec, mesh_decomposition(dec)
+    return laid_out(DRAW_688, SPACING)
 
 
 def test_the_hole_corner_gets_its_third_face(cut):
     """The 231.4 degree hole corner is the corner of three patches and has three faces in the mesh
     (valence 4, regular); no boundary singular vertex is left (main 1), no inverted face, min scaled
     Jacobian at least main's 0.500 less 0.01."""
-    domain, dec, mesh = cut
-    r = node_at(dec.graph, CORNER)
-    assert boundary_angle(dec.graph, r) == pytest.approx(231.4, abs=0.05)
-    assert len(_patches(dec.graph, r)) == 3
-    assert faces_at(mesh, CORNER) == 3
-    stats = mesh_stats(mesh, domain)
-    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
-    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.49
+    assert_regular_hole_corner(cut, CORNER, 231.4, 0.49, tol=0.05)
 
 
 def test_the_triangle_is_cut_to_its_poles_other_side(cut):
@@ -119,9 +108,7 @@ def test_without_the_cut_the_corner_keeps_two_faces(monkeypatch):
     pole is :data:`POLE` and whose other corner on that side is :data:`AHEAD`, and has two faces: the
     one boundary singular vertex of main 171d5a0."""
     monkeypatch.setattr(hole_triangles, "_triangle_cut", lambda graph, r: None)
-    domain = domain_from_dict(DRAW_688)
-    dec = decompose(domain, SPACING)
-    mesh = mesh_decomposition(dec)
+    domain, dec, mesh = laid_out(DRAW_688, SPACING)
     g = dec.graph
     r = node_at(g, CORNER)
     assert g.degree(r, [PATCH_CORNER]) == 0

@@ -9,11 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from layout_probes import faces_at, node_at
+from layout_probes import assert_regular_hole_corner, faces_at, laid_out, node_at
 
-from vaultgram.domain import domain_from_dict
 from vaultgram.meshing.quality import mesh_stats
-from vaultgram.pipeline import decompose, mesh_decomposition
 from vaultgram.topology import strips
 from vaultgram.topology.corners import boundary_angle, graph_rings
 from vaultgram.topology.patches import hole_rings
@@ -43,23 +41,14 @@ EDGE_ENDS = ((0.5706336501298902, -6.07063365012989), (1.1412673002597804, -6.14
 
 @pytest.fixture(scope="module")
 def split():
-    domain = domain_from_dict(DRAW_456)
-    dec = decompose(domain, SPACING)
-    return domain, dec, mesh_decomposition(dec)
+    return laid_out(DRAW_456, SPACING)
 
 
 def test_the_hole_corner_gets_its_third_face(split):
     """The 225 degree hole corner is the corner of three patches and has three faces in the mesh
     (valence 4, regular); no boundary singular vertex is left (main 1), no inverted face, min scaled
     Jacobian at least main's 0.357 less 0.01."""
-    domain, dec, mesh = split
-    r = node_at(dec.graph, CORNER)
-    assert boundary_angle(dec.graph, r) == pytest.approx(225.0)
-    assert dec.graph.degree(r, [PATCH_CORNER]) == 3
-    assert faces_at(mesh, CORNER) == 3
-    stats = mesh_stats(mesh, domain)
-    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
-    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.347
+    assert_regular_hole_corner(split, CORNER, 225.0, 0.347)
 
 
 def test_the_boundary_edge_is_split_at_its_middle_into_a_regular_point(split):
@@ -95,9 +84,7 @@ def test_without_the_split_the_corner_keeps_two_faces(monkeypatch):
     the hole corner is the corner of no patch and has two faces: the one boundary singular vertex of
     main af3c82e."""
     monkeypatch.setattr(strips, "strip_boundary_split", lambda graph, patch, corner: -1)
-    domain = domain_from_dict(DRAW_456)
-    dec = decompose(domain, SPACING)
-    mesh = mesh_decomposition(dec)
+    domain, dec, mesh = laid_out(DRAW_456, SPACING)
     assert dec.graph.degree(node_at(dec.graph, CORNER), [PATCH_CORNER]) == 0
     assert faces_at(mesh, CORNER) == 2
     stats = mesh_stats(mesh, domain)
