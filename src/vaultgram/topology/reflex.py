@@ -367,6 +367,9 @@ def choose_chord(graph, r: int) -> tuple | None:
     turned = [i for i in quads if angles[i] > PAST_STRAIGHT] if boundary_angle(graph, r) >= SPIKE else []
     if best is None and turned:
         best = widest_chord(graph, at, turned, FOLD_MIN_ANGLE)
+    if best is None:  # the outer ring's last fallback (imported here: it builds on this module's helpers)
+        from vaultgram.topology.reflex_fallbacks import outer_chord
+        best = outer_chord(graph, at, quads)
     return None if best is None else best[1:]
 
 
