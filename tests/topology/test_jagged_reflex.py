@@ -11,6 +11,9 @@ the 40 a foot off the middle needs. jagged_2 had 9 boundary singular vertices, j
 
 from __future__ import annotations
 
+import json
+import math
+
 import pytest
 from layout_probes import faces_at, laid_out, node_at
 
@@ -20,9 +23,11 @@ from vaultgram.meshpipeline import decompose
 from vaultgram.testing.jagged import jagged_plans
 from vaultgram.topology import reflex
 from vaultgram.topology.corners import boundary_angle
-from vaultgram.topology.reflex_fallbacks import OUTER_MIN_ANGLE, turns_past_straight
+from vaultgram.topology.reflex_fallbacks import OUTER_MIN_ANGLE, OUTER_MIN_QUAD_ANGLE, turns_past_straight, wide_quads
 from vaultgram.topology.strips import patch_sides
 from vaultgram.topology.types import PATCH_CORNER
+
+from paths import ARCHITECTURE
 
 PLANS = jagged_plans()
 
@@ -86,3 +91,27 @@ def test_fallback_limits():
     assert not turns_past_straight([150.0, 120.0], 0, 75.0, limit)
     assert turns_past_straight([150.0, 120.0, 190.0], 1, 60.0, limit)
     assert turns_past_straight([200.0, 90.0], 0, 10.0, limit)
+
+
+def test_no_fallback_in_a_narrow_quad_at_multiple_lobes_notches():
+    """multiple_lobes' notch corners at (20.178, 14.056) and (10.054, 15.967) (the corners of two quads of
+    106/127 and 114/111 degrees) have chords of 39 and 35 degrees in their 106 and 114 degree quads: taken,
+    the mesh went from 1080 faces to 1209-1600 and its worst face from 0.407 to 0.365-0.380. The fallback
+    splits only quads of ``OUTER_MIN_QUAD_ANGLE`` (135) or more, so the layout stays main's: 8 patches,
+    both corners the corners of two."""
+    path = ARCHITECTURE / "multiple_lobes.json"
+    if not path.is_file():
+        pytest.skip("the shared plans are not beside the repository")
+    plan = json.loads(path.read_text())
+    dec = decompose(domain_from_dict(plan))
+    g = dec.graph
+    assert len(dec.patches) == 8
+    for corner in ((20.178, 14.056), (10.054, 15.967)):
+        r = min((n for n in g.nodes() if g.schema.is_subtype(g.node_type(n), "BoundaryVertex")),
+                key=lambda n: math.dist(g.get(n, "pos"), corner))
+        assert math.dist(g.get(r, "pos"), corner) < 1e-3
+        patches = sorted({g.ends(e)[0] for e in g.incident(r, [PATCH_CORNER])})
+        angles = [reflex.patch_corner(g, s, s.corners.index(r))[2] for s in (patch_sides(g, p) for p in patches)]
+        assert len(patches) == 2 and max(angles) < OUTER_MIN_QUAD_ANGLE, angles
+        assert wide_quads(angles, [0, 1]) == []
+        assert reflex.choose_chord(g, r) is None

@@ -32,7 +32,7 @@ angles with the side it ends on. Where that worst angle is below :data:`MIN_ANGL
 as it is (a sliver of a patch would cost more in the mesh's worst element than the singularity), but
 for fallbacks: at a hole corner, last, the widest chord over every foot down to :data:`HOLE_MIN_ANGLE`
 (:func:`hole_chord`: a quad corner that narrow still has a scaled Jacobian above 0.3); on the outer ring,
-last, the widest down to 35 degrees that leaves no patch at the corner past straight
+last, the widest down to 35 degrees in a quad of 135 or more that leaves no patch at the corner past straight
 (:data:`~vaultgram.topology.reflex_fallbacks.OUTER_MIN_ANGLE`, jagged outlines).
 
 A spike (:data:`SPIKE`: 315-360 degrees, regular valence 5, the noise of a geographic outline) asks for
@@ -52,7 +52,7 @@ from vaultgram.geometry.polygons import ccw_degrees, direction, regular_valence
 from vaultgram.geometry.polylines import arc_lengths, ray_hit_fraction
 from vaultgram.topology.corners import boundary_angle, graph_rings, ring_place
 from vaultgram.topology.patches import half_edge_polyline
-from vaultgram.topology.reflex_fallbacks import OUTER_MIN_ANGLE, turns_past_straight
+from vaultgram.topology.reflex_fallbacks import OUTER_MIN_ANGLE, turns_past_straight, wide_quads
 from vaultgram.topology.statecache import per_state
 from vaultgram.topology.strips import (
     Walk,
@@ -353,7 +353,7 @@ def choose_chord(graph, r: int) -> tuple | None:
     0.381 to 0.076); where still none does at a hole corner, the widest chord down to
     :data:`HOLE_MIN_ANGLE` (:func:`hole_chord`); after the spikes' fallback, on the outer ring, the
     widest chord over every foot down to :data:`~vaultgram.topology.reflex_fallbacks.OUTER_MIN_ANGLE`
-    that leaves no patch at the corner past straight
+    in a quad of 135 degrees or more at the corner that leaves no patch there past straight
     (:func:`~vaultgram.topology.reflex_fallbacks.turns_past_straight`)."""
     patches = sorted({graph.ends(e)[0] for e in graph.incident(r, [PATCH_CORNER])})
     found = [patch_sides(graph, p) for p in patches]
@@ -374,7 +374,7 @@ def choose_chord(graph, r: int) -> tuple | None:
     if best is None and turned:
         best = widest_chord(graph, at, turned, FOLD_MIN_ANGLE)
     if best is None and ring_place(graph, r)[0] == 0:  # the outer ring's last fallback (reflex_fallbacks)
-        best = widest_chord(graph, at, quads, OUTER_MIN_ANGLE, every_foot=True,
+        best = widest_chord(graph, at, wide_quads(angles, quads), OUTER_MIN_ANGLE, every_foot=True,
                             keep=lambda i, pole: not turns_past_straight(angles, i, pole, PAST_STRAIGHT))
     return None if best is None else best[1:]
 

@@ -16,12 +16,13 @@ scaled Jacobian (benchmarks/README.md, sessions 20-21).
 
 The outer ring's fallback is the widest chord over every foot down to :data:`OUTER_MIN_ANGLE` (a quad
 corner of 35 degrees has a scaled Jacobian of sin 35 = 0.57), its edge group within
-:data:`~vaultgram.topology.reflex.MAX_RATIO` as for every other outer chord, and none that leaves a patch
-at the corner turning past straight (:func:`turns_past_straight`). Lower limits and the hole's ratio
-were measured and not kept (benchmarks/README.md, session 29): at 30 degrees a 235 degree corner of
-jagged_2 took a chord at 33 whose strip crossed the plan and its worst face fell 0.198 -> 0.161; within
-3.5, a 240 degree corner of jagged_1 took one beside its 299 degree corner of a 187 degree quad and the
-mesh folded there, or fell 0.061 -> 0.027.
+:data:`~vaultgram.topology.reflex.MAX_RATIO` as for every other outer chord, in a quad whose angle at the
+corner is :data:`OUTER_MIN_QUAD_ANGLE` or more (:func:`wide_quads`), and none that leaves a patch at the
+corner turning past straight (:func:`turns_past_straight`). Lower limits and the hole's ratio were
+measured and not kept (benchmarks/README.md, session 29): at 30 degrees a 235 degree corner of jagged_2
+took a chord at 33 whose strip crossed the plan and its worst face fell 0.198 -> 0.161; within 3.5, a 240
+degree corner of jagged_1 took one beside its 299 degree corner of a 187 degree quad and the mesh folded
+there, or fell 0.061 -> 0.027.
 
 This module imports nothing of :mod:`vaultgram.topology.reflex`, which asks it (its
 :func:`~vaultgram.topology.reflex.widest_chord` with :func:`turns_past_straight` as the ``keep`` test).
@@ -29,7 +30,7 @@ This module imports nothing of :mod:`vaultgram.topology.reflex`, which asks it (
 
 from __future__ import annotations
 
-__all__ = ["OUTER_MIN_ANGLE", "turns_past_straight"]
+__all__ = ["OUTER_MIN_ANGLE", "OUTER_MIN_QUAD_ANGLE", "turns_past_straight", "wide_quads"]
 
 #: Degrees: the worst angle an outer-ring corner's fallback chord may leave, at any foot of
 #: :data:`~vaultgram.topology.reflex.FEET`: between the 30 a chord to a side's middle needs and the 40 a
@@ -37,6 +38,13 @@ __all__ = ["OUTER_MIN_ANGLE", "turns_past_straight"]
 #: degrees regular (best chords at 35.4 and 37.3) and no worst face lower (jagged_3 0.245 -> 0.277);
 #: 30 took a third corner's chord at 33 degrees and jagged_2 fell 0.198 -> 0.161.
 OUTER_MIN_ANGLE = 35.0
+#: Degrees: the fallback splits only a quad this wide or wider at the corner (:func:`wide_quads`), whose
+#: split leaves the quad part at least 100 degrees beside the triangle's 35 or more. In a narrower quad
+#: the two parts are both narrow: multiple_lobes' notch corners (quads of 106 and 114 degrees beside
+#: fan-shaped patches, best chords at 39 and 35) took such chords and its mesh went from 1080 faces to
+#: 1209-1600, its worst face from 0.407 to 0.365-0.380 (two boundary singular vertices fewer). The jagged
+#: corners the fallback makes regular split quads of 137-162 degrees.
+OUTER_MIN_QUAD_ANGLE = 135.0
 
 
 def turns_past_straight(angles: list, i: int, pole: float, limit: float) -> bool:
@@ -54,3 +62,14 @@ def turns_past_straight(angles: list, i: int, pole: float, limit: float) -> bool
     """
     rest = [a for m, a in enumerate(angles) if m != i]
     return max([pole, angles[i] - pole, *rest]) > limit
+
+
+def wide_quads(angles: list, quads: list) -> list:
+    """The indices among ``quads`` of the reflex corner's patches (``angles``: their angles there,
+    degrees) that are at least :data:`OUTER_MIN_QUAD_ANGLE` wide at the corner: the quads the outer
+    ring's fallback may split.
+
+    >>> wide_quads([105.7, 127.0], [0, 1]), wide_quads([89.9, 137.5], [0, 1]), wide_quads([161.7, 144.3], [1])
+    ([], [1], [1])
+    """
+    return [i for i in quads if angles[i] >= OUTER_MIN_QUAD_ANGLE]
