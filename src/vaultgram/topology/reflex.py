@@ -31,7 +31,9 @@ whose worst angle is widest: the three patch angles at the corner after the spli
 angles with the side it ends on. Where that worst angle is below :data:`MIN_ANGLE` the corner is left
 as it is (a sliver of a patch would cost more in the mesh's worst element than the singularity), but
 for fallbacks: at a hole corner, last, the widest chord over every foot down to :data:`HOLE_MIN_ANGLE`
-(:func:`hole_chord`: a quad corner that narrow still has a scaled Jacobian above 0.3).
+(:func:`hole_chord`: a quad corner that narrow still has a scaled Jacobian above 0.3); on the outer ring,
+last, the widest down to 35 degrees in a quad of 135 or more that leaves no patch at the corner past straight
+(:data:`~vaultgram.topology.reflex_fallbacks.OUTER_MIN_ANGLE`, jagged outlines).
 
 A spike (:data:`SPIKE`: 315-360 degrees, regular valence 5, the noise of a geographic outline) asks for
 four faces: it gets a chord while it is the corner of two patches or of three (the rules'
@@ -50,6 +52,7 @@ from vaultgram.geometry.polygons import ccw_degrees, direction, regular_valence
 from vaultgram.geometry.polylines import arc_lengths, ray_hit_fraction
 from vaultgram.topology.corners import boundary_angle, graph_rings, ring_place
 from vaultgram.topology.patches import half_edge_polyline
+from vaultgram.topology.reflex_fallbacks import OUTER_MIN_ANGLE, turns_past_straight, wide_quads
 from vaultgram.topology.statecache import per_state
 from vaultgram.topology.strips import (
     Walk,
@@ -348,7 +351,10 @@ def choose_chord(graph, r: int) -> tuple | None:
     :data:`MIN_FAN_HALF`, as a cut's may be (never before: asked first, such chords took the place of
     the chosen ones at corners already regular, and plans 12, 395 and 444 fell under 0.3, 444 from
     0.381 to 0.076); where still none does at a hole corner, the widest chord down to
-    :data:`HOLE_MIN_ANGLE` (:func:`hole_chord`)."""
+    :data:`HOLE_MIN_ANGLE` (:func:`hole_chord`); after the spikes' fallback, on the outer ring, the
+    widest chord over every foot down to :data:`~vaultgram.topology.reflex_fallbacks.OUTER_MIN_ANGLE`
+    in a quad of 135 degrees or more at the corner that leaves no patch there past straight
+    (:func:`~vaultgram.topology.reflex_fallbacks.turns_past_straight`)."""
     patches = sorted({graph.ends(e)[0] for e in graph.incident(r, [PATCH_CORNER])})
     found = [patch_sides(graph, p) for p in patches]
     if any(f is None for f in found):
@@ -367,6 +373,9 @@ def choose_chord(graph, r: int) -> tuple | None:
     turned = [i for i in quads if angles[i] > PAST_STRAIGHT] if boundary_angle(graph, r) >= SPIKE else []
     if best is None and turned:
         best = widest_chord(graph, at, turned, FOLD_MIN_ANGLE)
+    if best is None and ring_place(graph, r)[0] == 0:  # the outer ring's last fallback (reflex_fallbacks)
+        best = widest_chord(graph, at, wide_quads(angles, quads), OUTER_MIN_ANGLE, every_foot=True,
+                            keep=lambda i, pole: not turns_past_straight(angles, i, pole, PAST_STRAIGHT))
     return None if best is None else best[1:]
 
 
@@ -380,13 +389,15 @@ def hole_chord(graph, at: tuple, quads: list) -> tuple | None:
 
 
 def widest_chord(graph, at: tuple, quads: list, least: float | None, ratio: float = MAX_RATIO,
-                  fans: float | None = None, every_foot: bool = False) -> tuple | None:
+                  fans: float | None = None, every_foot: bool = False, keep=None) -> tuple | None:
     """Of the chords from the reflex corner in the quads ``quads`` (indices into ``at``: the corner,
     its patches, their sides and their angles there), the one whose worst angle is widest, as
     ``(worst, patch, kind, target, side, fraction)`` (:func:`choose_chord`); ``least`` and ``ratio`` are
     passed on to :func:`chord_worst`, ``fans`` to :func:`chord_targets`. Of a side's feet the first that
     qualifies, in :data:`FEET` order (the middle first), or with ``every_foot`` the widest of all of
-    them (:func:`hole_chord`). None where none qualifies."""
+    them (:func:`hole_chord`). With ``keep``, only chords it passes, asked with the quad's index and the
+    triangle's angle at the corner (the outer ring's fallback:
+    :func:`~vaultgram.topology.reflex_fallbacks.turns_past_straight`). None where none qualifies."""
     r, patches, found, angles = at
     theta = boundary_angle(graph, r)
     best = None
@@ -398,6 +409,8 @@ def widest_chord(graph, at: tuple, quads: list, least: float | None, ratio: floa
             for kind, target, point, tangent, fraction in chord_targets(graph, p, sides, k, j, fans):
                 candidate = (kind, target, point, tangent, fraction)
                 worst = chord_worst(graph, p, sides, k, j, candidate, other, least, ratio)
+                if worst is not None and keep is not None:
+                    worst = worst if keep(i, chord_angles(graph, sides, k, j, point, tangent, other)[1]) else None
                 if worst is not None:
                     if best is None or worst > best[0]:
                         best = (worst, p, kind, target, sides.corners[(k + j) % 4], fraction)
