@@ -4,10 +4,10 @@
 the worst corner can only be widened by moving two or more vertices at once: a row of slivers squeezed
 through a narrow passage (jagged_1's spike neck, 0.6 m wide for four strips of 1.3 m quads), where
 each vertex's move narrows the corner across the row as much as it widens its own. :func:`polish_worst`
-moves every free vertex round the poor corners at once, up the gradient of a soft minimum of their
-qualities (the worst corners weigh most), and takes a step only when the worst corner of the region
-gets better: the mesh's worst face never gets worse and a valid mesh stays valid. Not in the paper
-(§3.2 stops at Laplacian smoothing): its meshes are coarser than issue 12's jagged outlines.
+moves every free vertex round the poor corners at once, up a soft minimum of their qualities (the
+worst corners weigh most; limited-memory BFGS), and keeps the positions with the best worst corner it
+met, never worse than it started: a valid mesh stays valid. Not in the paper (§3.2 stops at Laplacian
+smoothing): its meshes are coarser than issue 12's jagged outlines.
 
 Vectorised over the corners of the region; no Python loop runs over vertices or faces.
 """
@@ -35,7 +35,15 @@ POLISH_RINGS = 3
 BETA = 40.0
 #: Where the soft minimum stops rising, its sharpness doubles, up to this.
 BETA_MAX = 640.0
-#: Ascent steps at most, and the largest move of a step as a share of the vertex's shortest edge.
+#: A side shorter than this share of its length on entry lowers its corners' quality too (besides the
+#: optimiser's SIDE_SHARE of the opposite side).
+KEEP_SIDE = 0.5
+#: The polished positions are kept only where they raise the worst corner by this much: a mesh at its
+#: bound (a pole's fan, a sharp corner of the plan) is left as it was, not drifted for nothing (saved
+#: random plans 140, 230, 471: shortest edge 0.050 -> 0.033, 0.088 -> 0.040, 0.078 -> 0.032 of the median
+#: edge for a gain under 0.001).
+MIN_GAIN = 0.005
+#: Ascent steps at most, and the largest move of a vertex in a step as a share of its mean side.
 POLISH_STEPS = 400
 POLISH_STEP = 0.2
 #: Pairs of steps and gradient changes the ascent remembers (limited-memory BFGS), and halvings of a
@@ -53,7 +61,8 @@ _PAIRS = 20000
 class _Region(NamedTuple):
     """The corners polished (vertex ``u``, next ``v``, previous ``p``, triangle ``factor``, the side
     lengths ``ref1``, ``ref2`` under which a side lowers the quality, :func:`~vaultgram.meshing.optimise._scaled`)
-    and the vertices that move (``free``, n bool)."""
+    , the vertices that move (``free``, n bool) and the smallest scaled Jacobian of the corners no move
+    changes (``rest``; inf where none)."""
 
     u: np.ndarray
     v: np.ndarray
@@ -62,6 +71,7 @@ class _Region(NamedTuple):
     ref1: np.ndarray
     ref2: np.ndarray
     free: np.ndarray
+    rest: float
 
 
 def polish_worst(vertices: np.ndarray, faces, fixed: np.ndarray | None = None, constraints=(), still=None,
@@ -70,13 +80,12 @@ def polish_worst(vertices: np.ndarray, faces, fixed: np.ndarray | None = None, c
 
     A corner's quality is the max-min optimiser's (the scaled Jacobian, lowered where a side is under
     :data:`~vaultgram.meshing.optimise.SIDE_SHARE` of the opposite side as on entry, so no side
-    collapses). The region is the faces within :data:`POLISH_RINGS` rings of the corners under
-    ``target``; its vertices that are not ``fixed`` and share no face with one of ``still`` (point
-    features' rings carry the point loads' force flow, as in the optimiser) move, sliding ones kept on
-    their polylines. Each step moves them up the gradient of the soft minimum (:data:`BETA`) of the
-    region's corners, the most driven vertex by ``rate`` x :data:`POLISH_STEP` of its shortest edge; it
-    is taken when the region's worst corner gets better (the rate then grows), else the rate halves.
-    A mesh with an inverted face, or none under ``target``, is returned as it is.
+    collapses), lowered too where a side is under :data:`KEEP_SIDE` of its own length on entry. The
+    vertices within :data:`POLISH_RINGS` rings of the corners whose scaled Jacobian is under ``target``
+    move, unless ``fixed`` or sharing a face with one of ``still`` (point features' rings carry the
+    point loads' force flow, as in the optimiser), sliding ones kept on their polylines; the corners of
+    every face they touch are measured (:func:`_ascend`). A mesh with an inverted face, or none under
+    ``target``, is returned as it is; so is one the ascent cannot raise by :data:`MIN_GAIN`.
 
     Example
     -------
@@ -102,7 +111,7 @@ def _region(x: np.ndarray, faces, fixed, still, target: float) -> _Region | None
     """The :class:`_Region` of ``x``: the corners of the faces with a free vertex, the free vertices
     those within :data:`POLISH_RINGS` rings of a corner whose scaled Jacobian is under ``target``, not
     ``fixed`` and sharing no face with one of ``still``; None when no corner is under ``target`` (or
-    one is inverted, or no vertex may move)."""
+    one is inverted, or no vertex may move, or the worst corner is in no face a free vertex is in)."""
     t = _corner_table(faces, x)
     sj = _scaled(plan_rows(x, t.u), plan_rows(x, t.v), plan_rows(x, t.p), t.factor)
     if sj.min() <= 0 or sj.min() >= target:
@@ -122,7 +131,13 @@ def _region(x: np.ndarray, faces, fixed, still, target: float) -> _Region | None
     in_face = np.zeros(len(faces), dtype=bool)
     in_face[t.face[free[t.u]]] = True  # every face a move changes
     k = in_face[t.face]
-    return _Region(t.u[k], t.v[k], t.p[k], t.factor[k], t.ref[k], t.ref[t.before][k], free)
+    rest = float(sj[~k].min()) if (~k).any() else np.inf
+    if rest <= sj[k].min():  # the worst corner is one no vertex here may widen: nothing to gain
+        return None
+    own1 = np.hypot(*(plan_rows(x, t.v[k]) - plan_rows(x, t.u[k])).T)
+    own2 = np.hypot(*(plan_rows(x, t.p[k]) - plan_rows(x, t.u[k])).T)
+    return _Region(t.u[k], t.v[k], t.p[k], t.factor[k], np.maximum(t.ref[k], KEEP_SIDE * own1),
+                   np.maximum(t.ref[t.before][k], KEEP_SIDE * own2), free, rest)
 
 
 def _ascend(x: np.ndarray, r: _Region, constraints, steps: int) -> np.ndarray:
@@ -131,7 +146,8 @@ def _ascend(x: np.ndarray, r: _Region, constraints, steps: int) -> np.ndarray:
     squared, each vertex's move at most :data:`POLISH_STEP` of its mean side): a step is halved until it
     raises the soft minimum and inverts no corner. Returned: the positions met on the way with the best
     smallest scaled Jacobian (the mesh's measure) among those whose smallest quality (with the side
-    term) is no worse than on entry; the start where none beats it. Plain gradient steps, each vertex's
+    term) is no worse than on entry; the start where none beats it by :data:`MIN_GAIN`. Plain gradient
+    steps, each vertex's
     scaled by its shortest side, reached on jagged_1 in 3,000 steps what this reaches in about 300."""
     moving = _Slides.of(constraints, r.free)
     idx = np.flatnonzero(r.free)
@@ -139,7 +155,8 @@ def _ascend(x: np.ndarray, r: _Region, constraints, steps: int) -> np.ndarray:
     beta = BETA
     low, soft, q = _soft(x, r, beta)
     g = _gradient(x, r, q, low, beta)[idx].ravel()
-    floor, best, best_sj, pairs, length, since = low, x, _worst_jacobian(x, r), [], 1.0, 0
+    start, start_sj = x, _worst_jacobian(x, r)
+    floor, best, best_sj, pairs, length, since = low, x, start_sj, [], 1.0, 0
     for _ in range(steps):
         d = _direction(g, pairs, reach)
         d = d * np.repeat(np.minimum(1.0, reach[0::2] / np.maximum(np.hypot(d[0::2], d[1::2]), 1e-300)), 2)
@@ -172,13 +189,14 @@ def _ascend(x: np.ndarray, r: _Region, constraints, steps: int) -> np.ndarray:
             since += 1
         if since >= _STALL:
             break
-    return best
+    return best if best_sj >= start_sj + MIN_GAIN else start
 
 
 def _worst_jacobian(x: np.ndarray, r: _Region) -> float:
-    """The region's smallest corner scaled Jacobian (the mesh's measure,
-    :func:`~vaultgram.meshing.quality.face_scaled_jacobians`, without the side term)."""
-    return float(_scaled(plan_rows(x, r.u), plan_rows(x, r.v), plan_rows(x, r.p), r.factor).min())
+    """The mesh's smallest corner scaled Jacobian (its measure,
+    :func:`~vaultgram.meshing.quality.face_scaled_jacobians`, without the side term): the region's, or
+    that of the corners it leaves (``rest``) where smaller."""
+    return min(r.rest, float(_scaled(plan_rows(x, r.u), plan_rows(x, r.v), plan_rows(x, r.p), r.factor).min()))
 
 
 def _direction(g: np.ndarray, pairs: list, reach: np.ndarray) -> np.ndarray:
