@@ -15,14 +15,17 @@ import math
 import numpy as np
 import pytest
 
-from vaultgram.domain import domain_from_dict
+from vaultgram.domain import domain_from_dict, load_domain
 from vaultgram.geometry.meshes import grid_mesh
+from vaultgram.meshing import weld
 from vaultgram.meshing.optimise import maximise_min_quality
 from vaultgram.meshing.polish import POLISH_TARGET, polish_worst
 from vaultgram.meshing.quadmesh import SlideConstraint
 from vaultgram.meshing.quality import face_scaled_jacobians, mesh_stats
 from vaultgram.pipeline import mesh_domain
 from vaultgram.testing.jagged import jagged_plans
+
+from paths import ARCHITECTURE
 
 PLANS = jagged_plans()
 
@@ -98,6 +101,20 @@ def test_the_one_vertex_search_stalls_where_the_polish_does_not(monkeypatch):
     assert mesh_stats(before, domain)["min_scaled_jacobian"] < 0.07
     x = polish_worst(before.vertices, before.faces, before.fixed, before.constraints, still=before.feature)
     assert face_scaled_jacobians(x, before.faces).min() > 0.12
+
+
+def test_the_polish_after_the_untangling_rounds(monkeypatch):
+    """hiroshi_senju_museum at 16,000 faces with its hole side sampled by arc length (as before session
+    26: tests/meshing/test_untangle_rounds.py) folds, and the untangling rounds leave a valid mesh whose
+    worst face is 0.093 (a tapered quad beside the unfolded one); the polish takes it to 0.346."""
+    path = ARCHITECTURE / "hiroshi_senju_museum.json"
+    if not path.is_file():
+        pytest.skip("shared architecture data not found")
+    domain = load_domain(path)
+    monkeypatch.setattr(weld, "WRAP_FLOOR", -1.0)
+    stats = mesh_stats(mesh_domain(domain, target_length=math.sqrt(domain.area / 16000)), domain)
+    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] > 0.3
+    assert stats["shortest_over_median_edge"] > 0.01
 
 
 def _squeezed_grid():
