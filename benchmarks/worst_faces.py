@@ -1,7 +1,11 @@
 """The worst face of each plan's mesh and its cause (issue 12 What 4; results in benchmarks/README.md).
 
-Run: ``python benchmarks/worst_faces.py [--plans-file /work/plans700.json] [--first N] [--under 0.3]
-[--json FILE]``
+Run: ``python benchmarks/worst_faces.py [--plans-file /work/plans700.json] [--first N | --only I,J,...]
+[--jagged] [--without-polish] [--under 0.3] [--json FILE]``
+
+``--jagged`` takes the four jagged outlines of :mod:`vaultgram.testing.jagged` (at spacing 0.02, the
+default length) instead of the saved plans; ``--only`` the saved plans of those indices;
+``--without-polish`` meshes without :func:`vaultgram.meshing.polish.polish_worst` (as before session 29).
 
 Each plan is meshed as ``reliability.py plans`` does (:func:`vaultgram.pipeline.mesh_domain` at the
 plan's spacing). Its worst face (the least :func:`~vaultgram.meshing.quality.face_scaled_jacobians`)
@@ -140,14 +144,19 @@ def cause(mesh, face_sj: np.ndarray | None = None) -> dict:
             "fan_bound": round(float(fan_bounds(x, mesh.faces)[c]), 4), "cause": klass}
 
 
-def plan_rows(plans: list, first: int | None = None) -> list:
-    """One row per plan: its index, spacing, and :func:`cause` of its mesh (or the refusal)."""
+def plan_rows(plans: list, first: int | None = None, only=None) -> list:
+    """One row per plan (those of index in ``only`` where given; ``plans`` a list of ``(data, spacing)``
+    or a dict of them by name): its index or name, spacing, and :func:`cause` of its mesh (or the
+    refusal)."""
     from vaultgram.domain import domain_from_dict
     from vaultgram.errors import VaultgramError
     from vaultgram.pipeline import mesh_domain
 
     rows = []
-    for i, (data, spacing) in enumerate(plans[:first]):
+    items = list(plans.items()) if isinstance(plans, dict) else list(enumerate(plans))
+    for i, (data, spacing) in items[:first]:
+        if only is not None and i not in only:
+            continue
         try:
             rows.append({"plan": i, "spacing": spacing, **cause(mesh_domain(domain_from_dict(data), spacing))})
         except VaultgramError as exc:
@@ -181,8 +190,22 @@ def main(argv=None) -> None:
     parser.add_argument("--first", type=int, default=None)
     parser.add_argument("--under", type=float, default=0.3)
     parser.add_argument("--json", type=Path, default=None, help="write every row here")
+    parser.add_argument("--only", type=lambda s: {int(k) for k in s.split(",")}, default=None,
+                        help="only the saved plans of these indices (comma-separated)")
+    parser.add_argument("--jagged", action="store_true", help="the four jagged outlines instead")
+    parser.add_argument("--without-polish", action="store_true", help="mesh without polish_worst")
     args = parser.parse_args(argv)
-    rows = plan_rows(json.loads(args.plans_file.read_text()), args.first)
+    if args.without_polish:
+        import vaultgram.meshpipeline as pipeline
+
+        pipeline.POLISH_TARGET = 0.0  # a valid mesh's worst face is never under it: never polished
+    if args.jagged:
+        from vaultgram.testing.jagged import jagged_plans
+
+        plans = {name: (data, 0.02) for name, data in jagged_plans().items()}
+    else:
+        plans = json.loads(args.plans_file.read_text())
+    rows = plan_rows(plans, args.first, args.only)
     if args.json:
         args.json.write_text(json.dumps(rows, indent=0))
     print(table(rows, args.under))

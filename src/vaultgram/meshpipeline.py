@@ -36,6 +36,7 @@ from vaultgram.meshing.fidelity import SAME_POINT, hold_boundary, on_points, pla
 from vaultgram.meshing.layout import Layout, edge_groups, kept_points
 from vaultgram.meshing.optimise import maximise_min_quality
 from vaultgram.meshing.orthogonalise import orthogonalise
+from vaultgram.meshing.polish import POLISH_TARGET, polish_worst
 from vaultgram.meshing.quadmesh import QuadMesh
 from vaultgram.meshing.quality import check_not_folded, face_scaled_jacobians
 from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS, KINK_REACH, kink_offsets, laplacian_smooth
@@ -309,6 +310,8 @@ def _meshed(dec: Decomposition, target_length, smooth: int, densities, allow_fol
             quality = face_scaled_jacobians(x, mesh.faces)
     if quality is not None and quality.min() > 0:  # issue 12: the mean scaled Jacobian, the worst face kept
         with progress.timed(timings, "orthogonalise"):
+            if quality.min() < POLISH_TARGET:  # issue 12 What 4: the worst corners raised together
+                x = polish_worst(x, mesh.faces, mesh.fixed, mesh.constraints, still=mesh.feature)
             x = orthogonalise(x, mesh.faces, mesh.fixed, mesh.constraints, still=mesh.feature)
     mesh = dataclasses.replace(mesh, vertices=x, info=_mesh_info(dec, layout, smooth), origin=dec.origin)
     if quality is not None and not allow_folds:

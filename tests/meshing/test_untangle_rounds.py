@@ -9,6 +9,7 @@ import math
 
 import pytest
 
+from vaultgram import meshpipeline
 from vaultgram.domain import load_domain
 from vaultgram.meshing import weld
 from vaultgram.meshing.quality import mesh_stats
@@ -24,12 +25,15 @@ def test_hiroshi_meshes_at_sixteen_thousand_faces(monkeypatch):
     almost no area beside them). One more round from the optimiser's result unfolds them. Since
     session 26 that hole side is sampled by its offset length (test_wrapped_sides: no fold to untangle,
     0.498); the test meshes with the arc-length samples (``WRAP_FLOOR`` -1: no patch resampled) to keep
-    the rounds measured on the fold they were made for."""
+    the rounds measured on the fold they were made for, and without session 29's polish of the worst
+    corners (``POLISH_TARGET`` 0), which raises the rounds' 0.093 to 0.346
+    (tests/meshing/test_jagged_quality.py), so that the rounds' own result is what is measured."""
     path = ARCHITECTURE / "hiroshi_senju_museum.json"
     if not path.is_file():
         pytest.skip("shared architecture data not found")
     domain = load_domain(path)
     monkeypatch.setattr(weld, "WRAP_FLOOR", -1.0)
+    monkeypatch.setattr(meshpipeline, "POLISH_TARGET", 0.0)
     mesh = mesh_domain(domain, target_length=math.sqrt(domain.area / 16000))  # raised on 7aa879d
     stats = mesh_stats(mesh, domain)
     assert stats["inverted_faces"] == 0
