@@ -81,9 +81,9 @@ def test_fan_bounds_bisect_only_where_the_angle_limits(jittered):
 def test_vertex_minima_and_goals_by_one_grouping(jittered):
     x, faces = jittered
     face_of, u, v, p = corner_arrays(faces)
-    table = optimise._corner_table(faces)
+    table = optimise.corner_table(faces)
     xy = x[:, :2]
-    sj = optimise._scaled(xy[u], xy[v], xy[p], table.factor)
+    sj = optimise.corner_quality(xy[u], xy[v], xy[p], table.factor)
     assert np.array_equal(optimise._vertex_minima(x, table), _touch_reference(sj, u, v, p, len(x)))
     values = np.random.default_rng(2).normal(size=len(u))
     assert np.array_equal(optimise._touching(values, table, len(x), np.inf), _touch_reference(values, u, v, p, len(x)))
@@ -101,7 +101,7 @@ def test_vertex_minima_and_goals_by_one_grouping(jittered):
         factor = np.minimum(1.0, np.minimum(np.hypot(*(xy[v] - xy[u]).T) / ref1, np.hypot(*(xy[p] - xy[u]).T) / ref2))
     expected = np.where(sj > 0, sj * factor, sj)
     assert (factor < 1).mean() > 0.9
-    assert np.allclose(optimise._vertex_minima(x, optimise._corner_table(faces, 10 * x)),
+    assert np.allclose(optimise._vertex_minima(x, optimise.corner_table(faces, 10 * x)),
                        _touch_reference(expected, u, v, p, len(x)), rtol=1e-12, atol=0)
 
 

@@ -7,7 +7,7 @@ poles, whose corners the Laplacian makes unequal. :func:`maximise_min_quality` m
 time to where the smallest scaled Jacobian of the corners it touches is largest (a pattern search over
 a few trial positions, Freitag and Plassmann's "optimisation-based smoothing"), so the worst corner
 never gets worse and no valid face is ever inverted; a corner whose side shrinks under a share of the
-opposite side counts as worse (:func:`_scaled`), so no move collapses a quad into a triangle. Not in
+opposite side counts as worse (:func:`corner_quality`), so no move collapses a quad into a triangle. Not in
 the paper: its meshes are coarser.
 
 Vectorised: each sweep works on an independent set of vertices (no two in one face), all of whose
@@ -26,7 +26,8 @@ from vaultgram.geometry.meshes import corner_arrays
 from vaultgram.geometry.polylines import project_to_polyline
 from vaultgram.meshing.fans import FAN_FLOOR, fan_bounds
 
-__all__ = ["maximise_min_quality", "OPTIMISE_TARGET", "OPTIMISE_SWEEPS"]
+__all__ = ["maximise_min_quality", "OPTIMISE_TARGET", "OPTIMISE_SWEEPS", "CornerTable", "corner_table",
+           "corner_quality", "face_neighbours"]
 
 #: Vertices whose worst corner has a scaled Jacobian below this are optimised (above it they are
 #: left alone, and a trial that only raises the mean is taken only where the minimum stays there).
@@ -42,7 +43,7 @@ SLIDE_TARGET = 0.3
 FAN_MARGIN = 0.97
 #: A corner's quality is its scaled Jacobian times ``min(1, side / (SIDE_SHARE x opposite side))`` for
 #: each of its two sides, the opposite side (a triangle's: the mean of its other two) measured before the
-#: optimisation (:func:`_scaled`). 0.1 let shared plans' sides shrink under half of what smoothing left
+#: optimisation (:func:`corner_quality`). 0.1 let shared plans' sides shrink under half of what smoothing left
 #: (features_combined 0.012 -> 0.005 of the median edge, multiple_lobes 0.006 -> 0.002); 0.3 cost
 #: mexico_airport's worst face 0.659 -> 0.429 and square_point_loads' mean 0.902 -> 0.896.
 SIDE_SHARE = 0.2
@@ -79,13 +80,13 @@ class _Groups(NamedTuple):
         return out
 
 
-class _Corners(NamedTuple):
+class CornerTable(NamedTuple):
     """The corners of the faces: face, vertex ``u``, next ``v``, previous ``p``, the factor that
     scales a triangle's corner so that an equilateral triangle has 1 (as
     :func:`vaultgram.meshing.quality.face_scaled_jacobians`), the next and previous corner of the
     same face (``after``, ``before``: the corners whose ``u`` are ``v`` and ``p``), the corners
     grouped by vertex ``u`` and by face, and per corner the length ``ref`` under which its side ``u-v``
-    lowers the quality of the two corners at its ends (:func:`_scaled`; 0: never)."""
+    lowers the quality of the two corners at its ends (:func:`corner_quality`; 0: never)."""
 
     face: np.ndarray
     u: np.ndarray
@@ -99,8 +100,8 @@ class _Corners(NamedTuple):
     ref: np.ndarray
 
 
-def _corner_table(faces, x: np.ndarray | None = None) -> _Corners:
-    """The :class:`_Corners` of ``faces``; ``ref`` :data:`SIDE_SHARE` of the side opposite each corner's
+def corner_table(faces, x: np.ndarray | None = None) -> CornerTable:
+    """The :class:`CornerTable` of ``faces``; ``ref`` :data:`SIDE_SHARE` of the side opposite each corner's
     side ``u-v`` at ``x`` (in a triangle, of the mean of its other two sides; 0 without ``x``)."""
     face, u, v, p = corner_arrays(faces)
     lens = np.bincount(face, minlength=len(faces))
@@ -112,15 +113,15 @@ def _corner_table(faces, x: np.ndarray | None = None) -> _Corners:
     if x is not None:
         side = np.hypot(*(plan_rows(x, v) - plan_rows(x, u)).T)
         ref = SIDE_SHARE * np.where(size == 3, 0.5 * (side[after] + side[before]), side[after[after]])
-    return _Corners(face, u, v, p, _factors(face, len(faces)), after, before, _Groups.of(u), _Groups.of(face), ref)
+    return CornerTable(face, u, v, p, _factors(face, len(faces)), after, before, _Groups.of(u), _Groups.of(face), ref)
 
 
 def _factors(face: np.ndarray, n_faces: int) -> np.ndarray:
-    """Per corner (of face ``face``), the factor of :class:`_Corners`: :data:`_TRI` in a triangle, else 1."""
+    """Per corner (of face ``face``), the factor of :class:`CornerTable`: :data:`_TRI` in a triangle, else 1."""
     return np.where(np.bincount(face, minlength=n_faces)[face] == 3, _TRI, 1.0)
 
 
-def _touching(values: np.ndarray, t: _Corners, n: int, fill) -> np.ndarray:
+def _touching(values: np.ndarray, t: CornerTable, n: int, fill) -> np.ndarray:
     """Per vertex ``0 .. n - 1``, the smallest of the ``values`` of the corners that touch it (as their
     vertex, next or previous vertex; ``fill`` where none does): a vertex ``w`` is the next vertex of
     the corner before each corner at ``w`` and the previous vertex of the one after it, so one grouping
@@ -128,7 +129,7 @@ def _touching(values: np.ndarray, t: _Corners, n: int, fill) -> np.ndarray:
     return t.at.minimum(np.minimum(np.minimum(values, values[t.before]), values[t.after]), n, fill)
 
 
-def _scaled(pu: np.ndarray, pv: np.ndarray, pp: np.ndarray, factor: np.ndarray, ref1=0.0, ref2=0.0) -> np.ndarray:
+def corner_quality(pu: np.ndarray, pv: np.ndarray, pp: np.ndarray, factor, ref1=0.0, ref2=0.0) -> np.ndarray:
     """Qualities of corners given their three points (..., 2): the scaled Jacobian ``(e1 x e2) / (|e1|
     |e2|)`` times ``factor``, at most 1, -1 for a degenerate corner; where positive, times
     ``min(1, |e1| / ref1, |e2| / ref2)`` (:data:`SIDE_SHARE` of the opposite sides).
@@ -141,7 +142,14 @@ def _scaled(pu: np.ndarray, pv: np.ndarray, pp: np.ndarray, factor: np.ndarray, 
     make room (the strips under features_combined's curve end (5, 7.5): 0.358 without a collapsed side,
     where a hard floor on the moves stopped at 0.298). Against the opposite side, not the face's mean
     side: a long thin quad (multiple_lobes' rows into a short stretch of outline, 1 m by 0.03 m) is no
-    collapse, and measured against its mean side it was moved to 0.293."""
+    collapse, and measured against its mean side it was moved to 0.293.
+
+    >>> o, a = np.array([0.0, 0.0]), np.array([1.0, 0.0])
+    >>> float(corner_quality(o, a, np.array([0.0, 1.0]), 1.0)), round(float(corner_quality(o, a, np.ones(2), 1.0)), 3)
+    (1.0, 0.707)
+    >>> float(corner_quality(o, a, np.array([0.0, 0.1]), 1.0, ref2=0.2))   # the side under its share of the opposite
+    0.5
+    """
     e1, e2 = pv - pu, pp - pu
     l1, l2 = np.hypot(e1[..., 0], e1[..., 1]), np.hypot(e2[..., 0], e2[..., 1])
     norm = l1 * l2
@@ -157,7 +165,7 @@ def maximise_min_quality(vertices: np.ndarray, faces, fixed: np.ndarray | None =
     """Raise the smallest scaled Jacobian around every vertex whose worst corner is below its goal.
 
     A corner's quality is its scaled Jacobian, lowered where one of its sides is under
-    :data:`SIDE_SHARE` of the opposite side as it was on entry (:func:`_scaled`). A vertex's goal is
+    :data:`SIDE_SHARE` of the opposite side as it was on entry (:func:`corner_quality`). A vertex's goal is
     ``target``, less for a sliding vertex or next to a pole's fan, none next to a pole whose fan cannot
     reach the floor (:func:`_goals`). Each sweep takes the vertices below their
     goals that are not fixed and not known to be stuck, keeps those whose worst corner is the lowest
@@ -187,21 +195,21 @@ def maximise_min_quality(vertices: np.ndarray, faces, fixed: np.ndarray | None =
     x = np.array(vertices, dtype=float)
     if len(faces) == 0:
         return x
-    table = _corner_table(faces, x)
+    table = corner_table(faces, x)
     sj = _corner_jacobians(x, table)
     if not (sj < target).any():  # no vertex below its goal, at most the target: a fine mesh, smoothed
         return x
     keep = np.zeros(len(x), dtype=bool) if fixed is None else np.asarray(fixed, dtype=bool).copy()
     worst = _touching(sj, table, len(x), np.inf)
     if still is not None and np.any(still) and worst.min() > 0:  # unfolding comes first
-        keep[_neighbours(table, np.flatnonzero(still), len(x))] = True
+        keep[face_neighbours(table, np.flatnonzero(still), len(x))] = True
     slide_of = _slide_index(len(x), constraints)
     goal = _goals(x, faces, table, target, slide_of >= 0)
     stuck = keep.copy()
     if moved is not None:
         near = np.asarray(moved, dtype=np.int64)
         for _ in range(MOVED_RINGS):
-            near = _neighbours(table, near, len(x))
+            near = face_neighbours(table, near, len(x))
         stuck[np.setdiff1d(np.arange(len(x)), near)] = True
     for sweep in range(sweeps):
         if sweep:
@@ -211,12 +219,12 @@ def maximise_min_quality(vertices: np.ndarray, faces, fixed: np.ndarray | None =
             break
         moved = _try_moves(x, table, chosen, goal[chosen], slide_of, constraints)
         stuck[chosen[~moved]] = True
-        stuck[_neighbours(table, chosen[moved], len(x))] = False
+        stuck[face_neighbours(table, chosen[moved], len(x))] = False
         stuck |= keep
     return x
 
 
-def _goals(x: np.ndarray, faces, t: _Corners, target: float, sliding: np.ndarray) -> np.ndarray:
+def _goals(x: np.ndarray, faces, t: CornerTable, target: float, sliding: np.ndarray) -> np.ndarray:
     """Per vertex, the worst corner to aim at: ``target`` (:data:`SLIDE_TARGET` for a sliding
     vertex: moved along the boundary it cuts off the domain's bends, so only where a face is poor),
     at most :data:`FAN_MARGIN` of the fan bound of a corner it touches
@@ -229,24 +237,24 @@ def _goals(x: np.ndarray, faces, t: _Corners, target: float, sliding: np.ndarray
     return np.where(FAN_MARGIN * reach < FAN_FLOOR, 0.0, goal)
 
 
-def _vertex_minima(x: np.ndarray, t: _Corners) -> np.ndarray:
-    """Per vertex, the smallest quality (:func:`_scaled`) of the corners it touches (as vertex, next or
+def _vertex_minima(x: np.ndarray, t: CornerTable) -> np.ndarray:
+    """Per vertex, the smallest quality (:func:`corner_quality`) of the corners it touches (as vertex, next or
     previous)."""
     return _touching(_corner_jacobians(x, t), t, len(x), np.inf)
 
 
-def _corner_jacobians(x: np.ndarray, t: _Corners) -> np.ndarray:
-    """:func:`_scaled` of every corner of ``t``, computed a cache-sized piece at a time
+def _corner_jacobians(x: np.ndarray, t: CornerTable) -> np.ndarray:
+    """:func:`corner_quality` of every corner of ``t``, computed a cache-sized piece at a time
     (:func:`~vaultgram.geometry.arrays.pieces`)."""
     xy = np.ascontiguousarray(x[:, :2])
     sj = np.empty(len(t.u))
     for part in pieces(len(t.u)):
-        sj[part] = _scaled(plan_rows(xy, t.u[part]), plan_rows(xy, t.v[part]), plan_rows(xy, t.p[part]),
+        sj[part] = corner_quality(plan_rows(xy, t.u[part]), plan_rows(xy, t.v[part]), plan_rows(xy, t.p[part]),
                            t.factor[part], t.ref[part], t.ref[t.before[part]])
     return sj
 
 
-def _independent(worst: np.ndarray, t: _Corners, candidate: np.ndarray) -> np.ndarray:
+def _independent(worst: np.ndarray, t: CornerTable, candidate: np.ndarray) -> np.ndarray:
     """An independent set of candidates (no two share a face), the worst first: :func:`_lowest`, then
     again among the candidates sharing no face with those, for :data:`_ROUNDS` rounds (Luby's)."""
     left = candidate.copy()
@@ -256,11 +264,11 @@ def _independent(worst: np.ndarray, t: _Corners, candidate: np.ndarray) -> np.nd
             break
         got = _lowest(worst, t, left)
         picked.append(got)
-        left[_neighbours(t, got, len(worst))] = False
+        left[face_neighbours(t, got, len(worst))] = False
     return np.sort(np.concatenate(picked)) if picked else np.zeros(0, dtype=np.int64)
 
 
-def _lowest(worst: np.ndarray, t: _Corners, candidate: np.ndarray) -> np.ndarray:
+def _lowest(worst: np.ndarray, t: CornerTable, candidate: np.ndarray) -> np.ndarray:
     """The candidates whose ``worst`` (ties by index) is the lowest of every face they are in: no two
     of them share a face."""
     rank = np.full(len(worst), np.iinfo(np.int64).max)
@@ -272,7 +280,7 @@ def _lowest(worst: np.ndarray, t: _Corners, candidate: np.ndarray) -> np.ndarray
     return idx[lowest[idx] == rank[idx]]
 
 
-def _neighbours(t: _Corners, verts: np.ndarray, n: int) -> np.ndarray:
+def face_neighbours(t: CornerTable, verts: np.ndarray, n: int) -> np.ndarray:
     """The vertices sharing a face with any of ``verts``."""
     mark = np.zeros(n, dtype=bool)
     mark[verts] = True
@@ -289,7 +297,7 @@ def _slide_index(n: int, constraints) -> np.ndarray:
     return out
 
 
-def _trials(x: np.ndarray, t: _Corners, chosen: np.ndarray, slide_of: np.ndarray, constraints) -> np.ndarray:
+def _trials(x: np.ndarray, t: CornerTable, chosen: np.ndarray, slide_of: np.ndarray, constraints) -> np.ndarray:
     """Trial positions (k, m, 2) of the chosen vertices: :data:`_MOVES` times each one's shortest edge
     (at least a quarter of its mean edge), sliding vertices projected onto their polylines."""
     e = np.hypot(*(plan_rows(x, t.v) - plan_rows(x, t.u)).T)
@@ -309,7 +317,7 @@ def _trials(x: np.ndarray, t: _Corners, chosen: np.ndarray, slide_of: np.ndarray
     return trial
 
 
-def _try_moves(x: np.ndarray, t: _Corners, chosen: np.ndarray, goal: np.ndarray, slide_of: np.ndarray,
+def _try_moves(x: np.ndarray, t: CornerTable, chosen: np.ndarray, goal: np.ndarray, slide_of: np.ndarray,
                constraints) -> np.ndarray:
     """Move each chosen vertex to its best trial position, in place (:func:`maximise_min_quality`),
     its worst corner counted up to its ``goal``; which of them moved."""
@@ -323,7 +331,7 @@ def _try_moves(x: np.ndarray, t: _Corners, chosen: np.ndarray, goal: np.ndarray,
     def at(ends, s):
         return np.where((s[hit] >= 0)[:, None, None], trial[who], x[ends[hit], None, :2])
 
-    sj = _scaled(at(t.u, su), at(t.v, sv), at(t.p, sp), t.factor[hit, None], t.ref[hit, None],
+    sj = corner_quality(at(t.u, su), at(t.v, sv), at(t.p, sp), t.factor[hit, None], t.ref[hit, None],
                  t.ref[t.before[hit], None])
     order = np.argsort(who, kind="stable")  # every chosen vertex has corners: one group each, in order
     starts = np.flatnonzero(np.r_[True, np.diff(who[order]) != 0])

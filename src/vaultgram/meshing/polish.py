@@ -20,7 +20,7 @@ from typing import NamedTuple
 import numpy as np
 
 from vaultgram.geometry.arrays import distinct, plan_rows
-from vaultgram.meshing.optimise import _corner_table, _neighbours, _scaled
+from vaultgram.meshing.optimise import corner_quality, corner_table, face_neighbours
 from vaultgram.meshing.quadmesh import slide
 
 __all__ = ["polish_worst", "POLISH_TARGET"]
@@ -60,9 +60,9 @@ _PAIRS = 20000
 
 class _Region(NamedTuple):
     """The corners polished (vertex ``u``, next ``v``, previous ``p``, triangle ``factor``, the side
-    lengths ``ref1``, ``ref2`` under which a side lowers the quality, :func:`~vaultgram.meshing.optimise._scaled`)
-    , the vertices that move (``free``, n bool) and the smallest scaled Jacobian of the corners no move
-    changes (``rest``; inf where none)."""
+    lengths ``ref1``, ``ref2`` under which a side lowers the quality,
+    :func:`~vaultgram.meshing.optimise.corner_quality`), the vertices that move (``free``, n bool) and the
+    smallest scaled Jacobian of the corners no move changes (``rest``; inf where none)."""
 
     u: np.ndarray
     v: np.ndarray
@@ -112,20 +112,20 @@ def _region(x: np.ndarray, faces, fixed, still, target: float) -> _Region | None
     those within :data:`POLISH_RINGS` rings of a corner whose scaled Jacobian is under ``target``, not
     ``fixed`` and sharing no face with one of ``still``; None when no corner is under ``target`` (or
     one is inverted, or no vertex may move, or the worst corner is in no face a free vertex is in)."""
-    t = _corner_table(faces, x)
-    sj = _scaled(plan_rows(x, t.u), plan_rows(x, t.v), plan_rows(x, t.p), t.factor)
+    t = corner_table(faces, x)
+    sj = corner_quality(plan_rows(x, t.u), plan_rows(x, t.v), plan_rows(x, t.p), t.factor)
     if sj.min() <= 0 or sj.min() >= target:
         return None
     low = sj < target
     near = distinct(np.concatenate([t.u[low], t.v[low], t.p[low]]))
     for _ in range(POLISH_RINGS):
-        near = _neighbours(t, near, len(x))
+        near = face_neighbours(t, near, len(x))
     free = np.zeros(len(x), dtype=bool)
     free[near] = True
     if fixed is not None:
         free &= ~np.asarray(fixed, dtype=bool)
     if still is not None and np.any(still):
-        free[_neighbours(t, np.flatnonzero(still), len(x))] = False
+        free[face_neighbours(t, np.flatnonzero(still), len(x))] = False
     if not free.any():
         return None
     in_face = np.zeros(len(faces), dtype=bool)
@@ -196,7 +196,7 @@ def _worst_jacobian(x: np.ndarray, r: _Region) -> float:
     """The mesh's smallest corner scaled Jacobian (its measure,
     :func:`~vaultgram.meshing.quality.face_scaled_jacobians`, without the side term): the region's, or
     that of the corners it leaves (``rest``) where smaller."""
-    return min(r.rest, float(_scaled(plan_rows(x, r.u), plan_rows(x, r.v), plan_rows(x, r.p), r.factor).min()))
+    return min(r.rest, float(corner_quality(plan_rows(x, r.u), plan_rows(x, r.v), plan_rows(x, r.p), r.factor).min()))
 
 
 def _direction(g: np.ndarray, pairs: list, reach: np.ndarray) -> np.ndarray:
@@ -277,9 +277,9 @@ class _Slides(NamedTuple):
 
 
 def _soft(x: np.ndarray, r: _Region, beta: float = BETA) -> tuple[float, float, np.ndarray]:
-    """The region's worst corner quality (:func:`~vaultgram.meshing.optimise._scaled`), the soft
+    """The region's worst corner quality (:func:`~vaultgram.meshing.optimise.corner_quality`), the soft
     minimum ``low - log(sum(exp(-BETA (q - low)))) / BETA`` of its qualities ``q``, and ``q``."""
-    q = _scaled(plan_rows(x, r.u), plan_rows(x, r.v), plan_rows(x, r.p), r.factor, r.ref1, r.ref2)
+    q = corner_quality(plan_rows(x, r.u), plan_rows(x, r.v), plan_rows(x, r.p), r.factor, r.ref1, r.ref2)
     low = float(q.min())
     return low, low - float(np.log(np.exp(-beta * (q - low)).sum())) / beta, q
 
