@@ -250,10 +250,12 @@ def test_a_fan_hemmed_in_by_quads_is_evened_with_their_corners(monkeypatch):
     get 6 each and the mesh's worst face is 0.120 (0.180 where the retry evens them again after
     smoothing). With the quad's corner in the share (the wide
     evening that :func:`poles_to_widen` asks for: 17.7 degrees per triangle, 20.6 for the quad), the
-    mesh reaches the pole's fan bound, 0.351, over the floor."""
+    mesh reaches the pole's fan bound, 0.351, over the floor. (The narrow arm without the polish of the
+    worst corners, which since session 30 turns a boundary point feature's spokes too: 0.349 with it.)"""
     domain = domain_from_dict(PLAN_243)
     wide = mesh_domain(domain, 0.03)
     monkeypatch.setattr(meshpipeline, "poles_to_widen", lambda *args: frozenset())
+    monkeypatch.setattr(meshpipeline, "polish_worst", lambda x, *args, **kwargs: x)
     narrow = mesh_domain(domain, 0.03)
     worst = [face_scaled_jacobians(m.vertices, m.faces).min() for m in (wide, narrow)]
     pole = int(np.argmin(np.hypot(*(wide.vertices[:, :2] - [-5.2388711678764, -4.8941442302069555]).T)))
@@ -345,7 +347,8 @@ def test_the_retry_goes_on_while_the_worst_face_moves_to_another_refused_pole(mo
     """TWO_FEATURES_PLAN: the first retry evens one boundary feature's fan and the worst face moves to
     the other's (0.275); retried again with both evened, the worst face is 0.321, over the floor: the
     fan bound of one of them.
-    Each retry is kept only where it is better, so the worst face never gets worse."""
+    Each retry is kept only where it is better, so the worst face never gets worse. (The single retry
+    without the polish of the worst corners, which since session 30 lifts it to 0.321 as well.)"""
     domain = domain_from_dict(TWO_FEATURES_PLAN)
     asked = []
     retry = meshpipeline.poles_to_retry
@@ -353,6 +356,7 @@ def test_the_retry_goes_on_while_the_worst_face_moves_to_another_refused_pole(mo
     again = mesh_domain(domain, 0.04)
     rounds = [set(a) for a in asked if a]
     monkeypatch.setattr(meshpipeline, "MAX_RETRIES", 1)
+    monkeypatch.setattr(meshpipeline, "polish_worst", lambda x, *args, **kwargs: x)
     once = mesh_domain(domain, 0.04)
     worst = [face_scaled_jacobians(m.vertices, m.faces).min() for m in (again, once)]
     assert worst[0] > 0.32 > FAN_FLOOR > worst[1] > 0.27
