@@ -9,14 +9,16 @@ Rules that call non-local host functions (radius None) are re-matched over the w
 The smallest match key is kept in a heap with lazy deletion, so ``fixpoint`` always applies the
 first match in the same deterministic order as a full search would.
 
-A *lazy* set (``fixpoint``'s) searches only when asked (:meth:`MatchSet.first`, ``len``,
-:meth:`MatchSet.discard`): at first, and after changes where it would re-match the whole graph (a rule
-that calls a non-local function). ``fixpoint`` asks its sets in priority order and stops at the first
+A *lazy* set (``fixpoint``'s, of a rule that calls a non-local function) searches the whole graph only
+when asked (:meth:`MatchSet.first`, ``len``, :meth:`MatchSet.discard`): at first, and after changes
+where it would re-match. ``fixpoint`` asks its sets in priority order and stops at the first
 with a match, so a rule below one that keeps firing is searched once when that one stops, not after
 each of its applications (the vault rules' reflex-corner chords, below the strip rules that carry each
-chord across the layout: issue 18). The search then finds what the skipped ones would have found last:
-the current graph's matches (less the discarded ones, which only a change can bring back, and which
-makes the set stale).
+chord across the layout: issue 18). The search then finds what the skipped ones would have found last
+(less the matches discarded since, as they would be): the current graph's matches, which are the
+same as at the last change of a type the rule reads (``reads_types``) wherever the engine's premise
+for re-matching at all holds, that a rule's matches change only with such changes (a host function
+that reads node attributes names the types it reads: ``f(A)``, :class:`~.expressions.Function`).
 """
 
 from __future__ import annotations
@@ -37,9 +39,10 @@ class MatchSet:
         self.matches: dict[tuple, Match] = {}
         self._by_node: dict[int, set[tuple]] = {}
         self._heap: list[tuple] = []
-        self.lazy = lazy  # search when asked (module docstring); ``matches`` is then current only after asking
-        self.stale = lazy
-        if not lazy:
+        # a rule that calls a non-local function searches when asked (module docstring), the others as before
+        self.lazy = lazy and self.rule.radius is None
+        self.stale = self.lazy  # ``matches`` is then current only after asking
+        if not self.lazy:
             self.rematch_all()
 
     def __len__(self) -> int:
