@@ -9,6 +9,10 @@ helpers) and the meshing of the decomposition (§3.2-§3.3), the best of ``R`` r
 the mesh, and SHA-256 digests of the decomposition's graph (``decomposition.json``'s content) and of
 the mesh (vertices, faces, their patches). A cache of the rule helpers must leave both digests as they
 were: ``--compare`` prints the CPU before and after per plan and whether the digests are the same.
+``--check-chords`` compares every reflex corner's chord the rules ask for (kept while the patches it read
+are untouched, :func:`vaultgram.topology.reflex._kept_chord`) with one worked out afresh, and prints how
+many were asked, worked out and different (after a change of what ``choose_chord`` reads: its footprint
+must name it; CPU times are then not comparable).
 """
 
 from __future__ import annotations
@@ -51,6 +55,28 @@ def digest(data) -> str:
         else:
             h.update(json.dumps(item, sort_keys=True, default=str).encode())
     return h.hexdigest()[:16]
+
+
+def check_chords() -> dict:
+    """Make every kept chord be compared with a fresh one (``--check-chords``); the counts, updated as the
+    rules ask."""
+    from vaultgram.topology import reflex
+
+    counts = {"asked": 0, "worked out": 0, "differ": 0}
+    fresh, kept = reflex.choose_chord, reflex._kept_chord
+
+    def counting(graph, r):
+        counts["worked out"] += 1
+        return fresh(graph, r)
+
+    def check(graph, r):
+        got = kept(graph, r)
+        counts["asked"] += 1
+        counts["differ"] += got != fresh(graph, r)
+        return got
+
+    reflex.choose_chord, reflex._kept_chord = counting, check
+    return counts
 
 
 def measure(domain, repeat: int) -> dict:
@@ -103,7 +129,9 @@ def main(argv=None) -> int:
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--json", help="write the rows here")
     parser.add_argument("--compare", help="rows of an earlier run to compare with")
+    parser.add_argument("--check-chords", action="store_true", help="compare each kept chord with a fresh one")
     args = parser.parse_args(argv)
+    chords = check_chords() if args.check_chords else None
     found = plans(args.plans.split(","))
     rows = {}
     print(f"load average {os.getloadavg()[0]:.1f}", flush=True)
@@ -115,13 +143,15 @@ def main(argv=None) -> int:
         print(f"{name:28s} decompose {r['decompose']:6.2f} s  mesh {r['mesh']:6.2f} s  faces {r['faces']:6d}  "
               f"first {r['first']:6.2f} s  {r['decomposition']} {r['mesh_digest']}", flush=True)
     print(f"load average {os.getloadavg()[0]:.1f}")
+    if chords is not None:
+        print(f"chords: {chords}")
     if args.json:
         with open(args.json, "w") as f:
             json.dump(rows, f, indent=1)
     if args.compare:
         with open(args.compare) as f:
             return 1 if compare(json.load(f), rows) else 0
-    return 0
+    return 1 if chords is not None and chords["differ"] else 0
 
 
 if __name__ == "__main__":
