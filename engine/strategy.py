@@ -265,7 +265,7 @@ class Runner:
         return applied
 
     def _fixpoint(self, matchers: list[Matcher], max_steps: int, choose: bool) -> int:
-        sets = [MatchSet(m) for m in matchers]
+        sets = [MatchSet(m, lazy=not choose) for m in matchers]  # a choice asks every set each step
         steps = 0
         while True:
             if choose:

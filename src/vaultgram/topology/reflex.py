@@ -53,8 +53,9 @@ from vaultgram.geometry.polylines import arc_lengths, ray_hit_fraction
 from vaultgram.topology.corners import boundary_angle, graph_rings, ring_place
 from vaultgram.topology.patches import half_edge_polyline
 from vaultgram.topology.reflex_fallbacks import OUTER_MIN_ANGLE, turns_past_straight, wide_quads
-from vaultgram.topology.statecache import per_state
+from vaultgram.topology.statecache import per_state, untouched
 from vaultgram.topology.strips import (
+    READS,
     Walk,
     chord_inside,
     edge_cut,
@@ -149,6 +150,7 @@ HOLE_MIN_ANGLE = 20.0
 MAX_POLE_ANGLE = 160.0
 
 _STATE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> {state: {corner: choice}}
+_KEPT: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # graph -> choose_chord's results (_kept_chord)
 
 
 def _edge_tangent(graph, edge: int, fraction: float = 0.5) -> float:
@@ -560,11 +562,43 @@ def patch_corner(graph, found, k: int) -> tuple[tuple, float, float]:
 
 def _once(graph, work, r: int):
     """``work(graph, r)`` (:func:`choose_chord` or :func:`choose_cut`), worked out once per corner and state of
-    the graph."""
+    the graph; :func:`choose_chord`'s kept beyond, while the patches it read are untouched (:func:`_kept_chord`)."""
     memo = per_state(_STATE, graph, lambda g: {})
     if (work, r) not in memo:
-        memo[(work, r)] = work(graph, r)
+        memo[(work, r)] = _kept_chord(graph, r) if work is choose_chord else work(graph, r)
     return memo[(work, r)]
+
+
+def _kept_chord(graph, r: int):
+    """:func:`choose_chord`, kept while no change of the graph touches what it read
+    (:class:`~vaultgram.topology.statecache.Untouched`): ``r``'s place among the rings and its angle (the
+    key), ``r`` and its patch corner edges, and every patch whose sides it asked for
+    (:data:`~vaultgram.topology.strips.READS`: the patches at ``r``, those its strips cross, those beyond
+    a side), with every node round them, whose positions, types, attributes and edges (their polylines and
+    feet) it reads. Every rule application makes a new state of the graph, and the rules whose conditions
+    ask for the chord of every reflex corner re-match the whole graph after each (the jagged outlines:
+    1,588 chords worked out for one plan, issue 18): a strip carried across the layout changes a few
+    patches, and the corners whose patches and strips it left alone keep their chord."""
+    key = (r, ring_place(graph, r)[0], boundary_angle(graph, r))
+    return untouched(_KEPT, graph).get(graph, key, lambda: _footprinted(graph, r))
+
+
+def _footprinted(graph, r: int) -> tuple:
+    """:func:`choose_chord` and its footprint (:func:`_kept_chord`); None for the footprint where a Patch
+    node's sides were not found (the faces it walked are not named: kept for this state only)."""
+    read: list = []
+    READS.append(read)
+    try:
+        choice = choose_chord(graph, r)
+    finally:
+        READS.pop()
+    if any(found is None for _, found in read):
+        return choice, None
+    nodes = {r}
+    for patch, found in read:
+        nodes.add(patch)
+        nodes.update(u for side in found.sides for _, u in side)
+    return choice, nodes
 
 
 def reflex_chord(graph, patch: int, r: int) -> int:

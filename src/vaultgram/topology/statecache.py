@@ -25,7 +25,7 @@ from __future__ import annotations
 import weakref
 from collections import OrderedDict
 
-__all__ = ["per_state", "STATES", "by_content"]
+__all__ = ["per_state", "STATES", "by_content", "Untouched", "untouched"]
 
 #: The states of one graph whose results are kept (the most recently asked).
 STATES = 64
@@ -68,3 +68,89 @@ def by_content(cache: OrderedDict, key, make, size: int):
         cache.popitem(last=False)
     return value
 
+
+
+class Untouched:
+    """Results kept while the graph's changes touch none of the nodes each was worked out from, found
+    again in every later state of the graph that left those nodes alone (where :func:`per_state` finds a
+    result only in the state it was made in: every rule application makes a new state, and a rule whose
+    condition calls a helper of the whole graph asks it again at every candidate after each one, issue
+    18). The caller names the nodes (a result's *footprint*): every node whose type, attributes or edges
+    (their attributes and the order round the node too) the result read, and the ends of every edge it
+    read. The graph's journal says what each change touched (``record.touched``, as for
+    :meth:`~vaultgram.engine.graph.HostGraph.changes_since`): the records since the last question, those a
+    rollback undoes (:meth:`~vaultgram.engine.graph.HostGraph.watch`) and those the graph forgets. A result
+    whose footprint one of them touched is dropped; nothing is dropped for changes elsewhere.
+
+    >>> from vaultgram.engine.graph import HostGraph
+    >>> from vaultgram.engine.rulebook import rulebook_from_text
+    >>> g = HostGraph(rulebook_from_text("schema s { node A { x: int = 0 } }").schema)
+    >>> a, b = g.add_node("A"), g.add_node("A")
+    >>> kept, calls = Untouched(g), []
+    >>> x_of = lambda n: lambda: (calls.append(n) or g.get(n, "x"), {n})
+    >>> g.set_node_attr(b, "x", 1); kept.get(g, a, x_of(a)), kept.get(g, b, x_of(b))
+    (0, 1)
+    >>> mark = g.mark(); g.set_node_attr(b, "x", 2); kept.get(g, a, x_of(a)), kept.get(g, b, x_of(b))
+    (0, 2)
+    >>> g.rollback(mark); kept.get(g, a, x_of(a)), kept.get(g, b, x_of(b)), calls
+    (0, 1, [0, 1, 1, 1])
+    """
+
+    def __init__(self, graph):
+        self._synced = graph.mark()  # the journal records before this one are accounted for
+        self._kept: dict = {}  # key -> (result, its footprint)
+        self._by_node: dict = {}  # node -> the keys whose footprint holds it
+        self.made = 0  # results worked out (for tests and benchmarks)
+        graph.watch(self)
+
+    def get(self, graph, key, make):
+        """The result kept under ``key`` (hashable: what it is of besides its footprint), or ``make()``'s:
+        ``(result, footprint)``, the footprint an iterable of node ids, or None for a result not to keep
+        beyond this question."""
+        self._sync(graph)
+        found = self._kept.get(key)
+        if found is not None:
+            return found[0]
+        result, nodes = make()
+        self.made += 1
+        if nodes is not None:
+            nodes = frozenset(nodes)
+            self._kept[key] = (result, nodes)
+            for n in nodes:
+                self._by_node.setdefault(n, set()).add(key)
+        return result
+
+    def undoing(self, graph, record) -> None:
+        """Account for a record about to be undone (:meth:`~vaultgram.engine.graph.HostGraph.watch`)."""
+        self._account(graph, record)
+        self._synced = min(self._synced, graph.mark())
+
+    def forgetting(self, graph) -> None:
+        """Account for the whole journal before the graph drops it."""
+        self._sync(graph)
+        self._synced = 0
+
+    def _sync(self, graph) -> None:
+        mark = graph.mark()
+        if mark != self._synced:
+            for record in graph.journal_since(self._synced):
+                self._account(graph, record)
+            self._synced = mark
+
+    def _account(self, graph, record) -> None:
+        nodes: set = set()
+        record.touched(graph, nodes, set())
+        for n in nodes:
+            for key in self._by_node.pop(n, ()):
+                found = self._kept.pop(key, None)
+                for m in found[1] if found is not None else ():
+                    if m != n and key in self._by_node.get(m, ()):
+                        self._by_node[m].discard(key)
+
+
+def untouched(cache: weakref.WeakKeyDictionary, graph) -> Untouched:
+    """The :class:`Untouched` results of ``graph`` in ``cache`` (a weak dictionary of the helper's own)."""
+    kept = cache.get(graph)
+    if kept is None:
+        kept = cache[graph] = Untouched(graph)
+    return kept

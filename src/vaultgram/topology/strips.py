@@ -83,13 +83,22 @@ def _memo(graph) -> dict:
     return per_state(_STATE, graph, lambda g: {})
 
 
+#: The lists to which :func:`patch_sides` adds each patch it is asked for and its sides, while a result
+#: kept by its footprint is worked out (:func:`vaultgram.topology.reflex.choose_chord`'s, kept while those
+#: patches are untouched: :class:`~vaultgram.topology.statecache.Untouched`).
+READS: list = []
+
+
 def patch_sides(graph, patch: int) -> PatchSides | None:
     """The sides of a Patch node (once per state of the graph); None if no face of the plan at its
     first corner has all its corners (a Patch node out of step with the plan)."""
     memo = _memo(graph)
-    if ("sides", patch) not in memo:
-        memo[("sides", patch)] = _walk_sides(graph, patch)
-    return memo[("sides", patch)]
+    key = ("sides", patch)
+    if key not in memo:
+        memo[key] = _walk_sides(graph, patch)
+    for read in READS:
+        read.append((patch, memo[key]))
+    return memo[key]
 
 
 def _walk_sides(graph, patch: int) -> PatchSides | None:
