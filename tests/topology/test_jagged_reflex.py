@@ -79,7 +79,7 @@ def test_no_fallback_beside_a_patch_past_straight():
     limit = reflex.PAST_STRAIGHT
     assert all(turns_past_straight(angles, i, pole, limit) for i in narrow for pole in (30.0, 60.0, 80.0))
     assert reflex.widest_chord(g, (r, patches, found, angles), list(range(len(patches))), OUTER_MIN_ANGLE,
-                               every_foot=True, keep=lambda i, pole: i not in narrow) is None
+                               every_foot=True, keep=lambda i, pole, kind: i not in narrow) is None
     assert reflex.choose_chord(g, r) is None
 
 
