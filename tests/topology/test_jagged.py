@@ -64,8 +64,9 @@ def test_no_quad_turns_past_straight_at_a_spike_of_two_patches():
 
 def test_jagged_1_meshes_without_folding():
     """The plan main refused with "the mesh folds" meshes, with no inverted face, a worst scaled
-    Jacobian above 0.05 and at most 9 boundary singularities (gmsh's QuadQS fails on it). The worst
-    face (0.061) is a sliver at (5.48, 12.6) whose short sides are 0.008 and 0.025 of the median edge;
+    Jacobian above 0.05 and at most 5 boundary singularities (gmsh's QuadQS fails on it; 9 until session
+    30's second outer fallback). The worst face (0.061 then) was a sliver at (5.48, 12.6) whose short sides
+    were 0.008 and 0.025 of the median edge;
     its 0.124 before the max-min optimisation kept sides against their opposite sides was bought with a
     side of 0.0004 of it (a triangle in all but name)."""
     domain = _domain("jagged_1")
@@ -73,7 +74,7 @@ def test_jagged_1_meshes_without_folding():
     assert stats["inverted_faces"] == 0
     assert stats["min_scaled_jacobian"] > 0.05, stats["min_scaled_jacobian"]
     assert stats["shortest_over_median_edge"] > 0.003
-    assert stats["boundary_singular"] <= 9, stats["boundary_singular_angles"]
+    assert stats["boundary_singular"] <= 5, stats["boundary_singular_angles"]
 
 
 def test_jagged_0_worst_element():

@@ -63,11 +63,14 @@ def test_fewer_boundary_singular_worst_face_no_lower(laid, name, most, least):
     assert stats["min_scaled_jacobian"] >= least, stats["min_scaled_jacobian"]
 
 
-def test_no_fallback_beside_a_patch_past_straight():
+def test_no_fallback_beside_a_patch_past_straight(monkeypatch):
     """jagged_1's 299 degree corner at (5.769, 13.166) is the corner of a 112 and a 187 degree quad: no
     chord in the 112 degree quad may be taken (the 187 degree one would keep one face across more than
     180 degrees at a corner with one face more: the fold main's sessions 20-21 saw), and the 187 degree
-    quad has none of 35 degrees, so the fallback leaves the corner as it is."""
+    quad has none of 35 degrees, so the 35 degree fallback leaves the corner as it is. The layout is laid
+    out without the second fallback (``point_quads``, session 30), which splits the 187 degree quad by a
+    chord to a boundary point instead (tests/topology/test_jagged_reflex2.py)."""
+    monkeypatch.setattr(reflex, "point_quads", lambda *args: [])
     dec = decompose(domain_from_dict(PLANS["jagged_1"], "jagged_1"))
     g = dec.graph
     r = node_at(g, (5.769, 13.166), 1e-6)
@@ -79,8 +82,11 @@ def test_no_fallback_beside_a_patch_past_straight():
     limit = reflex.PAST_STRAIGHT
     assert all(turns_past_straight(angles, i, pole, limit) for i in narrow for pole in (30.0, 60.0, 80.0))
     assert reflex.widest_chord(g, (r, patches, found, angles), list(range(len(patches))), OUTER_MIN_ANGLE,
-                               every_foot=True, keep=lambda i, pole: i not in narrow) is None
+                               every_foot=True, keep=lambda i, pole, kind: i not in narrow) is None
     assert reflex.choose_chord(g, r) is None
+    monkeypatch.undo()
+    turned = patches[angles.index(max(angles))]
+    assert reflex.choose_chord(g, r)[:2] == (turned, "point")
 
 
 def test_fallback_limits():

@@ -52,7 +52,13 @@ from vaultgram.geometry.polygons import ccw_degrees, direction, regular_valence
 from vaultgram.geometry.polylines import arc_lengths, ray_hit_fraction
 from vaultgram.topology.corners import boundary_angle, graph_rings, ring_place
 from vaultgram.topology.patches import half_edge_polyline
-from vaultgram.topology.reflex_fallbacks import OUTER_MIN_ANGLE, turns_past_straight, wide_quads
+from vaultgram.topology.reflex_fallbacks import (
+    OUTER_MIN_ANGLE,
+    OUTER_POINT_MIN_ANGLE,
+    point_quads,
+    turns_past_straight,
+    wide_quads,
+)
 from vaultgram.topology.statecache import per_state, untouched
 from vaultgram.topology.strips import (
     READS,
@@ -356,7 +362,9 @@ def choose_chord(graph, r: int) -> tuple | None:
     :data:`HOLE_MIN_ANGLE` (:func:`hole_chord`); after the spikes' fallback, on the outer ring, the
     widest chord over every foot down to :data:`~vaultgram.topology.reflex_fallbacks.OUTER_MIN_ANGLE`
     in a quad of 135 degrees or more at the corner that leaves no patch there past straight
-    (:func:`~vaultgram.topology.reflex_fallbacks.turns_past_straight`)."""
+    (:func:`~vaultgram.topology.reflex_fallbacks.turns_past_straight`), then the widest chord to a boundary
+    point down to :data:`~vaultgram.topology.reflex_fallbacks.OUTER_POINT_MIN_ANGLE` in a quad past straight or
+    at a spike (:func:`_outer_chord`)."""
     patches = sorted({graph.ends(e)[0] for e in graph.incident(r, [PATCH_CORNER])})
     found = [patch_sides(graph, p) for p in patches]
     if any(f is None for f in found):
@@ -375,10 +383,27 @@ def choose_chord(graph, r: int) -> tuple | None:
     turned = [i for i in quads if angles[i] > PAST_STRAIGHT] if boundary_angle(graph, r) >= SPIKE else []
     if best is None and turned:
         best = widest_chord(graph, at, turned, FOLD_MIN_ANGLE)
-    if best is None and ring_place(graph, r)[0] == 0:  # the outer ring's last fallback (reflex_fallbacks)
-        best = widest_chord(graph, at, wide_quads(angles, quads), OUTER_MIN_ANGLE, every_foot=True,
-                            keep=lambda i, pole: not turns_past_straight(angles, i, pole, PAST_STRAIGHT))
+    if best is None and ring_place(graph, r)[0] == 0:  # the outer ring's last fallbacks (reflex_fallbacks)
+        best = _outer_chord(graph, at, quads)
     return None if best is None else best[1:]
+
+
+def _outer_chord(graph, at: tuple, quads: list) -> tuple | None:
+    """The outer ring's last fallbacks (:mod:`~vaultgram.topology.reflex_fallbacks`): the widest chord over
+    every foot down to :data:`~vaultgram.topology.reflex_fallbacks.OUTER_MIN_ANGLE` in a quad of 135 degrees or
+    more (:func:`~vaultgram.topology.reflex_fallbacks.wide_quads`); else the widest chord to a boundary point
+    down to :data:`~vaultgram.topology.reflex_fallbacks.OUTER_POINT_MIN_ANGLE` in a quad past straight or at a
+    spike (:func:`~vaultgram.topology.reflex_fallbacks.point_quads`); neither leaving a patch at the corner
+    past straight (:func:`~vaultgram.topology.reflex_fallbacks.turns_past_straight`)."""
+    r, _, _, angles = at
+    best = widest_chord(graph, at, wide_quads(angles, quads), OUTER_MIN_ANGLE, every_foot=True,
+                        keep=lambda i, pole, kind: not turns_past_straight(angles, i, pole, PAST_STRAIGHT))
+    if best is None:
+        turned = point_quads(angles, quads, boundary_angle(graph, r), PAST_STRAIGHT, SPIKE)
+        best = widest_chord(graph, at, turned, OUTER_POINT_MIN_ANGLE, every_foot=True,
+                            keep=lambda i, pole, kind: kind == "point"
+                            and not turns_past_straight(angles, i, pole, PAST_STRAIGHT))
+    return best
 
 
 def hole_chord(graph, at: tuple, quads: list) -> tuple | None:
@@ -397,8 +422,8 @@ def widest_chord(graph, at: tuple, quads: list, least: float | None, ratio: floa
     ``(worst, patch, kind, target, side, fraction)`` (:func:`choose_chord`); ``least`` and ``ratio`` are
     passed on to :func:`chord_worst`, ``fans`` to :func:`chord_targets`. Of a side's feet the first that
     qualifies, in :data:`FEET` order (the middle first), or with ``every_foot`` the widest of all of
-    them (:func:`hole_chord`). With ``keep``, only chords it passes, asked with the quad's index and the
-    triangle's angle at the corner (the outer ring's fallback:
+    them (:func:`hole_chord`). With ``keep``, only chords it passes, asked with the quad's index, the
+    triangle's angle at the corner and the chord's kind (``"edge"`` or ``"point"``; the outer ring's fallbacks:
     :func:`~vaultgram.topology.reflex_fallbacks.turns_past_straight`). None where none qualifies."""
     r, patches, found, angles = at
     theta = boundary_angle(graph, r)
@@ -412,7 +437,8 @@ def widest_chord(graph, at: tuple, quads: list, least: float | None, ratio: floa
                 candidate = (kind, target, point, tangent, fraction)
                 worst = chord_worst(graph, p, sides, k, j, candidate, other, least, ratio)
                 if worst is not None and keep is not None:
-                    worst = worst if keep(i, chord_angles(graph, sides, k, j, point, tangent, other)[1]) else None
+                    pole = chord_angles(graph, sides, k, j, point, tangent, other)[1]
+                    worst = worst if keep(i, pole, kind) else None
                 if worst is not None:
                     if best is None or worst > best[0]:
                         best = (worst, p, kind, target, sides.corners[(k + j) % 4], fraction)

@@ -24,13 +24,25 @@ took a chord at 33 whose strip crossed the plan and its worst face fell 0.198 ->
 degree corner of jagged_1 took one beside its 299 degree corner of a 187 degree quad and the mesh folded
 there, or fell 0.061 -> 0.027.
 
+Where that fallback finds none either, a second one (:func:`point_quads`, session 30): a chord to the free
+boundary point nearest the middle of a quad's boundary side (no strip: the quad becomes a triangle and a
+quad, and nothing beyond it changes) down to :data:`OUTER_POINT_MIN_ANGLE`, in a quad that turns past
+straight at the corner or at a spike. Splitting such a quad undoes a turn the mesh folds at
+(:data:`~vaultgram.topology.reflex.PAST_STRAIGHT`), and a spike's third patch keeps the angles of the
+other two. On main 28c810b jagged_1's 299 degree corner beside a 187 degree quad (best chord 27.2 degrees,
+to a boundary point) and its 334 degree spike of three patches (20.6) take it: boundary singular 7 -> 5,
+worst face 0.223 -> 0.302, at that corner. The wider fallbacks measured against it
+(benchmarks/README.md, session 30) changed the density across the plan: jagged_3's worst face fell
+0.369 -> 0.30-0.36 with any of its chords at 20-38 degrees, wherever they were.
+
 This module imports nothing of :mod:`vaultgram.topology.reflex`, which asks it (its
 :func:`~vaultgram.topology.reflex.widest_chord` with :func:`turns_past_straight` as the ``keep`` test).
 """
 
 from __future__ import annotations
 
-__all__ = ["OUTER_MIN_ANGLE", "OUTER_MIN_QUAD_ANGLE", "turns_past_straight", "wide_quads"]
+__all__ = ["OUTER_MIN_ANGLE", "OUTER_MIN_QUAD_ANGLE", "OUTER_POINT_MIN_ANGLE", "point_quads", "turns_past_straight",
+           "wide_quads"]
 
 #: Degrees: the worst angle an outer-ring corner's fallback chord may leave, at any foot of
 #: :data:`~vaultgram.topology.reflex.FEET`: between the 30 a chord to a side's middle needs and the 40 a
@@ -45,6 +57,10 @@ OUTER_MIN_ANGLE = 35.0
 #: 1209-1600, its worst face from 0.407 to 0.365-0.380 (two boundary singular vertices fewer). The jagged
 #: corners the fallback makes regular split quads of 137-162 degrees.
 OUTER_MIN_QUAD_ANGLE = 135.0
+#: Degrees: the worst angle of the second fallback's chord to a boundary point (:func:`point_quads`), as a
+#: hole corner's last fallback (:data:`~vaultgram.topology.reflex.HOLE_MIN_ANGLE`): a quad corner of 20 degrees
+#: has a scaled Jacobian of sin 20 = 0.34. jagged_1's two corners that take it are at 27.2 and 20.6.
+OUTER_POINT_MIN_ANGLE = 20.0
 
 
 def turns_past_straight(angles: list, i: int, pole: float, limit: float) -> bool:
@@ -73,3 +89,23 @@ def wide_quads(angles: list, quads: list) -> list:
     ([], [1], [1])
     """
     return [i for i in quads if angles[i] >= OUTER_MIN_QUAD_ANGLE]
+
+
+def point_quads(angles: list, quads: list, theta: float, past: float, spike: float) -> list:
+    """The indices among ``quads`` of the reflex corner's patches (``angles``: their angles there,
+    degrees; ``theta``: the corner's interior angle) whose chords to a boundary point the outer ring's
+    second fallback may take: a quad wider than ``past`` (:data:`~vaultgram.topology.reflex.PAST_STRAIGHT`)
+    at the corner, whose mesh would turn past straight there, or any quad at a spike (``theta`` of
+    ``spike``, :data:`~vaultgram.topology.reflex.SPIKE`, or more: four faces asked, and the chord in its third
+    patch leaves the other two as they are). Not any quad at a 225-315 degree corner: jagged_3's two such
+    chords (25.5 and 22.8 degrees, in quads of 177 and 108) each lowered its worst face from 0.369 to 0.32,
+    away from the corner (the edge groups' counts moved).
+
+    >>> point_quads([111.9, 187.1], [0, 1], 298.9, 181.0, 315.0)
+    [1]
+    >>> point_quads([137.0, 83.2, 114.1], [0, 2], 334.3, 181.0, 315.0)
+    [0, 2]
+    >>> point_quads([102.2, 177.1], [0, 1], 279.2, 181.0, 315.0)
+    []
+    """
+    return [i for i in quads if angles[i] > past or theta >= spike]
