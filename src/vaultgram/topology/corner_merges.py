@@ -42,9 +42,9 @@ from vaultgram.topology.types import BOUNDARY
 __all__ = ["flip_rebranch", "flip_angles", "spread_rebranch", "register_corner_merge_helpers"]
 
 #: The least angle the flipped chord ``v-y`` leaves either side at ``v`` and ``y``, and the least
-#: corner of its far patch (degrees). All three are skeleton vertices, which smoothing moves: jagged_2's
+#: corner of its triangle (degrees). All three are skeleton vertices, which smoothing moves: jagged_2's
 #: 291 degree corner's flip leaves 11.3 degrees at ``y`` and its mesh's worst face stays 0.271 (at 20
-#: that flip was refused; at 5 jagged_1's 281 degree corner (5.5) would flip to a triangle of 5.5).
+#: that flip was refused). jagged_1's 281 degree corner's would leave 5.5 (and a quad of 172.6).
 FLIP_MIN_ANGLE = 10.0
 
 #: The widest corner of the flip's new quad (degrees): a quad corner near straight gives a mesh
@@ -107,52 +107,43 @@ def _ccw_ring(polygon) -> np.ndarray:
     return np.asarray(shapely.ops.orient(polygon).exterior.coords)
 
 
-def flip_angles(graph, thin: int, quad: int, corners: tuple) -> list | None:
-    """The corner angles (degrees) of the two patches the flip makes: the union of the patch ``thin``
-    and the quad ``quad`` (the polygon ``(b, u, v, x, [m,] y)`` counter-clockwise, ``corners`` its
-    corners in that order) cut by the straight chord ``v-y``; the new quad's at ``b, u, v, y``, then
-    the far patch's at ``v, x, [m,] y``. None where either patch is out of step with the plan or the
-    chord does not run inside the union (touching it only at its ends)."""
-    found = patch_sides(graph, thin), patch_sides(graph, quad)
+def flip_angles(graph, tri: int, quad: int, corners: tuple) -> list | None:
+    """The corner angles (degrees) of the two patches the flip makes: the union of the triangle ``tri``
+    and the quad ``quad`` (the pentagon ``(b, u, v, x, y)``, ``corners`` its corners in that order) cut
+    by the straight chord ``v-y``; the new quad's at ``b, u, v, y``, then the new triangle's at ``v, x,
+    y``. None where either patch is out of step with the plan or the chord does not run inside the
+    pentagon (touching it only at its ends)."""
+    found = patch_sides(graph, tri), patch_sides(graph, quad)
     if None in found:
         return None
     pos = {n: np.asarray(graph.get(n, "pos"), dtype=float) for n in corners}
-    b, u, v, y, far = corners[0], corners[1], corners[2], corners[-1], corners[2:]
-    union = shapely.union(found[0].polygon, found[1].polygon)
+    b, u, v, x, y = corners
+    pentagon = shapely.union(found[0].polygon, found[1].polygon)
     d = (pos[y] - pos[v]) * 1e-6
-    if union.geom_type != "Polygon" or not shapely.contains_properly(
-            union, shapely.LineString([pos[v] + d, pos[y] - d])):
+    if pentagon.geom_type != "Polygon" or not shapely.contains_properly(
+            pentagon, shapely.LineString([pos[v] + d, pos[y] - d])):
         return None
-    parts = shapely.get_parts(shapely.ops.split(union, shapely.LineString([pos[v] - d, pos[y] + d])))
+    parts = shapely.get_parts(shapely.ops.split(pentagon, shapely.LineString([pos[v] - d, pos[y] + d])))
     if len(parts) != 2:
         return None
     near_b = 0 if parts[0].distance(shapely.Point(pos[b])) < parts[1].distance(shapely.Point(pos[b])) else 1
     rings = [_ccw_ring(parts[k]) for k in (near_b, 1 - near_b)]
-    return [_ring_angle(rings[0], pos[n]) for n in (b, u, v, y)] + [_ring_angle(rings[1], pos[n]) for n in far]
+    return [_ring_angle(rings[0], pos[n]) for n in (b, u, v, y)] + [_ring_angle(rings[1], pos[n]) for n in (v, x, y)]
 
 
-def _flip_fits(angles: list | None) -> bool:
-    """The test of :func:`flip_rebranch` on :func:`flip_angles`' list (new quad's four, then the far
-    patch's, ``v`` first and ``y`` last)."""
-    if angles is None:
-        return False
-    quad, far = angles[:4], angles[4:]
-    wide = quad + far if len(far) == 4 else quad
-    return max(wide) <= FLIP_MAX_ANGLE and min(quad[2:] + far) >= FLIP_MIN_ANGLE
-
-
-def flip_rebranch(graph, thin: int, quad: int, b: int, u: int, v: int, x: int, y: int) -> bool:
-    """Whether the rebranch ``x-b`` shared by the triangle ``thin = (b, x, y)`` and the quad
+def flip_rebranch(graph, tri: int, quad: int, b: int, u: int, v: int, x: int, y: int) -> bool:
+    """Whether the rebranch ``x-b`` shared by the triangle ``tri = (b, x, y)`` and the quad
     ``quad = (b, u, v, x)`` may flip to the chord ``v-y`` (the pentagon's other diagonal from ``x``'s
     neighbours): the chord runs straight inside the pentagon, leaves :data:`FLIP_MIN_ANGLE` or more
     either side at ``v`` and ``y`` and at each corner of the new triangle ``(v, x, y)``, and the new quad
     ``(b, u, v, y)`` turns by at most :data:`FLIP_MAX_ANGLE` at each corner (a quad past straight folds
     its mesh). Only where the triangle is thinner than :data:`FLIP_THIN` at ``b``. The mirror case (the
     triangle after the quad round ``b``) passes the same roles."""
-    found = patch_sides(graph, thin)
+    found = patch_sides(graph, tri)
     if found is None or not _ring_angle(_ccw_ring(found.polygon), graph.get(b, "pos")) < FLIP_THIN:
         return False
-    return _flip_fits(flip_angles(graph, thin, quad, (b, u, v, x, y)))
+    angles = flip_angles(graph, tri, quad, (b, u, v, x, y))
+    return angles is not None and max(angles[:4]) <= FLIP_MAX_ANGLE and min(angles[2:]) >= FLIP_MIN_ANGLE
 
 
 def register_corner_merge_helpers(f) -> None:
