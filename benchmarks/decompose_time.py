@@ -59,23 +59,14 @@ def digest(data) -> str:
 
 def check_chords() -> dict:
     """Make every kept chord be compared with a fresh one (``--check-chords``); the counts, updated as the
-    rules ask."""
+    rules ask (:func:`vaultgram.testing.chords.chord_checks`)."""
+    from collections import Counter
+
+    from vaultgram.testing.chords import chord_checks
     from vaultgram.topology import reflex
 
-    counts = {"asked": 0, "worked out": 0, "differ": 0}
-    fresh, kept = reflex.choose_chord, reflex._kept_chord
-
-    def counting(graph, r):
-        counts["worked out"] += 1
-        return fresh(graph, r)
-
-    def check(graph, r):
-        got = kept(graph, r)
-        counts["asked"] += 1
-        counts["differ"] += got != fresh(graph, r)
-        return got
-
-    reflex.choose_chord, reflex._kept_chord = counting, check
+    counts = Counter({"asked": 0, "worked out": 0, "differ": 0})
+    reflex.choose_chord, reflex._kept_chord = chord_checks(counts)
     return counts
 
 
@@ -144,7 +135,7 @@ def main(argv=None) -> int:
               f"first {r['first']:6.2f} s  {r['decomposition']} {r['mesh_digest']}", flush=True)
     print(f"load average {os.getloadavg()[0]:.1f}")
     if chords is not None:
-        print(f"chords: {chords}")
+        print(f"chords: {dict(chords)}")
     if args.json:
         with open(args.json, "w") as f:
             json.dump(rows, f, indent=1)

@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from vaultgram.domain import domain_from_dict
+from vaultgram.geometry.polygons import regular_valence
 from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import decompose, mesh_decomposition
 from vaultgram.topology.corners import boundary_angle
@@ -50,3 +51,13 @@ def assert_regular_hole_corner(laid, corner, angle: float, min_sj: float, tol: f
     stats = mesh_stats(mesh, domain)
     assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
     assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= min_sj
+
+
+def assert_regular_corner(dec, mesh, at, tol: float = 1e-6) -> None:
+    """The boundary point at ``at`` is the corner of as many patches of ``dec`` as its angle's regular
+    number of faces (``1 + max(1, round(theta / 90))`` less one, issue 12 What 1), and has that many faces
+    in ``mesh``."""
+    b = node_at(dec.graph, at, tol)
+    regular = int(regular_valence(boundary_angle(dec.graph, b))) - 1
+    assert dec.graph.degree(b, [PATCH_CORNER]) == regular
+    assert faces_at(mesh, at, tol) == regular

@@ -21,6 +21,7 @@ from vaultgram.engine import strategy
 from vaultgram.engine.incremental import MatchSet
 from vaultgram.geometry.polygons import regular_valence
 from vaultgram.meshpipeline import decompose
+from vaultgram.testing.chords import chord_checks
 from vaultgram.testing.jagged import jagged_plans
 from vaultgram.topology import reflex
 from vaultgram.topology.corners import boundary_angle
@@ -42,20 +43,9 @@ def checked(monkeypatch) -> Counter:
     :func:`~vaultgram.topology.reflex.choose_chord` worked out (``worked out``); every chord asked for is
     compared with a fresh one (``differ`` counts those that are not the same)."""
     counts: Counter = Counter()
-    fresh, kept = reflex.choose_chord, reflex._kept_chord
-
-    def counting(graph, r):
-        counts["worked out"] += 1
-        return fresh(graph, r)
-
-    def check(graph, r):
-        got = kept(graph, r)
-        counts["asked"] += 1
-        counts["differ"] += got != fresh(graph, r)
-        return got
-
-    monkeypatch.setattr(reflex, "choose_chord", counting)
-    monkeypatch.setattr(reflex, "_kept_chord", check)
+    worked_out, asked = chord_checks(counts)
+    monkeypatch.setattr(reflex, "choose_chord", worked_out)
+    monkeypatch.setattr(reflex, "_kept_chord", asked)
     return counts
 
 

@@ -17,10 +17,9 @@ import functools
 import math
 
 import pytest
-from layout_probes import faces_at, node_at
+from layout_probes import assert_regular_corner, node_at
 
 from vaultgram.domain import domain_from_dict
-from vaultgram.geometry.polygons import regular_valence
 from vaultgram.meshing.quality import mesh_stats
 from vaultgram.meshpipeline import decompose, mesh_decomposition
 from vaultgram.testing.jagged import jagged_plans
@@ -76,14 +75,9 @@ def _moved_to(dec) -> int:
 
 
 def _assert_regular(name: str, at) -> None:
-    """The boundary point at ``at`` of ``name``'s layout is the corner of as many patches as its angle's
-    regular faces, and has that many faces in the mesh."""
+    """:func:`layout_probes.assert_regular_corner` at ``at`` in the layout and mesh of ``name``."""
     _, dec, mesh = _laid_out(name)
-    g = dec.graph
-    b = node_at(g, at, 1e-6)
-    regular = int(regular_valence(boundary_angle(g, b))) - 1
-    assert g.degree(b, [PATCH_CORNER]) == regular
-    assert faces_at(mesh, at, 1e-6) == regular
+    assert_regular_corner(dec, mesh, at)
 
 
 @pytest.mark.parametrize("name, at", FIXED)

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import functools
 
-from layout_probes import faces_at, node_at
+from layout_probes import assert_regular_corner, faces_at, node_at
 
 from vaultgram.domain import domain_from_dict
 from vaultgram.geometry.polygons import regular_valence
@@ -65,14 +65,9 @@ def _patch_with(graph, corners: set):
 
 
 def _assert_regular(name: str, at) -> None:
-    """The boundary point at ``at`` is the corner of its angle's regular number of patches, with as many mesh
-    faces."""
+    """:func:`layout_probes.assert_regular_corner` at ``at`` in the layout and mesh of ``name``."""
     _, dec, mesh = _laid_out(name)
-    g = dec.graph
-    b = node_at(g, at, 1e-6)
-    regular = int(regular_valence(boundary_angle(g, b))) - 1
-    assert g.degree(b, [PATCH_CORNER]) == regular
-    assert faces_at(mesh, at, 1e-6) == regular
+    assert_regular_corner(dec, mesh, at)
 
 
 def test_a_thin_triangle_beside_a_quad_flips_its_rebranch():
