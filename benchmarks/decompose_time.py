@@ -113,6 +113,20 @@ def compare(old: dict, new: dict) -> int:
     return changed
 
 
+def _bad_arguments(args, found: dict) -> str | None:
+    """What is wrong with the command line, in one line, or None: an unknown plan kind or name, or a
+    ``--compare`` file that does not exist."""
+    kinds = set(args.plans.split(",")) - {"jagged", "shared", "examples"}
+    if kinds:
+        return f"--plans: unknown kind(s) {', '.join(sorted(kinds))} (jagged, shared, examples)"
+    names = set(args.names) - set(found)
+    if names:
+        return f"unknown plan(s) {', '.join(sorted(names))} in --plans {args.plans}"
+    if args.compare and not os.path.isfile(args.compare):
+        return f"--compare: no file {args.compare}"
+    return None
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("names", nargs="*", help="only these plans")
@@ -122,8 +136,12 @@ def main(argv=None) -> int:
     parser.add_argument("--compare", help="rows of an earlier run to compare with")
     parser.add_argument("--check-chords", action="store_true", help="compare each kept chord with a fresh one")
     args = parser.parse_args(argv)
-    chords = check_chords() if args.check_chords else None
     found = plans(args.plans.split(","))
+    problem = _bad_arguments(args, found)
+    if problem:
+        print(f"decompose_time.py: {problem}", file=sys.stderr)
+        return 2
+    chords = check_chords() if args.check_chords else None
     rows = {}
     print(f"load average {os.getloadavg()[0]:.1f}", flush=True)
     for name, domain in found.items():
