@@ -9,6 +9,8 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Callable
 
+from vaultgram.topology import reflex
+
 
 def chord_checks(counts: Counter) -> tuple[Callable, Callable]:
     """Stand-ins for :func:`~vaultgram.topology.reflex.choose_chord` and ``reflex._kept_chord`` that count,
@@ -16,8 +18,6 @@ def chord_checks(counts: Counter) -> tuple[Callable, Callable]:
     state), and compare every chord asked for with a fresh one (``differ``: those that are not the same).
     Put them in place of the two (by monkeypatching, or assignment in a script) before the rules run.
     """
-    from vaultgram.topology import reflex
-
     fresh, kept = reflex.choose_chord, reflex._kept_chord
 
     def worked_out(graph, r):

@@ -69,7 +69,6 @@ def by_content(cache: OrderedDict, key, make, size: int):
     return value
 
 
-
 class Untouched:
     """Results kept while the graph's changes touch none of the nodes each was worked out from, found
     again in every later state of the graph that left those nodes alone (where :func:`per_state` finds a
@@ -100,7 +99,6 @@ class Untouched:
         self._synced = graph.mark()  # the journal records before this one are accounted for
         self._kept: dict = {}  # key -> (result, its footprint)
         self._by_node: dict = {}  # node -> the keys whose footprint holds it
-        self.made = 0  # results worked out (for tests and benchmarks)
         graph.watch(self)
 
     def get(self, graph, key, make):
@@ -112,7 +110,6 @@ class Untouched:
         if found is not None:
             return found[0]
         result, nodes = make()
-        self.made += 1
         if nodes is not None:
             nodes = frozenset(nodes)
             self._kept[key] = (result, nodes)
