@@ -24,6 +24,14 @@ edge-group limit or has no free neighbour) is a pentagon ``(b, u, v, x, y)`` cut
 is flipped to the pentagon's other diagonal from ``x``'s neighbours, ``v-y``
 (``flip_over_served_corner``): the quad ``(b, u, v, y)`` and the triangle ``(v, x, y)``, whose pole is
 off the boundary. ``b`` keeps one patch less; :func:`flip_rebranch` checks the flip's geometry.
+
+Where the quad is flat at ``v`` (170 degrees or more there: jagged_1's 281 and jagged_2's 307 degree
+corners, 178.2 and 172.0), every diagonal of the pentagon leaves a sliver (``v`` is a point on the
+side ``u-x``, not a corner); the pentagon is cut instead from ``v`` to the strip point ``m`` of its
+side ``y-b`` opposite ``v`` (``strip_over_served_corner``): the quads ``(b, u, v, m)`` and ``(m, v, x, y)``,
+the strip carried on through the patch beyond ``y-b`` by the strip rules (``rules/strips.vgr``), as a
+reflex corner's chord is. ``b`` keeps one patch less, ``v`` takes one more (regular where the flat
+corner's other patches are two; :func:`flat_corner_strip` checks the cut).
 """
 
 from __future__ import annotations
@@ -35,11 +43,12 @@ import shapely
 import shapely.ops
 
 from vaultgram.geometry.polygons import ccw_degrees, direction
-from vaultgram.topology.reflex import MAX_RATIO, MIN_ANGLE
-from vaultgram.topology.strips import chord_inside, patch_sides
+from vaultgram.topology.reflex import MAX_RATIO, MIN_ANGLE, strip_beyond
+from vaultgram.topology.strips import chord_inside, patch_sides, strip_point
 from vaultgram.topology.types import BOUNDARY
 
-__all__ = ["flip_rebranch", "flip_angles", "spread_rebranch", "register_corner_merge_helpers"]
+__all__ = ["flip_rebranch", "flip_angles", "spread_rebranch", "flat_corner_strip", "flat_cut_angles",
+           "register_corner_merge_helpers"]
 
 #: The least angle the flipped chord ``v-y`` leaves either side at ``v`` and ``y``, and the least
 #: corner of its triangle (degrees). All three are skeleton vertices, which smoothing moves: jagged_2's
@@ -56,6 +65,12 @@ FLIP_MAX_ANGLE = 165.0
 #: one is a face of its own there (jagged_3's 304 degree corner: 78.7 degrees, beside a thin quad);
 #: flipped, it gave bs -1 but moved the plan's counts so that its worst face, 25 away, fell 0.369 -> 0.321.
 FLIP_THIN = 45.0
+
+#: The least angle (degrees) of the quad ``(b, u, v, x)`` at ``v`` at which ``v`` is a point on the side
+#: ``u-x`` rather than a corner (:func:`flat_corner_strip`): jagged_1's 281 degree corner's quad is
+#: 178.2 there, jagged_2's 307 degree corner's 172.0 (s30-jmany3: 167-179 beside every over-served
+#: corner left).
+FLAT_CORNER = 170.0
 
 
 def spread_rebranch(graph, patch: int, b: int, c: int, s: int, t: int) -> bool:
@@ -119,16 +134,8 @@ def flip_angles(graph, tri: int, quad: int, corners: tuple) -> list | None:
     pos = {n: np.asarray(graph.get(n, "pos"), dtype=float) for n in corners}
     b, u, v, x, y = corners
     pentagon = shapely.union(found[0].polygon, found[1].polygon)
-    d = (pos[y] - pos[v]) * 1e-6
-    if pentagon.geom_type != "Polygon" or not shapely.contains_properly(
-            pentagon, shapely.LineString([pos[v] + d, pos[y] - d])):
-        return None
-    parts = shapely.get_parts(shapely.ops.split(pentagon, shapely.LineString([pos[v] - d, pos[y] + d])))
-    if len(parts) != 2:
-        return None
-    near_b = 0 if parts[0].distance(shapely.Point(pos[b])) < parts[1].distance(shapely.Point(pos[b])) else 1
-    rings = [_ccw_ring(parts[k]) for k in (near_b, 1 - near_b)]
-    return [_ring_angle(rings[0], pos[n]) for n in (b, u, v, y)] + [_ring_angle(rings[1], pos[n]) for n in (v, x, y)]
+    return _split_angles(pentagon, tuple(pos[n] for n in (b, u, v, y)), tuple(pos[n] for n in (v, x, y)),
+                         pos[v], pos[y])
 
 
 def flip_rebranch(graph, tri: int, quad: int, b: int, u: int, v: int, x: int, y: int) -> bool:
@@ -146,8 +153,67 @@ def flip_rebranch(graph, tri: int, quad: int, b: int, u: int, v: int, x: int, y:
     return angles is not None and max(angles[:4]) <= FLIP_MAX_ANGLE and min(angles[2:]) >= FLIP_MIN_ANGLE
 
 
+def _split_angles(pentagon, near: tuple, far: tuple, a, c) -> list | None:
+    """The corner angles (degrees) of the two parts into which the straight chord from ``a`` to ``c``
+    cuts ``pentagon`` (a shapely polygon): the part nearer ``near[0]``'s at the points ``near``
+    (positions), then the other's at ``far``. None where the chord does not
+    run inside the pentagon (touching its outline only at its ends) or cuts it into other than two."""
+    a, c = np.asarray(a, dtype=float), np.asarray(c, dtype=float)
+    d = (c - a) * 1e-6
+    if pentagon.geom_type != "Polygon" or not shapely.contains_properly(pentagon, shapely.LineString([a + d, c - d])):
+        return None
+    parts = shapely.get_parts(shapely.ops.split(pentagon, shapely.LineString([a - d, c + d])))
+    if len(parts) != 2:
+        return None
+    first = shapely.Point(near[0])
+    k = 0 if parts[0].distance(first) < parts[1].distance(first) else 1
+    rings = _ccw_ring(parts[k]), _ccw_ring(parts[1 - k])
+    return [_ring_angle(rings[0], p) for p in near] + [_ring_angle(rings[1], p) for p in far]
+
+
+def flat_cut_angles(graph, tri: int, quad: int, corners: tuple, edge: int) -> list | None:
+    """The corner angles (degrees) of the two quads into which the straight chord from ``v`` to the
+    strip point ``m`` of the plan edge ``edge`` (the side ``y-b`` of the triangle ``tri``) cuts the
+    pentagon ``(b, u, v, x, y)`` (``corners``), the union of ``tri = (b, x, y)`` and the quad
+    ``quad = (b, u, v, x)``: the quad ``(b, u, v, m)``'s at ``b, u, v, m``, then ``(m, v, x, y)``'s at
+    ``m, v, x, y``. None where a patch is out of step with the plan or the chord leaves the pentagon."""
+    found = patch_sides(graph, tri), patch_sides(graph, quad)
+    if None in found:
+        return None
+    pos = {n: np.asarray(graph.get(n, "pos"), dtype=float) for n in corners}
+    b, u, v, x, y = corners
+    m = np.asarray(strip_point(graph, edge), dtype=float)
+    pentagon = shapely.union(found[0].polygon, found[1].polygon)
+    return _split_angles(pentagon, (pos[b], pos[u], pos[v], m), (m, pos[v], pos[x], pos[y]), pos[v], m)
+
+
+def flat_corner_strip(graph, tri: int, quad: int, b: int, u: int, v: int, x: int, y: int, edge: int) -> bool:
+    """Whether the pentagon ``(b, u, v, x, y)`` of the triangle ``tri = (b, x, y)`` and the quad
+    ``quad = (b, u, v, x)`` (the rebranch ``x-b`` between them) may be cut from ``v`` to the strip point
+    of ``edge``, the rebranch ``y-b`` (``strip_over_served_corner``): the quad is flat at ``v``
+    (:data:`FLAT_CORNER` or more: ``v`` is a point on its side ``u-x``, so every diagonal of the
+    pentagon leaves a sliver, s30-jmany3), the strip through ``edge`` completes in the patches beyond
+    without ending in a triangle at a point it would change
+    (:func:`~vaultgram.topology.reflex.strip_beyond`, as a reflex corner's chord's; not back through
+    ``quad``), the chord runs straight inside the pentagon and leaves
+    :data:`~vaultgram.topology.reflex.MIN_ANGLE` or more either side at ``v`` and at the strip point
+    (a reflex corner's chord's bound), and no corner of the two quads turns past straight (§3.1's
+    rebranches, §4.2's strips). The mirror case (the triangle after the quad round ``b``) passes the
+    same roles."""
+    found = patch_sides(graph, quad)
+    if found is None or not _ring_angle(_ccw_ring(found.polygon), graph.get(v, "pos")) >= FLAT_CORNER:
+        return False
+    walk = strip_beyond(graph, tri, edge)
+    if walk is None or quad in walk.patches:
+        return False
+    angles = flat_cut_angles(graph, tri, quad, (b, u, v, x, y), edge)
+    return angles is not None and min(angles[2:6]) >= MIN_ANGLE and max(angles) < 180.0
+
+
 def register_corner_merge_helpers(f) -> None:
     """Register the helpers with a function registry (``rules/corner_merges.vgr`` calls them)."""
     f.register("spread_rebranch", spread_rebranch, ("node", "node", "node", "node", "node"), "bool", uses_graph=True,
                local=False)
     f.register("flip_rebranch", flip_rebranch, ("node",) * 7, "bool", uses_graph=True, local=False)
+    f.register("flat_corner_strip", flat_corner_strip, ("node",) * 7 + ("edge",), "bool", uses_graph=True,
+               local=False)
