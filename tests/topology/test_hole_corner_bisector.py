@@ -18,7 +18,7 @@ from vaultgram.domain import domain_from_dict
 from vaultgram.geometry.polylines import ray_hit_fraction
 from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import decompose, mesh_decomposition
-from vaultgram.topology import hole_hub, hole_rebranch, reflex
+from vaultgram.topology import hole_fans, hole_hub, hole_rebranch, reflex
 from vaultgram.topology.types import DIAGONAL, PATCH_CORNER
 
 #: Draw 226 of the 700 random plans saved in session 25, as saved (spacing 0.03): an octagon with a
@@ -98,11 +98,13 @@ def test_without_the_bisecting_foot_the_corner_keeps_two_faces(monkeypatch, name
     """The fixed feet alone leave the hole corner inside the ring patch's side (main's layout): the
     corner of no patch, one boundary singularity. The hub split after the bisecting cut (session 26,
     hole_hub) and the rebranch moved to the corner after the hub (session 28, hole_rebranch: on draw
-    226 the rebranch to the corner's neighbour) are switched off too: they are the last fallbacks, and
-    would take the corner in its place."""
+    226 the rebranch to the corner's neighbour) are switched off too, and so is the merge of two fan
+    triangles after it (session 31, hole_fans: on draw 226 the triangle beyond and its fan neighbour):
+    they are the last fallbacks, and would take the corner in its place."""
     monkeypatch.setattr(reflex, "bisecting_foot", lambda graph, walk: ())
     monkeypatch.setattr(hole_hub, "_best_hub", lambda *args: None)
     monkeypatch.setattr(hole_rebranch, "_fits", lambda *args: False)
+    monkeypatch.setattr(hole_fans, "_pair", lambda *args: None)
     plan, spacing, corner, _, _ = CASES[name]
     domain = domain_from_dict(plan)
     dec = decompose(domain, spacing)
