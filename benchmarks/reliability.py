@@ -6,7 +6,9 @@
   mesh (no inverted face), and the refusals grouped by their message. The draws are the same every
   run of the same code, but hypothesis mixes the constants of the loaded local modules into its
   draws, so another version of vaultgram draws other plans: to compare two versions on the same
-  plans, the first run saves them to ``--plans-file`` and the second reads them from it.
+  plans, the first run saves them to ``--plans-file`` and the second reads them from it. The 700 draws of
+  session 32 (main 0a355bf) are kept in the repository: ``--count 700 --plans-file
+  benchmarks/data/random_plans_700.json.gz`` (a ``.gz`` file is read and written gzipped).
   With ``--per-plan F`` it also writes one row per plan to F (JSON: index, shortest edge over median
   edge, min scaled Jacobian, boundary singular vertices, inverted faces; ``null`` for a refused plan), to
   see which plans a change moves.
@@ -21,6 +23,7 @@ from __future__ import annotations
 
 import argparse
 import collections
+import gzip
 import json
 import re
 import resource
@@ -61,10 +64,15 @@ def saved_plans(count: int, path: Path | None) -> list:
     """The plans in ``path`` (a JSON list of [domain dict, spacing]) if it exists, else ``count`` new
     draws of :func:`random_plans`, saved there when a path is given."""
     if path is not None and path.is_file():
-        return [tuple(plan) for plan in json.loads(path.read_text())]
+        text = gzip.decompress(path.read_bytes()).decode() if path.suffix == ".gz" else path.read_text()
+        return [tuple(plan) for plan in json.loads(text)]
     plans = random_plans(count)
     if path is not None:
-        path.write_text(json.dumps(plans))
+        text = json.dumps(plans)
+        if path.suffix == ".gz":
+            path.write_bytes(gzip.compress(text.encode(), mtime=0))
+        else:
+            path.write_text(text)
     return plans
 
 
