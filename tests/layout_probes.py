@@ -29,6 +29,15 @@ def node_at(graph, at, tol: float = 1e-9) -> int:
     return n
 
 
+def patch_with(graph, corners: set):
+    """The Patch node of the decomposition ``graph`` whose corners are exactly ``corners``, or None."""
+    for e in graph.incident(next(iter(corners)), [PATCH_CORNER]):
+        p = graph.ends(e)[0]
+        if {graph.ends(f)[1] for f in graph.incident(p, [PATCH_CORNER])} == corners:
+            return p
+    return None
+
+
 def faces_at(mesh, at, tol: float = 1e-9) -> int:
     """The number of faces at the mesh vertex nearest ``at``, which lies within ``tol`` of it (a fixed
     polygon corner)."""

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import functools
 
-from layout_probes import assert_regular_corner, node_at
+from layout_probes import assert_regular_corner, node_at, patch_with
 
 from vaultgram.domain import domain_from_dict
 from vaultgram.meshing.quality import mesh_stats
@@ -39,15 +39,6 @@ def _strips(dec) -> list:
     return [step for step in dec.trace if step.get("rule") in STRIPS]
 
 
-def _patch_with(graph, corners: set):
-    """The Patch node whose corners are exactly ``corners``, or None."""
-    for e in graph.incident(next(iter(corners)), [PATCH_CORNER]):
-        p = graph.ends(e)[0]
-        if {graph.ends(f)[1] for f in graph.incident(p, [PATCH_CORNER])} == corners:
-            return p
-    return None
-
-
 def _cut(name: str, at) -> tuple:
     """The one cut of the plan ``name``: its binding's corner ``b`` (at ``at``), ``u``, ``v``, ``x``, ``y``."""
     _, dec, _ = _laid_out(name)
@@ -61,8 +52,8 @@ def _quads(graph, b, u, v, x, y) -> tuple:
     """The strip point ``m`` of the cut (the strip point joined to ``v`` whose quad ``(b, u, v, m)`` is a patch)
     and the two quads ``(b, u, v, m)``, ``(m, v, x, y)``."""
     (m,) = [n for n in (graph.other(e, v) for e in graph.incident(v, ["Diagonal"]))
-            if graph.node_type(n) == "StripPoint" and _patch_with(graph, {b, u, v, n}) is not None]
-    return m, _patch_with(graph, {b, u, v, m}), _patch_with(graph, {m, v, x, y})
+            if graph.node_type(n) == "StripPoint" and patch_with(graph, {b, u, v, n}) is not None]
+    return m, patch_with(graph, {b, u, v, m}), patch_with(graph, {m, v, x, y})
 
 
 def test_jagged_1s_corner_is_cut_from_the_flat_corner():

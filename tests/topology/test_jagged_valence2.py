@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import functools
 
-from layout_probes import assert_regular_corner, faces_at, node_at
+from layout_probes import assert_regular_corner, faces_at, node_at, patch_with
 
 from vaultgram.domain import domain_from_dict
 from vaultgram.geometry.polygons import regular_valence
@@ -55,15 +55,6 @@ def _flips(dec) -> list:
     return [step for step in dec.trace if step["rule"] in ("flip_over_served_corner", "flip_over_served_corner_back")]
 
 
-def _patch_with(graph, corners: set):
-    """The Patch node whose corners are exactly ``corners``, or None."""
-    for e in graph.incident(next(iter(corners)), [PATCH_CORNER]):
-        p = graph.ends(e)[0]
-        if {graph.ends(f)[1] for f in graph.incident(p, [PATCH_CORNER])} == corners:
-            return p
-    return None
-
-
 def _assert_regular(name: str, at) -> None:
     """:func:`layout_probes.assert_regular_corner` at ``at`` in the layout and mesh of ``name``."""
     _, dec, mesh = _laid_out(name)
@@ -81,7 +72,7 @@ def test_a_thin_triangle_beside_a_quad_flips_its_rebranch():
     b, u, v, x, y = (step["binding"][k] for k in "buvxy")
     assert node_at(g, FLIP, 1e-6) == b and 225.0 < boundary_angle(g, b) < 315.0
     _assert_regular("flip", FLIP)
-    quad, tri = _patch_with(g, {b, u, v, y}), _patch_with(g, {v, x, y})
+    quad, tri = patch_with(g, {b, u, v, y}), patch_with(g, {v, x, y})
     assert quad is not None and tri is not None
     assert all(g.schema.is_subtype(g.node_type(n), "SkeletonVertex") for n in (v, x, y))
     assert abs(patch_angle(g, quad, b) - 56.63) < 0.05  # 34.49 + 22.14 on main
