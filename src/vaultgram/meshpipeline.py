@@ -40,7 +40,7 @@ from vaultgram.meshing.polish import POLISH_TARGET, polish_worst
 from vaultgram.meshing.quadmesh import QuadMesh
 from vaultgram.meshing.quality import check_not_folded, face_scaled_jacobians
 from vaultgram.meshing.smoothing import DEFAULT_ITERATIONS, KINK_REACH, kink_offsets, laplacian_smooth
-from vaultgram.meshing.splits import split_patterns, thinnest_fan
+from vaultgram.meshing.splits import boundary_pole_splits, split_patterns, thinnest_fan
 from vaultgram.meshing.untangle import improve_shapes, untangle
 from vaultgram.meshing.weld import weld
 from vaultgram.topology.decomposition import Decomposition, block_decomposition
@@ -312,8 +312,8 @@ def _meshed(dec: Decomposition, target_length, smooth: int, densities, allow_fol
         # issue 12: where the three-quad splits of thin fans (or the counts they need) fold, Figure 3's fans
         plain = group_counts(layout, densities, target_length, max_faces, split=False)
         if split_patterns(layout, counts) or not np.array_equal(plain, counts):
-            counts, split = plain, False
-            mesh, x = _welded_and_smoothed(layout, counts, smooth, timings, split=split)
+            counts = plain
+            mesh, x, split = _fans_back(layout, counts, smooth, timings)
             quality = face_scaled_jacobians(x, mesh.faces)
     if quality is not None and quality.min() <= 0:  # issue 12 What 4: untangling on until it reaches
         again, y = _welded_and_smoothed(layout, counts, smooth, timings, split=split, rounds=True)
@@ -331,8 +331,26 @@ def _meshed(dec: Decomposition, target_length, smooth: int, densities, allow_fol
     return mesh
 
 
+def _fans_back(layout: Layout, counts, smooth: int, timings: dict | None
+               ) -> tuple[QuadMesh, np.ndarray, bool | frozenset]:
+    """The mesh at ``counts`` (Figure 3's, no split raised them) where the three-quad splits folded:
+    the fans back, but for the splits at poles a rule marked on the boundary
+    (:func:`~vaultgram.meshing.splits.boundary_pole_splits`), as a fan a boundary singularity whatever
+    its shape; every split dropped where those fold too (or there are none). Also the splits kept
+    (``_welded_and_smoothed``'s ``split``). Saved random plan 511 of the 700: a boundary point
+    feature's 6 by 1 split folded, and with it dropped the 136 degree corner that
+    ``move_rebranch_to_lone_corner`` made the pole of a triangle got nine faces, not two."""
+    kept = boundary_pole_splits(layout, counts)
+    if kept:
+        mesh, x = _welded_and_smoothed(layout, counts, smooth, timings, split=kept)
+        if face_scaled_jacobians(x, mesh.faces).min() > 0:
+            return mesh, x, kept
+    mesh, x = _welded_and_smoothed(layout, counts, smooth, timings, split=False)
+    return mesh, x, False
+
+
 def _welded_and_smoothed(layout: Layout, counts, smooth: int, timings: dict | None,
-                         split: bool = True, rounds: bool = False) -> tuple[QuadMesh, np.ndarray]:
+                         split: bool | frozenset = True, rounds: bool = False) -> tuple[QuadMesh, np.ndarray]:
     """The welded mesh (with or without the three-quad splits of :mod:`vaultgram.meshing.splits`) and
     its vertices after smoothing, untangling (with ``rounds``, again while faces stay inverted:
     :func:`_untangled_again`), the max-min optimisation and the boundary's bends put back (§3.2)."""

@@ -50,7 +50,7 @@ from vaultgram.meshing.layout import (
     is_feature_node,
 )
 
-__all__ = ["fan_estimate", "inner_point_feature", "pole_angle", "divided_patterns", "division",
+__all__ = ["boundary_pole_splits", "fan_estimate", "inner_point_feature", "pole_angle", "divided_patterns", "division",
            "split_patterns", "split_counts", "split_points", "remember_default_counts", "thinnest_fan"]
 
 #: No split where the pole's angle is wider: the quad there would keep a flat or reflex corner
@@ -190,6 +190,20 @@ def split_patterns(layout: Layout, counts) -> frozenset:
     8
     """
     return _splits(layout, counts)[0]
+
+
+def boundary_pole_splits(layout: Layout, counts) -> frozenset:
+    """The split patterns (:func:`split_patterns`) whose pole a rule marked on the boundary, not at a
+    point feature (:func:`_boundary_pole`): the ones the mesh keeps where the splits fold and it falls
+    back to Figure 3's fans (:func:`vaultgram.meshpipeline.mesh_decomposition`). As a fan, such a
+    pole has as many faces in its triangle as the side opposite it has edges, a boundary singularity
+    whatever the fan's shape; the rule that marked it made it the corner of one more patch only, for
+    one face there (``move_rebranch_to_lone_corner``, ``split_quad_at_reflex_corner_to_side``). Saved
+    random plan 511 of the 700: the split of a boundary point feature's thin triangle (6 by 1 quads)
+    folds, and with every split dropped the 136 degree corner that ``move_rebranch_to_lone_corner``
+    gave two faces got nine."""
+    split = split_patterns(layout, counts)
+    return frozenset(k for k in split if _boundary_pole(layout, layout.patterns[k]))
 
 
 def divided_patterns(layout: Layout, counts) -> dict:

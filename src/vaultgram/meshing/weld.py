@@ -47,7 +47,7 @@ MIN_WRAP = 0.25
 WRAP_FLOOR = 0.1
 
 
-def weld(layout: Layout, counts, split: bool = True) -> QuadMesh:
+def weld(layout: Layout, counts, split: bool | frozenset = True) -> QuadMesh:
     """Mesh every patch with a discrete Coons patch and weld them into one :class:`QuadMesh`.
 
     Parameters
@@ -56,9 +56,10 @@ def weld(layout: Layout, counts, split: bool = True) -> QuadMesh:
         Patches, patterns, sides and groups (:func:`vaultgram.meshing.layout.edge_groups`).
     counts : sequence of int
         Subdivisions per edge group (:func:`vaultgram.meshing.densities.group_counts`).
-    split : bool
+    split : bool or frozenset
         Mesh thin fans as three quads (:func:`vaultgram.meshing.splits.split_patterns`); False: every
-        three-sided patch as Figure 3's fan.
+        three-sided patch as Figure 3's fan; a set of pattern indices: only those of the splits
+        (:func:`vaultgram.meshing.splits.boundary_pole_splits`, the fold fallback's).
 
     Raises
     ------
@@ -80,7 +81,7 @@ def weld(layout: Layout, counts, split: bool = True) -> QuadMesh:
     table = _VertexTable()
     vid_of_node = _corner_vertices(layout, table)
     sides = _side_samples(layout, counts[layout.group_of], table, vid_of_node)
-    split, divided = (split_patterns(layout, counts), divided_patterns(layout, counts)) if split else ((), {})
+    split, divided = _chosen_splits(layout, counts, split)
     faces, face_patch, centres = _patch_faces(layout, sides, table, split, divided)
     vertices, disc_point, node = table.arrays()
     labels = _vertex_labels(layout, sides, vid_of_node, disc_point)
@@ -268,6 +269,17 @@ def _wrapped_lengths(poly: np.ndarray, width: float, reverse: bool) -> np.ndarra
     wrap = np.radians(turning_angles(poly, closed=False)) * (1.0 if reverse else -1.0)
     grown = seg + 0.5 * WRAP_SHARE * width * (wrap[:-1] + wrap[1:])
     return np.maximum(grown, MIN_WRAP * seg)
+
+
+def _chosen_splits(layout: Layout, counts, split: bool | frozenset) -> tuple[frozenset, dict]:
+    """The split patterns and the divided ones among them (:func:`weld`'s ``split``): all, none, or
+    those of a given set of pattern indices."""
+    if not split:
+        return frozenset(), {}
+    chosen = split_patterns(layout, counts)
+    if split is not True:
+        chosen = chosen & split
+    return chosen, {k: n for k, n in divided_patterns(layout, counts).items() if k in chosen}
 
 
 def _patch_faces(layout: Layout, sides: list[_SideSamples], table: _VertexTable,
