@@ -160,7 +160,7 @@ def group_counts(layout: Layout, spec: DensitySpec | None = None, target_length:
         remember_default_counts(layout, lambda: group_counts(layout))
         free = np.zeros(layout.n_groups, dtype=bool)
         free[[g.id for g in by_length]] = True
-        counts = split_counts(layout, counts, free & ~capped)
+        counts = split_counts(layout, counts, free & ~capped, free & capped)
     if max_faces is not None:
         check_mesh_size(layout, counts, max_faces)
     return counts

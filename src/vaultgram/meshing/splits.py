@@ -385,7 +385,8 @@ def _regular_faces(dec, node: int) -> int:
     return 4
 
 
-def split_counts(layout: Layout, counts: np.ndarray, free: np.ndarray) -> np.ndarray:
+def split_counts(layout: Layout, counts: np.ndarray, free: np.ndarray, capped: np.ndarray | None = None
+                 ) -> np.ndarray:
     """``counts`` raised where ``free`` (groups whose count comes from a length) so that the thin fans
     can be split: the opposite side's count even, the pole sides' count above half of it. Raised
     only for the fans that then split (:func:`split_patterns`), so that a fan that stays keeps its
@@ -395,7 +396,12 @@ def split_counts(layout: Layout, counts: np.ndarray, free: np.ndarray) -> np.nda
     boundary pole's fan that splits (:func:`_boundary_pole`: a lone 135-165 degree corner or a reflex
     corner given a patch of its own), which would otherwise stay a boundary singularity: the kept fan
     then takes one triangle more (session 22, 700 saved plans: boundary singular vertices 96 -> 90,
-    one more plan with a face under 0.3)."""
+    one more plan with a face under 0.3). So too a group ``capped`` (counted by length, held at an inner
+    point feature's fan cap, :func:`~vaultgram.meshing.densities.point_load_caps`) where a boundary pole's
+    split needs it raised (:func:`_boundary_groups`)."""
+    free = np.asarray(free, dtype=bool)
+    if capped is not None:
+        free = free | _boundary_groups(layout, counts, free | capped) & capped
     wanted = split_patterns(layout, _raised(layout, counts, free))
     side_count = np.asarray(counts)[layout.group_of]
     free = np.array(free, dtype=bool)
@@ -406,6 +412,22 @@ def split_counts(layout: Layout, counts: np.ndarray, free: np.ndarray) -> np.nda
                 and _opposite_group(layout, pat) not in needed):
             free[_opposite_group(layout, pat)] = False
     return _raised(layout, counts, free, wanted)
+
+
+def _boundary_groups(layout: Layout, counts: np.ndarray, free: np.ndarray) -> np.ndarray:
+    """Per group, whether it is a side of a boundary pole's triangle (:func:`_boundary_pole`) that splits
+    once the ``free`` groups are raised (:func:`_raised`): a fan there of two or more triangles is a
+    boundary singularity whatever its shape. Session 32's draw, plan 197: a hexagonal hole's 240 degree
+    corner given a patch of its own, its triangle's sides at the pole (count 2) in one group with an inner
+    point feature's 44 degree fan triangle, capped at 2; the side opposite of count 3 cannot become even
+    under 4, so its fan of three made the corner singular (raised, the feature's fan has three triangles,
+    evened: min scaled Jacobian 0.321 -> 0.357)."""
+    wanted = split_patterns(layout, _raised(layout, counts, free))
+    groups = np.zeros(len(free), dtype=bool)
+    for k, pat in enumerate(layout.patterns):
+        if k in wanted and _boundary_pole(layout, pat):
+            groups[[int(layout.group_of[pat.sides[(pat.pole + j) % 3][0]]) for j in (0, 1)]] = True
+    return groups
 
 
 def _opposite_group(layout: Layout, pat: PatchPattern) -> int:

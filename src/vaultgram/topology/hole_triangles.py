@@ -94,8 +94,10 @@ def _foot_fits(graph, r: int, found, walk, edge: int, fraction: float, foot) -> 
         return False
     beyond = patch_sides(graph, walk.patches[0])
     to = strip_point(graph, walk.edges[1]) if len(walk.edges) > 1 else walk.end_point(graph)
-    fan = reflex.fan_end(graph, walk)
+    fan, curve = reflex.fan_end(graph, walk), reflex.curve_end(graph, walk)
     if not chord_inside(beyond, foot, to) or fan is not None and not reflex.halves_fan(fan, foot, reflex.MIN_FAN_HALF):
+        return False
+    if curve is not None and not reflex.halves_fan(curve, foot):
         return False
     before, _, after = edge_cut(graph, edge, fraction)
     ahead = after[0] if len(after) else graph.get(graph.ends(edge)[1], "pos")

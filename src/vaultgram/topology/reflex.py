@@ -51,6 +51,7 @@ from collections.abc import Iterator
 from vaultgram.geometry.polygons import ccw_degrees, direction, regular_valence
 from vaultgram.geometry.polylines import arc_lengths, ray_hit_fraction
 from vaultgram.topology.corners import boundary_angle, graph_rings, ring_place
+from vaultgram.topology.curve_points import short_side
 from vaultgram.topology.patches import half_edge_polyline
 from vaultgram.topology.reflex_fallbacks import (
     OUTER_MIN_ANGLE,
@@ -88,7 +89,7 @@ __all__ = ["reflex_chord", "reflex_side", "reflex_foot", "reflex_cut", "reflex_c
            "HOLE_MAX_RATIO", "HOLE_MIN_ANGLE", "BISECTING_FOOT", "cut_walk",
            # helpers the other corner modules (hole_sides, hole_hub, lone_corners) and the benchmarks share
            "patch_corner", "boundary_ahead", "side_length", "on_side", "fan_end", "strip_fan", "is_feature", "is_pole",
-           "halves_fan", "strip_beyond", "bisecting_foot", "hole_chord", "widest_chord", "chord_worst",
+           "halves_fan", "curve_end", "strip_beyond", "bisecting_foot", "hole_chord", "widest_chord", "chord_worst",
            "other_angle", "chord_targets", "chord_angles", "even_group", "choose_cut", "smooth_boundary_side",
            "choose_chord"]
 
@@ -179,7 +180,7 @@ def _feet(graph, walk, fractions=FEET, half: float = MIN_CUT_ANGLE) -> Iterator[
         return
     edge, found = walk.edges[0], patch_sides(graph, walk.patches[0])
     to = strip_point(graph, walk.edges[1]) if len(walk.edges) > 1 else walk.end_point(graph)
-    fan, far = fan_end(graph, walk), strip_fan(graph, walk)
+    fan, far = fan_end(graph, walk) or curve_end(graph, walk), strip_fan(graph, walk)
     if far is not None and not halves_fan(far[0], far[1], half):
         return  # a strip of several patches enters its fan triangle at its last edge's foot, whatever the first
     for f in fractions[:1] if walk.end is None else fractions:
@@ -194,6 +195,18 @@ def fan_end(graph, walk) -> tuple | None:
     (:func:`strip_beyond`, :func:`is_pole`): the pole's position, the direction (radians) of the
     triangle's side leaving it and the triangle's angle there (degrees); None otherwise."""
     if walk.end is None or len(walk.patches) != 1 or not is_pole(graph, walk.end):
+        return None
+    found = patch_sides(graph, walk.patches[0])
+    return patch_corner(graph, found, found.corners.index(walk.end)) if len(found.corners) == 3 else None
+
+
+def curve_end(graph, walk) -> tuple | None:
+    """Where the strip ``walk`` is one triangle entered by the side opposite a point inside a curve feature
+    that is short of patches on the triangle's side (:func:`~vaultgram.topology.curve_points.short_side`;
+    a cut's, :func:`_fan_walk`), that corner as :func:`fan_end` gives a pole's: the chord from a foot to
+    it must halve the triangle's angle there into two of :data:`MIN_CUT_ANGLE` (:func:`_feet`); None
+    otherwise."""
+    if walk.end is None or len(walk.patches) != 1 or not short_side(graph, walk.end, walk.patches[0]):
         return None
     found = patch_sides(graph, walk.patches[0])
     return patch_corner(graph, found, found.corners.index(walk.end)) if len(found.corners) == 3 else None
@@ -524,16 +537,20 @@ def cut_walk(graph, patch: int, edge: int):
 def _fan_walk(graph, patch: int, edge: int) -> Walk | None:
     """The one triangle beyond the side ``edge`` of the quad ``patch``, as a walk ending at its corner
     opposite ``edge``, where that corner is a pole (:func:`is_pole`: a point feature or a curve's free
-    end, which stays the pole of both halves); None otherwise. For a cut whose strip walk
+    end, which stays the pole of both halves) or a point inside a curve short of patches on the
+    triangle's side (:func:`curve_end`); None otherwise. For a cut whose strip walk
     (:func:`~vaultgram.topology.strips.strip_walk`, from the middle) is refused there: on the 700 saved
     random plans, hole corners of plans 579 and 665 whose chord from the middle of a curved branch to
-    the point feature leaves the fan triangle, while chords from feet at 0.6-0.7 of it run inside."""
+    the point feature leaves the fan triangle, while chords from feet at 0.6-0.7 of it run inside; on
+    session 32's draw, plans 133 and 134, whose strip ends at a curve's bend (a curve point, refused by
+    :func:`strip_beyond`) that had three patches on its 340 degree side."""
     beyond = patch_across(graph, patch, edge)
     found = patch_sides(graph, beyond[0]) if beyond is not None else None
     if found is None or len(found.corners) != 3:
         return None
     end = found.corners[(beyond[1] + 2) % 3]
-    return Walk((beyond[0],), (edge,), end) if is_pole(graph, end) else None
+    kept = is_pole(graph, end) or short_side(graph, end, beyond[0])
+    return Walk((beyond[0],), (edge,), end) if kept else None
 
 
 def side_length(graph, side) -> float:
