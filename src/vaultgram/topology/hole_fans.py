@@ -38,7 +38,7 @@ from vaultgram.geometry.polygons import ccw_degrees, direction
 from vaultgram.topology import reflex
 from vaultgram.topology.corners import boundary_angle
 from vaultgram.topology.hole_sides import inside_corner, rebranch_candidate
-from vaultgram.topology.statecache import per_state
+from vaultgram.topology.statecache import memo_at
 from vaultgram.topology.strips import (
     SPLITTABLE,
     chord_inside,
@@ -175,10 +175,7 @@ def _inside(polygon, a, b) -> bool:
 
 def _once(graph, r: int):
     """:func:`_fan_merge`, worked out once per corner and state of the graph."""
-    memo = per_state(_STATE, graph, lambda g: {})
-    if r not in memo:
-        memo[r] = _fan_merge(graph, r)
-    return memo[r]
+    return memo_at(_STATE, graph, r, lambda: _fan_merge(graph, r))
 
 
 def fan_merge_at(graph, r: int) -> bool:

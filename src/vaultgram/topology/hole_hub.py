@@ -34,7 +34,7 @@ import numpy as np
 from vaultgram.geometry.polygons import ccw_degrees, direction
 from vaultgram.topology import hole_sides, reflex
 from vaultgram.topology.corners import boundary_angle
-from vaultgram.topology.statecache import per_state
+from vaultgram.topology.statecache import memo_at
 from vaultgram.topology.strips import chord_inside, edge_cut, patch_sides
 
 __all__ = ["hub_at", "hub_edge", "hub_index", "hub_patch", "hub_pole", "hub_point", "MIN_HUB_ANGLE",
@@ -147,10 +147,7 @@ def _even(graph, found, i: int, r: int, sides, t: int, x) -> bool:
 
 def _once(graph, r: int):
     """:func:`_hub`, worked out once per corner and state of the graph."""
-    memo = per_state(_STATE, graph, lambda g: {})
-    if r not in memo:
-        memo[r] = _hub(graph, r)
-    return memo[r]
+    return memo_at(_STATE, graph, r, lambda: _hub(graph, r))
 
 
 def hub_at(graph, r: int) -> bool:

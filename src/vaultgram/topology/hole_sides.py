@@ -32,7 +32,7 @@ import shapely
 from vaultgram.geometry.polygons import ccw_degrees, direction, regular_valence
 from vaultgram.topology import reflex
 from vaultgram.topology.corners import boundary_angle
-from vaultgram.topology.statecache import per_state
+from vaultgram.topology.statecache import memo_at
 from vaultgram.topology.strips import patch_sides, side_edge
 from vaultgram.topology.types import PATCH_CORNER
 
@@ -141,10 +141,7 @@ def inside_corner(graph, u: int) -> bool:
 
 def _once(graph, r: int):
     """:func:`choose_rebranch`, worked out once per corner and state of the graph."""
-    memo = per_state(_STATE, graph, lambda g: {})
-    if r not in memo:
-        memo[r] = choose_rebranch(graph, r) if inside_corner(graph, r) else None
-    return memo[r]
+    return memo_at(_STATE, graph, r, lambda: choose_rebranch(graph, r) if inside_corner(graph, r) else None)
 
 
 def fan_rebranch_at(graph, r: int) -> bool:

@@ -35,7 +35,7 @@ import weakref
 from vaultgram.geometry.polygons import ccw_degrees, direction
 from vaultgram.topology import reflex
 from vaultgram.topology.corners import boundary_angle, ring_place
-from vaultgram.topology.statecache import per_state
+from vaultgram.topology.statecache import memo_at
 from vaultgram.topology.strips import chord_inside, edge_cut, patch_sides, side_edge, strip_point
 from vaultgram.topology.types import PATCH_CORNER
 
@@ -127,10 +127,7 @@ def _even(graph, r: int, found, i: int, pole: int, foot) -> bool:
 
 def _once(graph, r: int):
     """:func:`_triangle_cut`, worked out once per corner and state of the graph."""
-    memo = per_state(_STATE, graph, lambda g: {})
-    if r not in memo:
-        memo[r] = _triangle_cut(graph, r)
-    return memo[r]
+    return memo_at(_STATE, graph, r, lambda: _triangle_cut(graph, r))
 
 
 def triangle_cut_at(graph, r: int) -> bool:

@@ -26,7 +26,7 @@ import numpy as np
 from vaultgram.geometry.polylines import arc_lengths, point_at_length
 from vaultgram.topology.corners import graph_rings
 from vaultgram.topology.patches import half_edge_polyline
-from vaultgram.topology.statecache import per_state
+from vaultgram.topology.statecache import memo_at
 
 __all__ = ["branch_cut", "branch_piece", "branch_foot", "register_lone_branch_helpers"]
 
@@ -62,10 +62,7 @@ def branch_foot(graph, b: int, t: float, side: int) -> int:
     the branch: the ring point nearest to it among those strictly between the branch's two ends,
     following the ring from the source to the target (``side`` 0) or from the target to the source
     (1). The branch's source itself where its ends are not on one ring or that stretch is empty."""
-    memo = per_state(_ANSWERS, graph, lambda g: {})
-    if (b, t, side) not in memo:
-        memo[(b, t, side)] = _foot(graph, b, t, side)
-    return memo[(b, t, side)]
+    return memo_at(_ANSWERS, graph, (b, t, side), lambda: _foot(graph, b, t, side))
 
 
 def _foot(graph, b: int, t: float, side: int) -> int:

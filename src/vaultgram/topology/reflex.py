@@ -60,7 +60,7 @@ from vaultgram.topology.reflex_fallbacks import (
     turns_past_straight,
     wide_quads,
 )
-from vaultgram.topology.statecache import per_state, untouched
+from vaultgram.topology.statecache import memo_at, untouched
 from vaultgram.topology.strips import (
     READS,
     Walk,
@@ -606,10 +606,7 @@ def patch_corner(graph, found, k: int) -> tuple[tuple, float, float]:
 def _once(graph, work, r: int):
     """``work(graph, r)`` (:func:`choose_chord` or :func:`choose_cut`), worked out once per corner and state of
     the graph; :func:`choose_chord`'s kept beyond, while the patches it read are untouched (:func:`_kept_chord`)."""
-    memo = per_state(_STATE, graph, lambda g: {})
-    if (work, r) not in memo:
-        memo[(work, r)] = _kept_chord(graph, r) if work is choose_chord else work(graph, r)
-    return memo[(work, r)]
+    return memo_at(_STATE, graph, (work, r), lambda: _kept_chord(graph, r) if work is choose_chord else work(graph, r))
 
 
 def _kept_chord(graph, r: int):

@@ -25,7 +25,7 @@ from __future__ import annotations
 import weakref
 from collections import OrderedDict
 
-__all__ = ["per_state", "STATES", "by_content", "Untouched", "untouched"]
+__all__ = ["per_state", "memo_at", "STATES", "by_content", "Untouched", "untouched"]
 
 #: The states of one graph whose results are kept (the most recently asked).
 STATES = 64
@@ -45,6 +45,24 @@ def per_state(cache: weakref.WeakKeyDictionary, graph, make):
     if len(states) > STATES:
         states.popitem(last=False)
     return value
+
+
+def memo_at(cache: weakref.WeakKeyDictionary, graph, key, make):
+    """``make()``, computed once per ``key`` and state of ``graph``: a rule helper's answer for one
+    corner or branch (its ``key``) kept in a per-state dictionary (:func:`per_state`) of the helper's own
+    ``cache``, so that a rule's condition and its action ask it once.
+
+    >>> from vaultgram.engine.graph import HostGraph
+    >>> from vaultgram.engine.rulebook import rulebook_from_text
+    >>> g, cache = HostGraph(rulebook_from_text("schema s { node A }").schema), weakref.WeakKeyDictionary()
+    >>> calls = []
+    >>> [memo_at(cache, g, k, lambda: calls.append(k) or k * 2) for k in (1, 2, 1)], calls
+    ([2, 4, 2], [1, 2])
+    """
+    memo = per_state(cache, graph, lambda g: {})
+    if key not in memo:
+        memo[key] = make()
+    return memo[key]
 
 
 _MISSING = object()  # by_content's mark of a key not kept
