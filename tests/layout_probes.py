@@ -56,7 +56,13 @@ def assert_regular_hole_corner(laid, corner, angle: float, min_sj: float, tol: f
     r = node_at(dec.graph, corner)
     assert abs(boundary_angle(dec.graph, r) - angle) <= tol
     assert dec.graph.degree(r, [PATCH_CORNER]) == 3
-    assert faces_at(mesh, corner) == 3
+    assert_three_faces_and_regular(domain, mesh, corner, min_sj, tol=1e-9)
+
+
+def assert_three_faces_and_regular(domain, mesh, corner, min_sj: float, tol: float = 1e-6) -> None:
+    """The mesh of ``domain`` has three faces at the polygon corner ``corner`` (a reflex corner's regular
+    number), no boundary singular vertex, no inverted face and a min scaled Jacobian of at least ``min_sj``."""
+    assert faces_at(mesh, corner, tol) == 3
     stats = mesh_stats(mesh, domain)
     assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
     assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= min_sj

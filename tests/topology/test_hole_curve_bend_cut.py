@@ -6,7 +6,7 @@ boundary singular vertices of the 700."""
 from __future__ import annotations
 
 import pytest
-from layout_probes import faces_at, node_at
+from layout_probes import assert_three_faces_and_regular, faces_at, node_at
 
 from vaultgram.domain import domain_from_dict
 from vaultgram.meshing.quality import mesh_stats
@@ -60,11 +60,7 @@ def test_the_cut_ends_at_the_curve_bend_and_the_corner_gets_three_faces():
     assert len(at_bend) == 5 and sum(at_bend) == pytest.approx(360.0, abs=0.5), at_bend
     assert at_bend[0] == pytest.approx(19.8, abs=0.5) and min(at_bend[1:]) >= reflex.MIN_CUT_ANGLE, at_bend
     assert not any(short_side(g, bend, p) for p in {g.ends(e)[0] for e in g.incident(bend, [PATCH_CORNER])})
-    mesh = mesh_decomposition(dec)
-    stats = mesh_stats(mesh, domain)
-    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
-    assert faces_at(mesh, CORNER, 1e-6) == 3
-    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.32
+    assert_three_faces_and_regular(domain, mesh_decomposition(dec), CORNER, 0.32)
 
 
 def test_without_the_curve_end_the_corner_keeps_two_faces(monkeypatch):

@@ -6,7 +6,7 @@ vertices of the 700."""
 from __future__ import annotations
 
 import pytest
-from layout_probes import faces_at, node_at
+from layout_probes import assert_three_faces_and_regular, faces_at, node_at
 
 from vaultgram.domain import domain_from_dict
 from vaultgram.meshing.quality import mesh_stats
@@ -64,11 +64,7 @@ def test_the_fan_triangles_merge_and_the_cut_crosses_to_the_boundary():
     assert hole_fans.MIN_QUAD_ANGLE <= quads[0] <= hole_fans.MAX_QUAD_ANGLE
     assert [pole for n, _, pole in at_feature if n == 3] == [True, True], at_feature
     assert sum(a for _, a, _ in at_feature) == pytest.approx(180.0, abs=0.5)
-    mesh = mesh_decomposition(dec)
-    stats = mesh_stats(mesh, domain)
-    assert stats["boundary_singular"] == 0, stats["boundary_singular_angles"]
-    assert faces_at(mesh, CORNER, 1e-6) == 3
-    assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= 0.339
+    assert_three_faces_and_regular(domain, mesh_decomposition(dec), CORNER, 0.339)
 
 
 def test_without_the_merge_the_corner_keeps_two_faces(monkeypatch):
