@@ -12,7 +12,7 @@ from click.testing import CliRunner
 
 from vaultgram.cli import main
 
-from folding import FOLDING, rules_without_fan_check
+from folding import FOLDING, SKIPPED_ADVICE, rules_without_fan_check, skip_the_fold_advice
 
 
 def design(plan, out, *options):
@@ -42,10 +42,11 @@ def failed_design(tmp_path, plan_data: dict, name: str, *options):
     return line, plan, out
 
 
-def test_a_fold_draws_error_png_and_writes_nothing_else(tmp_path, tmp_path_factory):
+def test_a_fold_draws_error_png_and_writes_nothing_else(tmp_path, tmp_path_factory, monkeypatch):
+    skip_the_fold_advice(monkeypatch)
     rules = ("--rules", str(rules_without_fan_check(tmp_path_factory.mktemp("book"))))  # tests/folding.py
     line, plan, out = failed_design(tmp_path, FOLDING, "folding.json", *rules)
-    assert "the mesh folds" in line
+    assert "the mesh folds" in line and SKIPPED_ADVICE in line
     assert sorted(p.name for p in tmp_path.iterdir()) == ["folding.json", "out"]  # no staging folder left
     png = (out / "error.png").read_bytes()
     assert png.startswith(b"\x89PNG\r\n\x1a\n")
@@ -55,7 +56,8 @@ def test_a_fold_draws_error_png_and_writes_nothing_else(tmp_path, tmp_path_facto
     assert [p.name for p in out.iterdir()] == ["error.png"] and (out / "error.png").read_bytes() == first
 
 
-def test_beside_a_finished_result_the_figure_goes_next_to_it(tmp_path, tmp_path_factory):
+def test_beside_a_finished_result_the_figure_goes_next_to_it(tmp_path, tmp_path_factory, monkeypatch):
+    skip_the_fold_advice(monkeypatch)
     rules = ("--rules", str(rules_without_fan_check(tmp_path_factory.mktemp("book"))))  # tests/folding.py
     plan = tmp_path / "folding.json"
     plan.write_text(json.dumps(FOLDING))
