@@ -56,6 +56,7 @@ from vaultgram.topology.patches import half_edge_polyline
 from vaultgram.topology.reflex_fallbacks import (
     OUTER_MIN_ANGLE,
     OUTER_POINT_MIN_ANGLE,
+    any_point_quads,
     point_quads,
     turns_past_straight,
     wide_quads,
@@ -415,6 +416,10 @@ def _outer_chord(graph, at: tuple, quads: list) -> tuple | None:
         turned = point_quads(angles, quads, boundary_angle(graph, r), PAST_STRAIGHT, SPIKE)
         best = widest_chord(graph, at, turned, OUTER_POINT_MIN_ANGLE, every_foot=True,
                             keep=lambda i, pole, kind: kind == "point"
+                            and not turns_past_straight(angles, i, pole, PAST_STRAIGHT))
+    if best is None:
+        best = widest_chord(graph, at, any_point_quads(angles, quads), OUTER_POINT_MIN_ANGLE, HOLE_MAX_RATIO,
+                            every_foot=True, keep=lambda i, pole, kind: kind == "point"
                             and not turns_past_straight(angles, i, pole, PAST_STRAIGHT))
     return best
 

@@ -41,8 +41,8 @@ This module imports nothing of :mod:`vaultgram.topology.reflex`, which asks it (
 
 from __future__ import annotations
 
-__all__ = ["OUTER_MIN_ANGLE", "OUTER_MIN_QUAD_ANGLE", "OUTER_POINT_MIN_ANGLE", "point_quads", "turns_past_straight",
-           "wide_quads"]
+__all__ = ["OUTER_MIN_ANGLE", "OUTER_MIN_QUAD_ANGLE", "OUTER_POINT_MIN_ANGLE", "any_point_quads", "point_quads",
+           "turns_past_straight", "wide_quads"]
 
 #: Degrees: the worst angle an outer-ring corner's fallback chord may leave, at any foot of
 #: :data:`~vaultgram.topology.reflex.FEET`: between the 30 a chord to a side's middle needs and the 40 a
@@ -109,3 +109,14 @@ def point_quads(angles: list, quads: list, theta: float, past: float, spike: flo
     []
     """
     return [i for i in quads if angles[i] > past or theta >= spike]
+
+
+def any_point_quads(angles: list, quads: list) -> list:
+    """The indices among ``quads`` of the reflex corner's patches (``angles``: their angles there, degrees)
+    whose chords to a boundary point the outer ring's third fallback may take: every quad (session 33).
+    Its own function so that a test can switch the fallback off.
+
+    >>> any_point_quads([102.2, 177.1], [0, 1])
+    [0, 1]
+    """
+    return list(quads)
