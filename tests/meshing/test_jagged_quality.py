@@ -96,12 +96,14 @@ def test_the_one_vertex_search_stalls_where_the_polish_does_not(meshes, monkeypa
     0.148 (0.061 before its spike's triangles were merged, s29-jmany); the pipeline's polish, before
     the mean-quality pass, takes the same layout to 0.223. Main 28c810b's layout, without the outer ring's
     second fallback (``reflex_fallbacks.point_quads``): with it, the 187 degree quad whose corner held the
-    stall is split, the optimiser alone reaches 0.283 and the polish 0.302."""
+    stall is split, the optimiser alone reaches 0.283 and the polish 0.302. The third fallback
+    (``reflex_fallbacks.any_point_quads``, session 33) would take the same chord, so it is off too."""
     import vaultgram.meshpipeline as pipeline
     from vaultgram.topology import reflex
 
     domain = meshes["jagged_1"][0]
     monkeypatch.setattr(reflex, "point_quads", lambda *args: [])
+    monkeypatch.setattr(reflex, "any_point_quads", lambda *args: [])
     after = mesh_stats(mesh_domain(domain), domain)["min_scaled_jacobian"]
     monkeypatch.setattr(pipeline, "POLISH_TARGET", 0.0)
     before = mesh_stats(mesh_domain(domain), domain)["min_scaled_jacobian"]

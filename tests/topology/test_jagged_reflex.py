@@ -69,8 +69,10 @@ def test_no_fallback_beside_a_patch_past_straight(monkeypatch):
     180 degrees at a corner with one face more: the fold main's sessions 20-21 saw), and the 187 degree
     quad has none of 35 degrees, so the 35 degree fallback leaves the corner as it is. The layout is laid
     out without the second fallback (``point_quads``, session 30), which splits the 187 degree quad by a
-    chord to a boundary point instead (tests/topology/test_jagged_reflex2.py)."""
+    chord to a boundary point instead (tests/topology/test_jagged_reflex2.py), nor the third
+    (``any_point_quads``, session 33), which would take the same chord in any quad."""
     monkeypatch.setattr(reflex, "point_quads", lambda *args: [])
+    monkeypatch.setattr(reflex, "any_point_quads", lambda *args: [])
     dec = decompose(domain_from_dict(PLANS["jagged_1"], "jagged_1"))
     g = dec.graph
     r = node_at(g, (5.769, 13.166), 1e-6)

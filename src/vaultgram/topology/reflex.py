@@ -56,6 +56,7 @@ from vaultgram.topology.patches import half_edge_polyline
 from vaultgram.topology.reflex_fallbacks import (
     OUTER_MIN_ANGLE,
     OUTER_POINT_MIN_ANGLE,
+    any_point_quads,
     point_quads,
     turns_past_straight,
     wide_quads,
@@ -406,16 +407,23 @@ def _outer_chord(graph, at: tuple, quads: list) -> tuple | None:
     every foot down to :data:`~vaultgram.topology.reflex_fallbacks.OUTER_MIN_ANGLE` in a quad of 135 degrees or
     more (:func:`~vaultgram.topology.reflex_fallbacks.wide_quads`); else the widest chord to a boundary point
     down to :data:`~vaultgram.topology.reflex_fallbacks.OUTER_POINT_MIN_ANGLE` in a quad past straight or at a
-    spike (:func:`~vaultgram.topology.reflex_fallbacks.point_quads`); neither leaving a patch at the corner
-    past straight (:func:`~vaultgram.topology.reflex_fallbacks.turns_past_straight`)."""
+    spike (:func:`~vaultgram.topology.reflex_fallbacks.point_quads`); else the same in any quad, its edge group
+    within :data:`HOLE_MAX_RATIO` (:func:`~vaultgram.topology.reflex_fallbacks.any_point_quads`); none leaving a
+    patch at the corner past straight (:func:`~vaultgram.topology.reflex_fallbacks.turns_past_straight`)."""
     r, _, _, angles = at
     best = widest_chord(graph, at, wide_quads(angles, quads), OUTER_MIN_ANGLE, every_foot=True,
                         keep=lambda i, pole, kind: not turns_past_straight(angles, i, pole, PAST_STRAIGHT))
+
+    def point(i, pole, kind):
+        """A chord to a boundary point that leaves no patch at the corner past straight."""
+        return kind == "point" and not turns_past_straight(angles, i, pole, PAST_STRAIGHT)
+
     if best is None:
         turned = point_quads(angles, quads, boundary_angle(graph, r), PAST_STRAIGHT, SPIKE)
-        best = widest_chord(graph, at, turned, OUTER_POINT_MIN_ANGLE, every_foot=True,
-                            keep=lambda i, pole, kind: kind == "point"
-                            and not turns_past_straight(angles, i, pole, PAST_STRAIGHT))
+        best = widest_chord(graph, at, turned, OUTER_POINT_MIN_ANGLE, every_foot=True, keep=point)
+    if best is None:
+        best = widest_chord(graph, at, any_point_quads(angles, quads), OUTER_POINT_MIN_ANGLE, HOLE_MAX_RATIO,
+                            every_foot=True, keep=point)
     return best
 
 

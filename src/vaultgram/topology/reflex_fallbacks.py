@@ -35,14 +35,23 @@ worst face 0.223 -> 0.302, at that corner. The wider fallbacks measured against 
 (benchmarks/README.md, session 30) changed the density across the plan: jagged_3's worst face fell
 0.369 -> 0.30-0.36 with any of its chords at 20-38 degrees, wherever they were.
 
+Where neither finds one, a third (:func:`any_point_quads`, session 33): the same chord to a boundary point,
+down to :data:`OUTER_POINT_MIN_ANGLE`, in any quad of the corner, its edge group within
+:data:`~vaultgram.topology.reflex.HOLE_MAX_RATIO` (3.5). On main 9c0e4b0 four corners of 235-292 degrees of
+the jagged plans, each the corner of two quads short of straight, take chords of 20.6-28.6 degrees and
+become regular: boundary singular 25 -> 21 (jagged_0 9 -> 8, jagged_2 5 -> 4, jagged_3 7 -> 5). The cost
+session 30 measured is there: jagged_3's worst face falls 0.375 -> 0.328, away from the corners (the edge
+groups' counts move), above the 0.25 bar. Edge chords too (30 degrees, within 3.5, any quad) made two more
+corners regular but re-laid multiple_lobes' notches (8 -> 15 patches, 1080 -> 1704 faces); not kept.
+
 This module imports nothing of :mod:`vaultgram.topology.reflex`, which asks it (its
 :func:`~vaultgram.topology.reflex.widest_chord` with :func:`turns_past_straight` as the ``keep`` test).
 """
 
 from __future__ import annotations
 
-__all__ = ["OUTER_MIN_ANGLE", "OUTER_MIN_QUAD_ANGLE", "OUTER_POINT_MIN_ANGLE", "point_quads", "turns_past_straight",
-           "wide_quads"]
+__all__ = ["OUTER_MIN_ANGLE", "OUTER_MIN_QUAD_ANGLE", "OUTER_POINT_MIN_ANGLE", "any_point_quads", "point_quads",
+           "turns_past_straight", "wide_quads"]
 
 #: Degrees: the worst angle an outer-ring corner's fallback chord may leave, at any foot of
 #: :data:`~vaultgram.topology.reflex.FEET`: between the 30 a chord to a side's middle needs and the 40 a
@@ -109,3 +118,15 @@ def point_quads(angles: list, quads: list, theta: float, past: float, spike: flo
     []
     """
     return [i for i in quads if angles[i] > past or theta >= spike]
+
+
+def any_point_quads(angles: list, quads: list) -> list:
+    """The indices among ``quads`` of the reflex corner's patches (``angles``: their angles there, degrees)
+    whose chords to a boundary point the outer ring's third fallback may take: every quad (session 33; the
+    second fallback's limits, :func:`point_quads`, were what spared jagged_3's worst face). Its own function
+    so that a test can switch the fallback off.
+
+    >>> any_point_quads([102.2, 177.1], [0, 1])
+    [0, 1]
+    """
+    return list(quads)
