@@ -394,7 +394,8 @@ def split_counts(layout: Layout, counts: np.ndarray, free: np.ndarray, capped: n
 
     A fan that stays below the floor gets no more triangles, unless its count is also the count of a
     boundary pole's fan that splits (:func:`_boundary_pole`: a lone 135-165 degree corner or a reflex
-    corner given a patch of its own), which would otherwise stay a boundary singularity: the kept fan
+    corner given a patch of its own; or a boundary point feature's, :func:`_frees_groups`), which would
+    otherwise stay a boundary singularity (or the plan's worst fan, at a boundary feature): the kept fan
     then takes one triangle more (session 22, 700 saved plans: boundary singular vertices 96 -> 90,
     one more plan with a face under 0.3). So too a group ``capped`` (counted by length, held at an inner
     point feature's fan cap, :func:`~vaultgram.meshing.densities.point_load_caps`) where a boundary pole's
@@ -406,7 +407,7 @@ def split_counts(layout: Layout, counts: np.ndarray, free: np.ndarray, capped: n
     side_count = np.asarray(counts)[layout.group_of]
     free = np.array(free, dtype=bool)
     needed = {_opposite_group(layout, p) for k, p in enumerate(layout.patterns)
-              if k in wanted and _boundary_pole(layout, p)}
+              if k in wanted and _frees_groups(layout, p)}
     for k, pat in enumerate(layout.patterns):
         if (pat.pole is not None and k not in wanted and _fan_of(layout, pat, side_count) < FAN_FLOOR
                 and _opposite_group(layout, pat) not in needed):
@@ -415,9 +416,10 @@ def split_counts(layout: Layout, counts: np.ndarray, free: np.ndarray, capped: n
 
 
 def _boundary_groups(layout: Layout, counts: np.ndarray, free: np.ndarray) -> np.ndarray:
-    """Per group, whether it is a side of a boundary pole's triangle (:func:`_boundary_pole`) that splits
-    once the ``free`` groups are raised (:func:`_raised`): a fan there of two or more triangles is a
-    boundary singularity whatever its shape. Session 32's draw, plan 197: a hexagonal hole's 240 degree
+    """Per group, whether it is a side of a boundary pole's or a boundary point feature's triangle
+    (:func:`_frees_groups`) that splits once the ``free`` groups are raised (:func:`_raised`): a fan at a
+    boundary pole of two or more triangles is a boundary singularity whatever its shape.
+    Session 32's draw, plan 197: a hexagonal hole's 240 degree
     corner given a patch of its own, its triangle's sides at the pole (count 2) in one group with an inner
     point feature's 44 degree fan triangle, capped at 2; the side opposite of count 3 cannot become even
     under 4, so its fan of three made the corner singular (raised, the feature's fan has three triangles,
@@ -425,9 +427,20 @@ def _boundary_groups(layout: Layout, counts: np.ndarray, free: np.ndarray) -> np
     wanted = split_patterns(layout, _raised(layout, counts, free))
     groups = np.zeros(len(free), dtype=bool)
     for k, pat in enumerate(layout.patterns):
-        if k in wanted and _boundary_pole(layout, pat):
+        if k in wanted and _frees_groups(layout, pat):
             groups[[int(layout.group_of[pat.sides[(pat.pole + j) % 3][0]]) for j in (0, 1)]] = True
     return groups
+
+
+def _frees_groups(layout: Layout, pat: PatchPattern) -> bool:
+    """Whether a triangle's split may raise a group that a kept fan or an inner point feature's cap
+    holds (:func:`split_counts`): at a boundary pole (:func:`_boundary_pole`), and at a point feature on
+    the boundary, whose fan of 11-27 triangles in about 180 degrees was the worst face of 72 of the 700
+    saved random plans, every one at its fan bound, unsplit because one of its triangles' opposite
+    count was odd and held by a fan across the strip (session 33: plan 591 0.134 -> 0.221)."""
+    node = pat.corners[pat.pole]
+    return _boundary_pole(layout, pat) or (is_boundary_node(layout.decomposition.graph, node)
+                                           and is_feature_node(layout.decomposition, node))
 
 
 def _opposite_group(layout: Layout, pat: PatchPattern) -> int:
