@@ -68,6 +68,16 @@ def assert_three_faces_and_regular(domain, mesh, corner, min_sj: float, tol: flo
     assert stats["inverted_faces"] == 0 and stats["min_scaled_jacobian"] >= min_sj
 
 
+def assert_the_one_singular_corner(domain, dec, corner, faces: int, angle: float) -> None:
+    """The mesh of ``dec`` (the decomposition of ``domain``) has one boundary singular vertex, the polygon
+    corner ``corner`` of ``angle`` degrees (within 0.5), with ``faces`` faces: a control arm's layout, the
+    corner as main left it."""
+    mesh = mesh_decomposition(dec)
+    stats = mesh_stats(mesh, domain)
+    assert stats["boundary_singular"] == 1 and abs(stats["boundary_singular_angles"][0] - angle) <= 0.5, stats
+    assert faces_at(mesh, corner, 1e-6) == faces
+
+
 def assert_regular_corner(dec, mesh, at, tol: float = 1e-6) -> None:
     """The boundary point at ``at`` is the corner of as many patches of ``dec`` as its angle's regular
     number of faces (``1 + max(1, round(theta / 90))`` less one, issue 12 What 1), and has that many faces

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from layout_probes import faces_at, node_at
+from layout_probes import assert_the_one_singular_corner, faces_at, node_at
 
 from vaultgram.domain import domain_from_dict
 from vaultgram.meshing import splits
@@ -84,7 +84,4 @@ def test_with_the_cap_kept_the_corner_is_a_fan_of_three(laid, monkeypatch):
     k, pat = _pole_triangle(layout, r)
     m, n = (int(counts[layout.group_of[pat.sides[(pat.pole + j) % 3][0]]]) for j in (0, 1))
     assert (m, n) == (2, 3) and k not in splits.split_patterns(layout, counts)
-    mesh = mesh_decomposition(dec)
-    stats = mesh_stats(mesh, domain)
-    assert stats["boundary_singular"] == 1 and faces_at(mesh, CORNER, 1e-6) == 5
-    assert stats["boundary_singular_angles"][0] == pytest.approx(240.0, abs=0.5)
+    assert_the_one_singular_corner(domain, dec, CORNER, 5, 240.0)

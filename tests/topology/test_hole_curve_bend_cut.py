@@ -6,10 +6,9 @@ boundary singular vertices of the 700."""
 from __future__ import annotations
 
 import pytest
-from layout_probes import assert_three_faces_and_regular, faces_at, node_at
+from layout_probes import assert_the_one_singular_corner, assert_three_faces_and_regular, node_at
 
 from vaultgram.domain import domain_from_dict
-from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import decompose, mesh_decomposition
 from vaultgram.topology import reflex
 from vaultgram.topology.curve_points import short_side
@@ -75,7 +74,4 @@ def test_without_the_curve_end_the_corner_keeps_two_faces(monkeypatch):
     assert g.degree(r, [PATCH_CORNER]) == 0
     assert len(_angles_at(dec, bend)) == 4
     assert any(short_side(g, bend, p) for p in {g.ends(e)[0] for e in g.incident(bend, [PATCH_CORNER])})
-    mesh = mesh_decomposition(dec)
-    stats = mesh_stats(mesh, domain)
-    assert stats["boundary_singular"] == 1 and faces_at(mesh, CORNER, 1e-6) == 2
-    assert stats["boundary_singular_angles"][0] == pytest.approx(240.0, abs=0.5)
+    assert_the_one_singular_corner(domain, dec, CORNER, 2, 240.0)

@@ -6,10 +6,9 @@ vertices of the 700."""
 from __future__ import annotations
 
 import pytest
-from layout_probes import assert_three_faces_and_regular, faces_at, node_at
+from layout_probes import assert_the_one_singular_corner, assert_three_faces_and_regular, node_at
 
 from vaultgram.domain import domain_from_dict
-from vaultgram.meshing.quality import mesh_stats
 from vaultgram.pipeline import decompose, mesh_decomposition
 from vaultgram.topology import hole_fans
 from vaultgram.topology.types import PATCH_CORNER
@@ -77,7 +76,4 @@ def test_without_the_merge_the_corner_keeps_two_faces(monkeypatch):
     r, f = node_at(g, CORNER), node_at(g, FEATURE)
     assert g.degree(r, [PATCH_CORNER]) == 0
     assert [(n, pole) for n, _, pole in _patches_at(dec, f)] == [(3, True)] * 4
-    mesh = mesh_decomposition(dec)
-    stats = mesh_stats(mesh, domain)
-    assert stats["boundary_singular"] == 1 and faces_at(mesh, CORNER, 1e-6) == 2
-    assert stats["boundary_singular_angles"][0] == pytest.approx(252.0, abs=0.5)
+    assert_the_one_singular_corner(domain, dec, CORNER, 2, 252.0)
